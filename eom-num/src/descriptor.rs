@@ -1,1 +1,664 @@
-//! (to be written)
+//! Descriptor models `E ẋ = A x + B u`: reduction to a standard state space and finite
+//! generalized eigenvalues.
+//!
+//! # Reduction (index-1 pencils)
+//!
+//! [`descriptor_to_state_space`] follows EoM.jl's `dss2ss` (eom-method §6.1) with the fixes of
+//! §13.3:
+//!
+//! 1. The pencil is equilibrated by exact power-of-two row and column scalings
+//!    (`R (sE − A) S`, Ruiz's iteration on E; rows and columns where E is zero are scaled by A),
+//!    so that the rank of E does not depend on units. This leaves the transfer function and
+//!    the eigenvalues unchanged.
+//! 2. `E = U Σ Vᵀ` (SVD); the rank r of E is decided with a [`RankTolerance`] (default
+//!    `10·n·ε·σ_max`, not EoM.jl's ULP-tight `n·ulp(σ_max)`), and the decision and its gap are
+//!    returned in the [`DescriptorReport`].
+//! 3. If E has full rank, `ẋ = E⁻¹A x + E⁻¹B u` (LU) in the original coordinates.
+//!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ`, the last n − r
+//!    equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1):
+//!    its rank is decided by SVD relative to ‖A‖, then it is factored by LU with partial
+//!    pivoting and its condition number is reported. A singular A22 is an error:
+//!    [`NumError::SingularPencil`] when `sE − A` is singular for every s (tested at two
+//!    generic complex points), [`NumError::HigherIndex`] otherwise.
+//! 4. The Schur complement gives
+//!    `A_s = Σ⁻¹(A11 − A12 A22⁻¹ A21)`, `B_s = Σ⁻¹(B1 − A12 A22⁻¹ B2)`,
+//!    `C_s = C1 − C2 A22⁻¹ A21`, `D_s = D − C2 A22⁻¹ B2`,
+//!    and the physical map is transformed the same way as C (with u = 0, as for mode shapes):
+//!    `phys_s = P1 − P2 A22⁻¹ A21` where `[P1 P2] = phys · S · V`.
+//!
+//! # Finite generalized eigenvalues
+//!
+//! [`generalized_eigenvalues`] uses faer's QZ on the equilibrated pencil and drops infinite
+//! eigenvalues with a scale-aware test instead of EoM.jl's fixed `|λ| < 1e9` (§13.16); see
+//! [`GenEigOptions`].
+
+use faer::diag::DiagMut;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::evd::ComputeEigenvectors;
+use faer::linalg::gevd::{gevd_real, gevd_scratch};
+use faer::{MatMut, Par};
+use nalgebra::{DMatrix, DVector};
+use num_complex::Complex64;
+
+use crate::NumError;
+use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
+use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
+
+/// Options of [`descriptor_to_state_space`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct DescriptorOptions<'a> {
+    /// Tolerance of the rank decision on (the equilibrated) E; also used, relative to ‖A‖,
+    /// for the invertibility of A22. Default [`RankTolerance::Default`].
+    pub rank_tol: RankTolerance,
+    /// Equilibrate the pencil before deciding (default `true`).
+    pub equilibrate: bool,
+    /// Condition numbers of A22 (and of the kept part of E) above this value produce a
+    /// warning in the report (default `1e8`, i.e. about half the digits are lost).
+    pub warn_condition: f64,
+    /// Map from the descriptor state to physical coordinates (rows × n), transformed into
+    /// [`StateSpace::phys`]. `None` gives a `phys` with zero rows.
+    pub phys: Option<&'a DMatrix<f64>>,
+    /// Names copied into the result; `states` is replaced by `x1, x2, …` unless E has full
+    /// rank (then the original state names are kept, as the coordinates are).
+    pub names: SignalNames,
+}
+
+impl Default for DescriptorOptions<'_> {
+    fn default() -> Self {
+        DescriptorOptions {
+            rank_tol: RankTolerance::Default,
+            equilibrate: true,
+            warn_condition: 1e8,
+            phys: None,
+            names: SignalNames::default(),
+        }
+    }
+}
+
+/// What the reduction decided, and how close the decisions were.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DescriptorReport {
+    /// Number of descriptor states n.
+    pub states: usize,
+    /// Number of dynamic states kept (rank of E).
+    pub dynamic: usize,
+    /// Number of algebraic states eliminated (n − rank E).
+    pub algebraic: usize,
+    /// The rank decision on (the equilibrated) E, with its singular values and gap.
+    pub e_rank: Rank,
+    /// The invertibility decision on A22 (empty when there is no algebraic part).
+    pub a22_rank: Option<Rank>,
+    /// 2-norm condition number of A22 (1 when there is no algebraic part).
+    pub a22_condition: f64,
+    /// `σ_1 / σ_r` of the kept part of E (how stiff the reduced model is).
+    pub e_condition: f64,
+    /// The pencil scaling applied (`None` when not equilibrated).
+    pub scaling: Option<Scaling>,
+    /// Human-readable warnings (near-tolerance rank decisions, ill-conditioning).
+    pub warnings: Vec<String>,
+}
+
+/// Scales the pencil: Ruiz on E, plus A-based scaling of rows/columns where E is zero.
+fn pencil_scaling(e: &DMatrix<f64>, a: &DMatrix<f64>) -> Result<Scaling, NumError> {
+    let (_, mut s) = equilibrate(e, Equilibrate::Both)?;
+    let n = e.nrows();
+    let pow2 = |x: f64| (1.0 / x).log2().round().clamp(-1000.0, 1000.0).exp2();
+    for i in 0..n {
+        if e.row(i).iter().all(|&x| x == 0.0) {
+            let mx = (0..n).fold(0.0f64, |acc, j| acc.max((a[(i, j)] * s.cols[j]).abs()));
+            if mx > 0.0 {
+                s.rows[i] = pow2(mx);
+            }
+        }
+    }
+    for j in 0..n {
+        if e.column(j).iter().all(|&x| x == 0.0) {
+            let mx = (0..n).fold(0.0f64, |acc, i| acc.max((a[(i, j)] * s.rows[i]).abs()));
+            if mx > 0.0 {
+                s.cols[j] = pow2(mx);
+            }
+        }
+    }
+    Ok(s)
+}
+
+fn scale_rows(m: &mut DMatrix<f64>, f: &DVector<f64>) {
+    for (i, mut r) in m.row_iter_mut().enumerate() {
+        r.scale_mut(f[i]);
+    }
+}
+
+fn scale_cols(m: &mut DMatrix<f64>, f: &DVector<f64>) {
+    for (j, mut c) in m.column_iter_mut().enumerate() {
+        c.scale_mut(f[j]);
+    }
+}
+
+fn near_note(what: &str, r: &Rank, out: &mut Vec<String>) {
+    if r.is_near_tolerance(100.0) {
+        out.push(format!(
+            "{what}: rank {} decided within a factor {:.3} of the threshold {:.3e} (gap {:.3e}); \
+             the decision is fragile",
+            r.rank, r.margin, r.threshold, r.gap
+        ));
+    }
+}
+
+/// Is `sE − A` rank deficient at two generic complex points? (singular pencil test)
+fn pencil_is_singular(e: &DMatrix<f64>, a: &DMatrix<f64>, tol: RankTolerance) -> Result<bool, NumError> {
+    let n = e.nrows();
+    let ne = e.norm();
+    let na = a.norm();
+    let base = if ne > 0.0 && na > 0.0 { na / ne } else { 1.0 };
+    // Two fixed, "generic" points: irrational-looking ratios avoid hitting an eigenvalue.
+    let points = [
+        Complex64::new(0.618_033_988_7, 0.303_577_269_0) * base,
+        Complex64::new(-0.414_213_562_3, 1.259_921_049_9) * base,
+    ];
+    let mut singular = true;
+    for s in points {
+        // Real embedding [[P, −Q], [Q, P]] of P + iQ = sE − A; its singular values are those of
+        // the complex matrix, each twice.
+        let mut m = DMatrix::<f64>::zeros(2 * n, 2 * n);
+        for i in 0..n {
+            for j in 0..n {
+                let p = s.re * e[(i, j)] - a[(i, j)];
+                let q = s.im * e[(i, j)];
+                m[(i, j)] = p;
+                m[(i + n, j + n)] = p;
+                m[(i, j + n)] = -q;
+                m[(i + n, j)] = q;
+            }
+        }
+        if rank(&m, tol)?.rank == 2 * n {
+            singular = false;
+        }
+    }
+    Ok(singular)
+}
+
+/// Reduces an index-1 descriptor model to a standard state space (see the module docs).
+///
+/// Errors: [`NumError::Dimension`] / [`NumError::NonFinite`] for a malformed model or `phys`
+/// (names the matrix), [`NumError::InvalidOption`] for a bad tolerance,
+/// [`NumError::HigherIndex`] when A22 is singular but the pencil is regular,
+/// [`NumError::SingularPencil`] when `det(sE − A) ≡ 0`, [`NumError::Singular`] when E has full
+/// rank by the decision but its LU breaks down, [`NumError::NoConvergence`].
+pub fn descriptor_to_state_space(
+    d: &Descriptor<f64>,
+    opts: &DescriptorOptions<'_>,
+) -> Result<(StateSpace<f64>, DescriptorReport), NumError> {
+    d.validate()?;
+    opts.rank_tol.validate()?;
+    if !(opts.warn_condition > 0.0) {
+        return Err(NumError::InvalidOption(format!(
+            "DescriptorOptions::warn_condition = {}: must be > 0",
+            opts.warn_condition
+        )));
+    }
+    let n = d.states();
+    let m = d.b.ncols();
+    let p = d.c.nrows();
+    let phys0 = match opts.phys {
+        Some(ph) => {
+            if ph.ncols() != n {
+                return Err(NumError::Dimension(format!(
+                    "phys is {}×{}, expected one column per descriptor state ({n})",
+                    ph.nrows(),
+                    ph.ncols()
+                )));
+            }
+            check_finite(ph, "phys")?;
+            ph.clone()
+        }
+        None => DMatrix::zeros(0, n),
+    };
+
+    // 1. Equilibrate: E' = R E S, A' = R A S, B' = R B, C' = C S, phys' = phys S.
+    let scaling = if opts.equilibrate {
+        pencil_scaling(&d.e, &d.a)?
+    } else {
+        Scaling {
+            rows: DVector::from_element(n, 1.0),
+            cols: DVector::from_element(n, 1.0),
+        }
+    };
+    let (mut e, mut a, mut b, mut c, mut ph) =
+        (d.e.clone(), d.a.clone(), d.b.clone(), d.c.clone(), phys0);
+    scale_rows(&mut e, &scaling.rows);
+    scale_cols(&mut e, &scaling.cols);
+    scale_rows(&mut a, &scaling.rows);
+    scale_cols(&mut a, &scaling.cols);
+    scale_rows(&mut b, &scaling.rows);
+    scale_cols(&mut c, &scaling.cols);
+    scale_cols(&mut ph, &scaling.cols);
+
+    // 2. SVD of E and its rank. Exactly zero rows and columns (input states, massless
+    //    coordinates) are split off first, so that their part of A22 is exact.
+    let (f, zeros) = structured_svd(&e)?;
+    let smax = f.singular_values.first().copied().unwrap_or(0.0);
+    let e_rank = rank_from(&f.singular_values, opts.rank_tol.threshold(smax, n, n));
+    let r = e_rank.rank;
+    // The nullspace is exact when it consists of the structural zero rows/columns only.
+    let structural = n - r == zeros;
+    let mut warnings = Vec::new();
+    near_note("rank of E", &e_rank, &mut warnings);
+    let e_condition = if r == 0 {
+        1.0
+    } else {
+        f.singular_values[0] / f.singular_values[r - 1]
+    };
+    if e_condition > opts.warn_condition {
+        warnings.push(format!(
+            "the kept part of E has condition number {e_condition:.3e} (σ_1/σ_r): the reduced \
+             model is stiff (nearly massless coordinates kept as dynamic)"
+        ));
+    }
+    let mut names = opts.names.clone();
+    let scaled_report = if opts.equilibrate {
+        Some(scaling.clone())
+    } else {
+        None
+    };
+
+    if r == n {
+        // 3. Full rank: ẋ = E⁻¹A x + E⁻¹B u in original coordinates. With E' = R E S:
+        //    E⁻¹A = S (E'⁻¹ A') S⁻¹ and E⁻¹B = S E'⁻¹ B'.
+        let lu = e.clone().lu();
+        let mut rhs = DMatrix::zeros(n, n + m);
+        rhs.columns_mut(0, n).copy_from(&a);
+        rhs.columns_mut(n, m).copy_from(&b);
+        let x = lu.solve(&rhs).ok_or_else(|| {
+            NumError::Singular(format!(
+                "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
+            ))
+        })?;
+        let mut a_s = x.columns(0, n).into_owned();
+        let mut b_s = x.columns(n, m).into_owned();
+        for i in 0..n {
+            for j in 0..n {
+                a_s[(i, j)] *= scaling.cols[i] / scaling.cols[j];
+            }
+            for j in 0..m {
+                b_s[(i, j)] *= scaling.cols[i];
+            }
+        }
+        check_finite(&a_s, "A_s = E⁻¹A")?;
+        let phys = match opts.phys {
+            Some(ph0) => ph0.clone(),
+            None => DMatrix::zeros(0, n),
+        };
+        let ss = StateSpace {
+            a: a_s,
+            b: b_s,
+            c: d.c.clone(),
+            d: d.d.clone(),
+            phys,
+            names,
+        };
+        ss.validate()?;
+        return Ok((
+            ss,
+            DescriptorReport {
+                states: n,
+                dynamic: n,
+                algebraic: 0,
+                e_rank,
+                a22_rank: None,
+                a22_condition: 1.0,
+                e_condition,
+                scaling: scaled_report,
+                warnings,
+            },
+        ));
+    }
+
+    // 3'. Rank deficient: rotate by the singular vectors.
+    let ut = f.u.transpose();
+    let at = &ut * &a * &f.v;
+    let bt = &ut * &b;
+    let ct = &c * &f.v;
+    let pt = &ph * &f.v;
+    let k = n - r;
+    let a11 = at.view((0, 0), (r, r));
+    let a12 = at.view((0, r), (r, k));
+    let a21 = at.view((r, 0), (k, r));
+    let a22 = at.view((r, r), (k, k)).into_owned();
+    let b1 = bt.rows(0, r);
+    let b2 = bt.rows(r, k);
+    let c1 = ct.columns(0, r);
+    let c2 = ct.columns(r, k);
+    let p1 = pt.columns(0, r);
+    let p2 = pt.columns(r, k);
+
+    // A22 invertibility, decided on the equilibrated A22: its rows are algebraic equations
+    // and its columns algebraic variables, whose units are arbitrary (the Schur complement
+    // does not depend on them).
+    let (a22e, sc22) = equilibrate(&a22, Equilibrate::Both)?;
+    let s22 = crate::linalg::singular_values(&a22e)?;
+    let thr22 = opts.rank_tol.threshold(s22[0], k, k);
+    let a22_rank = rank_from(&s22, thr22);
+    if a22_rank.rank < k {
+        let singular = pencil_is_singular(&e, &a, opts.rank_tol)?;
+        let smin = s22.last().copied().unwrap_or(0.0);
+        let detail = format!(
+            "E has rank {r} of {n}; the algebraic block A22 ({k}×{k}) has rank {} \
+             (smallest singular value of the equilibrated A22 {smin:.3e} ≤ threshold \
+             {thr22:.3e})",
+            a22_rank.rank
+        );
+        return Err(if singular {
+            NumError::SingularPencil(format!(
+                "{detail}, and sE − A is rank deficient at generic s: the equations do not \
+                 determine the motion (missing equation or redundant coordinate)"
+            ))
+        } else {
+            NumError::HigherIndex(format!(
+                "{detail}; the pencil is regular, so its index is > 1 (e.g. a constraint on a \
+                 position without its derivative); reduce the index before calling \
+                 descriptor_to_state_space"
+            ))
+        });
+    }
+    let a22_condition = s22[0] / s22[k - 1];
+    near_note("invertibility of A22", &a22_rank, &mut warnings);
+    if a22_condition > opts.warn_condition {
+        warnings.push(format!(
+            "A22 ({k}×{k}) has condition number {a22_condition:.3e} (equilibrated): the \
+             elimination of the algebraic states loses about {:.0} digits",
+            a22_condition.log10()
+        ));
+    }
+    if !structural {
+        // A rotated (non-structural) nullspace of E puts rounding errors of size ε‖A‖ into
+        // A22; an A22 at that level may be an index-2 pencil in disguise.
+        let anorm = crate::linalg::singular_values(&a)?
+            .first()
+            .copied()
+            .unwrap_or(0.0);
+        let s22raw = crate::linalg::singular_values(&a22)?;
+        let noise = 10.0 * n as f64 * f64::EPSILON * anorm;
+        if s22raw.last().copied().unwrap_or(0.0) <= 100.0 * noise {
+            warnings.push(format!(
+                "A22 (σ_min {:.3e}) is within a factor 100 of the rounding level of A \
+                 ({noise:.3e}) and E's nullspace is not structural: the pencil may have index > 1",
+                s22raw.last().copied().unwrap_or(0.0)
+            ));
+        }
+    }
+    // A22⁻¹ Y = C22 (R22 A22 C22)⁻¹ R22 Y.
+    let lu = a22e.lu();
+    let mut rhs = DMatrix::zeros(k, r + m);
+    rhs.columns_mut(0, r).copy_from(&a21);
+    rhs.columns_mut(r, m).copy_from(&b2);
+    scale_rows(&mut rhs, &sc22.rows);
+    let mut x = lu.solve(&rhs).ok_or_else(|| {
+        NumError::Singular(format!(
+            "A22 ({k}×{k}) passed the rank test but its LU factorisation broke down"
+        ))
+    })?;
+    scale_rows(&mut x, &sc22.cols);
+    let xa = x.columns(0, r);
+    let xb = x.columns(r, m);
+    let mut a_s = a11 - a12 * xa;
+    let mut b_s = b1 - a12 * xb;
+    for i in 0..r {
+        let inv = 1.0 / f.singular_values[i];
+        a_s.row_mut(i).scale_mut(inv);
+        b_s.row_mut(i).scale_mut(inv);
+    }
+    let c_s = c1 - c2 * xa;
+    let d_s = &d.d - c2 * xb;
+    let phys_s = p1 - p2 * xa;
+    names.states = (1..=r).map(|i| format!("x{i}")).collect();
+    let ss = StateSpace {
+        a: a_s,
+        b: b_s,
+        c: c_s,
+        d: d_s,
+        phys: phys_s,
+        names,
+    };
+    debug_assert_eq!(ss.c.nrows(), p);
+    ss.validate()?;
+    Ok((
+        ss,
+        DescriptorReport {
+            states: n,
+            dynamic: r,
+            algebraic: k,
+            e_rank,
+            a22_rank: Some(a22_rank),
+            a22_condition,
+            e_condition,
+            scaling: scaled_report,
+            warnings,
+        },
+    ))
+}
+
+/// SVD of E with exactly zero rows and columns split off: if E has z zero rows and z zero
+/// columns, `E = P_r [[E11, 0], [0, 0]] P_cᵀ`, only E11 is decomposed and the null part of
+/// U, V consists of exact unit vectors. Returns the SVD and z.
+fn structured_svd(e: &DMatrix<f64>) -> Result<(crate::linalg::Svd, usize), NumError> {
+    let n = e.nrows();
+    let zr: Vec<usize> = (0..n).filter(|&i| e.row(i).iter().all(|&x| x == 0.0)).collect();
+    let zc: Vec<usize> = (0..n).filter(|&j| e.column(j).iter().all(|&x| x == 0.0)).collect();
+    if zr.is_empty() || zr.len() != zc.len() {
+        return Ok((svd(e)?, 0));
+    }
+    let z = zr.len();
+    let nr: Vec<usize> = (0..n).filter(|i| !zr.contains(i)).collect();
+    let nc: Vec<usize> = (0..n).filter(|j| !zc.contains(j)).collect();
+    let e11 = DMatrix::from_fn(n - z, n - z, |i, j| e[(nr[i], nc[j])]);
+    let f11 = svd(&e11)?;
+    let mut u = DMatrix::zeros(n, n);
+    let mut v = DMatrix::zeros(n, n);
+    for (i, &ri) in nr.iter().enumerate() {
+        for j in 0..n - z {
+            u[(ri, j)] = f11.u[(i, j)];
+        }
+    }
+    for (j, &cj) in nc.iter().enumerate() {
+        for i in 0..n - z {
+            // V rows are indexed by columns of E.
+            v[(cj, i)] = f11.v[(j, i)];
+        }
+    }
+    for (k, (&ri, &cj)) in zr.iter().zip(zc.iter()).enumerate() {
+        u[(ri, n - z + k)] = 1.0;
+        v[(cj, n - z + k)] = 1.0;
+    }
+    let mut sv = f11.singular_values.clone();
+    sv.extend(std::iter::repeat_n(0.0, z));
+    Ok((
+        crate::linalg::Svd {
+            u,
+            singular_values: sv,
+            v,
+        },
+        z,
+    ))
+}
+
+fn rank_from(s: &[f64], threshold: f64) -> Rank {
+    crate::linalg::decide(s.to_vec(), threshold)
+}
+
+/// Options of [`generalized_eigenvalues_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GenEigOptions {
+    /// Rank tolerance for E: a regular pencil has at least `n − rank E` infinite
+    /// eigenvalues, which are always dropped.
+    pub rank_tol: RankTolerance,
+    /// Beyond those, an eigenvalue is also infinite when
+    /// `θ = |β̂| / √(|α̂|² + |β̂|²) ≤ infinite_tol`, with `α̂ = α/‖A‖_F`, `β̂ = β/‖E‖_F`
+    /// (the angle of (α, β) in the scaled projective line). Default `√ε ≈ 1.5e-8`, i.e. a
+    /// finite eigenvalue must satisfy `|λ| < ‖A‖/(‖E‖ √ε)`; perturbed higher-index infinite
+    /// eigenvalues typically land near `√ε`.
+    pub infinite_tol: f64,
+    /// Equilibrate the pencil first (default `true`).
+    pub equilibrate: bool,
+}
+
+impl Default for GenEigOptions {
+    fn default() -> Self {
+        GenEigOptions {
+            rank_tol: RankTolerance::Default,
+            infinite_tol: f64::EPSILON.sqrt(),
+            equilibrate: true,
+        }
+    }
+}
+
+/// Finite and infinite generalized eigenvalues of a pencil.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeneralizedEigenvalues {
+    /// Finite eigenvalues, sorted by (Re, Im).
+    pub finite: Vec<Complex64>,
+    /// Number of eigenvalues judged infinite.
+    pub infinite: usize,
+    /// Rank decision on E (lower bound n − rank for the infinite count).
+    pub e_rank: Rank,
+    /// Ratio of θ across the finite/infinite split (smallest finite θ over largest infinite
+    /// θ; `∞` if one side is empty or exact). Close to 1 means the split was close.
+    pub gap: f64,
+    /// Warnings (close split, disagreement between the rank of E and QZ).
+    pub warnings: Vec<String>,
+}
+
+/// Finite generalized eigenvalues of `(A, E)` (`det(λE − A) = 0`), sorted by (Re, Im), with
+/// default [`GenEigOptions`].
+///
+/// Errors: [`NumError::Dimension`], [`NumError::NonFinite`], [`NumError::SingularPencil`]
+/// when some (α, β) are both zero (det(sE − A) ≡ 0), [`NumError::NoConvergence`].
+pub fn generalized_eigenvalues(d: &Descriptor<f64>) -> Result<Vec<Complex64>, NumError> {
+    Ok(generalized_eigenvalues_with(d, &GenEigOptions::default())?.finite)
+}
+
+/// [`generalized_eigenvalues`] with options and the full report.
+pub fn generalized_eigenvalues_with(
+    d: &Descriptor<f64>,
+    opts: &GenEigOptions,
+) -> Result<GeneralizedEigenvalues, NumError> {
+    d.validate()?;
+    opts.rank_tol.validate()?;
+    if !(opts.infinite_tol.is_finite() && opts.infinite_tol >= 0.0) {
+        return Err(NumError::InvalidOption(format!(
+            "GenEigOptions::infinite_tol = {}: must be finite and ≥ 0",
+            opts.infinite_tol
+        )));
+    }
+    let n = d.states();
+    let (mut e, mut a) = (d.e.clone(), d.a.clone());
+    if opts.equilibrate {
+        let s = pencil_scaling(&d.e, &d.a)?;
+        scale_rows(&mut e, &s.rows);
+        scale_cols(&mut e, &s.cols);
+        scale_rows(&mut a, &s.rows);
+        scale_cols(&mut a, &s.cols);
+    }
+    let e_rank = rank(&e, opts.rank_tol)?;
+    let ne = e.norm();
+    let na = a.norm();
+    let mut re = vec![0.0; n];
+    let mut im = vec![0.0; n];
+    let mut beta = vec![0.0; n];
+    if n > 0 {
+        let mut aw = a.clone();
+        let mut ew = e.clone();
+        let req = gevd_scratch::<f64>(
+            n,
+            ComputeEigenvectors::No,
+            ComputeEigenvectors::No,
+            Par::Seq,
+            Default::default(),
+        );
+        let mut buf = MemBuffer::new(req);
+        gevd_real(
+            MatMut::from_column_major_slice_mut(aw.as_mut_slice(), n, n),
+            MatMut::from_column_major_slice_mut(ew.as_mut_slice(), n, n),
+            DiagMut::from_slice_mut(&mut re),
+            DiagMut::from_slice_mut(&mut im),
+            DiagMut::from_slice_mut(&mut beta),
+            None,
+            None,
+            Par::Seq,
+            MemStack::new(&mut buf),
+            Default::default(),
+        )
+        .map_err(|_| NumError::NoConvergence(format!("QZ of a {n}×{n} pencil")))?;
+    }
+    // Scaled (α̂, β̂) and the angle θ.
+    let sa = if na > 0.0 { na } else { 1.0 };
+    let se = if ne > 0.0 { ne } else { 1.0 };
+    let zero_tol = 10.0 * (n.max(1) as f64) * f64::EPSILON;
+    let mut items: Vec<(f64, Complex64)> = Vec::with_capacity(n);
+    let mut j = 0;
+    while j < n {
+        let pair = im[j] != 0.0 && j + 1 < n;
+        let alpha = Complex64::new(re[j], im[j]);
+        let ah = alpha.norm() / sa;
+        let bh = beta[j].abs() / se;
+        if ah <= zero_tol && bh <= zero_tol {
+            return Err(NumError::SingularPencil(format!(
+                "QZ returned α ≈ β ≈ 0 (|α|/‖A‖ = {ah:.2e}, |β|/‖E‖ = {bh:.2e}) for eigenvalue \
+                 {j}: det(sE − A) vanishes identically ({n}×{n} pencil, rank E = {})",
+                e_rank.rank
+            )));
+        }
+        let theta = bh / (ah * ah + bh * bh).sqrt();
+        let lambda = if beta[j] != 0.0 {
+            alpha / beta[j]
+        } else {
+            Complex64::new(f64::INFINITY, 0.0)
+        };
+        items.push((theta, lambda));
+        if pair {
+            items.push((theta, lambda.conj()));
+            j += 2;
+        } else {
+            j += 1;
+        }
+    }
+    // Smallest θ first: the n − rank(E) smallest are infinite regardless; then the threshold.
+    items.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let forced = n - e_rank.rank;
+    let mut n_inf = forced;
+    while n_inf < n && (items[n_inf].0 <= opts.infinite_tol || !items[n_inf].1.re.is_finite()) {
+        n_inf += 1;
+    }
+    let mut warnings = Vec::new();
+    // Conjugate pairs share θ; never split a pair.
+    while n_inf > 0 && n_inf < n && items[n_inf].0 == items[n_inf - 1].0 && items[n_inf].1.im != 0.0 {
+        n_inf += 1;
+    }
+    if forced > 0 && items[forced - 1].0 > opts.infinite_tol {
+        warnings.push(format!(
+            "rank(E) = {} forces {forced} infinite eigenvalues but QZ sees one with θ = {:.3e} > \
+             {:.3e}: the rank decision on E and the QZ disagree",
+            e_rank.rank,
+            items[forced - 1].0,
+            opts.infinite_tol
+        ));
+    }
+    let gap = if n_inf == 0 || n_inf == n || items[n_inf - 1].0 == 0.0 {
+        f64::INFINITY
+    } else {
+        items[n_inf].0 / items[n_inf - 1].0
+    };
+    if gap < 100.0 {
+        warnings.push(format!(
+            "the finite/infinite split is close: θ ratio {gap:.3} across it"
+        ));
+    }
+    let mut finite: Vec<Complex64> = items[n_inf..].iter().map(|x| x.1).collect();
+    finite.sort_by(|a, b| a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im)));
+    Ok(GeneralizedEigenvalues {
+        finite,
+        infinite: n_inf,
+        e_rank,
+        gap,
+        warnings,
+    })
+}

@@ -1,1 +1,329 @@
-//! (to be written)
+//! Steady-state gains `G(0) = D − C A⁻¹ B`, with integrating outputs identified.
+//!
+//! # Method
+//!
+//! A is balanced (diagonal similarity) and its rank decided by SVD ([`RankTolerance`], scale
+//! aware, reported). If A is nonsingular, `G(0) = D − C A⁻¹ B` by LU and every pair is
+//! [`Gain::Finite`]; the condition number of A is reported.
+//!
+//! If A is singular (rigid-body modes, integrators from position/heading outputs) the state
+//! space is split into the invariant subspace of the zero eigenvalue and its complement:
+//!
+//! * `V₀` = orthonormal basis of `ker(A^ν)` (ν the index of the zero eigenvalue), built by
+//!   the ascending chain `ker A ⊂ ker A² ⊂ …`, each step an SVD nullspace;
+//! * `V₁` = orthonormal basis of `range(A^ν)`, the orthogonal complement of the left chain
+//!   `ker (Aᵀ)^ν`;
+//! * with `T = [V₀ V₁]`, `T⁻¹ A T = diag(N, A₁)`, N nilpotent (q × q), A₁ nonsingular.
+//!
+//! Then `G(s) = D + C V₁ (sI − A₁)⁻¹ W₁ B + Σ_{k<q} C V₀ Nᵏ W₀ B / s^{k+1}` (W = T⁻¹). The
+//! pair (i, j) has a pole at s = 0 — its output sees an unbounded response to a constant
+//! input — exactly when some `Mₖ = C V₀ Nᵏ W₀ B` has a nonzero (i, j) entry, i.e. when the
+//! input reaches a zero-eigenvalue mode that the output observes. Such pairs are reported
+//! as [`Gain::Integrating`] with the pole order r (the step response grows like `t^r`) and
+//! the leading coefficient `lim s^r G(s) = M_{r−1}` (for r = 1: the slope of the ramp per
+//! unit step). The remaining pairs get the exact limit `G(0) = D − C V₁ A₁⁻¹ W₁ B`. A
+//! coefficient counts as nonzero when `|Mₖ(i,j)| > 10·n·ε·‖cᵢ‖‖bⱼ‖‖W₀‖‖A‖ᵏ` (the size of its
+//! rounding error), in balanced coordinates.
+//!
+//! EoM.jl replaced the gain by `Re G(jω)` one decade below the plot range whenever
+//! `cond(A) ≥ 1e6` (eom-method §13.7), which is meaningless for integrating outputs and
+//! silently approximate for the others.
+
+use nalgebra::DMatrix;
+
+use crate::NumError;
+use crate::linalg::{Rank, RankTolerance, balance_in_place, decide, nullspace, singular_values};
+use crate::statespace::StateSpace;
+
+/// The steady-state gain of one input/output pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Gain {
+    /// A finite limit `G_ij(0)`.
+    Finite(f64),
+    /// The output integrates a constant input: `G_ij(s)` has a pole of order `order` at 0, and
+    /// a unit step gives `y(t) ≈ coefficient · t^order / order!` for large t.
+    Integrating {
+        /// Order of the pole at s = 0 (1 = ramp, 2 = parabola, …).
+        order: usize,
+        /// `lim_{s→0} s^order G_ij(s)`.
+        coefficient: f64,
+    },
+}
+
+impl Gain {
+    /// The finite value, if any.
+    pub fn finite(&self) -> Option<f64> {
+        match *self {
+            Gain::Finite(v) => Some(v),
+            Gain::Integrating { .. } => None,
+        }
+    }
+}
+
+/// Options of [`steady_state_gain_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GainOptions {
+    /// Tolerance of the rank decisions on A (default [`RankTolerance::Default`]; relative
+    /// to ‖A‖ for every step of the chain).
+    pub rank_tol: RankTolerance,
+    /// Condition numbers above this produce a warning (default 1e8).
+    pub warn_condition: f64,
+}
+
+impl Default for GainOptions {
+    fn default() -> Self {
+        GainOptions {
+            rank_tol: RankTolerance::Default,
+            warn_condition: 1e8,
+        }
+    }
+}
+
+/// Steady-state gains of all pairs, with the decisions behind them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SteadyStateGain {
+    /// Gains, outputs × inputs.
+    pub gains: DMatrix<Gain>,
+    /// Rank decision on (balanced) A.
+    pub a_rank: Rank,
+    /// Dimension q of the zero-eigenvalue invariant subspace (algebraic multiplicity).
+    pub zero_dimension: usize,
+    /// Index ν of the zero eigenvalue (size of its largest Jordan block; 0 if A is regular).
+    pub index: usize,
+    /// Condition number of A (regular case) or of A₁ (the part without the zero modes).
+    pub condition: f64,
+    /// Condition number of `T = [V₀ V₁]`: how well the zero modes separate from the others
+    /// (1 when A is regular).
+    pub separation_condition: f64,
+    /// Every nullspace decision of the chains (right then left), with gaps.
+    pub decisions: Vec<Rank>,
+    /// Warnings (near-tolerance decisions, ill-conditioning).
+    pub warnings: Vec<String>,
+}
+
+impl SteadyStateGain {
+    /// The gain of one pair. Panics if out of range.
+    pub fn get(&self, output: usize, input: usize) -> Gain {
+        self.gains[(output, input)]
+    }
+
+    /// Whether any pair integrates.
+    pub fn has_integrating(&self) -> bool {
+        self.gains
+            .iter()
+            .any(|g| matches!(g, Gain::Integrating { .. }))
+    }
+}
+
+/// Steady-state gains with default options (see the module docs).
+///
+/// Errors: those of [`StateSpace::validate`], [`NumError::NoConvergence`],
+/// [`NumError::Singular`] when the zero-eigenvalue subspace cannot be separated (left and
+/// right chains disagree).
+pub fn steady_state_gain(ss: &StateSpace<f64>) -> Result<SteadyStateGain, NumError> {
+    steady_state_gain_with(ss, &GainOptions::default())
+}
+
+/// [`steady_state_gain`] with options.
+///
+/// Errors: as [`steady_state_gain`], plus [`NumError::InvalidOption`] for a bad tolerance.
+pub fn steady_state_gain_with(
+    ss: &StateSpace<f64>,
+    opts: &GainOptions,
+) -> Result<SteadyStateGain, NumError> {
+    ss.validate()?;
+    opts.rank_tol.validate()?;
+    if !(opts.warn_condition > 0.0) {
+        return Err(NumError::InvalidOption(format!(
+            "GainOptions::warn_condition = {}: must be > 0",
+            opts.warn_condition
+        )));
+    }
+    let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
+    // Balance: Ã = D⁻¹ A D, B̃ = D⁻¹ B, C̃ = C D.
+    let mut av = ss.a.as_slice().to_vec();
+    let mut sc = vec![1.0; n];
+    balance_in_place(&mut av, n, &mut sc);
+    let a = DMatrix::from_vec(n, n, av);
+    let b = DMatrix::from_fn(n, m, |i, j| ss.b[(i, j)] / sc[i]);
+    let c = DMatrix::from_fn(p, n, |i, j| ss.c[(i, j)] * sc[j]);
+    let sv = singular_values(&a)?;
+    let smax = sv.first().copied().unwrap_or(0.0);
+    let thr = opts.rank_tol.threshold(smax, n, n);
+    let a_rank = decide(sv.clone(), thr);
+    let mut warnings = Vec::new();
+    if a_rank.is_near_tolerance(100.0) {
+        warnings.push(format!(
+            "rank of A ({}) decided within a factor {:.3} of the threshold {thr:.3e}",
+            a_rank.rank, a_rank.margin
+        ));
+    }
+
+    if a_rank.rank == n {
+        let condition = if n == 0 { 1.0 } else { sv[0] / sv[n - 1] };
+        if condition > opts.warn_condition {
+            warnings.push(format!(
+                "A has condition number {condition:.3e}: the gains lose about {:.0} digits",
+                condition.log10()
+            ));
+        }
+        let x = a.clone().lu().solve(&b).ok_or_else(|| {
+            NumError::Singular(format!(
+                "A ({n}×{n}) passed the rank test but its LU factorisation broke down"
+            ))
+        })?;
+        let g = &ss.d - &c * x;
+        return Ok(SteadyStateGain {
+            gains: g.map(Gain::Finite),
+            a_rank,
+            zero_dimension: 0,
+            index: 0,
+            condition,
+            separation_condition: 1.0,
+            decisions: Vec::new(),
+            warnings,
+        });
+    }
+
+    // Zero-eigenvalue subspaces: right chain ker A^k, left chain ker (Aᵀ)^k.
+    let mut decisions = Vec::new();
+    let chain = |mat: &DMatrix<f64>, decisions: &mut Vec<Rank>| -> Result<(DMatrix<f64>, usize), NumError> {
+        let mut k = DMatrix::<f64>::zeros(n, 0);
+        let mut steps = 0;
+        loop {
+            // {x : M x ∈ span K} = ker((I − K Kᵀ) M).
+            let proj = if k.ncols() == 0 {
+                mat.clone()
+            } else {
+                mat - &k * (k.transpose() * mat)
+            };
+            let ns = nullspace(&proj, RankTolerance::Absolute(thr))?;
+            decisions.push(ns.decision());
+            if ns.basis.ncols() <= k.ncols() || steps >= n {
+                return Ok((k, steps));
+            }
+            k = ns.basis;
+            steps += 1;
+        }
+    };
+    let (v0, nu) = chain(&a, &mut decisions)?;
+    let (l0, nu_l) = chain(&a.transpose(), &mut decisions)?;
+    let q = v0.ncols();
+    for d in &decisions {
+        if d.is_near_tolerance(100.0) {
+            warnings.push(format!(
+                "a nullspace decision of the zero-eigenvalue chain (rank {}) was within a \
+                 factor {:.3} of the threshold",
+                d.rank, d.margin
+            ));
+        }
+    }
+    if l0.ncols() != q || nu_l != nu {
+        return Err(NumError::Singular(format!(
+            "A ({n}×{n}) is singular but its zero-eigenvalue subspace is ill-determined: the \
+             right chain gives dimension {q} (index {nu}), the left chain {} (index {nu_l})",
+            l0.ncols()
+        )));
+    }
+    // V₁ = (ker (Aᵀ)^ν)⊥ = range(A^ν).
+    let v1 = if q == 0 {
+        DMatrix::identity(n, n)
+    } else {
+        nullspace(&l0.transpose(), RankTolerance::Default)?.basis
+    };
+    let mut t = DMatrix::<f64>::zeros(n, n);
+    t.columns_mut(0, q).copy_from(&v0);
+    t.columns_mut(q, n - q).copy_from(&v1);
+    let st = singular_values(&t)?;
+    let separation_condition = st[0] / st[n - 1];
+    if !separation_condition.is_finite() || separation_condition > opts.warn_condition {
+        warnings.push(format!(
+            "the zero modes are poorly separated from the others (cond [V₀ V₁] = \
+             {separation_condition:.3e})"
+        ));
+    }
+    let w = t.clone().lu().try_inverse().ok_or_else(|| {
+        NumError::Singular(format!(
+            "the basis [V₀ V₁] of the zero/nonzero eigenvalue split of A ({n}×{n}) is singular"
+        ))
+    })?;
+    let w0 = w.rows(0, q);
+    let w1 = w.rows(q, n - q);
+    let nmat = &w0 * &a * &v0;
+    let a1 = &w1 * &a * &v1;
+    let bz = &w0 * &b;
+    let cz = &c * &v0;
+    let b1 = &w1 * &b;
+    let c1 = &c * &v1;
+
+    // Finite part.
+    let s1 = singular_values(&a1)?;
+    let condition = if s1.is_empty() {
+        1.0
+    } else if s1[s1.len() - 1] > 0.0 {
+        s1[0] / s1[s1.len() - 1]
+    } else {
+        f64::INFINITY
+    };
+    if condition > opts.warn_condition {
+        warnings.push(format!(
+            "A without its zero modes has condition number {condition:.3e}"
+        ));
+    }
+    let fin = if n - q == 0 {
+        ss.d.clone()
+    } else {
+        let x = a1.clone().lu().solve(&b1).ok_or_else(|| {
+            NumError::Singular(format!(
+                "A restricted to its nonzero modes ({}×{}) is singular",
+                n - q,
+                n - q
+            ))
+        })?;
+        &ss.d - &c1 * x
+    };
+
+    // Markov-like coefficients Mₖ = C V₀ Nᵏ W₀ B and their rounding-level tolerances.
+    let w0n = singular_values(&w0.into_owned())?
+        .first()
+        .copied()
+        .unwrap_or(0.0);
+    let cn: Vec<f64> = (0..p).map(|i| c.row(i).norm()).collect();
+    let bn: Vec<f64> = (0..m).map(|j| b.column(j).norm()).collect();
+    let mut order = DMatrix::<usize>::zeros(p, m);
+    let mut coef = DMatrix::<f64>::zeros(p, m);
+    let mut nk_bz = bz.clone(); // Nᵏ W₀ B
+    for k in 0..q {
+        let mk = &cz * &nk_bz;
+        let scale_k = 10.0 * n as f64 * f64::EPSILON * w0n * smax.powi(k as i32);
+        for i in 0..p {
+            for j in 0..m {
+                if mk[(i, j)].abs() > scale_k * cn[i] * bn[j] {
+                    order[(i, j)] = k + 1;
+                    coef[(i, j)] = mk[(i, j)];
+                }
+            }
+        }
+        nk_bz = &nmat * nk_bz;
+    }
+    let gains = DMatrix::from_fn(p, m, |i, j| {
+        if order[(i, j)] > 0 {
+            Gain::Integrating {
+                order: order[(i, j)],
+                coefficient: coef[(i, j)],
+            }
+        } else {
+            Gain::Finite(fin[(i, j)])
+        }
+    });
+    Ok(SteadyStateGain {
+        gains,
+        a_rank,
+        zero_dimension: q,
+        index: nu,
+        condition,
+        separation_condition,
+        decisions,
+        warnings,
+    })
+}

@@ -108,7 +108,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
     let k = r.min(c);
     let mut u = Mat::<f64>::zeros(r, r);
     let mut v = Mat::<f64>::zeros(c, c);
-    let mut s = faer::Diag::<f64>::zeros(k);
+    let mut s = faer::diag::Diag::<f64>::zeros(k);
     if k > 0 {
         let req = faer::linalg::svd::svd_scratch::<f64>(
             r,
@@ -149,7 +149,7 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
     if k == 0 {
         return Ok(Vec::new());
     }
-    let mut s = faer::Diag::<f64>::zeros(k);
+    let mut s = faer::diag::Diag::<f64>::zeros(k);
     let req = faer::linalg::svd::svd_scratch::<f64>(
         r,
         c,
@@ -199,7 +199,8 @@ impl Rank {
     }
 }
 
-fn decide(singular_values: Vec<f64>, threshold: f64) -> Rank {
+/// A rank decision from given singular values (non-increasing) and a threshold.
+pub(crate) fn decide(singular_values: Vec<f64>, threshold: f64) -> Rank {
     let rank = singular_values.iter().filter(|&&s| s > threshold).count();
     let above = if rank == 0 {
         threshold
@@ -301,7 +302,7 @@ pub enum Equilibrate {
     Rows,
     /// Scale columns (coordinates) only.
     Columns,
-    /// Scale both (Ruiz's iteration), the default.
+    /// Scale rows, then the columns of the row-scaled matrix (the default).
     #[default]
     Both,
 }
@@ -332,9 +333,10 @@ fn pow2_near(x: f64) -> f64 {
 /// rows and columns are left alone. A row that is merely roundoff noise from a cancellation
 /// would be scaled up like any other — only the caller knows whether that can happen.
 ///
-/// Algorithm: for one side, divide by the largest magnitude; for both sides, Ruiz's
-/// iteration (divide rows and columns by the square roots of their largest magnitudes,
-/// repeated until every row and column maximum lies in [1/2, 2]; at most 40 sweeps).
+/// Algorithm: divide each row by its largest magnitude (rounded to a power of two); for
+/// [`Equilibrate::Both`], then divide each column of the result by its largest magnitude.
+/// Afterwards the scaled rows (`Rows`) or columns (`Columns`, `Both`) have their largest
+/// magnitude in [1/√2, √2], and with `Both` no row maximum exceeds √2.
 pub fn equilibrate(
     m: &DMatrix<f64>,
     mode: Equilibrate,
@@ -344,57 +346,34 @@ pub fn equilibrate(
     let mut s = m.clone();
     let mut rows = DVector::from_element(r, 1.0);
     let mut cols = DVector::from_element(c, 1.0);
-    let row_max = |s: &DMatrix<f64>, i: usize| s.row(i).iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let col_max = |s: &DMatrix<f64>, j: usize| s.column(j).iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let one_sided_rows = |s: &mut DMatrix<f64>, rows: &mut DVector<f64>, sqrt: bool| {
-        let mut done = true;
+    let scale_rows = |s: &mut DMatrix<f64>, rows: &mut DVector<f64>| {
         for i in 0..r {
-            let mx = row_max(s, i);
+            let mx = s.row(i).iter().fold(0.0f64, |a, x| a.max(x.abs()));
             if mx > 0.0 {
-                let f = pow2_near(if sqrt { 1.0 / mx.sqrt() } else { 1.0 / mx });
-                if f != 1.0 {
-                    s.row_mut(i).scale_mut(f);
-                    rows[i] *= f;
-                }
-                if !(0.5..=2.0).contains(&mx) {
-                    done = false;
-                }
+                let f = pow2_near(1.0 / mx);
+                s.row_mut(i).scale_mut(f);
+                rows[i] *= f;
             }
         }
-        done
     };
-    let one_sided_cols = |s: &mut DMatrix<f64>, cols: &mut DVector<f64>, sqrt: bool| {
-        let mut done = true;
+    let scale_cols = |s: &mut DMatrix<f64>, cols: &mut DVector<f64>| {
         for j in 0..c {
-            let mx = col_max(s, j);
+            let mx = s.column(j).iter().fold(0.0f64, |a, x| a.max(x.abs()));
             if mx > 0.0 {
-                let f = pow2_near(if sqrt { 1.0 / mx.sqrt() } else { 1.0 / mx });
-                if f != 1.0 {
-                    s.column_mut(j).scale_mut(f);
-                    cols[j] *= f;
-                }
-                if !(0.5..=2.0).contains(&mx) {
-                    done = false;
-                }
+                let f = pow2_near(1.0 / mx);
+                s.column_mut(j).scale_mut(f);
+                cols[j] *= f;
             }
         }
-        done
     };
     match mode {
-        Equilibrate::Rows => {
-            one_sided_rows(&mut s, &mut rows, false);
-        }
-        Equilibrate::Columns => {
-            one_sided_cols(&mut s, &mut cols, false);
-        }
+        Equilibrate::Rows => scale_rows(&mut s, &mut rows),
+        Equilibrate::Columns => scale_cols(&mut s, &mut cols),
         Equilibrate::Both => {
-            for _ in 0..40 {
-                let a = one_sided_rows(&mut s, &mut rows, true);
-                let b = one_sided_cols(&mut s, &mut cols, true);
-                if a && b {
-                    break;
-                }
-            }
+            // Rows first, then columns of the row-scaled matrix (as LAPACK's dgeequ): no
+            // column scaling is introduced where rows alone fix the scales.
+            scale_rows(&mut s, &mut rows);
+            scale_cols(&mut s, &mut cols);
         }
     }
     Ok((s, Scaling { rows, cols }))
@@ -432,14 +411,30 @@ pub fn nullspace_equilibrated(
     Ok(ns)
 }
 
-/// Orthonormal basis of the column space of a full-column-rank matrix (thin Householder QR).
+/// Orthonormal basis of the column space of a full-column-rank matrix.
+///
+/// Rows (coordinates) may differ in scale by many orders of magnitude after undoing a column
+/// equilibration. Plain Householder QR is only normwise stable and would lose the directions
+/// carried by the small rows; with the rows sorted by decreasing size and column pivoting it
+/// is row-wise backward stable (Cox & Higham, 1998), so each coordinate keeps its own
+/// relative accuracy.
 pub(crate) fn orthonormalize(x: &DMatrix<f64>) -> DMatrix<f64> {
-    let k = x.ncols();
+    let (n, k) = x.shape();
     if k == 0 {
         return x.clone();
     }
-    let q = x.clone().qr().q();
-    q.columns(0, k).into_owned()
+    let size = |i: usize| x.row(i).iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| size(b).total_cmp(&size(a)));
+    let xp = DMatrix::from_fn(n, k, |i, j| x[(order[i], j)]);
+    let q = xp.col_piv_qr().q();
+    let mut out = DMatrix::zeros(n, k);
+    for (i, &o) in order.iter().enumerate() {
+        for j in 0..k {
+            out[(o, j)] = q[(i, j)];
+        }
+    }
+    out
 }
 
 /// 2-norm condition number `σ_max / σ_min` (∞ if singular, 1 for an empty matrix), from the
@@ -459,11 +454,6 @@ pub fn condition_number(m: &DMatrix<f64>) -> Result<f64, NumError> {
         }
         _ => Ok(1.0),
     }
-}
-
-/// Frobenius norm.
-pub(crate) fn fro(m: &DMatrix<f64>) -> f64 {
-    m.norm()
 }
 
 /// Largest absolute entry.

@@ -1,1 +1,739 @@
-//! (to be written)
+//! Minimal realization by orthogonal staircase reduction, with every rank decision and every
+//! removed mode reported.
+//!
+//! # Algorithm
+//!
+//! 1. Optionally balance the states (diagonal similarity by powers of two, exact in floating
+//!    point) so that the rows of `[A B]` and the columns of `[A; C]` have comparable norms.
+//!    Multibody models mix units (metres and radians, kN/m and N·m/rad); balancing makes the
+//!    relative rank tolerance below meaningful for every state.
+//! 2. **Controllability staircase** (Van Dooren 1981): an SVD of the input block `B` splits
+//!    the state space into the directions `B` reaches (rank decision) and the rest; the
+//!    orthogonal basis is applied to `A`, `B`, `C`; the next input block is the part of `A`
+//!    that couples the reached directions into the rest, and so on until a block has rank
+//!    zero (the remaining states are uncontrollable) or no state is left. The result is
+//!    `Qᵀ A Q = [A_c *; 0 A_u]`, `Qᵀ B = [B_c; 0]`.
+//! 3. **Observability staircase**: the same on the dual `(A_cᵀ, C_cᵀ, B_cᵀ)` of the
+//!    controllable part, giving `[A_o 0; * A_ū]`, `[C_o 0]`.
+//! 4. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
+//!    power-of-two scalings) are used, so its transfer function equals the original one to
+//!    rounding, apart from the parts below the tolerance that the rank decisions set to zero.
+//!
+//! # Tolerance
+//!
+//! A singular value σ of a staircase block counts as non-zero when `σ > tol`, with
+//!
+//! ```text
+//! tol_c = max(rtol · max(‖A‖_F, ‖B‖_F), atol)     (controllability stage)
+//! tol_o = max(rtol · max(‖A‖_F, ‖C‖_F), atol)     (observability stage)
+//! rtol  = 1000 · max(n, m, p) · ε                  (default, ε = 2.2e-16)
+//! ```
+//!
+//! where the norms are those of the balanced matrices (see [`MinrealOptions`]). The rule is
+//! relative, so multiplying the whole model by a constant, or changing the time unit, gives the
+//! same decisions; an absolute tolerance (EoM.jl uses 1e-7, eom-method §13.4) does not.
+//!
+//! # What is reported
+//!
+//! [`MinrealReport`] lists every rank decision with its singular values, tolerance and gap,
+//! and every removed mode (eigenvalues of the uncontrollable and of the unobservable part)
+//! with its kind and stability, so that a caller can say "an unstable mode the sensors cannot
+//! see" instead of silently dropping it (eom-method §13.5).
+
+use nalgebra::{DMatrix, DMatrixView};
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::error::NumError;
+use crate::statespace::StateSpace;
+
+/// Options of [`minimal_realization`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct MinrealOptions {
+    /// Relative rank tolerance (see the module documentation). `None` uses
+    /// `1000 · max(n, m, p) · ε`.
+    pub rtol: Option<f64>,
+    /// Absolute floor of the rank tolerance (default 0). Only useful when the caller knows the
+    /// absolute accuracy of the model data.
+    pub atol: f64,
+    /// Balance the states before the reduction (default `true`).
+    pub balance: bool,
+    /// A removed mode is classified as marginal when `|Re λ| ≤ stability_rtol · ‖A‖_F`
+    /// (balanced A), unstable when `Re λ` is above that and stable when below its negative.
+    /// The default `1e-8 ≈ √ε` also covers the √ε spread of a computed double zero
+    /// eigenvalue (a rigid-body mode: position and velocity).
+    pub stability_rtol: f64,
+}
+
+impl Default for MinrealOptions {
+    fn default() -> Self {
+        MinrealOptions {
+            rtol: None,
+            atol: 0.0,
+            balance: true,
+            stability_rtol: 1e-8,
+        }
+    }
+}
+
+impl MinrealOptions {
+    /// The default relative rank tolerance `1000 · max(n, m, p, 1) · ε` for a system with `n`
+    /// states, `m` inputs and `p` outputs.
+    pub fn default_rtol(n: usize, m: usize, p: usize) -> f64 {
+        1000.0 * (n.max(m).max(p).max(1) as f64) * f64::EPSILON
+    }
+
+    fn validate(&self) -> Result<(), NumError> {
+        if let Some(r) = self.rtol
+            && !(r.is_finite() && r >= 0.0)
+        {
+            return Err(NumError::InvalidOption(format!(
+                "MinrealOptions.rtol = {r} (must be finite and ≥ 0)"
+            )));
+        }
+        if !(self.atol.is_finite() && self.atol >= 0.0) {
+            return Err(NumError::InvalidOption(format!(
+                "MinrealOptions.atol = {} (must be finite and ≥ 0)",
+                self.atol
+            )));
+        }
+        if !(self.stability_rtol.is_finite() && self.stability_rtol >= 0.0) {
+            return Err(NumError::InvalidOption(format!(
+                "MinrealOptions.stability_rtol = {} (must be finite and ≥ 0)",
+                self.stability_rtol
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Which reduction a [`RankDecision`] belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum RankStage {
+    /// Controllability staircase (input block `B`, then sub-diagonal blocks of `A`).
+    Controllability,
+    /// Observability staircase (the same on the dual system).
+    Observability,
+    /// Transmission zeros: row compression of the feedthrough `D` (of the dual system when
+    /// `dual`).
+    Feedthrough {
+        /// Whether the decision was taken on the dual (transposed) system.
+        dual: bool,
+    },
+    /// Transmission zeros: compression of the output rows whose feedthrough is zero.
+    OutputRows {
+        /// Whether the decision was taken on the dual (transposed) system.
+        dual: bool,
+    },
+    /// Transmission zeros: the final column compression of `[C D]`.
+    FinalCompression,
+}
+
+/// One numerical rank decision: the singular values of a block and how they were split.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RankDecision {
+    /// The reduction the decision belongs to.
+    pub stage: RankStage,
+    /// Step number within the stage (0 = first block).
+    pub step: usize,
+    /// Rows of the examined block.
+    pub rows: usize,
+    /// Columns of the examined block.
+    pub cols: usize,
+    /// Singular values of the block, largest first.
+    pub singular_values: Vec<f64>,
+    /// The tolerance used: singular values above it count.
+    pub tolerance: f64,
+    /// The decided rank.
+    pub rank: usize,
+    /// Ratio of the smallest kept to the largest dropped singular value; `None` when nothing
+    /// was kept or nothing was dropped. A large gap means a clear decision.
+    pub gap: Option<f64>,
+}
+
+impl RankDecision {
+    pub(crate) fn new(
+        stage: RankStage,
+        step: usize,
+        rows: usize,
+        cols: usize,
+        singular_values: Vec<f64>,
+        tolerance: f64,
+    ) -> Self {
+        let rank = singular_values.iter().filter(|&&s| s > tolerance).count();
+        let gap = if rank > 0 && rank < singular_values.len() {
+            Some(singular_values[rank - 1] / singular_values[rank])
+        } else {
+            None
+        };
+        RankDecision {
+            stage,
+            step,
+            rows,
+            cols,
+            singular_values,
+            tolerance,
+            rank,
+            gap,
+        }
+    }
+
+    /// Smallest kept singular value (`None` if the rank is zero).
+    pub fn smallest_kept(&self) -> Option<f64> {
+        self.rank.checked_sub(1).map(|i| self.singular_values[i])
+    }
+
+    /// Largest dropped singular value (`None` if nothing was dropped).
+    pub fn largest_dropped(&self) -> Option<f64> {
+        self.singular_values.get(self.rank).copied()
+    }
+
+    /// Whether the decision would change if the tolerance were multiplied or divided by
+    /// `factor` (e.g. 100): a kept singular value below `factor · tol`, or a dropped one above
+    /// `tol / factor`. Such decisions deserve a look at the model.
+    pub fn is_fragile(&self, factor: f64) -> bool {
+        self.smallest_kept()
+            .is_some_and(|s| s <= factor * self.tolerance)
+            || self
+                .largest_dropped()
+                .is_some_and(|s| s > 0.0 && s * factor >= self.tolerance)
+    }
+}
+
+/// Why a mode was removed by [`minimal_realization`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum RemovedKind {
+    /// The inputs cannot excite the mode.
+    Uncontrollable,
+    /// The outputs cannot see the mode (it is controllable).
+    Unobservable,
+}
+
+/// Stability class of a mode (see [`MinrealOptions::stability_rtol`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum ModeStability {
+    /// `Re λ < −threshold`.
+    Stable,
+    /// `|Re λ| ≤ threshold` (undamped oscillation, integrator, rigid-body mode).
+    Marginal,
+    /// `Re λ > threshold`.
+    Unstable,
+}
+
+/// A mode removed by [`minimal_realization`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RemovedMode {
+    /// The eigenvalue.
+    #[serde(serialize_with = "cser::one")]
+    pub eigenvalue: Complex64,
+    /// Uncontrollable or unobservable.
+    pub kind: RemovedKind,
+    /// Stability class.
+    pub stability: ModeStability,
+}
+
+/// What [`minimal_realization`] did.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MinrealReport {
+    /// States of the input system.
+    pub states_in: usize,
+    /// States of the minimal system.
+    pub states_out: usize,
+    /// Number of uncontrollable states removed.
+    pub uncontrollable: usize,
+    /// Number of unobservable (but controllable) states removed.
+    pub unobservable: usize,
+    /// The removed modes, uncontrollable ones first, each group sorted by (re, im).
+    pub removed: Vec<RemovedMode>,
+    /// Every rank decision, in the order taken.
+    pub decisions: Vec<RankDecision>,
+    /// Relative tolerance used.
+    pub rtol: f64,
+    /// Absolute rank tolerance of the controllability stage.
+    pub controllability_tolerance: f64,
+    /// Absolute rank tolerance of the observability stage.
+    pub observability_tolerance: f64,
+    /// Threshold on `|Re λ|` used to classify removed modes.
+    pub stability_threshold: f64,
+    /// The state scaling applied by balancing (`x = diag(scaling) · x̃`), all 1 without it.
+    pub scaling: Vec<f64>,
+}
+
+impl MinrealReport {
+    /// Removed modes that are unstable or marginal: modes the minimal model cannot show but
+    /// that still move the physical system.
+    pub fn removed_not_stable(&self) -> impl Iterator<Item = &RemovedMode> {
+        self.removed
+            .iter()
+            .filter(|r| r.stability != ModeStability::Stable)
+    }
+
+    /// Whether an unstable mode was removed.
+    pub fn removed_unstable(&self) -> bool {
+        self.removed
+            .iter()
+            .any(|r| r.stability == ModeStability::Unstable)
+    }
+
+    /// Decisions that would flip if the tolerance changed by `factor` (see
+    /// [`RankDecision::is_fragile`]).
+    pub fn fragile_decisions(&self, factor: f64) -> Vec<&RankDecision> {
+        self.decisions
+            .iter()
+            .filter(|d| d.is_fragile(factor))
+            .collect()
+    }
+}
+
+/// A system in staircase form: `a = qᵀ A q`, `b = qᵀ B`, `c = C q`, where the leading `kept`
+/// states are the controllable (for [`controllability_staircase`]) or observable (for
+/// [`observability_staircase`]) part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Staircase {
+    /// Transformed state matrix.
+    pub a: DMatrix<f64>,
+    /// Transformed input matrix.
+    pub b: DMatrix<f64>,
+    /// Transformed output matrix.
+    pub c: DMatrix<f64>,
+    /// The orthogonal transformation (old state = `q` · new state).
+    pub q: DMatrix<f64>,
+    /// Sizes of the staircase blocks (their sum is `kept`).
+    pub blocks: Vec<usize>,
+    /// Dimension of the controllable (observable) part.
+    pub kept: usize,
+    /// The rank decisions taken.
+    pub decisions: Vec<RankDecision>,
+}
+
+fn check_tol(tol: f64) -> Result<(), NumError> {
+    if !(tol.is_finite() && tol >= 0.0) {
+        return Err(NumError::InvalidOption(format!(
+            "staircase tolerance = {tol} (must be finite and ≥ 0)"
+        )));
+    }
+    Ok(())
+}
+
+fn check_triple(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+) -> Result<(usize, usize, usize), NumError> {
+    let n = a.nrows();
+    if a.ncols() != n {
+        return Err(NumError::Dimension(format!(
+            "A is {}×{}, must be square",
+            a.nrows(),
+            a.ncols()
+        )));
+    }
+    if b.nrows() != n {
+        return Err(NumError::Dimension(format!(
+            "B has {} rows, expected {n} (one per state)",
+            b.nrows()
+        )));
+    }
+    if c.ncols() != n {
+        return Err(NumError::Dimension(format!(
+            "C has {} columns, expected {n} (one per state)",
+            c.ncols()
+        )));
+    }
+    for (m, name) in [(a, "A"), (b, "B"), (c, "C")] {
+        if m.iter().any(|v| !v.is_finite()) {
+            return Err(NumError::NonFinite(name.to_string()));
+        }
+    }
+    Ok((n, b.ncols(), c.nrows()))
+}
+
+/// Controllability staircase of `(A, B, C)` with absolute rank tolerance `tol`: an orthogonal
+/// `q` with `qᵀ A q = [A_c *; 0 A_u]`, `qᵀ B = [B_c; 0]`, `(A_c, B_c)` controllable of
+/// dimension `kept`. Blocks whose singular values are all `≤ tol` are set to exact zeros.
+///
+/// Errors: [`NumError::Dimension`], [`NumError::NonFinite`], [`NumError::InvalidOption`]
+/// (negative or non-finite `tol`), [`NumError::NoConvergence`] (SVD).
+pub fn controllability_staircase(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    tol: f64,
+) -> Result<Staircase, NumError> {
+    check_triple(a, b, c)?;
+    check_tol(tol)?;
+    staircase(
+        a.clone(),
+        b.clone(),
+        c.clone(),
+        tol,
+        RankStage::Controllability,
+    )
+}
+
+/// Observability staircase of `(A, B, C)` with absolute rank tolerance `tol`: an orthogonal
+/// `q` with `qᵀ A q = [A_o 0; * A_ū]`, `C q = [C_o 0]`, `(A_o, C_o)` observable of dimension
+/// `kept`. Computed as the controllability staircase of the dual `(Aᵀ, Cᵀ, Bᵀ)`.
+///
+/// Errors: as [`controllability_staircase`].
+pub fn observability_staircase(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    tol: f64,
+) -> Result<Staircase, NumError> {
+    check_triple(a, b, c)?;
+    check_tol(tol)?;
+    let s = staircase(
+        a.transpose(),
+        c.transpose(),
+        b.transpose(),
+        tol,
+        RankStage::Observability,
+    )?;
+    Ok(Staircase {
+        a: s.a.transpose(),
+        b: s.c.transpose(),
+        c: s.b.transpose(),
+        q: s.q,
+        blocks: s.blocks,
+        kept: s.kept,
+        decisions: s.decisions,
+    })
+}
+
+fn staircase(
+    mut a: DMatrix<f64>,
+    mut b: DMatrix<f64>,
+    mut c: DMatrix<f64>,
+    tol: f64,
+    stage: RankStage,
+) -> Result<Staircase, NumError> {
+    let n = a.nrows();
+    let mut q = DMatrix::<f64>::identity(n, n);
+    let mut blocks = Vec::new();
+    let mut decisions = Vec::new();
+    // Rows [0, off) are settled; the next block is rows off.. of B (first step) or of the
+    // columns (prev0..prev1) of A that were added last.
+    let mut off = 0;
+    let mut prev = (0, 0);
+    let mut step = 0;
+    while off < n {
+        let r = n - off;
+        let block: DMatrix<f64> = if step == 0 {
+            b.rows(off, r).clone_owned()
+        } else {
+            a.view((off, prev.0), (r, prev.1 - prev.0)).clone_owned()
+        };
+        let (u, s) = if block.ncols() == 0 {
+            (DMatrix::identity(r, r), Vec::new())
+        } else {
+            svd_full_u(&block)?
+        };
+        let decision = RankDecision::new(stage, step, r, block.ncols(), s, tol);
+        let rank = decision.rank;
+        decisions.push(decision);
+        if rank > 0 {
+            // Rotate the remaining rows so that the block's range comes first.
+            let ut = u.transpose();
+            let rows = a.rows(off, r).clone_owned();
+            a.rows_mut(off, r).copy_from(&(&ut * rows));
+            let cols = a.columns(off, r).clone_owned();
+            a.columns_mut(off, r).copy_from(&(cols * &u));
+            let rows = b.rows(off, r).clone_owned();
+            b.rows_mut(off, r).copy_from(&(&ut * rows));
+            let cols = c.columns(off, r).clone_owned();
+            c.columns_mut(off, r).copy_from(&(cols * &u));
+            let cols = q.columns(off, r).clone_owned();
+            q.columns_mut(off, r).copy_from(&(cols * &u));
+        }
+        // The part of the block below its rank is zero by decision: make it exact.
+        if step == 0 {
+            b.rows_mut(off + rank, r - rank).fill(0.0);
+        } else {
+            a.view_mut((off + rank, prev.0), (r - rank, prev.1 - prev.0))
+                .fill(0.0);
+        }
+        if rank == 0 {
+            break;
+        }
+        blocks.push(rank);
+        prev = (off, off + rank);
+        off += rank;
+        step += 1;
+    }
+    Ok(Staircase {
+        a,
+        b,
+        c,
+        q,
+        blocks,
+        kept: off,
+        decisions,
+    })
+}
+
+/// Full SVD of a non-empty block: the square left factor and the singular values (largest
+/// first).
+pub(crate) fn svd_full_u(m: &DMatrix<f64>) -> Result<(DMatrix<f64>, Vec<f64>), NumError> {
+    let (u, s, _) = svd_full(m)?;
+    Ok((u, s))
+}
+
+/// Full SVD `m = U Σ Vᵀ` (U and V square), singular values largest first.
+pub(crate) fn svd_full(
+    m: &DMatrix<f64>,
+) -> Result<(DMatrix<f64>, Vec<f64>, DMatrix<f64>), NumError> {
+    let (r, c) = m.shape();
+    if r == 0 || c == 0 {
+        return Ok((DMatrix::identity(r, r), Vec::new(), DMatrix::identity(c, c)));
+    }
+    let view = faer::MatRef::from_column_major_slice(m.as_slice(), r, c);
+    let svd = view
+        .svd()
+        .map_err(|e| NumError::NoConvergence(format!("SVD of a {r}×{c} block: {e:?}")))?;
+    let (fu, fs, fv) = (svd.U(), svd.S(), svd.V());
+    let u = DMatrix::from_fn(r, r, |i, j| fu[(i, j)]);
+    let v = DMatrix::from_fn(c, c, |i, j| fv[(i, j)]);
+    let s: Vec<f64> = (0..r.min(c)).map(|i| fs[i]).collect();
+    Ok((u, s, v))
+}
+
+/// Eigenvalues of a square matrix sorted by (re, im), computed by faer with sequential
+/// parallelism.
+pub(crate) fn eigenvalues_sorted(a: DMatrixView<'_, f64>) -> Result<Vec<Complex64>, NumError> {
+    let n = a.nrows();
+    if n == 0 {
+        return Ok(Vec::new());
+    }
+    let owned = a.clone_owned();
+    let view = faer::MatRef::from_column_major_slice(owned.as_slice(), n, n);
+    let mut ev = view
+        .eigenvalues()
+        .map_err(|e| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} block: {e:?}")))?;
+    sort_complex(&mut ev);
+    Ok(ev)
+}
+
+/// Sorts complex numbers by real part, then imaginary part.
+pub(crate) fn sort_complex(v: &mut [Complex64]) {
+    v.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
+}
+
+/// Power-of-two state scaling `s` that balances the row norms of `[A B]` against the column
+/// norms of `[A; C]` (diagonal of A excluded), in the manner of Parlett & Reinsch (1969).
+/// The scaled system is `D⁻¹ A D`, `D⁻¹ B`, `C D` with `D = diag(s)`.
+pub(crate) fn balance_states(a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>) -> Vec<f64> {
+    let n = a.nrows();
+    let mut s = vec![1.0f64; n];
+    let mut a = a.clone();
+    let mut b = b.clone();
+    let mut c = c.clone();
+    // Bounded number of sweeps: convergence is usually reached in a few.
+    for _ in 0..64 {
+        let mut changed = false;
+        for i in 0..n {
+            let mut col = c.column(i).iter().map(|v| v.abs()).sum::<f64>();
+            let mut row = b.row(i).iter().map(|v| v.abs()).sum::<f64>();
+            for k in 0..n {
+                if k != i {
+                    col += a[(k, i)].abs();
+                    row += a[(i, k)].abs();
+                }
+            }
+            if col == 0.0 || row == 0.0 {
+                continue;
+            }
+            // Scaling state i by f multiplies the column norm by f and divides the row norm
+            // by f: f = 2^e with e the rounded half log2 of row/col.
+            let e = (0.5 * (row / col).log2()).round();
+            if e == 0.0 || !e.is_finite() {
+                continue;
+            }
+            // Keep the total scaling within 2^±256 so nothing overflows.
+            let total = s[i].log2() + e;
+            if total.abs() > 256.0 {
+                continue;
+            }
+            let f = 2f64.powi(e as i32);
+            if col * f + row / f >= 0.95 * (col + row) {
+                continue;
+            }
+            changed = true;
+            s[i] *= f;
+            a.column_mut(i).scale_mut(f);
+            c.column_mut(i).scale_mut(f);
+            a.row_mut(i).scale_mut(1.0 / f);
+            b.row_mut(i).scale_mut(1.0 / f);
+        }
+        if !changed {
+            break;
+        }
+    }
+    s
+}
+
+/// Applies the state scaling `x = diag(s) x̃` to `(A, B, C)` in place.
+pub(crate) fn apply_scaling(
+    s: &[f64],
+    a: &mut DMatrix<f64>,
+    b: &mut DMatrix<f64>,
+    c: &mut DMatrix<f64>,
+) {
+    for (i, &f) in s.iter().enumerate() {
+        if f != 1.0 {
+            a.column_mut(i).scale_mut(f);
+            c.column_mut(i).scale_mut(f);
+            a.row_mut(i).scale_mut(1.0 / f);
+            b.row_mut(i).scale_mut(1.0 / f);
+        }
+    }
+}
+
+fn classify(ev: &[Complex64], kind: RemovedKind, thr: f64) -> Vec<RemovedMode> {
+    ev.iter()
+        .map(|&eigenvalue| RemovedMode {
+            eigenvalue,
+            kind,
+            stability: if eigenvalue.re > thr {
+                ModeStability::Unstable
+            } else if eigenvalue.re < -thr {
+                ModeStability::Stable
+            } else {
+                ModeStability::Marginal
+            },
+        })
+        .collect()
+}
+
+/// Minimal realization of `ss` by orthogonal staircase reductions (see the module
+/// documentation for the algorithm and the tolerance).
+///
+/// The minimal system keeps `D`, the input and output names and units, and the body names.
+/// Its `phys` is `phys · T`, where `T` (n × n_min, orthonormal columns up to the balancing
+/// scaling) maps the minimal state into the original state space: exact for the removed
+/// uncontrollable part (which stays at rest from rest), and the least-squares choice for the
+/// removed unobservable part (whose motion the minimal state does not determine). The states
+/// of the minimal system are new coordinates: when the input had state names they become
+/// `z1, z2, …`. When nothing is removed, the input system is returned unchanged.
+///
+/// Errors: [`NumError::Dimension`] / [`NumError::NonFinite`] for a malformed model,
+/// [`NumError::InvalidOption`] for bad options, [`NumError::NoConvergence`] if an SVD or an
+/// eigenvalue computation fails.
+pub fn minimal_realization(
+    ss: &StateSpace<f64>,
+    opts: &MinrealOptions,
+) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
+    ss.validate()?;
+    opts.validate()?;
+    let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
+    let rtol = opts.rtol.unwrap_or_else(|| MinrealOptions::default_rtol(n, m, p));
+    let mut a = ss.a.clone();
+    let mut b = ss.b.clone();
+    let mut c = ss.c.clone();
+    let scaling = if opts.balance {
+        balance_states(&a, &b, &c)
+    } else {
+        vec![1.0; n]
+    };
+    apply_scaling(&scaling, &mut a, &mut b, &mut c);
+    let (na, nb, nc_) = (a.norm(), b.norm(), c.norm());
+    let tol_c = (rtol * na.max(nb)).max(opts.atol);
+    let tol_o = (rtol * na.max(nc_)).max(opts.atol);
+    let stability_threshold = opts.stability_rtol * na;
+
+    let sc = staircase(a, b, c, tol_c, RankStage::Controllability)?;
+    let nc = sc.kept;
+    let ev_u = eigenvalues_sorted(sc.a.view((nc, nc), (n - nc, n - nc)))?;
+    let a1 = sc.a.view((0, 0), (nc, nc)).clone_owned();
+    let b1 = sc.b.rows(0, nc).clone_owned();
+    let c1 = sc.c.columns(0, nc).clone_owned();
+    let so = staircase(
+        a1.transpose(),
+        c1.transpose(),
+        b1.transpose(),
+        tol_o,
+        RankStage::Observability,
+    )?;
+    let no = so.kept;
+    // Back from the dual: a = (so.a)ᵀ, b = (so.c)ᵀ, c = (so.b)ᵀ.
+    let a2 = so.a.transpose();
+    let ev_o = eigenvalues_sorted(a2.view((no, no), (nc - no, nc - no)))?;
+
+    let mut removed = classify(&ev_u, RemovedKind::Uncontrollable, stability_threshold);
+    removed.extend(classify(
+        &ev_o,
+        RemovedKind::Unobservable,
+        stability_threshold,
+    ));
+    let mut decisions = sc.decisions;
+    decisions.extend(so.decisions);
+    let report = MinrealReport {
+        states_in: n,
+        states_out: no,
+        uncontrollable: n - nc,
+        unobservable: nc - no,
+        removed,
+        decisions,
+        rtol,
+        controllability_tolerance: tol_c,
+        observability_tolerance: tol_o,
+        stability_threshold,
+        scaling,
+    };
+    if no == n {
+        return Ok((ss.clone(), report));
+    }
+
+    let a_min = a2.view((0, 0), (no, no)).clone_owned();
+    let b_min = so.c.transpose().rows(0, no).clone_owned();
+    let c_min = so.b.transpose().columns(0, no).clone_owned();
+    // Old state x = diag(s) · q_c[:, ..nc] · q_o[:, ..no] · z.
+    let mut t = sc.q.columns(0, nc) * so.q.columns(0, no);
+    for (i, &f) in report.scaling.iter().enumerate() {
+        t.row_mut(i).scale_mut(f);
+    }
+    let phys = &ss.phys * &t;
+    let mut names = ss.names.clone();
+    names.states = if ss.names.states.is_empty() {
+        Vec::new()
+    } else {
+        (1..=no).map(|i| format!("z{i}")).collect()
+    };
+    let out = StateSpace {
+        a: a_min,
+        b: b_min,
+        c: c_min,
+        d: ss.d.clone(),
+        phys,
+        names,
+    };
+    Ok((out, report))
+}
+
+/// Serialization of complex numbers as `{re, im}`.
+pub(crate) mod cser {
+    use num_complex::Complex64;
+    use serde::Serialize;
+    use serde::ser::{SerializeSeq, Serializer};
+
+    #[derive(Serialize)]
+    struct ReIm {
+        re: f64,
+        im: f64,
+    }
+
+    /// One complex number as `{re, im}`.
+    pub(crate) fn one<S: Serializer>(z: &Complex64, s: S) -> Result<S::Ok, S::Error> {
+        ReIm { re: z.re, im: z.im }.serialize(s)
+    }
+
+    /// A list of complex numbers as `[{re, im}, …]`.
+    pub(crate) fn many<S: Serializer>(v: &[Complex64], s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(v.len()))?;
+        for z in v {
+            seq.serialize_element(&ReIm { re: z.re, im: z.im })?;
+        }
+        seq.end()
+    }
+}

@@ -1,1 +1,593 @@
-//! (to be written)
+//! Eigenvalues and modes of a state-space model.
+//!
+//! * [`eigenvalues`] — the eigenvalues of a square matrix, sorted by (real, imaginary) part;
+//!   [`eigenvalues_in`] is the same with a caller-owned [`EigenvaluesWorkspace`] and no
+//!   allocation, for sweeps that call it millions of times.
+//! * [`Modes::compute`] — per mode: eigenvalue, kind, natural frequency, damping ratio, time
+//!   constant, damped period, stability, eigenvalue condition number, mode shape in physical
+//!   coordinates and, per body, the instantaneous centre of rotation and rotation axis.
+//!
+//! # Decisions and their thresholds
+//!
+//! The matrix is first balanced (diagonal similarity by powers of two, so eigenvalues are
+//! unchanged but accuracy does not depend on units). Each eigenvalue λᵢ then gets its own
+//! tolerance
+//!
+//! ```text
+//! tolᵢ = tol_factor · n · ε · ‖Ã‖_F · κᵢ          κᵢ = ‖xᵢ‖ ‖yᵢ‖ / |yᵢᴴ xᵢ|
+//! ```
+//!
+//! where Ã is the balanced matrix and xᵢ, yᵢ its right and left eigenvectors: first-order
+//! perturbation theory says a backward-stable eigensolver moves λᵢ by about `ε ‖Ã‖ κᵢ`. So a
+//! simple slow pole of a stiff system (|λ| = 1e-8 ‖A‖, κ ≈ 1) is *not* mistaken for zero,
+//! while a rigid-body double zero, which a backward-stable solver splits into ±√ε‖A‖ with
+//! κ ≈ 1/√ε, *is* recognised as zero. With `tol = tolᵢ`:
+//!
+//! * `|λ| ≤ tol` → [`ModeKind::Zero`] (rigid-body or integrator mode);
+//! * else `|Im λ| ≤ tol` → [`ModeKind::Real`];
+//! * else [`ModeKind::Oscillatory`];
+//! * `|Re λ| ≤ tol` → [`Stability::Marginal`] (τ = ∞, ζ = 0 for an oscillatory mode); else
+//!   the sign of Re λ decides stable/unstable.
+//!
+//! EoM.jl used fixed absolute thresholds (1e-7) and reported ω_n = 0, ζ = NaN for every real
+//! pole (eom-method §13.6); here a real pole reports its corner frequency |λ|/2π, ζ = ±1, and
+//! NaN never appears.
+//!
+//! # Conjugate pairs
+//!
+//! Both members of a complex-conjugate pair are reported (one [`Mode`] per eigenvalue, n modes
+//! for n states, in the same (Re, Im) order as [`eigenvalues`], so the member with negative
+//! imaginary part comes first). Their real parts are bit-identical, which makes the order
+//! deterministic (EoM.jl §13.17). [`Modes::distinct`] skips the negative-frequency member.
+
+use std::f64::consts::PI;
+
+use faer::diag::DiagMut;
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::evd::{ComputeEigenvectors, evd_real, evd_scratch};
+use faer::{Mat, MatRef, Par};
+use nalgebra::{DMatrix, DVector, Vector3};
+use num_complex::Complex64;
+
+use crate::NumError;
+use crate::linalg::balance_in_place;
+use crate::statespace::{StateSpace, check_finite};
+
+fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
+    a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
+}
+
+fn check_square(a: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
+    if a.nrows() != a.ncols() {
+        return Err(NumError::Dimension(format!(
+            "{name} is {}×{}, expected a square matrix",
+            a.nrows(),
+            a.ncols()
+        )));
+    }
+    Ok(())
+}
+
+/// Eigenvalues of a square matrix, sorted by (real part, imaginary part) ascending.
+///
+/// The matrix is balanced first. Conjugate pairs are exact conjugates (bit-identical real
+/// parts); real eigenvalues have imaginary part `+0.0`.
+///
+/// Errors: [`NumError::Dimension`] (not square), [`NumError::NonFinite`],
+/// [`NumError::NoConvergence`].
+pub fn eigenvalues(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {
+    check_square(a, "A")?;
+    let mut ws = EigenvaluesWorkspace::new(a.nrows());
+    let mut out = vec![Complex64::new(0.0, 0.0); a.nrows()];
+    eigenvalues_in(a, &mut ws, &mut out)?;
+    Ok(out)
+}
+
+/// Scratch space for [`eigenvalues_in`], for one matrix size.
+pub struct EigenvaluesWorkspace {
+    n: usize,
+    a: Vec<f64>,
+    scale: Vec<f64>,
+    re: Vec<f64>,
+    im: Vec<f64>,
+    buf: MemBuffer,
+}
+
+impl std::fmt::Debug for EigenvaluesWorkspace {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EigenvaluesWorkspace")
+            .field("n", &self.n)
+            .finish_non_exhaustive()
+    }
+}
+
+fn eig_scratch(n: usize, vectors: bool) -> StackReq {
+    let v = if vectors {
+        ComputeEigenvectors::Yes
+    } else {
+        ComputeEigenvectors::No
+    };
+    evd_scratch::<f64>(n, v, v, Par::Seq, Default::default())
+}
+
+/// Bytes of scratch memory an [`EigenvaluesWorkspace`] for an n × n matrix holds (faer's
+/// stack requirement plus four length-n/n² buffers).
+pub fn eigenvalues_workspace_bytes(n: usize) -> usize {
+    eig_scratch(n, false).size_bytes() + 8 * (n * n + 3 * n)
+}
+
+impl EigenvaluesWorkspace {
+    /// Allocates the workspace for n × n matrices (the only allocation of the kernel).
+    pub fn new(n: usize) -> Self {
+        EigenvaluesWorkspace {
+            n,
+            a: vec![0.0; n * n],
+            scale: vec![1.0; n],
+            re: vec![0.0; n],
+            im: vec![0.0; n],
+            buf: MemBuffer::new(eig_scratch(n, false)),
+        }
+    }
+
+    /// The matrix size this workspace serves.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+}
+
+/// [`eigenvalues`] without allocation: `out` (length n) receives the sorted eigenvalues.
+///
+/// Errors: [`NumError::Dimension`] when `a`, the workspace and `out` disagree in size,
+/// [`NumError::NonFinite`], [`NumError::NoConvergence`].
+pub fn eigenvalues_in(
+    a: &DMatrix<f64>,
+    ws: &mut EigenvaluesWorkspace,
+    out: &mut [Complex64],
+) -> Result<(), NumError> {
+    let n = ws.n;
+    if a.nrows() != n || a.ncols() != n || out.len() != n {
+        return Err(NumError::Dimension(format!(
+            "eigenvalues_in: A is {}×{}, workspace is for {n}×{n}, output has length {}",
+            a.nrows(),
+            a.ncols(),
+            out.len()
+        )));
+    }
+    if a.iter().any(|x| !x.is_finite()) {
+        return check_finite(a, "A");
+    }
+    if n == 0 {
+        return Ok(());
+    }
+    ws.a.copy_from_slice(a.as_slice());
+    balance_in_place(&mut ws.a, n, &mut ws.scale);
+    evd_real(
+        MatRef::from_column_major_slice(&ws.a, n, n),
+        DiagMut::from_slice_mut(&mut ws.re),
+        DiagMut::from_slice_mut(&mut ws.im),
+        None,
+        None,
+        Par::Seq,
+        MemStack::new(&mut ws.buf),
+        Default::default(),
+    )
+    .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+    for (k, o) in out.iter_mut().enumerate() {
+        // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.
+        *o = Complex64::new(ws.re[k], ws.im[k] + 0.0);
+    }
+    out.sort_unstable_by(cmp_re_im);
+    Ok(())
+}
+
+/// A full eigendecomposition with condition numbers (internal, shared with `freq` and `time`).
+pub(crate) struct Eigen {
+    /// Eigenvalues sorted by (re, im).
+    pub values: Vec<Complex64>,
+    /// Right eigenvectors (columns, original coordinates, unit 2-norm).
+    pub right: DMatrix<Complex64>,
+    /// Eigenvalue condition numbers κᵢ (computed on the balanced matrix).
+    pub condition: Vec<f64>,
+    /// Frobenius norm of the balanced matrix.
+    pub norm: f64,
+}
+
+/// Eigenvalues, right eigenvectors and condition numbers of `a` (balanced first if asked).
+pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
+    check_square(a, "A")?;
+    check_finite(a, "A")?;
+    let n = a.nrows();
+    let mut ab = a.as_slice().to_vec();
+    let mut scale = vec![1.0; n];
+    if balance {
+        balance_in_place(&mut ab, n, &mut scale);
+    }
+    let mut re = vec![0.0; n];
+    let mut im = vec![0.0; n];
+    let mut ul = Mat::<f64>::zeros(n, n);
+    let mut ur = Mat::<f64>::zeros(n, n);
+    if n > 0 {
+        let mut buf = MemBuffer::new(eig_scratch(n, true));
+        evd_real(
+            MatRef::from_column_major_slice(&ab, n, n),
+            DiagMut::from_slice_mut(&mut re),
+            DiagMut::from_slice_mut(&mut im),
+            Some(ul.as_mut()),
+            Some(ur.as_mut()),
+            Par::Seq,
+            MemStack::new(&mut buf),
+            Default::default(),
+        )
+        .map_err(|_| {
+            NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
+        })?;
+    }
+    let norm = ab.iter().map(|x| x * x).sum::<f64>().sqrt();
+    // Unpack faer's real storage: a pair (j, j+1) holds Re and Im of the vector of λ_j
+    // (Im λ_j > 0), the conjugate belongs to λ_{j+1}. Same packing for left vectors.
+    let mut values = Vec::with_capacity(n);
+    let mut xr = DMatrix::<Complex64>::zeros(n, n);
+    let mut yl = DMatrix::<Complex64>::zeros(n, n);
+    let mut j = 0;
+    while j < n {
+        if im[j] == 0.0 || j + 1 == n {
+            values.push(Complex64::new(re[j], 0.0));
+            for i in 0..n {
+                xr[(i, j)] = Complex64::new(ur[(i, j)], 0.0);
+                yl[(i, j)] = Complex64::new(ul[(i, j)], 0.0);
+            }
+            j += 1;
+        } else {
+            values.push(Complex64::new(re[j], im[j]));
+            values.push(Complex64::new(re[j], -im[j]));
+            for i in 0..n {
+                xr[(i, j)] = Complex64::new(ur[(i, j)], ur[(i, j + 1)]);
+                xr[(i, j + 1)] = Complex64::new(ur[(i, j)], -ur[(i, j + 1)]);
+                yl[(i, j)] = Complex64::new(ul[(i, j)], ul[(i, j + 1)]);
+                yl[(i, j + 1)] = Complex64::new(ul[(i, j)], -ul[(i, j + 1)]);
+            }
+            j += 2;
+        }
+    }
+    let mut condition = vec![0.0; n];
+    for k in 0..n {
+        let x = xr.column(k);
+        let y = yl.column(k);
+        let dot: Complex64 = y.iter().zip(x.iter()).map(|(a, b)| a.conj() * b).sum();
+        let c = x.norm() * y.norm() / dot.norm();
+        // An exactly defective eigenvalue gives yᴴx = 0: cap at 1/ε (fully undetermined).
+        condition[k] = if c.is_finite() {
+            c.min(1.0 / f64::EPSILON)
+        } else {
+            1.0 / f64::EPSILON
+        };
+    }
+    // Back to original coordinates x = D x̃, unit 2-norm.
+    for k in 0..n {
+        let mut col = xr.column_mut(k);
+        for i in 0..n {
+            col[i] *= scale[i];
+        }
+        let nn = col.norm();
+        if nn > 0.0 {
+            col.unscale_mut(nn);
+        }
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| cmp_re_im(&values[a], &values[b]));
+    Ok(Eigen {
+        values: order.iter().map(|&k| values[k]).collect(),
+        right: DMatrix::from_fn(n, n, |i, j| xr[(i, order[j])]),
+        condition: order.iter().map(|&k| condition[k]).collect(),
+        norm,
+    })
+}
+
+/// What kind of motion a mode is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum ModeKind {
+    /// λ = 0 within tolerance: a rigid-body or integrator mode (no time scale).
+    Zero,
+    /// A real pole: exponential decay or growth, no oscillation.
+    Real,
+    /// One member of a complex-conjugate pair: a damped (or growing) oscillation.
+    Oscillatory,
+}
+
+/// Stability of a single mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Stability {
+    /// Re λ < −tol: decays.
+    Stable,
+    /// |Re λ| ≤ tol: neither decays nor grows exponentially (a repeated zero or imaginary
+    /// eigenvalue with a Jordan block, such as a free body's position, still grows
+    /// polynomially; look at [`Mode::condition`]).
+    Marginal,
+    /// Re λ > tol: grows.
+    Unstable,
+}
+
+/// The instantaneous centre of rotation of one body in one mode.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InstantCentre {
+    /// Body name (`names.bodies`, or `"body k"` when unnamed).
+    pub body: String,
+    /// Vector from the mass centre to the nearest point of the instantaneous rotation axis:
+    /// the minimum-norm solution of `m_trans + m_rot × r = 0`, i.e.
+    /// `r = (conj(m_rot) × m_trans) / ‖m_rot‖²` (= `−pinv([m_rot]×) m_trans`). It is the
+    /// same for any complex scaling of the mode. Real when the body moves in phase; an
+    /// imaginary part means the centre moves during the cycle. `None` when the body does not
+    /// rotate in this mode (pure translation, or at rest).
+    pub radius: Option<Vector3<Complex64>>,
+    /// Unit rotation direction `m_rot / ‖m_rot‖`, after multiplying the mode by the phase
+    /// that makes its dominant rotation component real and positive. `None` when the body
+    /// does not rotate.
+    pub axis: Option<Vector3<Complex64>>,
+}
+
+/// One mode (one eigenvalue) of a state-space model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mode {
+    /// The eigenvalue λ as computed.
+    pub eigenvalue: Complex64,
+    /// Zero, real or oscillatory (see the module docs for the thresholds).
+    pub kind: ModeKind,
+    /// Natural frequency `|λ|/2π` in Hz. For a [`ModeKind::Real`] pole this is its corner
+    /// frequency `|Re λ|/2π` (never reported as 0 Hz); for [`ModeKind::Zero`] it is 0.
+    pub natural_frequency_hz: f64,
+    /// Damping ratio `−Re λ / |λ|` for an oscillatory mode (0 when marginal); `+1` for a
+    /// stable and `−1` for an unstable real pole; `None` for a zero mode, where it is
+    /// undefined.
+    pub damping_ratio: Option<f64>,
+    /// Time constant `τ = −1/Re λ` in s; negative for a growing mode (the e-folding time of
+    /// the growth is |τ|); `∞` when marginal or zero.
+    pub time_constant: f64,
+    /// Damped period `2π/|Im λ|` in s (EoM.jl's "wavelength"); `∞` for real and zero modes.
+    pub damped_period: f64,
+    /// Stable, marginal or unstable.
+    pub stability: Stability,
+    /// Eigenvalue condition number κ = ‖x‖‖y‖/|yᴴx| (on the balanced matrix); large values
+    /// flag nearly defective (repeated) eigenvalues.
+    pub condition: f64,
+    /// The tolerance used for this mode's decisions (see the module docs).
+    pub tolerance: f64,
+    /// Mode shape in physical coordinates, `phys · x` scaled so that its largest entry is
+    /// exactly 0.5 (real). Empty when the model has no physical map; all zero when the mode
+    /// does not move any body (then [`Mode::reference_index`] is `None`).
+    pub shape: DVector<Complex64>,
+    /// Index of the entry of `shape` that was normalised to 0.5.
+    pub reference_index: Option<usize>,
+    /// Per body (six rows of `phys` each), the instantaneous centre and rotation axis. Empty
+    /// when `phys` has no rows or its row count is not a multiple of six.
+    pub centres: Vec<InstantCentre>,
+}
+
+/// Options of [`Modes::compute_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModeOptions {
+    /// Balance A before the eigendecomposition (default `true`).
+    pub balance: bool,
+    /// The factor `tol_factor` in `tol = tol_factor · n · ε · ‖Ã‖ · κ` (default 10).
+    pub tol_factor: f64,
+}
+
+impl Default for ModeOptions {
+    fn default() -> Self {
+        ModeOptions {
+            balance: true,
+            tol_factor: 10.0,
+        }
+    }
+}
+
+/// All modes of a state-space model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Modes {
+    /// One mode per eigenvalue, sorted by (Re λ, Im λ).
+    pub modes: Vec<Mode>,
+    /// Frobenius norm of the balanced A, the scale of the tolerances.
+    pub scale: f64,
+}
+
+impl Modes {
+    /// Modes with default [`ModeOptions`].
+    ///
+    /// Errors: those of [`StateSpace::validate`], [`NumError::NoConvergence`].
+    pub fn compute(ss: &StateSpace<f64>) -> Result<Modes, NumError> {
+        Self::compute_with(ss, &ModeOptions::default())
+    }
+
+    /// Modes with explicit options.
+    ///
+    /// Errors: [`NumError::InvalidOption`] for a non-positive or non-finite `tol_factor`,
+    /// plus those of [`Modes::compute`].
+    pub fn compute_with(ss: &StateSpace<f64>, opts: &ModeOptions) -> Result<Modes, NumError> {
+        if !(opts.tol_factor.is_finite() && opts.tol_factor > 0.0) {
+            return Err(NumError::InvalidOption(format!(
+                "ModeOptions::tol_factor = {}: must be finite and > 0",
+                opts.tol_factor
+            )));
+        }
+        ss.validate()?;
+        let n = ss.states();
+        let eig = eigen_full(&ss.a, opts.balance)?;
+        let nb = if ss.phys.nrows() % 6 == 0 {
+            ss.phys.nrows() / 6
+        } else {
+            0
+        };
+        let phys_c = ss.phys.map(|x| Complex64::new(x, 0.0));
+        let mut modes = Vec::with_capacity(n);
+        for k in 0..n {
+            let lambda = eig.values[k];
+            let tol = opts.tol_factor * n as f64 * f64::EPSILON * eig.norm * eig.condition[k];
+            let mut mode = classify(lambda, tol);
+            mode.condition = eig.condition[k];
+            if ss.phys.nrows() > 0 {
+                let mut shape = &phys_c * eig.right.column(k);
+                let (idx, big) = shape
+                    .iter()
+                    .enumerate()
+                    .fold((0, 0.0), |(bi, bv), (i, z)| {
+                        if z.norm() > bv { (i, z.norm()) } else { (bi, bv) }
+                    });
+                if big > 0.0 {
+                    let f = shape[idx] * 2.0;
+                    shape.iter_mut().for_each(|z| *z /= f);
+                    shape[idx] = Complex64::new(0.5, 0.0);
+                    mode.reference_index = Some(idx);
+                    for b in 0..nb {
+                        let name = ss
+                            .names
+                            .bodies
+                            .get(b)
+                            .cloned()
+                            .unwrap_or_else(|| format!("body {}", b + 1));
+                        mode.centres.push(instant_centre(
+                            name,
+                            &shape.as_slice()[6 * b..6 * b + 6],
+                            n,
+                        ));
+                    }
+                } else {
+                    for b in 0..nb {
+                        mode.centres.push(InstantCentre {
+                            body: ss
+                                .names
+                                .bodies
+                                .get(b)
+                                .cloned()
+                                .unwrap_or_else(|| format!("body {}", b + 1)),
+                            radius: None,
+                            axis: None,
+                        });
+                    }
+                }
+                mode.shape = shape;
+            }
+            modes.push(mode);
+        }
+        Ok(Modes {
+            modes,
+            scale: eig.norm,
+        })
+    }
+
+    /// The eigenvalues, in mode order.
+    pub fn eigenvalues(&self) -> Vec<Complex64> {
+        self.modes.iter().map(|m| m.eigenvalue).collect()
+    }
+
+    /// The modes without the negative-frequency member of each oscillatory pair.
+    pub fn distinct(&self) -> impl Iterator<Item = &Mode> {
+        self.modes
+            .iter()
+            .filter(|m| !(m.kind == ModeKind::Oscillatory && m.eigenvalue.im < 0.0))
+    }
+
+    /// Whether every mode is [`Stability::Stable`].
+    pub fn is_stable(&self) -> bool {
+        self.modes.iter().all(|m| m.stability == Stability::Stable)
+    }
+}
+
+/// Modes of a bare matrix (no shapes), with default options: used for automatic frequency
+/// ranges and time horizons.
+pub(crate) fn classify_matrix(a: &DMatrix<f64>) -> Result<Vec<Mode>, NumError> {
+    let n = a.nrows();
+    let eig = eigen_full(a, true)?;
+    let f = ModeOptions::default().tol_factor;
+    Ok((0..n)
+        .map(|k| {
+            let tol = f * n as f64 * f64::EPSILON * eig.norm * eig.condition[k];
+            let mut m = classify(eig.values[k], tol);
+            m.condition = eig.condition[k];
+            m
+        })
+        .collect())
+}
+
+/// Modal quantities from one eigenvalue and its tolerance (no shape).
+fn classify(lambda: Complex64, tol: f64) -> Mode {
+    let (re, im) = (lambda.re, lambda.im);
+    let stability = if re.abs() <= tol {
+        Stability::Marginal
+    } else if re < 0.0 {
+        Stability::Stable
+    } else {
+        Stability::Unstable
+    };
+    let marginal = stability == Stability::Marginal;
+    let (kind, wn, zeta, tau, period) = if lambda.norm() <= tol {
+        (ModeKind::Zero, 0.0, None, f64::INFINITY, f64::INFINITY)
+    } else if im.abs() <= tol {
+        let zeta = if re < 0.0 { 1.0 } else { -1.0 };
+        let tau = if marginal { f64::INFINITY } else { -1.0 / re };
+        (
+            ModeKind::Real,
+            re.abs() / (2.0 * PI),
+            Some(zeta),
+            tau,
+            f64::INFINITY,
+        )
+    } else {
+        let mag = lambda.norm();
+        let (zeta, tau) = if marginal {
+            (0.0, f64::INFINITY)
+        } else {
+            (-re / mag, -1.0 / re)
+        };
+        (
+            ModeKind::Oscillatory,
+            mag / (2.0 * PI),
+            Some(zeta),
+            tau,
+            2.0 * PI / im.abs(),
+        )
+    };
+    // A zero mode is marginal by definition of the tolerance.
+    Mode {
+        eigenvalue: lambda,
+        kind,
+        natural_frequency_hz: wn,
+        damping_ratio: zeta,
+        time_constant: tau,
+        damped_period: period,
+        stability,
+        condition: 1.0,
+        tolerance: tol,
+        shape: DVector::zeros(0),
+        reference_index: None,
+        centres: Vec::new(),
+    }
+}
+
+/// Instantaneous centre of one body from its six mode-shape entries (x, y, z, rx, ry, rz).
+fn instant_centre(body: String, m: &[Complex64], n: usize) -> InstantCentre {
+    let t = Vector3::new(m[0], m[1], m[2]);
+    let w = Vector3::new(m[3], m[4], m[5]);
+    let wn2: f64 = w.iter().map(|z| z.norm_sqr()).sum();
+    let scale = m.iter().fold(0.0f64, |a, z| a.max(z.norm()));
+    // A rotation at roundoff level relative to the body's own motion is no rotation.
+    if wn2.sqrt() <= 10.0 * (n.max(1) as f64) * f64::EPSILON * scale || wn2 == 0.0 {
+        return InstantCentre {
+            body,
+            radius: None,
+            axis: None,
+        };
+    }
+    let wc = w.map(|z| z.conj());
+    let r = wc.cross(&t) / Complex64::new(wn2, 0.0);
+    // Phase that makes the dominant rotation component real and positive (first of equals).
+    let (l, _) = w.iter().enumerate().fold((0, -1.0), |(bi, bv), (i, z)| {
+        if z.norm() > bv { (i, z.norm()) } else { (bi, bv) }
+    });
+    let phase = Complex64::from_polar(1.0, -w[l].arg());
+    let mut axis = w.map(|z| z * phase / wn2.sqrt());
+    axis[l] = Complex64::new(axis[l].norm(), 0.0);
+    InstantCentre {
+        body,
+        radius: Some(r),
+        axis: Some(axis),
+    }
+}

@@ -1,1 +1,358 @@
-//! (to be written)
+//! Transmission (invariant) zeros of `(A, B, C, D)`, square or not.
+//!
+//! # Algorithm (Emami-Naeini & Van Dooren, Automatica 18(4), 1982)
+//!
+//! The zeros are the values of λ where the system pencil `[A − λI, B; C, D]` loses rank
+//! below its normal rank. Orthogonal reductions remove the parts of the pencil that do not
+//! depend on λ, without changing its zeros:
+//!
+//! 1. `reduce`: compress the rows of `D` (SVD); the outputs with zero feedthrough `C₂`
+//!    force `C₂ x = 0`. Compress `C₂`'s columns so that `C₂ V = [0 C₂₂]` with `C₂₂` of full
+//!    column rank ρ: the last ρ (rotated) states are zero on the zero directions, their state
+//!    equations become new "outputs" `A₂₁ x₁ + B₂ u = 0`. Repeat until `D` has full row rank
+//!    (rows of `[C₂ D₂]` that are entirely zero are dropped).
+//! 2. The same on the dual (transposed) system, after which `D` is square and invertible.
+//! 3. Compress the columns of `[C D]`: with `W₁` an orthonormal basis of its null space,
+//!    the zeros are the generalized eigenvalues of `([A B] W₁, [I 0] W₁)`, computed by
+//!    faer's QZ.
+//!
+//! All rank decisions use one tolerance `tol = max(rtol · ‖[A B; C D]‖_F, atol)` (balanced
+//! states, default `rtol = 1000 · max(n, m, p) · ε`), and are reported with their gaps.
+//!
+//! # Infinite eigenvalues
+//!
+//! After the reductions the pencil has only finite eigenvalues in exact arithmetic; an
+//! eigenvalue `α/β` of the computed pencil is still declared infinite when
+//! `|β| ≤ infinite_rtol · ‖B_f‖_F` — β is then below the backward error of the QZ step and
+//! its sign and size carry no information. This replaces EoM.jl's absolute `|z| < 1e9`
+//! cut-off (eom-method §7.4), which depends on the units of the model.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::{Par, Spec};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::error::NumError;
+use crate::minreal::{
+    MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
+    svd_full,
+};
+use crate::statespace::StateSpace;
+
+/// Options of [`transmission_zeros_with`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ZerosOptions {
+    /// Relative rank tolerance; `None` uses `1000 · max(n, m, p) · ε`.
+    pub rtol: Option<f64>,
+    /// Absolute floor of the rank tolerance (default 0).
+    pub atol: f64,
+    /// Balance the states first (exact power-of-two similarity; default `true`). Zeros are
+    /// invariant under it.
+    pub balance: bool,
+    /// Relative threshold on β of the reduced pencil below which an eigenvalue counts as
+    /// infinite; `None` uses the rank tolerance `rtol`.
+    pub infinite_rtol: Option<f64>,
+}
+
+impl Default for ZerosOptions {
+    fn default() -> Self {
+        ZerosOptions {
+            rtol: None,
+            atol: 0.0,
+            balance: true,
+            infinite_rtol: None,
+        }
+    }
+}
+
+/// Result of [`transmission_zeros_with`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ZerosReport {
+    /// The finite zeros, sorted by (re, im).
+    #[serde(serialize_with = "cser::many")]
+    pub zeros: Vec<Complex64>,
+    /// Eigenvalues of the reduced pencil judged infinite and dropped (0 unless a rank
+    /// decision on the feedthrough was close to the tolerance).
+    pub infinite: usize,
+    /// Order of the reduced regular pencil.
+    pub reduced_order: usize,
+    /// Every rank decision of the reductions.
+    pub decisions: Vec<RankDecision>,
+    /// The absolute rank tolerance used.
+    pub tolerance: f64,
+    /// The absolute threshold on |β| below which an eigenvalue was declared infinite.
+    pub infinite_tolerance: f64,
+    /// Smallest |β| / ‖B_f‖_F among the kept eigenvalues (1 when none): how far the finite
+    /// zeros are from being declared infinite.
+    pub smallest_beta: f64,
+    /// State scaling applied by balancing.
+    pub scaling: Vec<f64>,
+}
+
+/// Transmission zeros of `ss`, sorted by (re, im), with default options (see the module
+/// documentation).
+///
+/// Errors: [`NumError::Dimension`] / [`NumError::NonFinite`] for a malformed model,
+/// [`NumError::NoConvergence`] if an SVD or the QZ iteration fails.
+pub fn transmission_zeros(ss: &StateSpace<f64>) -> Result<Vec<Complex64>, NumError> {
+    Ok(transmission_zeros_with(ss, &ZerosOptions::default())?.zeros)
+}
+
+/// Transmission zeros of `ss` with explicit options, and the report of the rank decisions.
+///
+/// Errors: as [`transmission_zeros`], plus [`NumError::InvalidOption`] for bad options.
+pub fn transmission_zeros_with(
+    ss: &StateSpace<f64>,
+    opts: &ZerosOptions,
+) -> Result<ZerosReport, NumError> {
+    ss.validate()?;
+    for (v, name) in [
+        (opts.rtol, "rtol"),
+        (Some(opts.atol), "atol"),
+        (opts.infinite_rtol, "infinite_rtol"),
+    ] {
+        if let Some(v) = v
+            && !(v.is_finite() && v >= 0.0)
+        {
+            return Err(NumError::InvalidOption(format!(
+                "ZerosOptions.{name} = {v} (must be finite and ≥ 0)"
+            )));
+        }
+    }
+    let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
+    let rtol = opts
+        .rtol
+        .unwrap_or_else(|| MinrealOptions::default_rtol(n, m, p));
+    let mut a = ss.a.clone();
+    let mut b = ss.b.clone();
+    let mut c = ss.c.clone();
+    let d = ss.d.clone();
+    let scaling = if opts.balance {
+        balance_states(&a, &b, &c)
+    } else {
+        vec![1.0; n]
+    };
+    apply_scaling(&scaling, &mut a, &mut b, &mut c);
+    let norm = (a.norm_squared() + b.norm_squared() + c.norm_squared() + d.norm_squared()).sqrt();
+    let tol = (rtol * norm).max(opts.atol);
+
+    let mut decisions = Vec::new();
+    let sys = reduce((a, b, c, d), tol, false, &mut decisions)?;
+    let dual = (
+        sys.0.transpose(),
+        sys.2.transpose(),
+        sys.1.transpose(),
+        sys.3.transpose(),
+    );
+    let dual = reduce(dual, tol, true, &mut decisions)?;
+    let (a, b, c, d) = (
+        dual.0.transpose(),
+        dual.2.transpose(),
+        dual.1.transpose(),
+        dual.3.transpose(),
+    );
+    let nf = a.nrows();
+    let r = d.nrows();
+    let inf_tol_rel = opts.infinite_rtol.unwrap_or(rtol);
+    if nf == 0 {
+        return Ok(ZerosReport {
+            zeros: Vec::new(),
+            infinite: 0,
+            reduced_order: 0,
+            decisions,
+            tolerance: tol,
+            infinite_tolerance: 0.0,
+            smallest_beta: 1.0,
+            scaling,
+        });
+    }
+    if d.ncols() != r {
+        // Cannot happen with consistent rank decisions (see the module documentation).
+        return Err(NumError::Singular(format!(
+            "reduced feedthrough of the zero pencil is {r}×{} instead of square",
+            d.ncols()
+        )));
+    }
+    // Null space of [C D] (r × (nf + r), full row rank r): the last nf right singular
+    // vectors.
+    let (af, bf) = if r == 0 {
+        (a.clone(), DMatrix::identity(nf, nf))
+    } else {
+        let mut cd = DMatrix::zeros(r, nf + r);
+        cd.columns_mut(0, nf).copy_from(&c);
+        cd.columns_mut(nf, r).copy_from(&d);
+        let (_, s, v) = svd_full(&cd)?;
+        let dec = RankDecision::new(RankStage::FinalCompression, 0, r, nf + r, s, tol);
+        let rank = dec.rank;
+        decisions.push(dec);
+        if rank != r {
+            return Err(NumError::Singular(format!(
+                "[C D] of the reduced zero pencil has numerical rank {rank} < {r}"
+            )));
+        }
+        let w1 = v.columns(r, nf).clone_owned();
+        let mut ab = DMatrix::zeros(nf, nf + r);
+        ab.columns_mut(0, nf).copy_from(&a);
+        ab.columns_mut(nf, r).copy_from(&b);
+        (ab * &w1, w1.rows(0, nf).clone_owned())
+    };
+    let bnorm = bf.norm();
+    let inf_tol = inf_tol_rel * bnorm;
+    let (alpha, beta) = qz_eigenvalues(&af, &bf)?;
+    let mut zeros = Vec::with_capacity(nf);
+    let mut infinite = 0;
+    let mut smallest_beta = 1.0f64;
+    for (al, be) in alpha.iter().zip(beta.iter()) {
+        if be.abs() <= inf_tol {
+            infinite += 1;
+        } else {
+            smallest_beta = smallest_beta.min(be.abs() / bnorm);
+            zeros.push(al / be);
+        }
+    }
+    sort_complex(&mut zeros);
+    Ok(ZerosReport {
+        zeros,
+        infinite,
+        reduced_order: nf,
+        decisions,
+        tolerance: tol,
+        infinite_tolerance: inf_tol,
+        smallest_beta,
+        scaling,
+    })
+}
+
+type System = (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>, DMatrix<f64>);
+
+/// The `reduce` procedure: returns a system with the same zeros and `D` of full row rank.
+fn reduce(
+    sys: System,
+    tol: f64,
+    dual: bool,
+    decisions: &mut Vec<RankDecision>,
+) -> Result<System, NumError> {
+    let (mut a, mut b, mut c, mut d) = sys;
+    let mut step = 0;
+    loop {
+        let (n, m, p) = (a.nrows(), b.ncols(), c.nrows());
+        if p == 0 {
+            return Ok((a, b, c, d));
+        }
+        // Row compression of D: W D = [D₁; 0].
+        let sigma = if m == 0 {
+            0
+        } else {
+            let (u, s, _) = svd_full(&d)?;
+            let dec = RankDecision::new(RankStage::Feedthrough { dual }, step, p, m, s, tol);
+            let sigma = dec.rank;
+            decisions.push(dec);
+            let ut = u.transpose();
+            d = &ut * d;
+            c = &ut * c;
+            d.rows_mut(sigma, p - sigma).fill(0.0);
+            sigma
+        };
+        if sigma == p {
+            return Ok((a, b, c, d));
+        }
+        let c2 = c.rows(sigma, p - sigma).clone_owned();
+        let (v, rho) = if n == 0 {
+            (DMatrix::identity(0, 0), 0)
+        } else {
+            let (_, s, v) = svd_full(&c2)?;
+            let dec = RankDecision::new(
+                RankStage::OutputRows { dual },
+                step,
+                p - sigma,
+                n,
+                s,
+                tol,
+            );
+            let rho = dec.rank;
+            decisions.push(dec);
+            (v, rho)
+        };
+        if rho == 0 {
+            // The remaining rows of [C D] are zero: they do not constrain the pencil.
+            c = c.rows(0, sigma).clone_owned();
+            d = d.rows(0, sigma).clone_owned();
+            return Ok((a, b, c, d));
+        }
+        // V' = [v_{ρ..n}, v_{0..ρ}] puts C₂'s range into the last ρ rotated states.
+        let k = n - rho;
+        let mut vp = DMatrix::zeros(n, n);
+        vp.columns_mut(0, k).copy_from(&v.columns(rho, k));
+        vp.columns_mut(k, rho).copy_from(&v.columns(0, rho));
+        let at = vp.transpose() * &a * &vp;
+        let bt = vp.transpose() * &b;
+        let c1 = c.rows(0, sigma) * &vp;
+        let d1 = d.rows(0, sigma).clone_owned();
+        let mut cn = DMatrix::zeros(rho + sigma, k);
+        cn.rows_mut(0, rho).copy_from(&at.view((k, 0), (rho, k)));
+        cn.rows_mut(rho, sigma).copy_from(&c1.columns(0, k));
+        let mut dn = DMatrix::zeros(rho + sigma, m);
+        dn.rows_mut(0, rho).copy_from(&bt.rows(k, rho));
+        dn.rows_mut(rho, sigma).copy_from(&d1);
+        a = at.view((0, 0), (k, k)).clone_owned();
+        b = bt.rows(0, k).clone_owned();
+        c = cn;
+        d = dn;
+        step += 1;
+    }
+}
+
+/// Generalized eigenvalues (α, β) of the real pencil `(A, B)` by faer's QZ, sequentially.
+fn qz_eigenvalues(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+) -> Result<(Vec<Complex64>, Vec<f64>), NumError> {
+    let n = a.nrows();
+    let mut fa = faer::Mat::<f64>::from_fn(n, n, |i, j| a[(i, j)]);
+    let mut fb = faer::Mat::<f64>::from_fn(n, n, |i, j| b[(i, j)]);
+    let mut s_re = faer::diag::Diag::<f64>::zeros(n);
+    let mut s_im = faer::diag::Diag::<f64>::zeros(n);
+    let mut beta = faer::diag::Diag::<f64>::zeros(n);
+    let par = Par::Seq;
+    let mut mem = MemBuffer::new(faer::linalg::gevd::gevd_scratch::<f64>(
+        n,
+        faer::linalg::evd::ComputeEigenvectors::No,
+        faer::linalg::evd::ComputeEigenvectors::No,
+        par,
+        Spec::default(),
+    ));
+    faer::linalg::gevd::gevd_real(
+        fa.as_mut(),
+        fb.as_mut(),
+        s_re.as_mut(),
+        s_im.as_mut(),
+        beta.as_mut(),
+        None,
+        None,
+        par,
+        MemStack::new(&mut mem),
+        Spec::default(),
+    )
+    .map_err(|e| {
+        NumError::NoConvergence(format!("QZ of the {n}×{n} reduced zero pencil: {e:?}"))
+    })?;
+    // A complex pair occupies two slots; as in faer's own high-level API, the first slot
+    // defines it and the second is its conjugate.
+    let mut alpha = Vec::with_capacity(n);
+    let mut b = Vec::with_capacity(n);
+    let mut i = 0;
+    while i < n {
+        let z = Complex64::new(s_re[i], s_im[i]);
+        alpha.push(z);
+        b.push(beta[i]);
+        if s_im[i] != 0.0 && i + 1 < n {
+            alpha.push(z.conj());
+            b.push(beta[i]);
+            i += 2;
+        } else {
+            i += 1;
+        }
+    }
+    Ok((alpha, b))
+}

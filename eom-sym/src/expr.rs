@@ -108,7 +108,7 @@ impl Expr {
         if !x.is_finite() {
             return Err(SymError::NonFinite { what: format!("the constant {x}") });
         }
-        Ok(Expr::from_id(with_pool(|p| match dyadic(x) {
+        Ok(Expr::from_id(with_pool(|p| match crate::pool::dyadic(x) {
             Some(r) => p.rational(r),
             None => p.float(x),
         })))
@@ -494,15 +494,6 @@ pub(crate) fn reachable_in(p: &ExprPool, roots: impl Iterator<Item = Id>) -> Vec
     out
 }
 
-/// Integers and dyadic fractions with a denominator up to 2^20 are exact rationals.
-fn dyadic(x: f64) -> Option<Rational> {
-    let scaled = x * (1u64 << 20) as f64;
-    if scaled.fract() == 0.0 && scaled.abs() < 9.0e15 {
-        Rational::new(scaled as i64, 1 << 20)
-    } else {
-        None
-    }
-}
 
 pub(crate) fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();
@@ -633,6 +624,18 @@ macro_rules! scalar_ops {
 scalar_ops!(i64, Expr::int);
 scalar_ops!(i32, |x: i32| Expr::int(x as i64));
 
+impl From<i32> for Expr {
+    fn from(n: i32) -> Expr {
+        Expr::int(n as i64)
+    }
+}
+/// Floats convert like [`Expr::float`]; a non-finite value becomes an invalid node, which model
+/// validation reports with the item and field it came from.
+impl From<f64> for Expr {
+    fn from(x: f64) -> Expr {
+        <Expr as crate::scalar::Scalar>::from_f64(x)
+    }
+}
 impl From<i64> for Expr {
     fn from(n: i64) -> Expr {
         Expr::int(n)

@@ -15,7 +15,9 @@ pub mod pool;
 pub mod rational;
 pub mod scalar;
 pub mod scope;
+pub mod simplify;
 pub mod subs;
+pub mod model;
 pub mod tape;
 #[doc(hidden)]
 pub mod testing;
@@ -30,5 +32,6 @@ pub use pool::{Assumption, Constant, ExprPool, Func, ParamInfo, PoolStats, Sign}
 pub use rational::Rational;
 pub use scalar::{Elementary, Scalar};
 pub use scope::Scope;
+pub use simplify::{CostModel, Simplifier, SimplifyOutcome, normalize_rational};
 pub use subs::subs_many;
 pub use tape::{Tape, TapeWorkspace, eval_generic, eval_nominal};

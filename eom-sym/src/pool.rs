@@ -29,6 +29,7 @@
 //! |---|---|
 //! | `0 + x → x`, `1·x → x`, `x^1 → x`, `x − x → 0`, `c₁x + c₂x → (c₁+c₂)x` | always |
 //! | `0·x → 0` | always (the standard convention of every CAS; `x` is assumed finite) |
+//! | `c·sin²x + c·cos²x → c` | always |
 //! | `x^a · x^b → x^(a+b)` | `a` and `b` have the same sign (no division is cancelled), **or** `x` is provably nonzero. Otherwise `x²/x` stays `x²·x⁻¹`, so `x/x → 1` only for nonzero constants or parameters declared nonzero/positive. |
 //! | `(x·y)^n → xⁿyⁿ`, `(xᵃ)ⁿ → x^(an)` | `n` an integer |
 //! | `(xᵃ)^r → x^(ar)`, `(x·y)^r → x^r y^r` | `r` not an integer: only when the bases are provably non-negative; `(x²)^(1/2) → abs(x)` for real `x` |
@@ -658,8 +659,11 @@ impl ExprPool {
         if !x.is_finite() {
             return self.invalid(SymError::NonFinite { what: format!("the constant {x}") });
         }
-        // Normalise -0.0 so that it hash-conses with 0.0.
-        let x = if x == 0.0 { 0.0 } else { x };
+        // Integers and short dyadic fractions are exact: store them as rationals, so that
+        // float arithmetic that lands on such a value (0.1·10 = 1) folds like exact input.
+        if let Some(r) = dyadic(x) {
+            return self.rational(r);
+        }
         self.intern(Key::Float(x.to_bits()))
     }
 
@@ -789,6 +793,10 @@ impl ExprPool {
             }
         }
         merged.retain(|(_, c)| !c.is_zero());
+        let c0 = match self.pythagoras(&mut merged, c0) {
+            Ok(c) => c,
+            Err(e) => return self.invalid(e),
+        };
         if merged.is_empty() {
             return self.num(c0);
         }
@@ -804,6 +812,37 @@ impl ExprPool {
             key.push(cid);
         }
         self.intern(Key::Add(&key))
+    }
+
+    /// `c·sin²x + c·cos²x → c` (always safe). Terms are `(sin x)²` / `(cos x)²` products.
+    fn pythagoras(&mut self, terms: &mut Vec<(Id, Number)>, mut c0: Number) -> Result<Number, SymError> {
+        let square_of = |p: &Self, t: Id, f: Func| -> Option<Id> {
+            let (c, pairs) = p.mul_parts(t)?;
+            if c != ONE || pairs.len() != 2 || p.rational_of(pairs[1])?.to_i64() != Some(2) {
+                return None;
+            }
+            match p.node(pairs[0]) {
+                Node::Func(g, x) if *g == f => Some(*x),
+                _ => None,
+            }
+        };
+        let mut i = 0;
+        while i < terms.len() {
+            if let Some(x) = square_of(self, terms[i].0, Func::Sin) {
+                let cos_term = terms.iter().position(|(t, c)| {
+                    *c == terms[i].1 && square_of(self, *t, Func::Cos) == Some(x)
+                });
+                if let Some(j) = cos_term {
+                    c0 = c0.add(&terms[i].1)?;
+                    let (hi, lo) = (i.max(j), i.min(j));
+                    terms.remove(hi);
+                    terms.remove(lo);
+                    continue;
+                }
+            }
+            i += 1;
+        }
+        Ok(c0)
     }
 
     /// `c·t` for a term `t` of a sum (not a number, not a sum, unit coefficient).
@@ -1243,6 +1282,16 @@ fn exact_trig(f: Func, k: &Rational) -> Option<Rational> {
         (Func::Sin, 2) => Some(if n.rem_euclid(4) == 1 { Rational::ONE } else { Rational::MINUS_ONE }),
         (Func::Cos, 2) => Some(Rational::ZERO),
         _ => None,
+    }
+}
+
+/// Integers and dyadic fractions with a denominator up to 2^20 are exact rationals.
+pub(crate) fn dyadic(x: f64) -> Option<Rational> {
+    let scaled = x * (1u64 << 20) as f64;
+    if scaled.fract() == 0.0 && scaled.abs() < 9.0e15 {
+        Rational::new(scaled as i64, 1 << 20)
+    } else {
+        None
     }
 }
 

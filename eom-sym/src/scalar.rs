@@ -42,6 +42,8 @@ pub trait Scalar:
     fn sin(self) -> Self;
     /// Cosine.
     fn cos(self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
     /// The value at the nominal point: the number itself for numeric types, the nominal value
     /// of the expression for symbolic ones. Used for pivot choices and scale-aware tests.
     fn nominal(&self) -> f64;
@@ -96,6 +98,9 @@ impl Scalar for f64 {
     }
     fn cos(self) -> f64 {
         f64::cos(self)
+    }
+    fn abs(self) -> f64 {
+        f64::abs(self)
     }
     fn nominal(&self) -> f64 {
         *self
@@ -153,6 +158,9 @@ impl Scalar for Dd {
     fn cos(self) -> Dd {
         Dd::cos(self)
     }
+    fn abs(self) -> Dd {
+        Dd::abs(self)
+    }
     fn nominal(&self) -> f64 {
         self.to_f64()
     }
@@ -204,6 +212,9 @@ impl Scalar for Expr {
     fn cos(self) -> Expr {
         Expr::cos(self)
     }
+    fn abs(self) -> Expr {
+        Expr::abs(self)
+    }
     fn nominal(&self) -> f64 {
         Expr::nominal(*self)
     }
@@ -230,8 +241,6 @@ pub trait Elementary: Scalar {
     fn exp(self) -> Self;
     /// Natural logarithm.
     fn ln(self) -> Self;
-    /// Absolute value.
-    fn abs(self) -> Self;
     /// `atan2(self, x)`.
     fn atan2(self, x: Self) -> Self;
     /// `self ^ e` for a real exponent.
@@ -271,9 +280,6 @@ impl Elementary for f64 {
     fn ln(self) -> f64 {
         f64::ln(self)
     }
-    fn abs(self) -> f64 {
-        f64::abs(self)
-    }
     fn atan2(self, x: f64) -> f64 {
         f64::atan2(self, x)
     }
@@ -295,9 +301,6 @@ impl Elementary for Dd {
     fn ln(self) -> Dd {
         Dd::ln(self)
     }
-    fn abs(self) -> Dd {
-        Dd::abs(self)
-    }
     fn atan2(self, x: Dd) -> Dd {
         Dd::atan2(self, x)
     }
@@ -318,9 +321,6 @@ impl Elementary for Expr {
     }
     fn ln(self) -> Expr {
         Expr::ln(self)
-    }
-    fn abs(self) -> Expr {
-        Expr::abs(self)
     }
     fn atan2(self, x: Expr) -> Expr {
         Expr::atan2(self, x)

@@ -1,0 +1,142 @@
+//! Small generic 3-D geometry over any [`Scalar`]: cross products, skew matrices, unit
+//! vectors, and the deterministic direction basis of point and line items.
+
+use crate::model::items::Vec3;
+use crate::scalar::Scalar;
+
+/// A 3×3 matrix, row-major.
+pub type Mat3<S> = [[S; 3]; 3];
+
+/// `a · b`.
+pub fn dot<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> S {
+    S::dot(a, b)
+}
+
+/// `a × b`.
+pub fn cross<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> Vec3<S> {
+    let m = |x: S, y: S| if x.is_zero() || y.is_zero() { S::zero() } else { x * y };
+    let d = |p: S, q: S| {
+        if q.is_zero() {
+            p
+        } else if p.is_zero() {
+            -q
+        } else {
+            p - q
+        }
+    };
+    [
+        d(m(a[1], b[2]), m(a[2], b[1])),
+        d(m(a[2], b[0]), m(a[0], b[2])),
+        d(m(a[0], b[1]), m(a[1], b[0])),
+    ]
+}
+
+/// `a − b`.
+pub fn sub<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> Vec3<S> {
+    let d = |p: S, q: S| {
+        if q.is_zero() {
+            p
+        } else if p.is_zero() {
+            -q
+        } else {
+            p - q
+        }
+    };
+    [d(a[0], b[0]), d(a[1], b[1]), d(a[2], b[2])]
+}
+
+/// `c · a`.
+pub fn scale<S: Scalar>(c: S, a: &Vec3<S>) -> Vec3<S> {
+    let m = |x: S| if x.is_zero() { S::zero() } else { c * x };
+    [m(a[0]), m(a[1]), m(a[2])]
+}
+
+/// Is the vector structurally zero?
+pub fn is_zero<S: Scalar>(a: &Vec3<S>) -> bool {
+    a.iter().all(Scalar::is_zero)
+}
+
+/// Euclidean norm (structural zeros skipped, so an axis-aligned vector has norm `|a_k|`).
+pub fn norm<S: Scalar>(a: &Vec3<S>) -> S {
+    let nz: Vec<S> = a.iter().copied().filter(|x| !x.is_zero()).collect();
+    match nz.as_slice() {
+        [] => S::zero(),
+        [x] => x.abs(),
+        _ => dot(a, a).sqrt(),
+    }
+}
+
+/// `a / |a|` (the caller has checked that `a` is not zero).
+pub fn unit<S: Scalar>(a: &Vec3<S>) -> Vec3<S> {
+    let n = norm(a);
+    if n.is_one() {
+        return *a;
+    }
+    let inv = n.recip();
+    scale(inv, a)
+}
+
+/// The skew matrix `[a]×` with `[a]× b = a × b`.
+pub fn skew<S: Scalar>(a: &Vec3<S>) -> Mat3<S> {
+    let z = S::zero();
+    let n = |x: S| if x.is_zero() { x } else { -x };
+    [[z, n(a[2]), a[1]], [a[2], z, n(a[0])], [n(a[1]), a[0], z]]
+}
+
+/// `A · B` for 3×3 matrices.
+pub fn mat_mul<S: Scalar>(a: &Mat3<S>, b: &Mat3<S>) -> Mat3<S> {
+    let mut c = [[S::zero(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            c[i][j] = S::dot(&a[i], &[b[0][j], b[1][j], b[2][j]]);
+        }
+    }
+    c
+}
+
+/// `A · v`.
+pub fn mat_vec<S: Scalar>(a: &Mat3<S>, v: &Vec3<S>) -> Vec3<S> {
+    [S::dot(&a[0], v), S::dot(&a[1], v), S::dot(&a[2], v)]
+}
+
+/// `Aᵀ`.
+pub fn transpose<S: Scalar>(a: &Mat3<S>) -> Mat3<S> {
+    let mut t = *a;
+    for (i, row) in a.iter().enumerate() {
+        for (j, &v) in row.iter().enumerate() {
+            t[j][i] = v;
+        }
+    }
+    t
+}
+
+/// `a bᵀ`.
+pub fn outer<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> Mat3<S> {
+    let m = |x: S, y: S| if x.is_zero() || y.is_zero() { S::zero() } else { x * y };
+    let mut c = [[S::zero(); 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            c[i][j] = m(a[i], b[j]);
+        }
+    }
+    c
+}
+
+/// An orthonormal pair `(ν₁, ν₂)` perpendicular to the unit vector `a`, with `(a, ν₁, ν₂)`
+/// right-handed. Deterministic (unlike an SVD null space, eom-method §13.15): `ν₁` is the
+/// normalised `a × e_k` for the global axis `e_k` least aligned with `a` at the nominal point
+/// (the first one on ties), `ν₂ = a × ν₁`. For an axis-aligned `a` the pair is axis-aligned:
+/// `a = z` gives `ν = (y, −x)`.
+pub fn perpendicular_basis<S: Scalar>(a: &Vec3<S>) -> [Vec3<S>; 2] {
+    let mut k = 0;
+    for i in 1..3 {
+        if a[i].nominal().abs() < a[k].nominal().abs() {
+            k = i;
+        }
+    }
+    let mut e = [S::zero(); 3];
+    e[k] = S::one();
+    let n1 = unit(&cross(a, &e));
+    let n2 = cross(a, &n1);
+    [n1, n2]
+}

@@ -1,0 +1,584 @@
+//! Reduction of the assembled model to state space by structured elimination with pivots
+//! chosen at the nominal point — the symbolic-numeric path.
+//!
+//! 1. **Structure first.** A holonomic constraint row with a single entry pins one coordinate;
+//!    when nothing in the kinematics `ṗ = w − V p` can make that coordinate's velocity nonzero
+//!    either, the coordinate is removed before any algebra (a planar model pays for its planar
+//!    coordinates only).
+//! 2. **Positions.** Gauss–Jordan on the remaining `J` gives the dependent coordinates in terms
+//!    of the independent ones, `p = R_p x_p`.
+//! 3. **Velocities.** `J w = J V p` and `N w = 0`: the same elimination of `J` is replayed
+//!    first (identical operations give identical, hash-consed expressions — `J` is eliminated
+//!    once), then the nonholonomic rows; this gives `w = W_p x_p + R_w x_w`.
+//! 4. **Dynamics.** The equations are projected on the admissible velocities (`R_wᵀ`, which
+//!    annihilates every constraint reaction), the kinematic equations are kept for the
+//!    independent coordinates only (exact, since `J ṗ = 0` by construction), and the reduced
+//!    mass matrix `R_wᵀ M R_w` is eliminated (Gauss–Jordan, nominal pivots).
+//! 5. **Inputs with rates** (`G_u u̇`) are absorbed by the state change `x̃ = x − Γu`.
+//! 6. **Outputs.** Displacements and velocities directly; accelerations by differentiating the
+//!    velocity output through the reduced model (`C_acc = C_vel A`, `D_acc = C_vel B`), which
+//!    includes every constraint reaction — the fix of eom-method §13.8.
+//!
+//! Every pivot and rank decision is recorded ([`ReductionPlan`]) and can be replayed with any
+//! scalar type; the pivots and the negligible entries of the rank decisions are returned as
+//! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
+
+use super::assemble::Assembled;
+use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, rref};
+use super::items::{SensorFrame, SensorOrder};
+use crate::error::SymError;
+use crate::expr::Expr;
+use crate::matrix::SparseMatrix;
+use crate::scalar::Scalar;
+use crate::tape::{Tape, TapeWorkspace};
+use eom_num::{SignalNames, StateSpace};
+use nalgebra::DMatrix;
+
+/// Pivot ratio below which a recorded pivot counts as broken down at an evaluation point:
+/// `|pivot| < PIVOT_TOLERANCE · max |entry of its row|`.
+pub const PIVOT_TOLERANCE: f64 = 1e-4;
+
+/// Relative size above which an entry that decided a rank at the nominal point invalidates
+/// the decision elsewhere.
+pub const RANK_TOLERANCE: f64 = 1e-8;
+
+/// The recorded decisions of a reduction.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct ReductionPlan {
+    /// Active (kept) coordinates, as indices into the 6-per-body coordinate vector.
+    pub active: Vec<usize>,
+    /// Holonomic rows kept after removing the pinning rows.
+    pub j_rows: Vec<usize>,
+    /// Elimination of the position constraints.
+    pub position: EliminationPlan,
+    /// Elimination of the velocity constraints.
+    pub velocity: EliminationPlan,
+    /// Elimination of the reduced mass matrix.
+    pub mass: EliminationPlan,
+}
+
+/// One condition for a symbolic result to be valid at an evaluation point.
+#[derive(Clone, Debug)]
+pub enum ValidityCheck<S> {
+    /// `|value| ≥ PIVOT_TOLERANCE · max(|value|, |row entries|)`.
+    Pivot {
+        /// What the pivot eliminates.
+        what: String,
+        /// The pivot.
+        value: S,
+        /// The other entries of its row.
+        row: Vec<S>,
+    },
+    /// `|value| ≤ RANK_TOLERANCE · max |scale entries|`.
+    Negligible {
+        /// Which rank decision.
+        what: String,
+        /// The entry that must stay negligible.
+        value: S,
+        /// The entries that set its scale.
+        scale: Vec<S>,
+    },
+}
+
+impl<S: Scalar> ValidityCheck<S> {
+    /// Description of the check.
+    pub fn what(&self) -> &str {
+        match self {
+            ValidityCheck::Pivot { what, .. } | ValidityCheck::Negligible { what, .. } => what,
+        }
+    }
+
+    /// Test the check on numeric values (the check's expressions evaluated at a point).
+    pub fn holds(value: f64, others: &[f64], pivot: bool) -> bool {
+        let m = others.iter().fold(value.abs(), |a, b| a.max(b.abs()));
+        if pivot {
+            value.is_finite() && value.abs() >= PIVOT_TOLERANCE * m && m > 0.0
+        } else {
+            let s = others.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            value.abs() <= RANK_TOLERANCE * s || value == 0.0
+        }
+    }
+
+    fn holds_nominal(&self) -> bool {
+        match self {
+            ValidityCheck::Pivot { value, row, .. } => {
+                let o: Vec<f64> = row.iter().map(|x| x.nominal()).collect();
+                Self::holds(value.nominal(), &o, true)
+            }
+            ValidityCheck::Negligible { value, scale, .. } => {
+                let o: Vec<f64> = scale.iter().map(|x| x.nominal()).collect();
+                Self::holds(value.nominal(), &o, false)
+            }
+        }
+    }
+}
+
+/// Sizes and decisions of a reduction, for reports.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ReductionReport {
+    /// Physical coordinates (6 per body).
+    pub coordinates: usize,
+    /// Coordinates removed before any algebra, with the constraint that pinned each.
+    pub pinned: Vec<String>,
+    /// Independent coordinates (position states).
+    pub position_states: usize,
+    /// Independent velocities.
+    pub velocity_states: usize,
+    /// Constraint rows found redundant at the nominal point.
+    pub redundant: Vec<String>,
+    /// Warnings.
+    pub warnings: Vec<String>,
+}
+
+/// The result of a reduction.
+#[derive(Clone, Debug)]
+pub struct Reduction<S: nalgebra::Scalar> {
+    /// The state-space model (states `x̃ = x − Γu` when there are rate inputs).
+    pub state_space: StateSpace<S>,
+    /// Conditions under which the result is valid.
+    pub checks: Vec<ValidityCheck<S>>,
+    /// The decisions, replayable with another scalar type.
+    pub plan: ReductionPlan,
+    /// Sizes and decisions.
+    pub report: ReductionReport,
+}
+
+const COORD: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+const VELO: [&str; 6] = ["vx", "vy", "vz", "wx", "wy", "wz"];
+
+fn select_rows<S: Scalar>(m: &SparseMatrix<S>, rows: &[usize]) -> SparseMatrix<S> {
+    let cols: Vec<usize> = (0..m.ncols()).collect();
+    m.select(rows, &cols)
+}
+
+fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> Vec<Row<S>> {
+    (0..m.nrows()).map(|i| m.row(i).to_vec()).collect()
+}
+
+fn hstack<S: Scalar>(a: &SparseMatrix<S>, b: &SparseMatrix<S>) -> Result<SparseMatrix<S>, SymError> {
+    SparseMatrix::block(&[vec![Some(a), Some(b)]])
+}
+
+fn vstack<S: Scalar>(a: &SparseMatrix<S>, b: &SparseMatrix<S>) -> Result<SparseMatrix<S>, SymError> {
+    if a.nrows() == 0 {
+        return Ok(b.clone());
+    }
+    if b.nrows() == 0 {
+        return Ok(a.clone());
+    }
+    SparseMatrix::block(&[vec![Some(a)], vec![Some(b)]])
+}
+
+fn record_checks<S: Scalar>(r: &Rref<S>, label: &dyn Fn(usize, usize) -> String, out: &mut Vec<ValidityCheck<S>>) {
+    for PivotRecord { row, col, value, row_entries } in &r.pivot_records {
+        if value.is_one() || (row_entries.is_empty() && value.nominal() != 0.0 && is_constant(value)) {
+            continue;
+        }
+        out.push(ValidityCheck::Pivot { what: label(*row, *col), value: *value, row: row_entries.clone() });
+    }
+    for RankRecord { row, value, scale_entries } in &r.rank_records {
+        out.push(ValidityCheck::Negligible {
+            what: format!("redundancy of {}", label(*row, usize::MAX)),
+            value: *value,
+            scale: scale_entries.clone(),
+        });
+    }
+}
+
+/// A scalar that cannot change with the parameters (for f64 every value; for expressions the
+/// numeric constants). Constant pivots need no runtime check.
+fn is_constant<S: Scalar>(v: &S) -> bool {
+    // A value equal to its own nominal for every type: numbers. For expressions the only way to
+    // tell is through the f64 round trip of `from_f64(nominal) == v`.
+    S::from_f64(v.nominal()) == *v
+}
+
+/// Reduce an assembled model to state space. With `plan = None` the pivots are chosen at the
+/// nominal point and recorded; with a plan they are replayed (the fast numeric path), and the
+/// returned checks tell whether the plan is still valid at this point.
+pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Result<Reduction<S>, SymError> {
+    let d = a.dim();
+    let mut report = ReductionReport { coordinates: d, ..Default::default() };
+    report.warnings = a.warnings.clone();
+    let coord_name = |g: usize| format!("{}.{}", a.bodies[g / 6], COORD[g % 6]);
+
+    // ------------------------------------------------------------ 1. pinned coordinates
+    let (active, j_keep) = match plan {
+        Some(p) => (p.active.clone(), p.j_rows.clone()),
+        None => {
+            let mut pin_row: Vec<Option<usize>> = vec![None; d];
+            for i in 0..a.holonomic.nrows() {
+                let row = a.holonomic.row(i);
+                if row.len() == 1 && row[0].1.nominal() != 0.0 && pin_row[row[0].0].is_none() {
+                    pin_row[row[0].0] = Some(i);
+                }
+            }
+            // Keep a pin only if (V p) cannot make its velocity nonzero.
+            loop {
+                let mut changed = false;
+                for g in 0..d {
+                    if pin_row[g].is_some() && a.velocity.row(g).iter().any(|&(j, _)| pin_row[j].is_none()) {
+                        pin_row[g] = None;
+                        changed = true;
+                    }
+                }
+                if !changed {
+                    break;
+                }
+            }
+            let pinned_rows: Vec<usize> = pin_row.iter().flatten().copied().collect();
+            let active: Vec<usize> = (0..d).filter(|&g| pin_row[g].is_none()).collect();
+            let j_keep: Vec<usize> = (0..a.holonomic.nrows()).filter(|r| !pinned_rows.contains(r)).collect();
+            (active, j_keep)
+        }
+    };
+    for g in 0..d {
+        if !active.contains(&g) {
+            report.pinned.push(coord_name(g));
+        }
+    }
+    let n = active.len();
+    let jm = a.holonomic.select(&j_keep, &active);
+    let nm = a.nonholonomic.select(&(0..a.nonholonomic.nrows()).collect::<Vec<_>>(), &active);
+    let all_active: Vec<usize> = active.clone();
+    let msel = |m: &SparseMatrix<S>| m.select(&all_active, &all_active);
+    let mass = msel(&a.mass);
+    let stiff = msel(&a.stiffness);
+    let damp = msel(&a.damping);
+    let vel = msel(&a.velocity);
+    let f_u = select_rows(&a.input_force, &active);
+    let g_u = select_rows(&a.input_rate_force, &active);
+    let c_s = a.sensor_rows.select(&(0..a.sensor_rows.nrows()).collect::<Vec<_>>(), &active);
+    let jlabel = |r: usize| a.holonomic_rows[j_keep[r]].clone();
+    let mut checks = Vec::new();
+
+    // ------------------------------------------------------------ 2. positions
+    let rj = rref(to_rows(&jm), n, &[], plan.map(|p| &p.position))?;
+    let pos_label = |r: usize, c: usize| {
+        if c == usize::MAX {
+            format!("position constraint {}", jlabel(r))
+        } else {
+            format!("pivot on {} in position constraint {}", coord_name(active[c]), jlabel(r))
+        }
+    };
+    record_checks(&rj, &pos_label, &mut checks);
+    for &r in &rj.plan.redundant {
+        report.redundant.push(jlabel(r));
+    }
+    let dep_p = rj.is_pivot_col();
+    let indep_p: Vec<usize> = (0..n).filter(|&c| !dep_p[c]).collect();
+    let np = indep_p.len();
+    let mut rp = SparseMatrix::zeros(n, np);
+    for (t, &k) in indep_p.iter().enumerate() {
+        rp.set(k, t, S::one());
+    }
+    let mut indep_pos = vec![usize::MAX; n];
+    for (t, &k) in indep_p.iter().enumerate() {
+        indep_pos[k] = t;
+    }
+    for &(r, c) in &rj.plan.pivots {
+        for &(k, v) in &rj.rows[r] {
+            if k != c && k < n && indep_pos[k] != usize::MAX {
+                rp.set(c, indep_pos[k], -v);
+            }
+        }
+    }
+
+    // ------------------------------------------------------------ 3. velocities
+    let rhs = jm.mul(&vel)?.mul(&rp)?;
+    let nq = jm.nrows();
+    let nn = nm.nrows();
+    let g_top = hstack(&jm, &rhs)?;
+    let g_bot = hstack(&nm, &SparseMatrix::zeros(nn, np))?;
+    let g = vstack(&g_top, &g_bot)?;
+    let g_label = |r: usize| if r < nq { jlabel(r) } else { a.nonholonomic_rows[r - nq].clone() };
+    let rg = rref(to_rows(&g), n, &rj.plan.pivots, plan.map(|p| &p.velocity))?;
+    let vel_label = |r: usize, c: usize| {
+        if c == usize::MAX {
+            format!("velocity constraint {}", g_label(r))
+        } else {
+            format!("pivot on the velocity of {} in velocity constraint {}", coord_name(active[c]), g_label(r))
+        }
+    };
+    // The replayed position pivots are already checked; record the new ones.
+    let mut rg_new = rg.clone();
+    rg_new.pivot_records.retain(|p| !rj.plan.pivots.contains(&(p.row, p.col)));
+    record_checks(&rg_new, &vel_label, &mut checks);
+    for &r in &rg.plan.redundant {
+        if r >= nq {
+            report.redundant.push(g_label(r));
+        }
+        // A redundant velocity row must also be consistent (its right-hand side negligible).
+        for &(k, v) in &rg.rows[r] {
+            if k >= n {
+                checks.push(ValidityCheck::Negligible {
+                    what: format!("consistency of redundant velocity constraint {}", g_label(r)),
+                    value: v,
+                    scale: g.row(r).iter().map(|e| e.1).collect(),
+                });
+            }
+        }
+    }
+    let dep_w = rg.is_pivot_col();
+    let indep_w: Vec<usize> = (0..n).filter(|&c| !dep_w[c]).collect();
+    let nw = indep_w.len();
+    let mut indep_wpos = vec![usize::MAX; n];
+    for (t, &k) in indep_w.iter().enumerate() {
+        indep_wpos[k] = t;
+    }
+    let mut rw = SparseMatrix::zeros(n, nw);
+    let mut wp = SparseMatrix::zeros(n, np);
+    for (t, &k) in indep_w.iter().enumerate() {
+        rw.set(k, t, S::one());
+    }
+    for &(r, c) in &rg.plan.pivots {
+        for &(k, v) in &rg.rows[r] {
+            if k < n {
+                if k != c && indep_wpos[k] != usize::MAX {
+                    rw.set(c, indep_wpos[k], -v);
+                }
+            } else {
+                wp.set(c, k - n, v);
+            }
+        }
+    }
+    report.position_states = np;
+    report.velocity_states = nw;
+
+    // ------------------------------------------------------------ 4. dynamics
+    let nx = np + nw;
+    let rwt = rw.transpose();
+    let m_r = rwt.mul(&mass)?.mul(&rw)?;
+    let e21 = rwt.mul(&mass)?.mul(&wp)?;
+    let wfull = hstack(&wp, &rw)?; // w = Wfull x
+    let pfull = hstack(&rp, &SparseMatrix::zeros(n, nw))?; // p = Pfull x
+    let kin = wfull.sub(&vel.mul(&pfull)?)?; // ṗ = (W − V P) x
+    let a1 = kin.select(&indep_p, &(0..nx).collect::<Vec<_>>());
+    let a2 = rwt.mul(&stiff)?.mul(&pfull)?.add(&rwt.mul(&damp)?.mul(&wfull)?)?.neg();
+    let rhs_a = a2.sub(&e21.mul(&a1)?)?;
+    let b2 = rwt.mul(&f_u)?;
+    let g2 = rwt.mul(&g_u)?;
+    let m_aug = hstack(&hstack(&m_r, &rhs_a)?, &hstack(&b2, &g2)?)?;
+    let rm = rref(to_rows(&m_aug), nw, &[], plan.map(|p| &p.mass))?;
+    let vname = |t: usize| format!("{}.{}", a.bodies[active[indep_w[t]] / 6], VELO[active[indep_w[t]] % 6]);
+    let mass_label = |r: usize, c: usize| {
+        if c == usize::MAX {
+            format!("reduced mass row of {}", vname(r))
+        } else {
+            format!("reduced mass pivot of {} (row {})", vname(c), vname(r))
+        }
+    };
+    record_checks(&rm, &mass_label, &mut checks);
+    if !rm.plan.redundant.is_empty() {
+        let names: Vec<String> = rm.plan.redundant.iter().map(|&r| vname(r)).collect();
+        return Err(SymError::Unsupported(format!(
+            "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
+            names.join(", ")
+        )));
+    }
+    let mi = nm_rows_to_matrix(&rm, nw, nx + b2.ncols() + g2.ncols());
+    let xa = mi.select(&(0..nw).collect::<Vec<_>>(), &(nw..nw + nx).collect::<Vec<_>>());
+    let m_in = f_u.ncols();
+    let xb = mi.select(&(0..nw).collect::<Vec<_>>(), &(nw + nx..nw + nx + m_in).collect::<Vec<_>>());
+    let xg = mi.select(&(0..nw).collect::<Vec<_>>(), &(nw + nx + m_in..nw + nx + 2 * m_in).collect::<Vec<_>>());
+    let a_ss = vstack(&a1, &xa)?;
+    let gamma = vstack(&SparseMatrix::zeros(np, m_in), &xg)?;
+    let b_raw = vstack(&SparseMatrix::zeros(np, m_in), &xb)?;
+    let b_ss = b_raw.add(&a_ss.mul(&gamma)?)?;
+
+    // ------------------------------------------------------------ 5. outputs
+    let nout = c_s.nrows();
+    let mut c_out = SparseMatrix::zeros(nout, nx);
+    let mut d_out = a.feedthrough.clone();
+    for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
+        let row = c_s.select(&[o], &(0..n).collect::<Vec<_>>());
+        let (c_row, d_row) = match (order, frame) {
+            (SensorOrder::Displacement, _) => {
+                let c = row.mul(&pfull)?;
+                let dr = c.mul(&gamma)?;
+                (c, dr)
+            }
+            (SensorOrder::Velocity, SensorFrame::Global) => {
+                let c = row.mul(&kin)?;
+                let dr = c.mul(&gamma)?;
+                (c, dr)
+            }
+            (SensorOrder::Velocity, SensorFrame::Local) => {
+                let c = row.mul(&wfull)?;
+                let dr = c.mul(&gamma)?;
+                (c, dr)
+            }
+            (SensorOrder::Acceleration, SensorFrame::Global) => {
+                let cv = row.mul(&kin)?;
+                rate_check(&cv.mul(&gamma)?, &a.outputs[o].0, &a.inputs)?;
+                (cv.mul(&a_ss)?, cv.mul(&b_ss)?)
+            }
+            (SensorOrder::Acceleration, SensorFrame::Local) => {
+                let cw = row.mul(&wfull)?;
+                rate_check(&cw.mul(&gamma)?, &a.outputs[o].0, &a.inputs)?;
+                let cvw = row.mul(&vel)?.mul(&wfull)?;
+                let c = cw.mul(&a_ss)?.sub(&cvw)?;
+                let dr = cw.mul(&b_ss)?.sub(&cvw.mul(&gamma)?)?;
+                (c, dr)
+            }
+        };
+        for (_, j, v) in c_row.iter() {
+            c_out.set(o, j, v);
+        }
+        for (_, j, v) in d_row.iter() {
+            d_out.add_to(o, j, v);
+        }
+    }
+
+    // ------------------------------------------------------------ 6. map back and names
+    let mut phys = SparseMatrix::zeros(d, nx);
+    for (i, j, v) in pfull.iter() {
+        phys.set(active[i], j, v);
+    }
+    let mut states: Vec<String> = indep_p.iter().map(|&k| coord_name(active[k])).collect();
+    states.extend((0..nw).map(vname));
+    let names = SignalNames {
+        states,
+        inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
+        input_units: a.inputs.iter().map(|x| x.1.clone()).collect(),
+        outputs: a.outputs.iter().map(|x| x.0.clone()).collect(),
+        output_units: a.outputs.iter().map(|x| x.1.clone()).collect(),
+        bodies: a.bodies.clone(),
+    };
+    let dense = |m: &SparseMatrix<S>| -> DMatrix<S> { to_dense(m) };
+    let ss = StateSpace { a: dense(&a_ss), b: dense(&b_ss), c: dense(&c_out), d: dense(&d_out), phys: dense(&phys), names };
+    if plan.is_none() {
+        if let Some(bad) = checks.iter().find(|c| !c.holds_nominal()) {
+            return Err(SymError::Singular(format!("at the nominal point: {}", bad.what())));
+        }
+    }
+    let plan = ReductionPlan {
+        active,
+        j_rows: j_keep,
+        position: rj.plan.clone(),
+        velocity: rg.plan.clone(),
+        mass: rm.plan.clone(),
+    };
+    Ok(Reduction { state_space: ss, checks, plan, report })
+}
+
+fn to_dense<S: Scalar>(m: &SparseMatrix<S>) -> DMatrix<S> {
+    let mut d = DMatrix::from_fn(m.nrows(), m.ncols(), |_, _| S::zero());
+    for (i, j, v) in m.iter() {
+        d[(i, j)] = v;
+    }
+    d
+}
+
+/// The reduced rows of a square elimination with its right-hand sides, pivot rows reordered
+/// so that row `c` holds the solution for unknown `c`.
+fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> SparseMatrix<S> {
+    let mut m = SparseMatrix::zeros(nunk, nunk + nrhs);
+    for &(row, c) in &r.plan.pivots {
+        for &(k, v) in &r.rows[row] {
+            m.set(c, k, v);
+        }
+    }
+    m
+}
+
+fn rate_check<S: Scalar>(cg: &SparseMatrix<S>, output: &str, inputs: &[(String, String)]) -> Result<(), SymError> {
+    if let Some((_, j, _)) = cg.iter().find(|(_, _, v)| v.nominal() != 0.0) {
+        return Err(SymError::Unsupported(format!(
+            "acceleration sensor `{output}` responds to the rate of input `{}` instantly (its velocity jumps with the input): its acceleration contains the input's second derivative, which a state-space model cannot represent; measure the velocity instead, or remove the rate gain",
+            inputs[j].0
+        )));
+    }
+    Ok(())
+}
+
+/// A symbolic state-space model with its validity region, compiled for evaluation.
+#[derive(Clone, Debug)]
+pub struct SymbolicStateSpace {
+    /// The expressions.
+    pub reduction: Reduction<Expr>,
+    /// Parameters in the order values are given.
+    pub params: Vec<Expr>,
+    tape: Tape,
+    n_matrix: usize,
+    check_layout: Vec<(usize, usize, bool)>,
+}
+
+impl SymbolicStateSpace {
+    /// Compile a symbolic reduction for evaluation with parameter values in the order of
+    /// `params`.
+    pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, SymError> {
+        let ss = &reduction.state_space;
+        let mut roots: Vec<Expr> = Vec::new();
+        for m in [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys] {
+            roots.extend(m.iter().copied());
+        }
+        let n_matrix = roots.len();
+        let mut layout = Vec::new();
+        for c in &reduction.checks {
+            let start = roots.len();
+            match c {
+                ValidityCheck::Pivot { value, row, .. } => {
+                    roots.push(*value);
+                    roots.extend(row.iter().copied());
+                    layout.push((start, 1 + row.len(), true));
+                }
+                ValidityCheck::Negligible { value, scale, .. } => {
+                    roots.push(*value);
+                    roots.extend(scale.iter().copied());
+                    layout.push((start, 1 + scale.len(), false));
+                }
+            }
+        }
+        let tape = Tape::new(&roots, params)?;
+        Ok(SymbolicStateSpace { reduction, params: params.to_vec(), tape, n_matrix, check_layout: layout })
+    }
+
+    /// The expression state-space model.
+    pub fn state_space(&self) -> &StateSpace<Expr> {
+        &self.reduction.state_space
+    }
+
+    /// The compiled tape (matrix entries of A, B, C, D, phys column-major, then the checks).
+    pub fn tape(&self) -> &Tape {
+        &self.tape
+    }
+
+    /// Evaluate at parameter values (in the order of [`SymbolicStateSpace::params`]). Returns
+    /// [`SymError::PivotBreakdown`] naming the first check that fails instead of numbers when
+    /// the point is outside the validity region.
+    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, SymError> {
+        let mut out = vec![0.0; self.tape.n_outputs()];
+        let mut ws = TapeWorkspace::default();
+        let mut work = vec![0.0; self.tape.work_len()];
+        let _ = &mut ws;
+        self.tape.eval_into(values, &mut out, &mut work)?;
+        for ((start, len, pivot), check) in self.check_layout.iter().zip(&self.reduction.checks) {
+            let v = out[*start];
+            let others = &out[start + 1..start + len];
+            if !ValidityCheck::<f64>::holds(v, others, *pivot) {
+                return Err(SymError::PivotBreakdown(format!(
+                    "{} (value {v:.3e}, largest entry of its row {:.3e})",
+                    check.what(),
+                    others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
+                )));
+            }
+        }
+        if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {
+            return Err(SymError::EvalNonFinite { what: format!("state-space entry {k}"), value: out[k] });
+        }
+        let ss = &self.reduction.state_space;
+        let mut k = 0;
+        let mut take = |r: usize, c: usize| {
+            let m = DMatrix::from_column_slice(r, c, &out[k..k + r * c]);
+            k += r * c;
+            m
+        };
+        let a = take(ss.a.nrows(), ss.a.ncols());
+        let b = take(ss.b.nrows(), ss.b.ncols());
+        let c = take(ss.c.nrows(), ss.c.ncols());
+        let d = take(ss.d.nrows(), ss.d.ncols());
+        let phys = take(ss.phys.nrows(), ss.phys.ncols());
+        Ok(StateSpace { a, b, c, d, phys, names: ss.names.clone() })
+    }
+}

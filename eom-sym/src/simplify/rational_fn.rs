@@ -1,0 +1,405 @@
+//! Rational-function normal form `P/Q` for small closed forms.
+
+use super::poly::{Budget, Poly, gcd};
+use crate::error::SymError;
+use crate::expr::{Expr, ExprView};
+use crate::rational::Rational;
+use hashbrown::{HashMap, HashSet};
+
+/// Which bound of a [`RationalNormalizer`] was reached.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WorkLimit {
+    /// An intermediate polynomial had more terms than allowed.
+    Terms,
+    /// An exponent exceeded the degree bound.
+    Degree,
+    /// The number of elementary term operations exceeded the work bound.
+    Work,
+    /// An exact coefficient grew wider than [`MAX_BITS`](crate::rational::MAX_BITS).
+    Coefficients,
+    /// The expression has more atoms (parameters and opaque subterms) than allowed.
+    Atoms,
+}
+
+/// `coefficient · numerator / denominator` with coprime polynomials.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RationalForm {
+    /// The numerator, including its numeric coefficient (a polynomial in the atoms, with its
+    /// monomial content factored out as a product when it has one).
+    pub numerator: Expr,
+    /// The denominator: monic (leading coefficient 1 in lexicographic order of the atoms by
+    /// pool id), `1` when the expression is a polynomial.
+    pub denominator: Expr,
+}
+
+impl RationalForm {
+    /// `numerator / denominator` as one expression.
+    pub fn to_expr(&self) -> Expr {
+        if self.denominator.is_one() { self.numerator } else { self.numerator * self.denominator.recip() }
+    }
+}
+
+/// The result of [`RationalNormalizer::normalize`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Normalized {
+    /// The normal form.
+    Form(RationalForm),
+    /// A bound was reached; the input should be used unchanged.
+    TooLarge(WorkLimit),
+}
+
+/// Rational-function normal form with explicit bounds (builder).
+///
+/// An expression built from sums, products and integer powers of *atoms* — parameters,
+/// named constants, floating-point constants and every other subterm (functions, `atan2`,
+/// general powers), which is treated as an opaque symbol — is written as `P/Q` with `P`, `Q`
+/// polynomials over ℚ in the atoms, their gcd cancelled, `Q` monic. A rational power
+/// `x^(p/q)` is the `p`-th power of the atom `x^(1/q)`.
+///
+/// # Semantics: where the denominator is nonzero
+///
+/// This is the standard rational-function semantics of computer algebra: `(a² − b²)/(a − b)`
+/// **is** `a + b`, although the left side is undefined at `a = b`. The normal form agrees
+/// with the input wherever the input is defined, and it may be defined at more points (where a
+/// cancelled common factor vanishes). That is unlike the pool's smart constructors and the
+/// [`Simplifier`](super::Simplifier), which never cancel a factor that may vanish. Use it for
+/// closed forms whose denominators are known to be nonzero (masses, lengths, determinants of
+/// regular matrices).
+///
+/// # Bounds
+///
+/// Expansion can blow up (`(a + b + c)^20`), so terms per polynomial, exponents and the total
+/// number of elementary term operations are bounded; reaching a bound gives
+/// [`Normalized::TooLarge`] promptly instead of hanging.
+#[derive(Clone, Debug)]
+pub struct RationalNormalizer {
+    max_terms: usize,
+    max_degree: u32,
+    max_work: u64,
+    max_atoms: usize,
+}
+
+impl Default for RationalNormalizer {
+    /// 2 000 terms per polynomial, exponents up to 64, 5 million term operations, 64 atoms.
+    fn default() -> Self {
+        RationalNormalizer { max_terms: 2_000, max_degree: 64, max_work: 5_000_000, max_atoms: 64 }
+    }
+}
+
+impl RationalNormalizer {
+    /// Most terms any intermediate polynomial may have.
+    pub fn with_max_terms(mut self, n: usize) -> Self {
+        self.max_terms = n;
+        self
+    }
+    /// Largest exponent of one atom.
+    pub fn with_max_degree(mut self, d: u32) -> Self {
+        self.max_degree = d;
+        self
+    }
+    /// Most elementary term operations (multiplications and additions of terms).
+    pub fn with_max_work(mut self, w: u64) -> Self {
+        self.max_work = w;
+        self
+    }
+    /// Most atoms (variables of the polynomials).
+    pub fn with_max_atoms(mut self, n: usize) -> Self {
+        self.max_atoms = n;
+        self
+    }
+
+    /// The normal form of `e`. Errors: `e` is invalid, or a denominator is identically zero as
+    /// a rational function (e.g. `1/((a+b)² − a² − 2ab − b²)`), which means the input is
+    /// nowhere defined.
+    pub fn normalize(&self, e: Expr) -> Result<Normalized, SymError> {
+        e.check().map_err(|err| SymError::Invalid(Box::new(err)))?;
+        // 1. Find the atoms and the nodes with rational structure.
+        let mut atoms: Vec<Expr> = Vec::new();
+        let mut atom_set: HashSet<Expr> = HashSet::new();
+        let mut inner: HashSet<Expr> = HashSet::new();
+        let mut stack = vec![e];
+        while let Some(x) = stack.pop() {
+            if inner.contains(&x) || atom_set.contains(&x) {
+                continue;
+            }
+            match classify(x) {
+                Shape::Number(_) => {}
+                Shape::Atom => {
+                    atom_set.insert(x);
+                    atoms.push(x);
+                }
+                Shape::Sum(terms, c0) => {
+                    inner.insert(x);
+                    if let Some(c) = c0 {
+                        stack.push(c);
+                    }
+                    for (t, c) in terms {
+                        stack.push(t);
+                        stack.push(c);
+                    }
+                }
+                Shape::Product(coef, factors) => {
+                    inner.insert(x);
+                    stack.push(coef);
+                    for (b, _) in factors {
+                        stack.push(b);
+                    }
+                }
+            }
+            if atoms.len() > self.max_atoms {
+                return Ok(Normalized::TooLarge(WorkLimit::Atoms));
+            }
+        }
+        atoms.sort();
+        let n = atoms.len();
+        let var: HashMap<Expr, usize> = atoms.iter().enumerate().map(|(i, &a)| (a, i)).collect();
+        let mut budget = Budget { max_terms: self.max_terms, max_degree: self.max_degree, max_work: self.max_work, work: 0 };
+
+        // 2. Bottom-up in pool order (children before parents).
+        let mut order: Vec<Expr> = inner.into_iter().collect();
+        order.sort();
+        let mut memo: HashMap<Expr, Rf> = HashMap::with_capacity(order.len() + n);
+        let value = |x: Expr, memo: &HashMap<Expr, Rf>| -> Option<Rf> {
+            if let Some(r) = memo.get(&x) {
+                return Some(r.clone());
+            }
+            if let Some(&i) = var.get(&x) {
+                return Some(Rf { num: Poly::var(n, i), den: Poly::one(n) });
+            }
+            match classify(x) {
+                Shape::Number(r) => Some(Rf { num: Poly::constant(n, r), den: Poly::one(n) }),
+                _ => None,
+            }
+        };
+        for x in order {
+            let r = match classify(x) {
+                Shape::Sum(terms, c0) => {
+                    let mut acc = match c0 {
+                        Some(c) => value(c, &memo).ok_or_else(missing)?,
+                        None => Rf::zero(n),
+                    };
+                    for (t, c) in terms {
+                        let tv = value(t, &memo).ok_or_else(missing)?;
+                        let cv = value(c, &memo).ok_or_else(missing)?;
+                        let term = match tri(tv.mul(&cv, &mut budget))? {
+                            Ok(v) => v,
+                            Err(l) => return Ok(Normalized::TooLarge(l)),
+                        };
+                        acc = match tri(acc.add(&term, &mut budget))? {
+                            Ok(v) => v,
+                            Err(l) => return Ok(Normalized::TooLarge(l)),
+                        };
+                    }
+                    acc
+                }
+                Shape::Product(coef, factors) => {
+                    let mut acc = value(coef, &memo).ok_or_else(missing)?;
+                    for (b, k) in factors {
+                        let bv = value(b, &memo).ok_or_else(missing)?;
+                        let step = bv.powi(k, &mut budget).and_then(|p| acc.mul(&p, &mut budget));
+                        acc = match tri(step)? {
+                            Ok(v) => v,
+                            Err(l) => return Ok(Normalized::TooLarge(l)),
+                        };
+                    }
+                    acc
+                }
+                _ => continue,
+            };
+            memo.insert(x, r);
+        }
+        let rf = value(e, &memo).ok_or_else(missing)?;
+        Ok(match rf.to_form(&atoms, &mut budget) {
+            Ok(f) => Normalized::Form(f),
+            Err(l) => Normalized::TooLarge(l),
+        })
+    }
+}
+
+/// Rational-function normal form with the default bounds; the input comes back unchanged when
+/// a bound is reached. See [`RationalNormalizer`] for the semantics (cancellation is valid
+/// where the denominator is nonzero).
+///
+/// ```
+/// use eom_sym::{Expr, simplify::normalize_rational};
+/// let a = Expr::param("a", 1.0).unwrap();
+/// let b = Expr::param("b", 2.0).unwrap();
+/// let e = (a.powi(2) - b.powi(2)) / (a - b);
+/// assert_eq!(normalize_rational(e).unwrap(), a + b);
+/// ```
+pub fn normalize_rational(e: Expr) -> Result<Expr, SymError> {
+    match RationalNormalizer::default().normalize(e)? {
+        Normalized::Form(f) => Ok(f.to_expr()),
+        Normalized::TooLarge(_) => Ok(e),
+    }
+}
+
+fn missing() -> SymError {
+    // Every node is visited in pool order after its children: a missing value is a bug, and it
+    // is reported rather than panicking.
+    SymError::Dimension("rational normal form: a subterm was not evaluated before its parent".into())
+}
+
+/// Errors that mean "the input is nowhere defined" pass through; bounds become `Err(limit)`.
+fn tri<T>(r: Result<T, Fail>) -> Result<Result<T, WorkLimit>, SymError> {
+    match r {
+        Ok(v) => Ok(Ok(v)),
+        Err(Fail::Limit(l)) => Ok(Err(l)),
+        Err(Fail::ZeroDenominator) => Err(SymError::DivisionByZero {
+            context: "a denominator is identically zero as a rational function".into(),
+        }),
+    }
+}
+
+enum Shape {
+    Number(Rational),
+    Atom,
+    /// `(term, coefficient)` pairs and the constant term if nonzero.
+    Sum(Vec<(Expr, Expr)>, Option<Expr>),
+    /// Coefficient and `(base, integer exponent)`; rational exponents `p/q` become the atom
+    /// `base^(1/q)` to the power `p`.
+    Product(Expr, Vec<(Expr, i64)>),
+}
+
+fn classify(x: Expr) -> Shape {
+    match x.view() {
+        ExprView::Rational(r) => Shape::Number(r),
+        ExprView::Sum { constant, terms } => {
+            Shape::Sum(terms, if constant.is_zero() { None } else { Some(constant) })
+        }
+        ExprView::Product { coef, factors } => {
+            let mut fs = Vec::with_capacity(factors.len());
+            for (b, r) in factors {
+                match r.as_small() {
+                    Some((p, 1)) => fs.push((b, p)),
+                    Some((p, q)) if q > 1 => {
+                        let root = b.pow_rational(Rational::new(1, q).expect("q > 1"));
+                        if root == x {
+                            return Shape::Atom;
+                        }
+                        fs.push((root, p))
+                    }
+                    _ => return Shape::Atom,
+                }
+            }
+            Shape::Product(coef, fs)
+        }
+        _ => Shape::Atom,
+    }
+}
+
+enum Fail {
+    Limit(WorkLimit),
+    ZeroDenominator,
+}
+
+impl From<WorkLimit> for Fail {
+    fn from(l: WorkLimit) -> Fail {
+        Fail::Limit(l)
+    }
+}
+
+/// `num/den`, coprime, `den` monic.
+#[derive(Clone, Debug)]
+struct Rf {
+    num: Poly,
+    den: Poly,
+}
+
+impl Rf {
+    fn zero(n: usize) -> Rf {
+        Rf { num: Poly::zero(n), den: Poly::one(n) }
+    }
+
+    fn exact(p: &Poly, d: &Poly, b: &mut Budget) -> Result<Poly, Fail> {
+        if d.is_one() {
+            return Ok(p.clone());
+        }
+        // `d` divides `p` by construction (it is a gcd): failure would be a bug, reported as a
+        // work limit so the caller falls back to the input.
+        p.div_exact(d, b)?.ok_or(Fail::Limit(WorkLimit::Work))
+    }
+
+    /// Henrici: with `g = gcd(q₁, q₂)`, `n = p₁·(q₂/g) + p₂·(q₁/g)`, the only common factor
+    /// of `n` and `q₁q₂/g` divides `g`.
+    fn add(&self, o: &Rf, b: &mut Budget) -> Result<Rf, Fail> {
+        if self.num.is_zero() {
+            return Ok(o.clone());
+        }
+        if o.num.is_zero() {
+            return Ok(self.clone());
+        }
+        let g = gcd(&self.den, &o.den, b)?;
+        let q1g = Rf::exact(&self.den, &g, b)?;
+        let q2g = Rf::exact(&o.den, &g, b)?;
+        let num = self.num.mul(&q2g, b)?.add(&o.num.mul(&q1g, b)?, b)?;
+        if num.is_zero() {
+            return Ok(Rf::zero(self.num.nvars));
+        }
+        let h = gcd(&num, &g, b)?;
+        let num = Rf::exact(&num, &h, b)?;
+        let den = q1g.mul(&Rf::exact(&o.den, &h, b)?, b)?;
+        Rf { num, den }.normalised(b)
+    }
+
+    /// Cross-cancellation: `(p₁/q₁)(p₂/q₂)` with `gcd(p₁, q₂)` and `gcd(p₂, q₁)` removed.
+    fn mul(&self, o: &Rf, b: &mut Budget) -> Result<Rf, Fail> {
+        let n = self.num.nvars;
+        if self.num.is_zero() || o.num.is_zero() {
+            return Ok(Rf::zero(n));
+        }
+        let g1 = gcd(&self.num, &o.den, b)?;
+        let g2 = gcd(&o.num, &self.den, b)?;
+        let num = Rf::exact(&self.num, &g1, b)?.mul(&Rf::exact(&o.num, &g2, b)?, b)?;
+        let den = Rf::exact(&self.den, &g2, b)?.mul(&Rf::exact(&o.den, &g1, b)?, b)?;
+        Rf { num, den }.normalised(b)
+    }
+
+    fn powi(&self, k: i64, b: &mut Budget) -> Result<Rf, Fail> {
+        let base = if k < 0 {
+            if self.num.is_zero() {
+                return Err(Fail::ZeroDenominator);
+            }
+            Rf { num: self.den.clone(), den: self.num.clone() }.normalised(b)?
+        } else {
+            self.clone()
+        };
+        let k = u32::try_from(k.unsigned_abs()).map_err(|_| Fail::Limit(WorkLimit::Degree))?;
+        // Powers of coprime polynomials stay coprime.
+        Ok(Rf { num: base.num.pow(k, b)?, den: base.den.pow(k, b)? })
+    }
+
+    /// Make the denominator monic.
+    fn normalised(self, b: &mut Budget) -> Result<Rf, Fail> {
+        let lc = self.den.lc();
+        if lc.is_zero() {
+            return Err(Fail::ZeroDenominator);
+        }
+        if lc.is_one() {
+            return Ok(self);
+        }
+        let inv = lc.recip().ok_or(Fail::ZeroDenominator)?;
+        Ok(Rf { num: self.num.scale(&inv, b)?, den: self.den.scale(&inv, b)? })
+    }
+
+    /// Rebuild through the pool: `c · m_N · N / (m_D · D)` with the monomial contents
+    /// `m_N`, `m_D` factored out and `N` monic.
+    fn to_form(&self, atoms: &[Expr], b: &mut Budget) -> Result<RationalForm, WorkLimit> {
+        if self.num.is_zero() {
+            return Ok(RationalForm { numerator: Expr::zero(), denominator: Expr::one() });
+        }
+        let mono = |m: &[u32]| -> Expr {
+            Expr::product(m.iter().zip(atoms).filter(|(k, _)| **k > 0).map(|(k, a)| a.powi(*k as i64)))
+        };
+        let poly = |p: &Poly| -> Expr {
+            Expr::sum(p.terms.iter().map(|(e, k)| Expr::from_rational(k.clone()) * mono(e)))
+        };
+        let c = self.num.lc();
+        let num = self.num.monic(b)?;
+        let mn = num.monomial_content();
+        let md = self.den.monomial_content();
+        let numerator = Expr::product([Expr::from_rational(c), mono(&mn), poly(&num.div_monomial(&mn))]);
+        let denominator = Expr::product([mono(&md), poly(&self.den.div_monomial(&md))]);
+        Ok(RationalForm { numerator, denominator })
+    }
+}
