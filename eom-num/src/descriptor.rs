@@ -7,17 +7,23 @@
 //! §13.3:
 //!
 //! 1. The pencil is equilibrated by exact power-of-two row and column scalings
-//!    (`R (sE − A) S`, Ruiz's iteration on E; rows and columns where E is zero are scaled by A),
-//!    so that the rank of E does not depend on units. This leaves the transfer function and
-//!    the eigenvalues unchanged.
+//!    `R (sE − A) S` (rows then columns of E, as [`crate::linalg::equilibrate`]; rows and
+//!    columns where E is zero are scaled by A), so that the rank of E does not depend on
+//!    units. This leaves the transfer function and the eigenvalues unchanged.
 //! 2. `E = U Σ Vᵀ` (SVD); the rank r of E is decided with a [`RankTolerance`] (default
 //!    `10·n·ε·σ_max`, not EoM.jl's ULP-tight `n·ulp(σ_max)`), and the decision and its gap are
-//!    returned in the [`DescriptorReport`].
+//!    returned in the [`DescriptorReport`]. Exactly zero rows and columns of E (input states,
+//!    massless coordinates) are split off before the SVD, so that their part of the
+//!    nullspace — and of A22 below — is exact rather than rotated by rounding.
 //! 3. If E has full rank, `ẋ = E⁻¹A x + E⁻¹B u` (LU) in the original coordinates.
 //!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ`, the last n − r
-//!    equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1):
-//!    its rank is decided by SVD relative to ‖A‖, then it is factored by LU with partial
-//!    pivoting and its condition number is reported. A singular A22 is an error:
+//!    equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1).
+//!    Its rows are algebraic equations and its columns algebraic variables, whose units are
+//!    arbitrary (the Schur complement does not depend on them), so its rank is decided by
+//!    SVD of the row- and column-equilibrated A22; the equilibrated A22 is then factored by
+//!    LU with partial pivoting and its condition number is reported. When the nullspace of E
+//!    is not structural and A22 is within a factor 100 of the rounding level `ε‖A‖` of the
+//!    rotation, a warning says the pencil may have index > 1. A singular A22 is an error:
 //!    [`NumError::SingularPencil`] when `sE − A` is singular for every s (tested at two
 //!    generic complex points), [`NumError::HigherIndex`] otherwise.
 //! 4. The Schur complement gives
@@ -47,8 +53,8 @@ use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
 /// Options of [`descriptor_to_state_space`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct DescriptorOptions<'a> {
-    /// Tolerance of the rank decision on (the equilibrated) E; also used, relative to ‖A‖,
-    /// for the invertibility of A22. Default [`RankTolerance::Default`].
+    /// Tolerance of the rank decision on (the equilibrated) E; also used for the
+    /// invertibility of the equilibrated A22. Default [`RankTolerance::Default`].
     pub rank_tol: RankTolerance,
     /// Equilibrate the pencil before deciding (default `true`).
     pub equilibrate: bool,
@@ -88,7 +94,7 @@ pub struct DescriptorReport {
     pub e_rank: Rank,
     /// The invertibility decision on A22 (empty when there is no algebraic part).
     pub a22_rank: Option<Rank>,
-    /// 2-norm condition number of A22 (1 when there is no algebraic part).
+    /// 2-norm condition number of the equilibrated A22 (1 when there is no algebraic part).
     pub a22_condition: f64,
     /// `σ_1 / σ_r` of the kept part of E (how stiff the reduced model is).
     pub e_condition: f64,
@@ -98,7 +104,8 @@ pub struct DescriptorReport {
     pub warnings: Vec<String>,
 }
 
-/// Scales the pencil: Ruiz on E, plus A-based scaling of rows/columns where E is zero.
+/// Scales the pencil: rows then columns of E, plus A-based scaling of the rows/columns where
+/// E is zero.
 fn pencil_scaling(e: &DMatrix<f64>, a: &DMatrix<f64>) -> Result<Scaling, NumError> {
     let (_, mut s) = equilibrate(e, Equilibrate::Both)?;
     let n = e.nrows();
@@ -145,7 +152,11 @@ fn near_note(what: &str, r: &Rank, out: &mut Vec<String>) {
 }
 
 /// Is `sE − A` rank deficient at two generic complex points? (singular pencil test)
-fn pencil_is_singular(e: &DMatrix<f64>, a: &DMatrix<f64>, tol: RankTolerance) -> Result<bool, NumError> {
+fn pencil_is_singular(
+    e: &DMatrix<f64>,
+    a: &DMatrix<f64>,
+    tol: RankTolerance,
+) -> Result<bool, NumError> {
     let n = e.nrows();
     let ne = e.norm();
     let na = a.norm();
@@ -190,7 +201,7 @@ pub fn descriptor_to_state_space(
 ) -> Result<(StateSpace<f64>, DescriptorReport), NumError> {
     d.validate()?;
     opts.rank_tol.validate()?;
-    if !(opts.warn_condition > 0.0) {
+    if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
         return Err(NumError::InvalidOption(format!(
             "DescriptorOptions::warn_condition = {}: must be > 0",
             opts.warn_condition
@@ -264,15 +275,18 @@ pub fn descriptor_to_state_space(
     if r == n {
         // 3. Full rank: ẋ = E⁻¹A x + E⁻¹B u in original coordinates. With E' = R E S:
         //    E⁻¹A = S (E'⁻¹ A') S⁻¹ and E⁻¹B = S E'⁻¹ B'.
-        let lu = e.clone().lu();
         let mut rhs = DMatrix::zeros(n, n + m);
         rhs.columns_mut(0, n).copy_from(&a);
         rhs.columns_mut(n, m).copy_from(&b);
-        let x = lu.solve(&rhs).ok_or_else(|| {
-            NumError::Singular(format!(
-                "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
-            ))
-        })?;
+        let x = if n == 0 {
+            rhs
+        } else {
+            e.clone().lu().solve(&rhs).ok_or_else(|| {
+                NumError::Singular(format!(
+                    "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
+                ))
+            })?
+        };
         let mut a_s = x.columns(0, n).into_owned();
         let mut b_s = x.columns(n, m).into_owned();
         for i in 0..n {
@@ -442,8 +456,12 @@ pub fn descriptor_to_state_space(
 /// U, V consists of exact unit vectors. Returns the SVD and z.
 fn structured_svd(e: &DMatrix<f64>) -> Result<(crate::linalg::Svd, usize), NumError> {
     let n = e.nrows();
-    let zr: Vec<usize> = (0..n).filter(|&i| e.row(i).iter().all(|&x| x == 0.0)).collect();
-    let zc: Vec<usize> = (0..n).filter(|&j| e.column(j).iter().all(|&x| x == 0.0)).collect();
+    let zr: Vec<usize> = (0..n)
+        .filter(|&i| e.row(i).iter().all(|&x| x == 0.0))
+        .collect();
+    let zc: Vec<usize> = (0..n)
+        .filter(|&j| e.column(j).iter().all(|&x| x == 0.0))
+        .collect();
     if zr.is_empty() || zr.len() != zc.len() {
         return Ok((svd(e)?, 0));
     }
@@ -630,7 +648,8 @@ pub fn generalized_eigenvalues_with(
     }
     let mut warnings = Vec::new();
     // Conjugate pairs share θ; never split a pair.
-    while n_inf > 0 && n_inf < n && items[n_inf].0 == items[n_inf - 1].0 && items[n_inf].1.im != 0.0 {
+    while n_inf > 0 && n_inf < n && items[n_inf].0 == items[n_inf - 1].0 && items[n_inf].1.im != 0.0
+    {
         n_inf += 1;
     }
     if forced > 0 && items[forced - 1].0 > opts.infinite_tol {

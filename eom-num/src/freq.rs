@@ -10,6 +10,12 @@
 //! solve with m right-hand sides (O(n² m)) and the product with C̃ (O(p n m)), instead of the
 //! O(n³) dense LU per frequency. The bench `benches/freq.rs` measures the ratio.
 //!
+//! Two kernels implement this, both allocation-free with a caller-owned workspace:
+//! [`HessenbergForm::evaluate_in`] (one point) and [`HessenbergForm::evaluate_batch_in`]
+//! ([`LANES`] points at once, branch-free per-lane pivoting so that the lane loops vectorise;
+//! compiled for AVX2 as well and selected at run time). [`FrequencyResponse::compute`] uses
+//! the batched one.
+//!
 //! # Poles on the axis
 //!
 //! When a pivot of `sI − H` is below `10 · n · ε · (‖H‖_F + |s|)`, `s` is (numerically) an
@@ -139,7 +145,7 @@ pub struct HessenbergForm {
     p: usize,
     /// H, row-major n × n (entries below the subdiagonal are zero).
     h: Vec<f64>,
-    /// Qᵀ B, row-major n × m.
+    /// Qᵀ B, column-major n × m.
     bt: Vec<f64>,
     /// C Q, row-major p × n.
     ct: Vec<f64>,
@@ -150,14 +156,22 @@ pub struct HessenbergForm {
 }
 
 /// Scratch space for [`HessenbergForm::evaluate_in`].
+///
+/// Complex quantities are stored as separate real and imaginary arrays, which keeps the
+/// inner loops plain `f64` arithmetic.
 #[derive(Clone, Debug)]
 pub struct FreqWorkspace {
     n: usize,
     m: usize,
-    /// sI − H, row-major.
-    lu: Vec<Complex64>,
-    /// Right-hand sides / solution, row-major n × m.
-    x: Vec<Complex64>,
+    /// sI − H and then its LU factors, row-major, real and imaginary parts.
+    ur: Vec<f64>,
+    ui: Vec<f64>,
+    /// Right-hand sides / solution, column-major n × m, real and imaginary parts.
+    xr: Vec<f64>,
+    xi: Vec<f64>,
+    /// Reciprocals of the pivots.
+    pr: Vec<f64>,
+    pi: Vec<f64>,
 }
 
 impl FreqWorkspace {
@@ -166,15 +180,19 @@ impl FreqWorkspace {
         FreqWorkspace {
             n,
             m,
-            lu: vec![Complex64::new(0.0, 0.0); n * n],
-            x: vec![Complex64::new(0.0, 0.0); n * m],
+            ur: vec![0.0; n * n],
+            ui: vec![0.0; n * n],
+            xr: vec![0.0; n * m],
+            xi: vec![0.0; n * m],
+            pr: vec![0.0; n],
+            pi: vec![0.0; n],
         }
     }
 }
 
 /// Bytes held by a [`FreqWorkspace`] for `n` states and `m` inputs.
 pub fn freq_workspace_bytes(n: usize, m: usize) -> usize {
-    16 * (n * n + n * m)
+    16 * (n * n + n * m + n)
 }
 
 impl HessenbergForm {
@@ -190,10 +208,8 @@ impl HessenbergForm {
         let mut hm = Mat::<f64>::from_fn(n, n, |i, j| a[j * n + i]);
         let mut q = Mat::<f64>::identity(n, n);
         if n > 1 {
-            let bs = faer::linalg::qr::no_pivoting::factor::recommended_block_size::<f64>(
-                n - 1,
-                n - 1,
-            );
+            let bs =
+                faer::linalg::qr::no_pivoting::factor::recommended_block_size::<f64>(n - 1, n - 1);
             let mut householder = Mat::<f64>::zeros(bs, n - 1);
             let req = StackReq::any_of(&[
                 hessenberg_in_place_scratch::<f64>(n, bs, Par::Seq, Default::default()),
@@ -239,7 +255,7 @@ impl HessenbergForm {
                 for k in 0..n {
                     acc += q[(k, i)] * ss.b[(k, j)] / scale[k];
                 }
-                bt[i * m + j] = acc;
+                bt[j * n + i] = acc;
             }
         }
         let mut ct = vec![0.0; p * n];
@@ -302,88 +318,406 @@ impl HessenbergForm {
         if !(s.re.is_finite() && s.im.is_finite()) {
             return Err(NumError::NonFinite(format!("evaluation point s = {s}")));
         }
-        let zero = Complex64::new(0.0, 0.0);
-        let lu = &mut ws.lu;
-        let x = &mut ws.x;
+        let FreqWorkspace {
+            ur,
+            ui,
+            xr,
+            xi,
+            pr,
+            pi,
+            ..
+        } = ws;
+        let h = &self.h;
         // sI − H (Hessenberg part only) and the right-hand sides.
         for i in 0..n {
             let lo = i.saturating_sub(1);
-            for j in lo..n {
-                lu[i * n + j] = Complex64::new(-self.h[i * n + j], 0.0);
+            let row = i * n;
+            for (u, &hv) in ur[row + lo..row + n].iter_mut().zip(&h[row + lo..row + n]) {
+                *u = -hv;
             }
-            lu[i * n + i] += s;
-            for j in 0..m {
-                x[i * m + j] = Complex64::new(self.bt[i * m + j], 0.0);
-            }
+            ui[row + lo..row + n].fill(0.0);
+            ur[row + i] += s.re;
+            ui[row + i] += s.im;
         }
+        xr.copy_from_slice(&self.bt);
+        xi.fill(0.0);
         // Elimination of the subdiagonal with partial pivoting between adjacent rows.
         for k in 0..n.saturating_sub(1) {
-            let (top, bot) = lu.split_at_mut((k + 1) * n);
-            let rk = &mut top[k * n..];
-            let rk1 = &mut bot[..n];
-            if l1(rk1[k]) > l1(rk[k]) {
-                for j in k..n {
-                    std::mem::swap(&mut rk[j], &mut rk1[j]);
+            let r0 = k * n;
+            let r1 = r0 + n;
+            let (top_r, bot_r) = ur.split_at_mut(r1);
+            let (top_i, bot_i) = ui.split_at_mut(r1);
+            let (u0r, u1r) = (&mut top_r[r0 + k..r0 + n], &mut bot_r[k..n]);
+            let (u0i, u1i) = (&mut top_i[r0 + k..r0 + n], &mut bot_i[k..n]);
+            if u1r[0].abs() + u1i[0].abs() > u0r[0].abs() + u0i[0].abs() {
+                u0r.swap_with_slice(u1r);
+                u0i.swap_with_slice(u1i);
+                for c in 0..m {
+                    xr.swap(c * n + k, c * n + k + 1);
+                    xi.swap(c * n + k, c * n + k + 1);
                 }
-                for j in 0..m {
-                    x.swap(k * m + j, (k + 1) * m + j);
-                }
             }
-            if rk[k] == zero {
-                continue; // column already zero below the diagonal; singular pivot caught below
+            let (ar, ai, br, bi) = (u0r[0], u0i[0], u1r[0], u1i[0]);
+            let d = ar * ar + ai * ai;
+            if d == 0.0 {
+                continue; // zero column below the diagonal; the singular pivot is caught below
             }
-            let l = rk1[k] / rk[k];
-            rk1[k] = zero;
-            for j in k + 1..n {
-                let v = rk[j];
-                rk1[j] -= l * v;
+            // l = b / a
+            let lr = (br * ar + bi * ai) / d;
+            let li = (bi * ar - br * ai) / d;
+            for (((a, b), &c), &e) in u1r[1..]
+                .iter_mut()
+                .zip(u1i[1..].iter_mut())
+                .zip(&u0r[1..])
+                .zip(&u0i[1..])
+            {
+                *a -= lr * c - li * e;
+                *b -= lr * e + li * c;
             }
-            let (xt, xb) = x.split_at_mut((k + 1) * m);
-            for j in 0..m {
-                xb[j] -= l * xt[k * m + j];
+            for c in 0..m {
+                let q = c * n + k;
+                let (vr, vi) = (xr[q], xi[q]);
+                xr[q + 1] -= lr * vr - li * vi;
+                xi[q + 1] -= lr * vi + li * vr;
             }
         }
-        // Back substitution, checking pivots.
-        let tol = 10.0 * n as f64 * f64::EPSILON * (self.hnorm + s.norm());
-        for i in (0..n).rev() {
-            let piv = lu[i * n + i];
-            if !(piv.norm() > tol) {
+        // Pivots: a (numerically) zero one means s is an eigenvalue. Compare squares (no
+        // hypot) and keep the reciprocals for the back substitution.
+        let tol = 10.0 * n as f64 * f64::EPSILON * (self.hnorm + s.norm_sqr().sqrt());
+        let tol2 = tol * tol;
+        for i in 0..n {
+            let (a, b) = (ur[i * n + i], ui[i * n + i]);
+            let p2 = a * a + b * b;
+            if p2.is_nan() || p2 <= tol2 {
                 out.iter_mut()
                     .for_each(|o| *o = Complex64::new(f64::INFINITY, 0.0));
                 return Ok(SolveStatus::Singular);
             }
-            let (xa, xb) = x.split_at_mut((i + 1) * m);
-            let xi = &mut xa[i * m..];
-            for jj in i + 1..n {
-                let u = lu[i * n + jj];
-                let xr = &xb[(jj - i - 1) * m..(jj - i) * m];
-                for c in 0..m {
-                    xi[c] -= u * xr[c];
+            pr[i] = a / p2;
+            pi[i] = -b / p2;
+        }
+        // Back substitution, one right-hand side at a time (contiguous dot products).
+        for c in 0..m {
+            let cr = &mut xr[c * n..(c + 1) * n];
+            let ci = &mut xi[c * n..(c + 1) * n];
+            for i in (0..n).rev() {
+                let row_r = &ur[i * n + i + 1..(i + 1) * n];
+                let row_i = &ui[i * n + i + 1..(i + 1) * n];
+                let (mut sr, mut si) = (cr[i], ci[i]);
+                for (((&a, &b), &v), &w) in
+                    row_r.iter().zip(row_i).zip(&cr[i + 1..]).zip(&ci[i + 1..])
+                {
+                    sr -= a * v - b * w;
+                    si -= a * w + b * v;
                 }
-            }
-            let inv = piv.inv();
-            for v in xi.iter_mut() {
-                *v *= inv;
+                cr[i] = sr * pr[i] - si * pi[i];
+                ci[i] = sr * pi[i] + si * pr[i];
             }
         }
         // G = C̃ X + D.
         for j in 0..m {
+            let (cr, ci) = (&xr[j * n..(j + 1) * n], &xi[j * n..(j + 1) * n]);
             for i in 0..p {
-                let mut acc = Complex64::new(self.d[j * p + i], 0.0);
                 let crow = &self.ct[i * n..(i + 1) * n];
-                for k in 0..n {
-                    acc += x[k * m + j] * crow[k];
+                let (mut gr, mut gi) = (self.d[j * p + i], 0.0);
+                for ((&cv, &a), &b) in crow.iter().zip(cr).zip(ci) {
+                    gr += cv * a;
+                    gi += cv * b;
                 }
-                out[j * p + i] = acc;
+                out[j * p + i] = Complex64::new(gr, gi);
             }
         }
         Ok(SolveStatus::Regular)
     }
 }
 
-#[inline]
-fn l1(z: Complex64) -> f64 {
-    z.re.abs() + z.im.abs()
+/// `10 / ln 10`: dB per unit of `ln |G|²`.
+const DB_PER_NEPER_SQ: f64 = 10.0 / std::f64::consts::LN_10;
+
+/// Number of frequencies evaluated together by [`HessenbergForm::evaluate_batch_in`].
+pub const LANES: usize = 4;
+type V = [f64; LANES];
+
+#[inline(always)]
+fn splat(x: f64) -> V {
+    [x; LANES]
+}
+
+/// Workspace of the batched kernel: like [`FreqWorkspace`], one value per lane.
+#[derive(Clone, Debug)]
+pub struct FreqBatchWorkspace {
+    n: usize,
+    m: usize,
+    ur: Vec<V>,
+    ui: Vec<V>,
+    xr: Vec<V>,
+    xi: Vec<V>,
+    pr: Vec<V>,
+    pi: Vec<V>,
+}
+
+impl FreqBatchWorkspace {
+    /// Workspace for `n` states and `m` inputs.
+    pub fn new(n: usize, m: usize) -> Self {
+        FreqBatchWorkspace {
+            n,
+            m,
+            ur: vec![splat(0.0); n * n],
+            ui: vec![splat(0.0); n * n],
+            xr: vec![splat(0.0); n * m],
+            xi: vec![splat(0.0); n * m],
+            pr: vec![splat(0.0); n],
+            pi: vec![splat(0.0); n],
+        }
+    }
+}
+
+/// The batched kernel: the same algorithm as `evaluate_in`, on [`LANES`] points at once.
+/// Pivoting differs per lane and is done by branch-free selection, so every lane runs the
+/// same instructions and the lane loops vectorise. Written once, compiled twice (baseline
+/// and AVX2) by the callers below.
+#[inline(always)]
+fn batch_kernel(
+    f: &HessenbergForm,
+    s: &[Complex64; LANES],
+    ws: &mut FreqBatchWorkspace,
+    out: &mut [Complex64],
+    singular: &mut [bool; LANES],
+) {
+    let (n, m, p) = (f.n, f.m, f.p);
+    let FreqBatchWorkspace {
+        ur,
+        ui,
+        xr,
+        xi,
+        pr,
+        pi,
+        ..
+    } = ws;
+    let sr: V = std::array::from_fn(|l| s[l].re);
+    let si: V = std::array::from_fn(|l| s[l].im);
+    for i in 0..n {
+        let lo = i.saturating_sub(1);
+        let row = i * n;
+        for (u, &hv) in ur[row + lo..row + n]
+            .iter_mut()
+            .zip(&f.h[row + lo..row + n])
+        {
+            *u = splat(-hv);
+        }
+        ui[row + lo..row + n].fill(splat(0.0));
+        for l in 0..LANES {
+            ur[row + i][l] += sr[l];
+        }
+        ui[row + i] = si;
+    }
+    for (x, &b) in xr.iter_mut().zip(&f.bt) {
+        *x = splat(b);
+    }
+    xi.fill(splat(0.0));
+    for k in 0..n.saturating_sub(1) {
+        let r0 = k * n;
+        let r1 = r0 + n;
+        let (top_r, bot_r) = ur.split_at_mut(r1);
+        let (top_i, bot_i) = ui.split_at_mut(r1);
+        let (u0r, u1r) = (&mut top_r[r0 + k..r0 + n], &mut bot_r[k..n]);
+        let (u0i, u1i) = (&mut top_i[r0 + k..r0 + n], &mut bot_i[k..n]);
+        let mut swap = [false; LANES];
+        let mut lr = splat(0.0);
+        let mut li = splat(0.0);
+        for l in 0..LANES {
+            let (ar, ai, br, bi) = (u0r[0][l], u0i[0][l], u1r[0][l], u1i[0][l]);
+            swap[l] = br.abs() + bi.abs() > ar.abs() + ai.abs();
+            let (pr_, pi_, or_, oi_) = if swap[l] {
+                (br, bi, ar, ai)
+            } else {
+                (ar, ai, br, bi)
+            };
+            let d = pr_ * pr_ + pi_ * pi_;
+            // A zero column below the diagonal: nothing to eliminate (l = 0); the singular
+            // pivot is caught below.
+            if d > 0.0 {
+                lr[l] = (or_ * pr_ + oi_ * pi_) / d;
+                li[l] = (oi_ * pr_ - or_ * pi_) / d;
+            }
+            u0r[0][l] = pr_;
+            u0i[0][l] = pi_;
+            u1r[0][l] = 0.0;
+            u1i[0][l] = 0.0;
+        }
+        for (((a0, a1), b0), b1) in u0r[1..]
+            .iter_mut()
+            .zip(u1r[1..].iter_mut())
+            .zip(u0i[1..].iter_mut())
+            .zip(u1i[1..].iter_mut())
+        {
+            for l in 0..LANES {
+                let (t_r, t_i, w_r, w_i) = if swap[l] {
+                    (a1[l], b1[l], a0[l], b0[l])
+                } else {
+                    (a0[l], b0[l], a1[l], b1[l])
+                };
+                a0[l] = t_r;
+                b0[l] = t_i;
+                a1[l] = w_r - (lr[l] * t_r - li[l] * t_i);
+                b1[l] = w_i - (lr[l] * t_i + li[l] * t_r);
+            }
+        }
+        for c in 0..m {
+            let q = c * n + k;
+            for l in 0..LANES {
+                let (t_r, t_i, w_r, w_i) = if swap[l] {
+                    (xr[q + 1][l], xi[q + 1][l], xr[q][l], xi[q][l])
+                } else {
+                    (xr[q][l], xi[q][l], xr[q + 1][l], xi[q + 1][l])
+                };
+                xr[q][l] = t_r;
+                xi[q][l] = t_i;
+                xr[q + 1][l] = w_r - (lr[l] * t_r - li[l] * t_i);
+                xi[q + 1][l] = w_i - (lr[l] * t_i + li[l] * t_r);
+            }
+        }
+    }
+    let mut tol2 = splat(0.0);
+    for l in 0..LANES {
+        let t = 10.0 * n as f64 * f64::EPSILON * (f.hnorm + s[l].norm_sqr().sqrt());
+        tol2[l] = t * t;
+        singular[l] = false;
+    }
+    for i in 0..n {
+        for l in 0..LANES {
+            let (a, b) = (ur[i * n + i][l], ui[i * n + i][l]);
+            let p2 = a * a + b * b;
+            if p2 > tol2[l] {
+                pr[i][l] = a / p2;
+                pi[i][l] = -b / p2;
+            } else {
+                singular[l] = true;
+                pr[i][l] = 0.0;
+                pi[i][l] = 0.0;
+            }
+        }
+    }
+    for c in 0..m {
+        let cr = &mut xr[c * n..(c + 1) * n];
+        let ci = &mut xi[c * n..(c + 1) * n];
+        for i in (0..n).rev() {
+            let row_r = &ur[i * n + i + 1..(i + 1) * n];
+            let row_i = &ui[i * n + i + 1..(i + 1) * n];
+            let (mut sr_, mut si_) = (cr[i], ci[i]);
+            for (((a, b), v), w) in row_r.iter().zip(row_i).zip(&cr[i + 1..]).zip(&ci[i + 1..]) {
+                for l in 0..LANES {
+                    sr_[l] -= a[l] * v[l] - b[l] * w[l];
+                    si_[l] -= a[l] * w[l] + b[l] * v[l];
+                }
+            }
+            for l in 0..LANES {
+                cr[i][l] = sr_[l] * pr[i][l] - si_[l] * pi[i][l];
+                ci[i][l] = sr_[l] * pi[i][l] + si_[l] * pr[i][l];
+            }
+        }
+    }
+    let pm = p * m;
+    for j in 0..m {
+        let (cr, ci) = (&xr[j * n..(j + 1) * n], &xi[j * n..(j + 1) * n]);
+        for i in 0..p {
+            let crow = &f.ct[i * n..(i + 1) * n];
+            let mut gr = splat(f.d[j * p + i]);
+            let mut gi = splat(0.0);
+            for ((&cv, a), b) in crow.iter().zip(cr).zip(ci) {
+                for l in 0..LANES {
+                    gr[l] += cv * a[l];
+                    gi[l] += cv * b[l];
+                }
+            }
+            for l in 0..LANES {
+                out[l * pm + j * p + i] = if singular[l] {
+                    Complex64::new(f64::INFINITY, 0.0)
+                } else {
+                    Complex64::new(gr[l], gi[l])
+                };
+            }
+        }
+    }
+}
+
+fn batch_baseline(
+    f: &HessenbergForm,
+    s: &[Complex64; LANES],
+    ws: &mut FreqBatchWorkspace,
+    out: &mut [Complex64],
+    singular: &mut [bool; LANES],
+) {
+    batch_kernel(f, s, ws, out, singular)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn batch_avx2(
+    f: &HessenbergForm,
+    s: &[Complex64; LANES],
+    ws: &mut FreqBatchWorkspace,
+    out: &mut [Complex64],
+    singular: &mut [bool; LANES],
+) {
+    batch_kernel(f, s, ws, out, singular)
+}
+
+impl HessenbergForm {
+    /// A workspace for [`HessenbergForm::evaluate_batch_in`].
+    pub fn batch_workspace(&self) -> FreqBatchWorkspace {
+        FreqBatchWorkspace::new(self.n, self.m)
+    }
+
+    /// `G(sₗ)` for [`LANES`] points at once, without allocation: `out` (length
+    /// `LANES·p·m`) receives one column-major p × m block per point; `status[l]` tells
+    /// whether point l was regular (see [`HessenbergForm::evaluate_in`], whose results this
+    /// reproduces up to rounding). Uses AVX2 when the CPU has it.
+    ///
+    /// Errors: [`NumError::Dimension`] for a wrong workspace or `out` size,
+    /// [`NumError::NonFinite`] for a non-finite point.
+    pub fn evaluate_batch_in(
+        &self,
+        s: &[Complex64; LANES],
+        ws: &mut FreqBatchWorkspace,
+        out: &mut [Complex64],
+        status: &mut [SolveStatus; LANES],
+    ) -> Result<(), NumError> {
+        let (n, m, p) = (self.n, self.m, self.p);
+        if ws.n != n || ws.m != m || out.len() != LANES * p * m {
+            return Err(NumError::Dimension(format!(
+                "evaluate_batch_in: model has n = {n}, m = {m}, p = {p}; workspace is for \
+                 n = {}, m = {}; output has length {} (expected {})",
+                ws.n,
+                ws.m,
+                out.len(),
+                LANES * p * m
+            )));
+        }
+        if let Some(z) = s.iter().find(|z| !(z.re.is_finite() && z.im.is_finite())) {
+            return Err(NumError::NonFinite(format!("evaluation point s = {z}")));
+        }
+        let mut singular = [false; LANES];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2 (checked just above).
+                unsafe { batch_avx2(self, s, ws, out, &mut singular) };
+            } else {
+                batch_baseline(self, s, ws, out, &mut singular);
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        batch_baseline(self, s, ws, out, &mut singular);
+        for (st, &sg) in status.iter_mut().zip(&singular) {
+            *st = if sg {
+                SolveStatus::Singular
+            } else {
+                SolveStatus::Regular
+            };
+        }
+        Ok(())
+    }
 }
 
 /// `G(s)` at one complex point (allocating convenience).
@@ -439,18 +773,26 @@ impl FrequencyResponse {
         ss.validate()?;
         let omega = grid(ss, opts)?;
         let form = HessenbergForm::new(ss)?;
-        let mut ws = form.workspace();
+        let mut ws = form.batch_workspace();
         let (_, m, p) = form.dims();
         let nf = omega.len();
-        let mut values = vec![Complex64::new(0.0, 0.0); p * m * nf];
+        let pm = p * m;
+        let mut values = vec![Complex64::new(0.0, 0.0); pm * nf];
         let mut singular = vec![false; nf];
-        let mut g = vec![Complex64::new(0.0, 0.0); p * m];
-        for (k, &w) in omega.iter().enumerate() {
-            let st = form.evaluate_in(Complex64::new(0.0, w), &mut ws, &mut g)?;
-            singular[k] = st == SolveStatus::Singular;
-            for j in 0..m {
-                for i in 0..p {
-                    values[(i * m + j) * nf + k] = g[j * p + i];
+        let mut g = vec![Complex64::new(0.0, 0.0); LANES * pm];
+        let mut status = [SolveStatus::Regular; LANES];
+        for k0 in (0..nf).step_by(LANES) {
+            // The last batch is padded by repeating its last point.
+            let pts: [Complex64; LANES] =
+                std::array::from_fn(|l| Complex64::new(0.0, omega[(k0 + l).min(nf - 1)]));
+            form.evaluate_batch_in(&pts, &mut ws, &mut g, &mut status)?;
+            for l in 0..LANES.min(nf - k0) {
+                let k = k0 + l;
+                singular[k] = status[l] == SolveStatus::Singular;
+                for j in 0..m {
+                    for i in 0..p {
+                        values[(i * m + j) * nf + k] = g[l * pm + j * p + i];
+                    }
                 }
             }
         }
@@ -461,13 +803,14 @@ impl FrequencyResponse {
             let mut prev: Option<f64> = None;
             for k in 0..nf {
                 let z = values[base + k];
-                let mag = z.norm();
+                let mag2 = z.norm_sqr();
                 magnitude_db[base + k] = if singular[k] {
                     f64::INFINITY
                 } else {
-                    20.0 * mag.log10()
+                    // 10·log10(|G|²) via ln (one libm call instead of two).
+                    DB_PER_NEPER_SQ * mag2.ln()
                 };
-                let ph = if singular[k] || mag == 0.0 {
+                let ph = if singular[k] || mag2 == 0.0 {
                     prev.unwrap_or(0.0)
                 } else {
                     let raw = z.arg().to_degrees();
@@ -560,7 +903,10 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
                     "FreqRange::Range {{ low: {low}, high: {high} }}: need 0 < low < high, finite"
                 )));
             }
-            Ok(log_grid(unit.to_rad(*low).log10(), unit.to_rad(*high).log10()))
+            Ok(log_grid(
+                unit.to_rad(*low).log10(),
+                unit.to_rad(*high).log10(),
+            ))
         }
         FreqRange::Auto => {
             if ppd == 0 {

@@ -133,7 +133,7 @@ pub fn steady_state_gain_with(
 ) -> Result<SteadyStateGain, NumError> {
     ss.validate()?;
     opts.rank_tol.validate()?;
-    if !(opts.warn_condition > 0.0) {
+    if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
         return Err(NumError::InvalidOption(format!(
             "GainOptions::warn_condition = {}: must be > 0",
             opts.warn_condition
@@ -167,12 +167,16 @@ pub fn steady_state_gain_with(
                 condition.log10()
             ));
         }
-        let x = a.clone().lu().solve(&b).ok_or_else(|| {
-            NumError::Singular(format!(
-                "A ({n}×{n}) passed the rank test but its LU factorisation broke down"
-            ))
-        })?;
-        let g = &ss.d - &c * x;
+        let g = if n == 0 {
+            ss.d.clone()
+        } else {
+            let x = a.clone().lu().solve(&b).ok_or_else(|| {
+                NumError::Singular(format!(
+                    "A ({n}×{n}) passed the rank test but its LU factorisation broke down"
+                ))
+            })?;
+            &ss.d - &c * x
+        };
         return Ok(SteadyStateGain {
             gains: g.map(Gain::Finite),
             a_rank,
@@ -187,7 +191,9 @@ pub fn steady_state_gain_with(
 
     // Zero-eigenvalue subspaces: right chain ker A^k, left chain ker (Aᵀ)^k.
     let mut decisions = Vec::new();
-    let chain = |mat: &DMatrix<f64>, decisions: &mut Vec<Rank>| -> Result<(DMatrix<f64>, usize), NumError> {
+    let chain = |mat: &DMatrix<f64>,
+                 decisions: &mut Vec<Rank>|
+     -> Result<(DMatrix<f64>, usize), NumError> {
         let mut k = DMatrix::<f64>::zeros(n, 0);
         let mut steps = 0;
         loop {
@@ -249,11 +255,11 @@ pub fn steady_state_gain_with(
     })?;
     let w0 = w.rows(0, q);
     let w1 = w.rows(q, n - q);
-    let nmat = &w0 * &a * &v0;
-    let a1 = &w1 * &a * &v1;
-    let bz = &w0 * &b;
+    let nmat = w0 * &a * &v0;
+    let a1 = w1 * &a * &v1;
+    let bz = w0 * &b;
     let cz = &c * &v0;
-    let b1 = &w1 * &b;
+    let b1 = w1 * &b;
     let c1 = &c * &v1;
 
     // Finite part.

@@ -217,7 +217,11 @@ pub(crate) fn decide(singular_values: Vec<f64>, threshold: f64) -> Rank {
         // Empty or zero matrix: nothing to be close to.
         (f64::INFINITY, f64::INFINITY)
     } else {
-        let m1 = if rank == 0 { f64::INFINITY } else { ratio(above, threshold) };
+        let m1 = if rank == 0 {
+            f64::INFINITY
+        } else {
+            ratio(above, threshold)
+        };
         let m2 = if rank == singular_values.len() {
             f64::INFINITY
         } else {
@@ -444,9 +448,7 @@ pub fn condition_number(m: &DMatrix<f64>) -> Result<f64, NumError> {
     let s = singular_values(m)?;
     match (s.first(), s.last()) {
         (Some(&hi), Some(&lo)) => {
-            if hi == 0.0 {
-                Ok(f64::INFINITY)
-            } else if lo == 0.0 {
+            if hi == 0.0 || lo == 0.0 {
                 Ok(f64::INFINITY)
             } else {
                 Ok(hi / lo)

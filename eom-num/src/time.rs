@@ -17,7 +17,7 @@
 //! # Automatic horizon
 //!
 //! From the modes (zero modes decided scale-aware, see [`crate::modes`]): every real mode
-//! asks for `5|τ|` (99.3 % settled), every oscillatory one for `5|τ|` clamped to 2…20 damped
+//! asks for `5|τ|` (99.3 % settled), every oscillatory one for `5|τ|` clamped to 2…50 damped
 //! periods; the horizon is the largest request. The step is the smallest of `|τ|/10` (real)
 //! and `period/20` (oscillatory). When that would exceed [`TimeOptions::max_steps`], the step
 //! is enlarged (the result stays exact at the samples, only coarser) and
@@ -194,7 +194,10 @@ pub fn zoh(ss: &StateSpace<f64>, dt: f64) -> Result<Discretization, NumError> {
 }
 
 /// Chooses (t_end, dt, note) from the modes.
-fn auto_horizon(a: &DMatrix<f64>, max_steps: usize) -> Result<(f64, f64, Option<String>), NumError> {
+fn auto_horizon(
+    a: &DMatrix<f64>,
+    max_steps: usize,
+) -> Result<(f64, f64, Option<String>), NumError> {
     let modes = classify_matrix(a)?;
     let mut t_end: f64 = 0.0;
     let mut dt = f64::INFINITY;
@@ -212,8 +215,12 @@ fn auto_horizon(a: &DMatrix<f64>, max_steps: usize) -> Result<(f64, f64, Option<
             ModeKind::Oscillatory => {
                 let period = md.damped_period;
                 let tau = md.time_constant.abs();
-                let want = if tau.is_finite() { 5.0 * tau } else { f64::INFINITY };
-                t_end = t_end.max(want.clamp(2.0 * period, 20.0 * period));
+                let want = if tau.is_finite() {
+                    5.0 * tau
+                } else {
+                    f64::INFINITY
+                };
+                t_end = t_end.max(want.clamp(2.0 * period, 50.0 * period));
                 dt = dt.min(period / 20.0);
                 if tau.is_finite() {
                     dt = dt.min(tau / 10.0);
@@ -221,7 +228,7 @@ fn auto_horizon(a: &DMatrix<f64>, max_steps: usize) -> Result<(f64, f64, Option<
             }
         }
     }
-    if !(t_end > 0.0) || !dt.is_finite() {
+    if t_end.is_nan() || t_end <= 0.0 || !dt.is_finite() {
         return Ok((10.0, 0.01, None));
     }
     let steps = (t_end / dt).ceil() + 1.0;
@@ -236,7 +243,10 @@ fn auto_horizon(a: &DMatrix<f64>, max_steps: usize) -> Result<(f64, f64, Option<
     Ok((t_end, dt, None))
 }
 
-fn grid(ss: &StateSpace<f64>, opts: &TimeOptions) -> Result<(usize, f64, Option<String>), NumError> {
+fn grid(
+    ss: &StateSpace<f64>,
+    opts: &TimeOptions,
+) -> Result<(usize, f64, Option<String>), NumError> {
     match opts.horizon {
         Horizon::Given { t_end, dt } => {
             if !(t_end.is_finite() && t_end > 0.0) {
@@ -282,7 +292,7 @@ fn limit_of(opts: &TimeOptions, reference: f64) -> Result<f64, NumError> {
             })
         }
         SizeLimit::Absolute(v) => {
-            if !(v > 0.0) {
+            if v.is_nan() || v <= 0.0 {
                 return Err(NumError::InvalidOption(format!(
                     "SizeLimit::Absolute({v}): must be > 0"
                 )));
@@ -342,6 +352,7 @@ fn run(
     (nt, StopReason::Completed)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn finish(
     nt_kept: usize,
     nt: usize,
@@ -397,7 +408,17 @@ pub fn impulse(ss: &StateSpace<f64>, opts: &TimeOptions) -> Result<TimeResponse,
     let limit = limit_of(opts, max_abs(&ss.c) * max_abs(&ss.b))?;
     let mut y = vec![0.0; nt * p * m];
     let (kept, stop) = run(&dz.phi, None, &ss.c, None, ss.b.clone(), nt, limit, &mut y);
-    Ok(finish(kept, nt, dt, p, m, y, Some(ss.d.clone()), stop, note))
+    Ok(finish(
+        kept,
+        nt,
+        dt,
+        p,
+        m,
+        y,
+        Some(ss.d.clone()),
+        stop,
+        note,
+    ))
 }
 
 /// Unit-step response of every input (see the module docs): `x₀ = 0`, `y = C x + D`.
@@ -409,7 +430,10 @@ pub fn step(ss: &StateSpace<f64>, opts: &TimeOptions) -> Result<TimeResponse, Nu
     let dz = zoh(ss, dt)?;
     let (n, p, m) = (ss.states(), ss.outputs(), ss.inputs());
     let t_end = (nt - 1) as f64 * dt;
-    let limit = limit_of(opts, max_abs(&ss.c) * max_abs(&ss.b) * t_end + max_abs(&ss.d))?;
+    let limit = limit_of(
+        opts,
+        max_abs(&ss.c) * max_abs(&ss.b) * t_end + max_abs(&ss.d),
+    )?;
     let mut y = vec![0.0; nt * p * m];
     let (kept, stop) = run(
         &dz.phi,

@@ -46,7 +46,11 @@ fn index_one_series_springs_matches_hand_solution() {
     let (ss, rep) = descriptor_to_state_space(&dss, &opts).unwrap();
     assert_eq!((rep.states, rep.dynamic, rep.algebraic), (3, 2, 1));
     assert_eq!(rep.e_rank.rank, 2);
-    assert!(rep.e_rank.gap > 1e10, "exact zero in E: gap {}", rep.e_rank.gap);
+    assert!(
+        rep.e_rank.gap > 1e10,
+        "exact zero in E: gap {}",
+        rep.e_rank.gap
+    );
     assert!(rep.warnings.is_empty(), "{:?}", rep.warnings);
     assert!(rep.a22_condition >= 1.0 && rep.a22_condition.is_finite());
     assert_eq!(ss.states(), 2);
@@ -61,15 +65,23 @@ fn index_one_series_springs_matches_hand_solution() {
     // Transfer functions from Laplace of the equations above.
     let kk = k1 + k2;
     let r = k1 / kk;
-    for s in [Complex64::new(0.3, 1.7), Complex64::new(-2.0, 40.0), Complex64::new(5.0, 0.0)] {
+    for s in [
+        Complex64::new(0.3, 1.7),
+        Complex64::new(-2.0, 40.0),
+        Complex64::new(5.0, 0.0),
+    ] {
         let g = evaluate_at(&ss, s).unwrap();
         let den = poly(&[keq, 0.0, m], s); // m s² + k_eq
         let x_f = 1.0 / den;
         let x_f2 = r / den;
         let y_f = r / den;
         let y_f2 = 1.0 / kk + r * r / den;
-        for (got, want) in [(g[(0, 0)], x_f), (g[(0, 1)], x_f2), (g[(1, 0)], y_f), (g[(1, 1)], y_f2)]
-        {
+        for (got, want) in [
+            (g[(0, 0)], x_f),
+            (g[(0, 1)], x_f2),
+            (g[(1, 0)], y_f),
+            (g[(1, 1)], y_f2),
+        ] {
             assert!(rel(got, want) < 1e-12, "s = {s}: {got} vs {want}");
         }
     }
@@ -81,7 +93,10 @@ fn index_one_series_springs_matches_hand_solution() {
     assert_eq!(ss.phys.shape(), (3, 2));
     for j in 0..2 {
         let (x, y) = (ss.phys[(0, j)], ss.phys[(2, j)]);
-        assert!((y - r * x).abs() <= 1e-14 * x.abs().max(1.0), "column {j}: {x} {y}");
+        assert!(
+            (y - r * x).abs() <= 1e-14 * x.abs().max(1.0),
+            "column {j}: {x} {y}"
+        );
     }
 }
 
@@ -114,7 +129,10 @@ fn index_one_with_mixed_scales_keeps_the_light_mass() {
     let w2 = (1e9f64 / m2).sqrt();
     let mut im: Vec<f64> = ev.iter().map(|z| z.im.abs()).collect();
     im.sort_by(f64::total_cmp);
-    assert!((im[0] - w2).abs() < 1e-10 * w2 && (im[2] - w1).abs() < 1e-10 * w1, "{ev:?}");
+    assert!(
+        (im[0] - w2).abs() < 1e-10 * w2 && (im[2] - w1).abs() < 1e-10 * w1,
+        "{ev:?}"
+    );
 }
 
 #[test]
@@ -207,8 +225,16 @@ fn generalized_eigenvalues_of_smd_with_an_algebraic_force() {
     let sigma = -c / (2.0 * m);
     let wd = (k / m - sigma * sigma).sqrt();
     assert_eq!(ge.finite.len(), 2);
-    assert!(rel(ge.finite[0], Complex64::new(sigma, -wd)) < 1e-12, "{:?}", ge.finite);
-    assert!(rel(ge.finite[1], Complex64::new(sigma, wd)) < 1e-12, "{:?}", ge.finite);
+    assert!(
+        rel(ge.finite[0], Complex64::new(sigma, -wd)) < 1e-12,
+        "{:?}",
+        ge.finite
+    );
+    assert!(
+        rel(ge.finite[1], Complex64::new(sigma, wd)) < 1e-12,
+        "{:?}",
+        ge.finite
+    );
     assert_eq!(ge.finite[0], ge.finite[1].conj());
     assert!(ge.gap > 1e6);
 }

@@ -2,7 +2,6 @@
 //! rank and nullspace are known exactly.
 
 mod closed_forms;
-use closed_forms as common;
 
 use eom_num::NumError;
 use eom_num::linalg::{
@@ -29,8 +28,8 @@ fn conversions_round_trip() {
 
 #[test]
 fn svd_reconstructs_and_is_orthogonal() {
-    let mut r = common::rng(1);
-    let m = common::random_matrix(&mut r, 5, 3);
+    let mut r = closed_forms::rng(1);
+    let m = closed_forms::random_matrix(&mut r, 5, 3);
     let f = svd(&m).unwrap();
     let mut s = DMatrix::zeros(5, 3);
     for (i, &v) in f.singular_values.iter().enumerate() {
@@ -109,7 +108,11 @@ fn unequilibrated_default_flips_on_mixed_row_units() {
         let expected = dmatrix![1.0, 0.0; -1.0, 0.0; 0.0, 1.0; 0.0, -1.0];
         let q = expected.clone().qr().q();
         let err = (projector(&eq.basis) - projector(&q)).norm();
-        assert!(err < 1e-14, "{mode:?}: projector error {err:e}\n{}", eq.basis);
+        assert!(
+            err < 1e-14,
+            "{mode:?}: projector error {err:e}\n{}",
+            eq.basis
+        );
         assert!(eq.gap > 1e10);
     }
 }
@@ -164,7 +167,10 @@ fn condition_number_closed_form() {
     let m = dmatrix![4.0, 0.0; 0.0, 0.5];
     assert!((condition_number(&m).unwrap() - 8.0).abs() < 1e-14);
     assert!(condition_number(&dmatrix![1.0, 1.0; 1.0, 1.0]).unwrap() > 1e15);
-    assert_eq!(condition_number(&DMatrix::zeros(2, 2)).unwrap(), f64::INFINITY);
+    assert_eq!(
+        condition_number(&DMatrix::zeros(2, 2)).unwrap(),
+        f64::INFINITY
+    );
     assert_eq!(condition_number(&DMatrix::zeros(0, 0)).unwrap(), 1.0);
 }
 
@@ -181,7 +187,10 @@ fn balancing_is_a_similarity() {
         s.iter().map(|x| 1.0 / x).collect(),
     ));
     assert_eq!(&dinv * &a * &d, bm);
-    assert!(bm.norm() < 1e-3 * a.norm(), "balancing should shrink the norm");
+    assert!(
+        bm.norm() < 1e-3 * a.norm(),
+        "balancing should shrink the norm"
+    );
 }
 
 #[test]
@@ -196,7 +205,10 @@ fn errors_name_the_problem() {
         equilibrate(&bad, Equilibrate::Both),
         Err(NumError::NonFinite(_))
     ));
-    assert!(matches!(condition_number(&bad), Err(NumError::NonFinite(_))));
+    assert!(matches!(
+        condition_number(&bad),
+        Err(NumError::NonFinite(_))
+    ));
     let ok = dmatrix![1.0, 0.0];
     match nullspace(&ok, RankTolerance::Relative(-1.0)) {
         Err(NumError::InvalidOption(msg)) => assert!(msg.contains("rank tolerance"), "{msg}"),

@@ -94,13 +94,21 @@ fn kalman_systems_reduce_to_the_controllable_observable_block() {
             .collect();
         let mut want_unc = eigs[2].clone();
         want_unc.extend(eigs[3].iter().copied());
-        assert!(set_distance(&unc, &want_unc).unwrap() < 1e-12, "seed {seed}");
+        assert!(
+            set_distance(&unc, &want_unc).unwrap() < 1e-12,
+            "seed {seed}"
+        );
         assert!(set_distance(&uno, &eigs[1]).unwrap() < 1e-12, "seed {seed}");
         // Transfer function kept (rank decisions on exact zeros only).
         let err = tf_rel_error(&min, &sys, &points());
         assert!(err < 1e-12, "seed {seed}: transfer function error {err:e}");
-        // Every decision is clear-cut on these systems.
+        // Every decision is clear-cut on these systems, and the PBH test confirms each
+        // removal.
         assert!(rep.fragile_decisions(1e3).is_empty(), "seed {seed}");
+        assert!(
+            rep.removed.iter().all(|r| r.pbh_residual < 1e-14),
+            "{rep:?}"
+        );
     }
 }
 
@@ -214,7 +222,11 @@ fn phys_and_names_follow_the_reduction() {
         output_units: vec!["m".into(), "m".into()],
         bodies: vec!["body".into()],
     };
-    let sys = sys.with_phys(phys.clone()).unwrap().with_names(names).unwrap();
+    let sys = sys
+        .with_phys(phys.clone())
+        .unwrap()
+        .with_names(names)
+        .unwrap();
     let (min, _) = minimal_realization(&sys, &MinrealOptions::default()).unwrap();
     assert_eq!(min.states(), 3);
     min.validate().unwrap();
@@ -357,7 +369,12 @@ fn rotor(omega: f64) -> StateSpace<f64> {
     cc[(1, 1)] = 1000.0;
     // An arbitrary orthonormal basis, as the descriptor reduction produces.
     let q = rand_orth(&mut rng(77), 8);
-    ss(q.transpose() * a * &q, q.transpose() * b, cc * &q, DMatrix::zeros(2, 1))
+    ss(
+        q.transpose() * a * &q,
+        q.transpose() * b,
+        cc * &q,
+        DMatrix::zeros(2, 1),
+    )
 }
 
 #[test]
@@ -396,12 +413,7 @@ fn rotor_at_zero_spin_loses_exactly_the_decoupled_plane() {
 fn relative_tolerance_makes_decisions_scale_invariant() {
     let (sys, _) = kalman_system(31, [3, 1, 1, 1], 1, 2);
     for scale in [1e-9, 1.0, 1e9] {
-        let scaled = ss(
-            &sys.a * scale,
-            &sys.b * scale,
-            sys.c.clone(),
-            sys.d.clone(),
-        );
+        let scaled = ss(&sys.a * scale, &sys.b * scale, sys.c.clone(), sys.d.clone());
         let (min, _) = minimal_realization(&scaled, &MinrealOptions::default()).unwrap();
         assert_eq!(min.states(), 3, "scale {scale}");
     }
@@ -420,9 +432,10 @@ fn staircases_are_orthogonal_and_structured() {
     assert_eq!(st.a.view((3, 0), (3, 3)).norm(), 0.0);
     assert_eq!(st.b.rows(3, 3).norm(), 0.0);
     let so = observability_staircase(&sys.a, &sys.b, &sys.c, 1e-10).unwrap();
-    assert_eq!(so.kept, 3);
-    assert_eq!(so.a.view((0, 3), (3, 3)).norm(), 0.0);
-    assert_eq!(so.c.columns(3, 3).norm(), 0.0);
+    // Observable: the co and the uncontrollable-but-observable blocks.
+    assert_eq!(so.kept, 4);
+    assert_eq!(so.a.view((0, 4), (4, 2)).norm(), 0.0);
+    assert_eq!(so.c.columns(4, 2).norm(), 0.0);
     assert!((so.c.clone() - &sys.c * &so.q).norm() < 1e-12);
 }
 
@@ -522,10 +535,14 @@ fn mayne_cont_part(
             }
             for r in 0..i - 1 {
                 let f = -h[(r, j - 1)] / h[(i - 1, j - 1)];
-                let row = h.row(i - 1).clone_owned();
-                h.row_mut(r).axpy(f, &row, 1.0);
-                let col = h.column(r).clone_owned();
-                h.column_mut(i - 1).axpy(-f, &col, 1.0);
+                for k in 0..n + m {
+                    let v = h[(i - 1, k)];
+                    h[(r, k)] += f * v;
+                }
+                for k in 0..n + p {
+                    let v = h[(k, r)];
+                    h[(k, i - 1)] -= f * v;
+                }
             }
             i -= 1;
         }
@@ -533,7 +550,10 @@ fn mayne_cont_part(
     }
     let mut jj = 0;
     for k in 1..n {
-        if h.view((0, k), (k, n + m - k)).iter().all(|v| v.abs() <= EPS) {
+        if h.view((0, k), (k, n + m - k))
+            .iter()
+            .all(|v| v.abs() <= EPS)
+        {
             jj = k;
         }
     }

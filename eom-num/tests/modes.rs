@@ -54,17 +54,30 @@ fn real_pole_complex_pair_and_zero() {
     let mut r = rng(7);
     let t = random_similarity(&mut r, 4);
     let a = &t * core * t.clone().try_inverse().unwrap();
-    let ss = StateSpace::new(a, DMatrix::zeros(4, 0), DMatrix::zeros(0, 4), DMatrix::zeros(0, 0))
-        .unwrap();
+    let ss = StateSpace::new(
+        a,
+        DMatrix::zeros(4, 0),
+        DMatrix::zeros(0, 4),
+        DMatrix::zeros(0, 0),
+    )
+    .unwrap();
     let modes = Modes::compute(&ss).unwrap();
     let kinds: Vec<ModeKind> = modes.modes.iter().map(|m| m.kind).collect();
     // Sorted by (Re, Im): −2, −1 − 2i, −1 + 2i, 0.
     assert_eq!(
         kinds,
-        [ModeKind::Real, ModeKind::Oscillatory, ModeKind::Oscillatory, ModeKind::Zero]
+        [
+            ModeKind::Real,
+            ModeKind::Oscillatory,
+            ModeKind::Oscillatory,
+            ModeKind::Zero
+        ]
     );
     let real = &modes.modes[0];
-    assert!((real.natural_frequency_hz - 2.0 / (2.0 * PI)).abs() < 1e-13, "corner frequency");
+    assert!(
+        (real.natural_frequency_hz - 2.0 / (2.0 * PI)).abs() < 1e-13,
+        "corner frequency"
+    );
     assert_eq!(real.damping_ratio, Some(1.0));
     assert!((real.time_constant - 0.5).abs() < 1e-13);
     assert_eq!(real.damped_period, f64::INFINITY);
@@ -116,10 +129,19 @@ fn rigid_body_double_zero_is_zero_and_slow_pole_is_not() {
     let mut r = rng(11);
     let t = random_similarity(&mut r, 4);
     let a = &t * core * t.clone().try_inverse().unwrap();
-    let ss = StateSpace::new(a, DMatrix::zeros(4, 0), DMatrix::zeros(0, 4), DMatrix::zeros(0, 0))
-        .unwrap();
+    let ss = StateSpace::new(
+        a,
+        DMatrix::zeros(4, 0),
+        DMatrix::zeros(0, 4),
+        DMatrix::zeros(0, 0),
+    )
+    .unwrap();
     let modes = Modes::compute(&ss).unwrap();
-    let zeros = modes.modes.iter().filter(|m| m.kind == ModeKind::Zero).count();
+    let zeros = modes
+        .modes
+        .iter()
+        .filter(|m| m.kind == ModeKind::Zero)
+        .count();
     assert_eq!(zeros, 2, "{:?}", modes.eigenvalues());
 
     // A genuinely slow pole −1e-9 next to −1e3: EoM.jl's absolute 1e-7 threshold would call it
@@ -127,12 +149,21 @@ fn rigid_body_double_zero_is_zero_and_slow_pole_is_not() {
     let core = dmatrix![-1e-9, 0.0; 0.0, -1e3];
     let t = random_similarity(&mut r, 2);
     let a = &t * core * t.clone().try_inverse().unwrap();
-    let ss = StateSpace::new(a, DMatrix::zeros(2, 0), DMatrix::zeros(0, 2), DMatrix::zeros(0, 0))
-        .unwrap();
+    let ss = StateSpace::new(
+        a,
+        DMatrix::zeros(2, 0),
+        DMatrix::zeros(0, 2),
+        DMatrix::zeros(0, 0),
+    )
+    .unwrap();
     let md = &Modes::compute(&ss).unwrap().modes[1];
     assert_eq!(md.kind, ModeKind::Real);
     assert_eq!(md.stability, Stability::Stable);
-    assert!((md.time_constant - 1e9).abs() < 1e-4 * 1e9, "τ = {}", md.time_constant);
+    assert!(
+        (md.time_constant - 1e9).abs() < 1e-4 * 1e9,
+        "τ = {}",
+        md.time_constant
+    );
 }
 
 /// One body on a torsional pendulum: it rotates by θ about the axis `axis` through the
@@ -173,13 +204,20 @@ fn instantaneous_centre_of_a_pure_rotation() {
             // Shape: x = −L θ (largest, normalised to 0.5), ry = θ.
             assert_eq!(md.reference_index, Some(0));
             assert_eq!(md.shape[0], Complex64::new(0.5, 0.0));
-            assert!(rel(md.shape[4], Complex64::new(-0.5 / l, 0.0)) < 1e-14, "{}", md.shape);
+            assert!(
+                rel(md.shape[4], Complex64::new(-0.5 / l, 0.0)) < 1e-14,
+                "{}",
+                md.shape
+            );
             let c = &md.centres[0];
             assert_eq!(c.body, "arm");
             let r = c.radius.unwrap();
             let want = [0.0, 0.0, l];
             for i in 0..3 {
-                assert!((r[i] - Complex64::new(want[i], 0.0)).norm() < 1e-14, "{r:?}");
+                assert!(
+                    (r[i] - Complex64::new(want[i], 0.0)).norm() < 1e-14,
+                    "{r:?}"
+                );
             }
             let ax = c.axis.unwrap();
             assert!((ax[1] - Complex64::new(1.0, 0.0)).norm() < 1e-15, "{ax:?}");
@@ -201,13 +239,19 @@ fn instantaneous_centre_general_axis_is_the_perpendicular_foot() {
         let c = &md.centres[0];
         let r = c.radius.unwrap();
         for i in 0..3 {
-            assert!((r[i] - Complex64::new(want[i], 0.0)).norm() < 1e-13, "{r:?} vs {want:?}");
+            assert!(
+                (r[i] - Complex64::new(want[i], 0.0)).norm() < 1e-13,
+                "{r:?} vs {want:?}"
+            );
         }
         let ax = c.axis.unwrap();
         // Dominant rotation component (z) real positive, direction ± axis.
         let sign = axis[2].signum();
         for i in 0..3 {
-            assert!((ax[i] - Complex64::new(sign * axis[i], 0.0)).norm() < 1e-13, "{ax:?}");
+            assert!(
+                (ax[i] - Complex64::new(sign * axis[i], 0.0)).norm() < 1e-13,
+                "{ax:?}"
+            );
         }
     }
 }

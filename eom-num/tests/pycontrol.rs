@@ -6,9 +6,9 @@
 
 mod analysis_support;
 
-use analysis_support::{set_distance, subset_of, tf, eig_nalgebra};
+use analysis_support::{eig_nalgebra, set_distance, subset_of, tf};
 use eom_num::StateSpace;
-use eom_num::minreal::{MinrealOptions, minimal_realization};
+use eom_num::minreal::{MinrealOptions, RemovedKind, minimal_realization};
 use eom_num::zeros::transmission_zeros;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -83,32 +83,212 @@ fn cases() -> (Vec<Complex64>, Vec<Case>) {
     (pts, cases)
 }
 
+/// Tolerances. Observed agreement on this data set is at rounding level (poles ≤ 2e-14,
+/// transfer functions ≤ 2e-14, zeros ≤ 5e-14, all relative to max(1, |value|)); the bounds
+/// leave room for the conditioning of random matrices (eigenvalue condition numbers up to ~1e3),
+/// not for algorithmic differences.
+const POLE_TOL: f64 = 1e-11;
+const TF_TOL: f64 = 1e-11;
+const ZERO_TOL: f64 = 1e-10;
+
+/// Systems where python-control is wrong, and why (see the test below for the evidence that
+/// is checked).
+///
+/// * `unobservable_9`: TB01PD's default tolerance (N²ε relative) is below the rounding of the
+///   hidden zero block (the system was built with a similarity of condition ≤ 4), so its
+///   minreal keeps 5 states; the PBH test at the extra pole gives σ_min = 2.7e-16, TB01PD with
+///   tol = 1e-12 keeps 4. Its transfer function is still right.
+/// * `kalman_4` (3 inputs, 2 outputs): AB08ND's default tolerance misses the two
+///   input-decoupling zeros (the uncontrollable modes of a wide system whose pencil has full
+///   row normal rank); with tol = 1e-12 AB08ND returns exactly ours.
+const PC_MINREAL_WRONG: &[&str] = &["unobservable_9"];
+const PC_ZEROS_WRONG: &[&str] = &["kalman_4"];
+
 #[test]
-fn explore() {
+fn python_control_agrees_with_its_own_original_transfer_function() {
+    // The independent check of the reference: its minimal systems reproduce the transfer
+    // function of the original system (evaluated here by a plain complex solve).
     let (pts, cases) = cases();
+    assert!(cases.len() >= 50);
+    for c in &cases {
+        let pc_tf = tf_values(&c.sys_json["pc_minreal_tf"]);
+        for (k, &s) in pts.iter().enumerate() {
+            let g = tf(&c.sys, s);
+            let e = (&pc_tf[k] - &g).norm() / g.norm().max(1e-300);
+            assert!(
+                e < TF_TOL,
+                "{}: python-control minreal off by {e:e}",
+                c.name
+            );
+        }
+    }
+}
+
+#[test]
+fn minimal_realization_matches_python_control() {
+    let (pts, cases) = cases();
+    let mut compared = 0;
     for c in &cases {
         let s = &c.sys_json;
         let (min, rep) = minimal_realization(&c.sys, &MinrealOptions::default()).unwrap();
-        let exp = s["expected_order"].as_u64().unwrap() as usize;
+        let expected = s["expected_order"].as_u64().unwrap() as usize;
         let pc_order = s["pc_minreal_order"].as_u64().unwrap() as usize;
-        let poles = eig_nalgebra(&min.a);
-        let pc_poles = complex_list(&s["pc_minreal_poles"]);
-        let pd = set_distance(&poles, &pc_poles);
-        let pc_tf = tf_values(&s["pc_minreal_tf"]);
+        // The order the system has by construction.
+        assert_eq!(min.states(), expected, "{}: {rep:?}", c.name);
+        // Transfer function: against the data's original values and python-control's minimal
+        // system.
         let orig_tf = tf_values(&s["tf_original"]);
-        let mut e_pc = 0.0f64; let mut e_orig = 0.0f64; let mut e_self = 0.0f64;
+        let pc_tf = tf_values(&s["pc_minreal_tf"]);
         for (k, &p) in pts.iter().enumerate() {
             let g = tf(&min, p);
-            e_pc = e_pc.max((&g - &pc_tf[k]).norm() / pc_tf[k].norm());
-            e_orig = e_orig.max((&g - &orig_tf[k]).norm() / orig_tf[k].norm());
-            let go = tf(&c.sys, p);
-            e_self = e_self.max((&go - &orig_tf[k]).norm() / orig_tf[k].norm());
+            let e1 = (&g - &orig_tf[k]).norm() / orig_tf[k].norm().max(1e-300);
+            let e2 = (&g - &pc_tf[k]).norm() / pc_tf[k].norm().max(1e-300);
+            assert!(e1 < TF_TOL && e2 < TF_TOL, "{}: {e1:e} {e2:e}", c.name);
         }
-        let z = transmission_zeros(&c.sys).unwrap();
-        let pz = complex_list(&s["pc_zeros"]);
-        let zd = set_distance(&z, &pz);
-        let sub = subset_of(&poles, &eig_nalgebra(&c.sys.a), 1e-8);
-        println!("{:18} exp {exp} ours {} pc {pc_order} poles {:?} tf_pc {:.1e} tf_orig {:.1e} self {:.1e} zeros {}/{} {:?} sub {sub} fragile {}",
-            c.name, min.states(), pd.map(|d| format!("{d:.1e}")), e_pc, e_orig, e_self, z.len(), pz.len(), zd.map(|d| format!("{d:.1e}")), rep.fragile_decisions(100.0).len());
+        let poles = eig_nalgebra(&min.a);
+        assert!(
+            subset_of(&poles, &eig_nalgebra(&c.sys.a), POLE_TOL),
+            "{}",
+            c.name
+        );
+        let pc_poles = complex_list(&s["pc_minreal_poles"]);
+        if PC_MINREAL_WRONG.contains(&c.name.as_str()) {
+            // python-control keeps one unobservable mode more: its poles are ours plus a mode
+            // our report lists as removed (unobservable).
+            assert_eq!(pc_order, expected + 1, "{}", c.name);
+            assert!(subset_of(&poles, &pc_poles, POLE_TOL));
+            let extra: Vec<Complex64> = pc_poles
+                .iter()
+                .copied()
+                .filter(|p| !subset_of(&[*p], &poles, POLE_TOL))
+                .collect();
+            assert_eq!(extra.len(), 1);
+            // Our staircase decision on it is close to the tolerance (a weakly observable mode
+            // before it amplifies rounding), and the report flags it; the basis-free PBH
+            // residual in the report confirms the removal (4e-14: the eigenvalue of the removed
+            // block carries the same amplified rounding, 2e-13, and the residual is taken at
+            // it).
+            let removed = rep
+                .removed
+                .iter()
+                .find(|r| {
+                    r.kind == RemovedKind::Unobservable
+                        && (r.eigenvalue - extra[0]).norm() < POLE_TOL * extra[0].norm().max(1.0)
+                })
+                .unwrap();
+            assert!(removed.pbh_residual < 1e-12, "{removed:?}");
+            assert_eq!(rep.fragile_decisions(100.0).len(), 1);
+            // The independent PBH test says that mode is unobservable.
+            assert!(pbh_unobservable(&c.sys, extra[0]) < 1e-13);
+            continue;
+        }
+        assert_eq!(pc_order, min.states(), "{}", c.name);
+        let d = set_distance(&poles, &pc_poles).unwrap();
+        assert!(d < POLE_TOL, "{}: poles differ by {d:e}", c.name);
+        compared += 1;
     }
+    assert!(compared >= 50);
+}
+
+#[test]
+fn transmission_zeros_match_python_control() {
+    let (_, cases) = cases();
+    let mut compared = 0;
+    for c in &cases {
+        let s = &c.sys_json;
+        let z = transmission_zeros(&c.sys).unwrap();
+        // Every zero is a rank drop of the system pencil (independent SVD check).
+        for &zz in &z {
+            let (drop, normal) = pencil_rank_drop(&c.sys, zz);
+            assert!(
+                drop < 1e-12 * normal,
+                "{}: {zz} is not a zero ({drop:e})",
+                c.name
+            );
+        }
+        if let Some(inv_d) = s.get("zeros_via_inverse_d") {
+            let d = set_distance(&z, &complex_list(inv_d)).unwrap();
+            assert!(
+                d < ZERO_TOL,
+                "{}: eig(A − B D⁻¹ C) differs by {d:e}",
+                c.name
+            );
+        }
+        let pc = complex_list(&s["pc_zeros"]);
+        if PC_ZEROS_WRONG.contains(&c.name.as_str()) {
+            // Ours are python-control's plus the input-decoupling zeros = the uncontrollable
+            // modes.
+            let (_, rep) = minimal_realization(&c.sys, &MinrealOptions::default()).unwrap();
+            let unc: Vec<Complex64> = rep
+                .removed
+                .iter()
+                .filter(|r| r.kind == RemovedKind::Uncontrollable)
+                .map(|r| r.eigenvalue)
+                .collect();
+            assert!(pc.is_empty() && !z.is_empty());
+            assert!(
+                set_distance(&z, &unc).unwrap() < ZERO_TOL,
+                "{}: {z:?}",
+                c.name
+            );
+            continue;
+        }
+        let d = set_distance(&z, &pc);
+        assert!(
+            d.is_some_and(|d| d < ZERO_TOL),
+            "{}: ours {z:?} python-control {pc:?}",
+            c.name
+        );
+        compared += 1;
+    }
+    assert!(compared >= 50);
+}
+
+/// Smallest singular value of [A − λI; C] relative to its largest (PBH observability test).
+fn pbh_unobservable(sys: &StateSpace<f64>, lam: Complex64) -> f64 {
+    let n = sys.states();
+    let p = sys.outputs();
+    let m = DMatrix::from_fn(n + p, n, |i, j| {
+        if i < n {
+            Complex64::new(sys.a[(i, j)], 0.0)
+                - if i == j {
+                    lam
+                } else {
+                    Complex64::new(0.0, 0.0)
+                }
+        } else {
+            Complex64::new(sys.c[(i - n, j)], 0.0)
+        }
+    });
+    let sv = m.singular_values();
+    sv.min() / sv.max()
+}
+
+/// The system pencil P(λ) = [A − λI, B; C, D]: its singular value number `normal rank` at λ
+/// (i.e. the one that must vanish at a zero), and its largest singular value. The normal rank
+/// is the rank at a generic point.
+fn pencil_rank_drop(sys: &StateSpace<f64>, lam: Complex64) -> (f64, f64) {
+    let (n, m, p) = (sys.states(), sys.inputs(), sys.outputs());
+    let pencil = |l: Complex64| {
+        DMatrix::from_fn(n + p, n + m, |i, j| {
+            let v = match (i < n, j < n) {
+                (true, true) => sys.a[(i, j)],
+                (true, false) => sys.b[(i, j - n)],
+                (false, true) => sys.c[(i - n, j)],
+                (false, false) => sys.d[(i - n, j - n)],
+            };
+            let shift = if i == j && i < n {
+                l
+            } else {
+                Complex64::new(0.0, 0.0)
+            };
+            Complex64::new(v, 0.0) - shift
+        })
+    };
+    let generic = pencil(Complex64::new(0.123, 0.456)).singular_values();
+    let big = generic.max();
+    let normal_rank = generic.iter().filter(|&&s| s > 1e-10 * big).count();
+    let mut sv: Vec<f64> = pencil(lam).singular_values().iter().copied().collect();
+    sv.sort_by(|a, b| b.total_cmp(a));
+    (sv[normal_rank - 1], big)
 }

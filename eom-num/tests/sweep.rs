@@ -4,9 +4,9 @@
 
 mod analysis_support;
 
-use analysis_support::{eig_nalgebra, mat, rand_mat, rand_orth, rng};
+use analysis_support::{eig_nalgebra, mat, rand_orth, rng};
 use eom_num::NumError;
-use eom_num::sweep::{Crossing, EigenWorkspace, PointStability, Sweep, SweepError};
+use eom_num::sweep::{Crossing, PointStability, Sweep, SweepError};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -44,9 +44,15 @@ fn shimmy_stable_interval_is_found_to_1e_9() {
         assert!(b0.converged && b1.converged);
         assert_eq!(b0.crossing, Crossing::Stabilizing);
         assert_eq!(b1.crossing, Crossing::Destabilizing);
-        assert!((b0.eigenvalue - Complex64::new(0.0, 1.0)).norm() < 1e-9, "{b0:?}");
+        assert!(
+            (b0.eigenvalue - Complex64::new(0.0, 1.0)).norm() < 1e-9,
+            "{b0:?}"
+        );
         let w = (3.0f64 / 7.0).sqrt();
-        assert!((b1.eigenvalue - Complex64::new(0.0, w)).norm() < 1e-9, "{b1:?}");
+        assert!(
+            (b1.eigenvalue - Complex64::new(0.0, w)).norm() < 1e-9,
+            "{b1:?}"
+        );
         // No neutral branch; the stability classes agree with Routh–Hurwitz off the
         // boundaries.
         assert!(res.branches.iter().all(|b| !b.neutral));
@@ -72,14 +78,26 @@ fn branch_values_match_independent_eigenvalues_and_are_continuous() {
         got.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
         let want = eig_nalgebra(&shimmy(p.value).unwrap());
         for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).norm() < 1e-10, "x = {}: {got:?} vs {want:?}", p.value);
+            assert!(
+                (g - w).norm() < 1e-10,
+                "x = {}: {got:?} vs {want:?}",
+                p.value
+            );
         }
     }
-    // Each branch moves by less than a grid step's worth of eigenvalue change.
-    for w in res.points.windows(2) {
-        for j in 0..3 {
-            assert!((w[1].eigenvalues[j] - w[0].eigenvalues[j]).norm() < 0.2);
-        }
+    // The real root stays on one branch and the pair on the other two, as exact conjugates
+    // with a fixed sign of the imaginary part.
+    let first = &res.points[0].eigenvalues;
+    let real = (0..3).find(|&j| first[j].im == 0.0).unwrap();
+    let (up, down) = if first[(real + 1) % 3].im > 0.0 {
+        ((real + 1) % 3, (real + 2) % 3)
+    } else {
+        ((real + 2) % 3, (real + 1) % 3)
+    };
+    for p in &res.points {
+        let e = &p.eigenvalues;
+        assert_eq!(e[real].im, 0.0, "x = {}", p.value);
+        assert!(e[up].im > 0.0 && e[down] == e[up].conj(), "x = {}", p.value);
     }
 }
 
@@ -154,7 +172,11 @@ fn branches_crossing_in_real_part_keep_their_identity() {
         let w0 = res.points[0].eigenvalues[j].im;
         for p in &res.points {
             let z = p.eigenvalues[j];
-            assert!((z.im - w0).abs() < 1e-10, "branch {j} jumps at {}: {z}", p.value);
+            assert!(
+                (z.im - w0).abs() < 1e-10,
+                "branch {j} jumps at {}: {z}",
+                p.value
+            );
         }
         // Real part linear in x along the branch: σ₁ or σ₂.
         let slope = res.points[1].eigenvalues[j].re - res.points[0].eigenvalues[j].re;
@@ -317,7 +339,10 @@ fn invalid_sweeps_are_rejected() {
     ];
     for s in bad {
         assert!(
-            matches!(s.run(shimmy), Err(SweepError::Setup(NumError::InvalidOption(_)))),
+            matches!(
+                s.run(shimmy),
+                Err(SweepError::Setup(NumError::InvalidOption(_)))
+            ),
             "{s:?}"
         );
     }
@@ -363,36 +388,8 @@ fn grid_only_mode_reports_grid_intervals() {
     assert_eq!(res.stable_intervals.len(), 1);
     let iv = res.stable_intervals[0];
     // Stable grid points are 0.4, 0.5, 0.6 (0.3 and 0.7 are on the boundaries).
-    assert!((iv.lo - 0.4).abs() < 1e-12 && (iv.hi - 0.6).abs() < 1e-12, "{iv:?}");
-}
-
-#[test]
-fn eigen_kernel_matches_nalgebra_and_pairs_are_exact() {
-    let mut r = rng(9);
-    for n in [1, 2, 5, 12, 30] {
-        let a = rand_mat(&mut r, n, n);
-        let mut ws = EigenWorkspace::new(n);
-        let mut out = vec![Complex64::new(0.0, 0.0); n];
-        ws.eigenvalues(&a, &mut out).unwrap();
-        for z in out.iter().filter(|z| z.im != 0.0) {
-            assert!(out.contains(&z.conj()), "{z} has no exact conjugate");
-        }
-        out.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
-        let want = eig_nalgebra(&a);
-        let scale = a.norm();
-        for (g, w) in out.iter().zip(&want) {
-            assert!((g - w).norm() < 1e-12 * scale, "n = {n}: {g} vs {w}");
-        }
-        // Reusing the workspace gives the same result.
-        let mut again = vec![Complex64::new(0.0, 0.0); n];
-        ws.eigenvalues(&a, &mut again).unwrap();
-        again.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
-        assert_eq!(again, out);
-    }
-    let mut ws = EigenWorkspace::new(3);
-    let mut out = vec![Complex64::new(0.0, 0.0); 2];
-    assert!(matches!(
-        ws.eigenvalues(&DMatrix::zeros(3, 3), &mut out),
-        Err(NumError::Dimension(_))
-    ));
+    assert!(
+        (iv.lo - 0.4).abs() < 1e-12 && (iv.hi - 0.6).abs() < 1e-12,
+        "{iv:?}"
+    );
 }

@@ -63,7 +63,10 @@ fn siso_zeros_are_the_roots_of_the_numerator() {
     // (s + 2)(s − 3) / ((s + 1)(s + 4)(s + 5))
     let sys = siso(&poly(&[-2.0, 3.0]), &poly(&[-1.0, -4.0, -5.0]), 0.0, 1);
     let z = transmission_zeros(&sys).unwrap();
-    assert!(set_distance(&z, &[c(-2.0, 0.0), c(3.0, 0.0)]).unwrap() < 1e-12, "{z:?}");
+    assert!(
+        set_distance(&z, &[c(-2.0, 0.0), c(3.0, 0.0)]).unwrap() < 1e-12,
+        "{z:?}"
+    );
     // Relative degree 3: one finite zero, and no huge spurious ones.
     let sys = siso(&poly(&[0.5]), &poly(&[-1.0, -2.0, -3.0, -4.0]), 0.0, 2);
     let rep = transmission_zeros_with(&sys, &ZerosOptions::default()).unwrap();
@@ -77,9 +80,15 @@ fn siso_zeros_are_the_roots_of_the_numerator() {
     let z = transmission_zeros(&sys).unwrap();
     // 2 s³ + (2·9 + 0.5) s² + (2·20 − 1) s + (2·12 + 3)
     let want = cubic_roots([27.0, 39.0, 18.5, 2.0]);
-    assert!(set_distance(&z, &want).unwrap() < 1e-12, "{z:?} vs {want:?}");
+    assert!(
+        set_distance(&z, &want).unwrap() < 1e-12,
+        "{z:?} vs {want:?}"
+    );
     // Zeros come sorted by (re, im).
-    assert!(z.windows(2).all(|w| (w[0].re, w[0].im) <= (w[1].re, w[1].im)));
+    assert!(
+        z.windows(2)
+            .all(|w| (w[0].re, w[0].im) <= (w[1].re, w[1].im))
+    );
 }
 
 /// Roots of c0 + c1 s + c2 s² + c3 s³ by the companion matrix (nalgebra).
@@ -163,23 +172,35 @@ fn non_square_systems() {
     );
     let z = transmission_zeros(&sys).unwrap();
     assert!(set_distance(&z, &[c(-2.0, 0.0)]).unwrap() < 1e-12, "{z:?}");
-    // Tall with an uncontrollable (input-decoupling) mode at −7 that the outputs see: the
-    // system pencil loses rank there.
+    // Tall with an unobservable (output-decoupling) mode at −7: [A − λI; C] loses column rank
+    // there, so the system pencil drops below its normal rank (= number of columns).
     let mut a = DMatrix::zeros(4, 4);
-    a.view_mut((0, 0), (3, 3)).copy_from(&rand_mat(&mut r, 3, 3));
+    a.view_mut((0, 0), (3, 3))
+        .copy_from(&rand_mat(&mut r, 3, 3));
     a[(3, 3)] = -7.0;
-    a[(0, 3)] = 0.8;
+    a[(3, 0)] = 0.8;
     let mut b = DMatrix::zeros(4, 1);
-    b.view_mut((0, 0), (3, 1)).copy_from(&rand_mat(&mut r, 3, 1));
-    let cm = rand_mat(&mut r, 2, 4);
+    b.copy_from(&rand_mat(&mut r, 4, 1));
+    let mut cm = DMatrix::zeros(2, 4);
+    cm.view_mut((0, 0), (2, 3))
+        .copy_from(&rand_mat(&mut r, 2, 3));
     let q = rand_orth(&mut rng(9), 4);
-    let sys = ss(
-        q.transpose() * a * &q,
-        q.transpose() * b,
-        cm * &q,
+    let tall = ss(
+        q.transpose() * &a * &q,
+        q.transpose() * &b,
+        &cm * &q,
         DMatrix::zeros(2, 1),
     );
-    let z = transmission_zeros(&sys).unwrap();
+    let z = transmission_zeros(&tall).unwrap();
+    assert!(set_distance(&z, &[c(-7.0, 0.0)]).unwrap() < 1e-12, "{z:?}");
+    // Its dual (wide, with an uncontrollable mode at −7) has the same zero.
+    let wide = ss(
+        tall.a.transpose(),
+        tall.c.transpose(),
+        tall.b.transpose(),
+        DMatrix::zeros(1, 2),
+    );
+    let z = transmission_zeros(&wide).unwrap();
     assert!(set_distance(&z, &[c(-7.0, 0.0)]).unwrap() < 1e-12, "{z:?}");
 }
 
@@ -194,7 +215,10 @@ fn zeros_scale_with_the_time_unit() {
         // set_distance is relative for |z| > 1 and absolute below: compare relatively.
         assert_eq!(z.len(), 2);
         for (x, y) in z.iter().zip(want.iter()) {
-            assert!((x - y).norm() <= 1e-12 * y.norm(), "k = {k}: {z:?} ({dist:e})");
+            assert!(
+                (x - y).norm() <= 1e-12 * y.norm(),
+                "k = {k}: {z:?} ({dist:e})"
+            );
         }
     }
 }

@@ -411,3 +411,97 @@ mod tests {
         assert!(s.starts_with("3.14159265358979323846264338327"), "{s}");
     }
 }
+
+/// A complex double-double number `(re, im)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Cdd(Dd, Dd);
+
+impl Cdd {
+    fn add(self, o: Cdd) -> Cdd {
+        Cdd(self.0 + o.0, self.1 + o.1)
+    }
+    fn sub(self, o: Cdd) -> Cdd {
+        Cdd(self.0 - o.0, self.1 - o.1)
+    }
+    fn mul(self, o: Cdd) -> Cdd {
+        Cdd(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
+    }
+    fn div(self, o: Cdd) -> Cdd {
+        let d = o.0 * o.0 + o.1 * o.1;
+        Cdd((self.0 * o.0 + self.1 * o.1) / d, (self.1 * o.0 - self.0 * o.1) / d)
+    }
+    fn abs2(self) -> f64 {
+        (self.0 * self.0 + self.1 * self.1).to_f64()
+    }
+}
+
+/// Refine an approximate eigenvalue `(re, im)` of the real matrix `a` (rows of double-doubles)
+/// to double-double accuracy by Newton's method on `det(A − λI)`:
+/// `λ ← λ + 1 / tr((A − λI)⁻¹)`. Converges quadratically for a simple eigenvalue; returns
+/// `None` when the iteration does not settle (e.g. a multiple eigenvalue).
+pub fn refine_eigenvalue(a: &[Vec<Dd>], approx: (f64, f64)) -> Option<(Dd, Dd)> {
+    let n = a.len();
+    let mut lam = Cdd(Dd::from_f64(approx.0), Dd::from_f64(approx.1));
+    let mut last_step = f64::INFINITY;
+    for _ in 0..30 {
+        // LU with partial pivoting of M = A − λI (complex).
+        let mut m: Vec<Vec<Cdd>> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| {
+                        let x = Cdd(a[i][j], Dd::ZERO);
+                        if i == j { x.sub(lam) } else { x }
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut perm: Vec<usize> = (0..n).collect();
+        for k in 0..n {
+            let p = (k..n).max_by(|&x, &y| m[x][k].abs2().partial_cmp(&m[y][k].abs2()).unwrap_or(Ordering::Equal))?;
+            if m[p][k].abs2() == 0.0 {
+                return Some((lam.0, lam.1)); // exactly singular: λ is an eigenvalue
+            }
+            m.swap(k, p);
+            perm.swap(k, p);
+            for i in k + 1..n {
+                let f = m[i][k].div(m[k][k]);
+                m[i][k] = f;
+                for j in k + 1..n {
+                    let t = f.mul(m[k][j]);
+                    m[i][j] = m[i][j].sub(t);
+                }
+            }
+        }
+        // tr(M⁻¹) = Σ_j (M⁻¹ e_j)_j.
+        let mut tr = Cdd(Dd::ZERO, Dd::ZERO);
+        for j in 0..n {
+            let mut x: Vec<Cdd> = perm.iter().map(|&p| if p == j { Cdd(Dd::ONE, Dd::ZERO) } else { Cdd(Dd::ZERO, Dd::ZERO) }).collect();
+            for i in 0..n {
+                for k in 0..i {
+                    let t = m[i][k].mul(x[k]);
+                    x[i] = x[i].sub(t);
+                }
+            }
+            for i in (0..n).rev() {
+                for k in i + 1..n {
+                    let t = m[i][k].mul(x[k]);
+                    x[i] = x[i].sub(t);
+                }
+                x[i] = x[i].div(m[i][i]);
+            }
+            tr = tr.add(x[j]);
+        }
+        if tr.abs2() == 0.0 {
+            return None;
+        }
+        let step = Cdd(Dd::ONE, Dd::ZERO).div(tr);
+        lam = lam.add(step);
+        let s = step.abs2().sqrt();
+        let scale = lam.abs2().sqrt().max(1e-300);
+        if s <= 1e-31 * scale || (s >= last_step && s <= 1e-26 * scale) {
+            return Some((lam.0, lam.1));
+        }
+        last_step = s;
+    }
+    None
+}

@@ -2,7 +2,7 @@
 //!
 //! # Plain text
 //!
-//! `impl Display for Expr` writes the syntax that [`parse`](crate::parse) reads, with no more
+//! `impl Display for Expr` writes the syntax that [`parse`](crate::parse::parse) reads, with no more
 //! parentheses than the meaning needs. Parsing the text in a scope holding the parameters gives
 //! back **the same node**: `parse(&e.to_string(), &scope) == Ok(e)` for every valid expression.
 //!
@@ -40,7 +40,10 @@
 //! * the subscript is split at further `_` into pieces, Greek pieces become commands, and the
 //!   pieces are joined by commas: `x_1` → `x_{1}`, `psi_f` → `\psi_{f}`, `k_f_r` → `k_{f,r}`,
 //!   `m_alpha` → `m_{\alpha}`;
-//! * there are no implicit subscripts: `Ixx` is `\mathit{Ixx}`, write `I_xx` for `I_{xx}`.
+//! * a name without `_` that is a one-letter (or Greek) base followed only by digits takes
+//!   the digits as its subscript: `x1` → `x_{1}`, `theta12` → `\theta_{12}`;
+//! * there are no other implicit subscripts: `Ixx` is `\mathit{Ixx}` (write `I_xx` for
+//!   `I_{xx}`), `IB1` is `\mathit{IB1}`.
 //!
 //! # Matrices
 //!
@@ -185,7 +188,10 @@ impl Num {
         match self {
             Num::Rat(r) => {
                 let (n, d) = r.to_big_parts();
-                ((!n.is_one()).then(|| n.to_string()), (!d.is_one()).then(|| d.to_string()))
+                (
+                    (!n.is_one()).then(|| n.to_string()),
+                    (!d.is_one()).then(|| d.to_string()),
+                )
             }
             Num::Float(x) => (Some(float(*x)), None),
         }
@@ -206,7 +212,7 @@ fn is_sum1(f: &(Expr, Rational)) -> bool {
 }
 
 /// The factors of a sum term (unit coefficient), or the term itself as one factor.
-fn factors_of(t: Expr) -> Vec<(Expr, Rational)> {
+fn factors_of(t: Expr) -> Factors {
     match t.view() {
         ExprView::Product { coef, factors } if coef.is_one() => factors,
         _ => vec![(t, Rational::ONE)],
@@ -224,8 +230,11 @@ fn ordered_terms(terms: Vec<(Expr, Expr)>) -> Vec<(Expr, Num)> {
     terms
 }
 
+/// `(base, exponent)` pairs of a product.
+type Factors = Vec<(Expr, Rational)>;
+
 /// Numerator and denominator factors (denominator exponents made positive), bare sums last.
-fn split_factors(factors: &[(Expr, Rational)]) -> (Vec<(Expr, Rational)>, Vec<(Expr, Rational)>) {
+fn split_factors(factors: &[(Expr, Rational)]) -> (Factors, Factors) {
     let mut num = Vec::new();
     let mut den = Vec::new();
     for (b, e) in factors {
@@ -292,7 +301,11 @@ fn text_layout(e: Expr, out: &mut Vec<Piece>) -> Level {
             }
         }
         ExprView::Pow(b, x) => {
-            out.extend([Piece::Node(b, Level::Atom), Piece::Str("^"), Piece::Node(x, Level::Power)]);
+            out.extend([
+                Piece::Node(b, Level::Atom),
+                Piece::Str("^"),
+                Piece::Node(x, Level::Power),
+            ]);
             Level::Power
         }
         ExprView::Func(f, a) => {
@@ -330,7 +343,11 @@ fn number_text(n: &Num, out: &mut Vec<Piece>) -> Level {
     match n {
         Num::Rat(r) => {
             out.push(Piece::Text(r.to_string()));
-            if r.is_integer() { Level::Atom } else { Level::Product }
+            if r.is_integer() {
+                Level::Atom
+            } else {
+                Level::Product
+            }
         }
         Num::Float(x) => {
             out.push(Piece::Text(float_text(*x)));
@@ -343,19 +360,11 @@ fn number_text(n: &Num, out: &mut Vec<Piece>) -> Level {
 /// product (see the module docs); returns the level.
 fn product_text(coef: &Num, factors: &[(Expr, Rational)], out: &mut Vec<Piece>) -> Level {
     let (kn, kd) = coef.parts(float_text);
-    let (mut num, den) = split_factors(factors);
-    // The parser multiplies left to right: `3*(a + b)` would be distributed before the next
-    // factor arrives, so the factor after the coefficient must not be a bare sum.
-    let mut kn_last = false;
-    if kn.is_some() && num.first().is_some_and(is_sum1) {
-        match num.iter().position(|f| !is_sum1(f)) {
-            Some(k) => {
-                let f = num.remove(k);
-                num.insert(0, f);
-            }
-            None => kn_last = true,
-        }
-    }
+    let (num, den) = split_factors(factors);
+    // The parser multiplies left to right and `3*(a + b)` would be distributed before the next
+    // factor arrives, so a coefficient must not meet a bare sum first. Bare sums are sorted
+    // last; if every factor on a side is one, that side's coefficient goes at the very end.
+    let kn_last = kn.is_some() && num.first().is_some_and(is_sum1);
     let kd_last = kd.is_some() && den.first().is_some_and(is_sum1);
 
     let mut items = 0;
@@ -401,7 +410,11 @@ fn product_text(coef: &Num, factors: &[(Expr, Rational)], out: &mut Vec<Piece>) 
     if let (Some(k), true) = (&kn, kn_last) {
         out.push(Piece::Text(format!("*{k}")));
     }
-    if items == 1 && nden == 0 && !kd_last && !kn_last { level } else { Level::Product }
+    if items == 1 && nden == 0 && !kd_last && !kn_last {
+        level
+    } else {
+        Level::Product
+    }
 }
 
 /// `base^e` for a positive rational `e`; returns the level.
@@ -411,11 +424,19 @@ fn factor_text((b, e): &(Expr, Rational), out: &mut Vec<Piece>) -> Level {
         return Level::Power;
     }
     if *e == half() {
-        out.extend([Piece::Str("sqrt("), Piece::Node(*b, Level::Sum), Piece::Str(")")]);
+        out.extend([
+            Piece::Str("sqrt("),
+            Piece::Node(*b, Level::Sum),
+            Piece::Str(")"),
+        ]);
         return Level::Atom;
     }
     out.push(Piece::Node(*b, Level::Atom));
-    out.push(Piece::Text(if e.is_integer() { format!("^{e}") } else { format!("^({e})") }));
+    out.push(Piece::Text(if e.is_integer() {
+        format!("^{e}")
+    } else {
+        format!("^({e})")
+    }));
     Level::Power
 }
 
@@ -487,7 +508,11 @@ fn latex_layout(e: Expr, out: &mut Vec<Piece>) -> Level {
             Level::Power
         }
         ExprView::Func(Func::Abs, a) => {
-            out.extend([Piece::Str("\\left|"), Piece::Node(a, Level::Sum), Piece::Str("\\right|")]);
+            out.extend([
+                Piece::Str("\\left|"),
+                Piece::Node(a, Level::Sum),
+                Piece::Str("\\right|"),
+            ]);
             Level::Atom
         }
         ExprView::Func(f, a) => {
@@ -510,7 +535,10 @@ fn latex_layout(e: Expr, out: &mut Vec<Piece>) -> Level {
             Level::Atom
         }
         ExprView::Invalid(err) => {
-            out.push(Piece::Text(format!("\\text{{invalid: {}}}", latex_escape(&err.to_string()))));
+            out.push(Piece::Text(format!(
+                "\\text{{invalid: {}}}",
+                latex_escape(&err.to_string())
+            )));
             Level::Atom
         }
     }
@@ -545,7 +573,11 @@ fn latex_number(n: &Num, out: &mut Vec<Piece>) -> Level {
         }
         Num::Float(x) => {
             let s = latex_float(*x);
-            let level = if s.contains('\\') { Level::Product } else { Level::Atom };
+            let level = if s.contains('\\') {
+                Level::Product
+            } else {
+                Level::Atom
+            };
             out.push(Piece::Text(s));
             level
         }
@@ -566,7 +598,11 @@ fn latex_product(coef: &Num, factors: &[(Expr, Rational)], out: &mut Vec<Piece>)
     top.extend(num.iter().map(Item::Factor));
     if den.is_empty() && kd.is_none() {
         let level = latex_items(&top, false, out);
-        return if top.len() == 1 { level } else { Level::Product };
+        return if top.len() == 1 {
+            level
+        } else {
+            Level::Product
+        };
     }
     let mut bottom: Vec<Item> = kd.map(Item::Coef).into_iter().collect();
     bottom.extend(den.iter().map(Item::Factor));
@@ -591,11 +627,19 @@ fn latex_items(items: &[Item], grouped: bool, out: &mut Vec<Piece>) -> Level {
         match item {
             Item::Coef(k) => {
                 out.push(Piece::Text(k.clone()));
-                level = if k.contains('\\') { Level::Product } else { Level::Atom };
+                level = if k.contains('\\') {
+                    Level::Product
+                } else {
+                    Level::Atom
+                };
             }
             Item::Factor(f) => {
                 if i > 0 {
-                    out.push(Piece::Str(if latex_leads_with_digit(f) { " \\cdot " } else { " " }));
+                    out.push(Piece::Str(if latex_leads_with_digit(f) {
+                        " \\cdot "
+                    } else {
+                        " "
+                    }));
                 }
                 level = latex_factor(f, alone, out);
             }
@@ -625,11 +669,18 @@ fn latex_leads_with_digit((b, e): &(Expr, Rational)) -> bool {
 
 fn latex_factor((b, e): &(Expr, Rational), alone: bool, out: &mut Vec<Piece>) -> Level {
     if e.is_one() {
-        out.push(Piece::Node(*b, if alone { Level::Sum } else { Level::Power }));
+        out.push(Piece::Node(
+            *b,
+            if alone { Level::Sum } else { Level::Power },
+        ));
         return Level::Power;
     }
     if *e == half() {
-        out.extend([Piece::Str("\\sqrt{"), Piece::Node(*b, Level::Sum), Piece::Str("}")]);
+        out.extend([
+            Piece::Str("\\sqrt{"),
+            Piece::Node(*b, Level::Sum),
+            Piece::Str("}"),
+        ]);
         return Level::Power;
     }
     let exponent = if e.is_integer() {
@@ -639,17 +690,20 @@ fn latex_factor((b, e): &(Expr, Rational), alone: bool, out: &mut Vec<Piece>) ->
         format!("\\frac{{{p}}}{{{q}}}")
     };
     // sin²x is written \sin^{2}\left(x\right).
-    if let ExprView::Func(f @ (Func::Sin | Func::Cos | Func::Tan), a) = b.view() {
-        if e.is_integer() {
-            out.extend([
-                Piece::Text(format!("{}^{{{exponent}}}\\left(", latex_func(f))),
-                Piece::Node(a, Level::Sum),
-                Piece::Str("\\right)"),
-            ]);
-            return Level::Atom;
-        }
+    if let ExprView::Func(f @ (Func::Sin | Func::Cos | Func::Tan), a) = b.view()
+        && e.is_integer()
+    {
+        out.extend([
+            Piece::Text(format!("{}^{{{exponent}}}\\left(", latex_func(f))),
+            Piece::Node(a, Level::Sum),
+            Piece::Str("\\right)"),
+        ]);
+        return Level::Atom;
     }
-    out.extend([Piece::Node(*b, Level::Atom), Piece::Text(format!("^{{{exponent}}}"))]);
+    out.extend([
+        Piece::Node(*b, Level::Atom),
+        Piece::Text(format!("^{{{exponent}}}")),
+    ]);
     Level::Power
 }
 
@@ -732,7 +786,10 @@ const GREEK: &[(&str, &str, &str)] = &[
 ];
 
 fn greek(s: &str) -> Option<&'static str> {
-    GREEK.iter().find(|(ascii, uni, _)| *ascii == s || *uni == s).map(|g| g.2)
+    GREEK
+        .iter()
+        .find(|(ascii, uni, _)| *ascii == s || *uni == s)
+        .map(|g| g.2)
 }
 
 /// A parameter name in LaTeX (rule in the module docs).
@@ -746,14 +803,25 @@ pub fn latex_name(name: &str) -> String {
         // `_x`, `x__1`, `x_`: no sensible subscript reading; set the whole name as a word.
         return format!("\\mathit{{{}}}", name.replace('_', "\\_"));
     }
-    let mut s = match greek(base) {
-        Some(g) => g.to_string(),
-        None if base.chars().count() == 1 => base.to_string(),
-        None => format!("\\mathit{{{base}}}"),
+    let word = |b: &str| match greek(b) {
+        Some(g) => Some(g.to_string()),
+        None if b.chars().count() == 1 => Some(b.to_string()),
+        None => None,
     };
+    // `x1`, `theta2`: a letter (or Greek name) followed only by digits, and no `_` subscript.
+    let digits = base.len() - base.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+    if sub.is_none() && digits > 0 && digits < base.len() {
+        let (head, tail) = base.split_at(base.len() - digits);
+        if let Some(h) = word(head) {
+            return format!("{h}_{{{tail}}}");
+        }
+    }
+    let mut s = word(base).unwrap_or_else(|| format!("\\mathit{{{base}}}"));
     if !pieces.is_empty() {
-        let sub: Vec<String> =
-            pieces.iter().map(|p| greek(p).map_or_else(|| p.to_string(), str::to_string)).collect();
+        let sub: Vec<String> = pieces
+            .iter()
+            .map(|p| greek(p).map_or_else(|| p.to_string(), str::to_string))
+            .collect();
         s.push_str(&format!("_{{{}}}", sub.join(",")));
     }
     s
@@ -801,10 +869,17 @@ pub fn display_matrix<M: ExprMatrix + ?Sized>(m: &M) -> String {
     if r == 0 || c == 0 {
         return format!("[] ({r}×{c})");
     }
-    let cells: Vec<Vec<String>> =
-        (0..r).map(|i| (0..c).map(|j| m.entry(i, j).to_string()).collect()).collect();
+    let cells: Vec<Vec<String>> = (0..r)
+        .map(|i| (0..c).map(|j| m.entry(i, j).to_string()).collect())
+        .collect();
     let width: Vec<usize> = (0..c)
-        .map(|j| cells.iter().map(|row| row[j].chars().count()).max().unwrap_or(0))
+        .map(|j| {
+            cells
+                .iter()
+                .map(|row| row[j].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
         .collect();
     let mut s = String::new();
     for (i, row) in cells.iter().enumerate() {
@@ -867,6 +942,11 @@ mod tests {
             ("φ", "\\varphi"),
             ("_x", "\\mathit{\\_x}"),
             ("x__1", "\\mathit{x\\_\\_1}"),
+            ("p0", "p_{0}"),
+            ("theta12", "\\theta_{12}"),
+            ("δ2", "\\delta_{2}"),
+            ("IB1", "\\mathit{IB1}"),
+            ("x1_a", "\\mathit{x1}_{a}"),
             ("x_", "\\mathit{x\\_}"),
         ] {
             assert_eq!(latex_name(name), want, "{name}");

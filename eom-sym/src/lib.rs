@@ -19,11 +19,13 @@ pub mod simplify;
 pub mod subs;
 pub mod model;
 pub mod tape;
+pub mod zero;
 #[doc(hidden)]
 pub mod testing;
 
 pub use dd::Dd;
 pub use diff::diff_many;
+pub use display::{ExprMatrix, Latex, display_matrix, latex_matrix};
 pub use error::SymError;
 pub use expr::{Expr, ExprView, OpCount};
 pub use matrix::SparseMatrix;

@@ -117,7 +117,7 @@ impl<S: Scalar> SparseMatrix<S> {
             return;
         }
         let cur = self.get(i, j);
-        self.set(i, j, if cur.is_zero() { v } else { cur + v });
+        self.set(i, j, if cur.is_zero() { v } else { (cur + v).recognise_zero() });
     }
 
     /// The non-zeros of row `i`, sorted by column.
@@ -180,7 +180,7 @@ impl<S: Scalar> SparseMatrix<S> {
             }
             touched.sort_unstable();
             for &j in &touched {
-                let v = S::sum(&acc[j]);
+                let v = S::sum(&acc[j]).recognise_zero();
                 acc[j].clear();
                 if !v.is_zero() {
                     out.rows[i].push((j, v));
@@ -225,7 +225,7 @@ impl<S: Scalar> SparseMatrix<S> {
                     p += 1;
                     q += 1;
                     let (x, y) = (a[p - 1].1, b[q - 1].1);
-                    (ja, if negate { x - y } else { x + y })
+                    (ja, (if negate { x - y } else { x + y }).recognise_zero())
                 };
                 if !v.is_zero() {
                     row.push((j, v));

@@ -1030,6 +1030,11 @@ impl ExprPool {
     }
 
     pub(crate) fn pow_rational(&mut self, base: Id, r: Rational) -> Id {
+        // Invalid nodes absorb every operation, `x^0` included: without this, `(1/0)^2`
+        // became a valid-looking product over an invalid base that `check` did not see.
+        if self.invalid_of(base).is_some() {
+            return base;
+        }
         if r.is_zero() {
             return ONE;
         }
@@ -1051,7 +1056,15 @@ impl ExprPool {
             }
             return match bv {
                 Number::Float(f) => {
-                    let v = f.powf(r.to_f64());
+                    let v = match r.as_small() {
+                        // An odd root of a negative number is real: (−a)^(p/q) = (−1)^p·a^(p/q)
+                        // for odd q (`powf` would give NaN).
+                        Some((p, q)) if f < 0.0 && q % 2 == 1 => {
+                            let m = (-f).powf(r.to_f64());
+                            if p % 2 == 0 { m } else { -m }
+                        }
+                        _ => f.powf(r.to_f64()),
+                    };
                     if v.is_finite() {
                         self.float(v)
                     } else {
@@ -1071,6 +1084,15 @@ impl ExprPool {
                     if let Some(root) = u32::try_from(q).ok().and_then(|q| b.exact_root(q)) {
                         let rid = self.rational(root);
                         return self.pow_rational(rid, Rational::int(p));
+                    }
+                    if b.is_negative() {
+                        // An odd root of a negative constant is real (the even case was refused
+                        // above): (−a)^(p/q) = (−1)^p·a^(p/q). Written with a positive base so
+                        // that evaluation (`powf`), the nominal value and the sign analysis
+                        // agree with it; a negative base would evaluate to NaN.
+                        let pos = self.rational(b.neg());
+                        let m = self.pow_rational(pos, r);
+                        return if p % 2 == 0 { m } else { self.mul_n(&[MINUS_ONE, m]) };
                     }
                     let e = self.rational(r);
                     self.intern(Key::Mul(&[ONE, base, e]))
@@ -1287,6 +1309,11 @@ fn exact_trig(f: Func, k: &Rational) -> Option<Rational> {
 
 /// Integers and dyadic fractions with a denominator up to 2^20 are exact rationals.
 pub(crate) fn dyadic(x: f64) -> Option<Rational> {
+    // Every integer-valued double below 2^63 is an exact `i64` (the scaled test below alone
+    // left integers above ~8.6e9, such as 1e10, as floats).
+    if x.fract() == 0.0 && x.abs() < 9_223_372_036_854_775_808.0 {
+        return Some(Rational::int(x as i64));
+    }
     let scaled = x * (1u64 << 20) as f64;
     if scaled.fract() == 0.0 && scaled.abs() < 9.0e15 {
         Rational::new(scaled as i64, 1 << 20)

@@ -93,8 +93,15 @@ impl Rational {
         BigRational::from_float(x).and_then(|r| Self::from_big(r).ok())
     }
 
-    /// Parse a decimal literal such as `12`, `1.5`, `1.5e3`, `2E-4` exactly.
+    /// Parse a decimal literal such as `12`, `-1.5`, `1.5e3`, `2E-4` exactly.
     pub fn from_decimal(s: &str) -> Option<Self> {
+        if let Some(rest) = s.strip_prefix('-') {
+            return Self::from_decimal(rest).map(|r| r.neg());
+        }
+        let s = s.strip_prefix('+').unwrap_or(s);
+        if s.starts_with(['-', '+']) {
+            return None;
+        }
         let (mant, exp) = match s.find(['e', 'E']) {
             Some(i) => (&s[..i], s[i + 1..].parse::<i64>().ok()?),
             None => (s, 0),
@@ -267,10 +274,13 @@ impl Rational {
         let base = if e < 0 { self.recip()? } else { self.clone() };
         let k = e.unsigned_abs();
         let (n, d) = base.to_big_parts();
-        // Bound the width before computing: bits(n^k) ≈ k·bits(n).
-        let width = k.saturating_mul(n.bits().max(d.bits()));
+        // Refuse before computing only when the result is certainly too wide: for a part of
+        // b ≥ 2 bits, k·(b − 1) < bits(part^k) ≤ k·b. (Refusing on the upper bound k·b refused
+        // 2^3000, which has 3001 bits, while (2^1000)^3 was accepted.) Otherwise the result has
+        // at most about 2·MAX_BITS bits; compute it and let `from_big` check the exact width.
+        let bits = n.bits().max(d.bits());
         let trivial = n.magnitude().is_one() && d.is_one();
-        if !trivial && width > MAX_BITS {
+        if !trivial && k.saturating_mul(bits.saturating_sub(1)) >= MAX_BITS {
             return Some(Err(RationalOverflow));
         }
         let r = BigRational::new(num_traits::pow(n, k as usize), num_traits::pow(d, k as usize));

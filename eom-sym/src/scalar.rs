@@ -55,6 +55,11 @@ pub trait Scalar:
     fn recip(self) -> Self {
         Self::one() / self
     }
+    /// `self`, or zero when it is identically zero although not structurally (symbolic types:
+    /// see [`zero`](crate::zero)); numbers are returned unchanged.
+    fn recognise_zero(self) -> Self {
+        self
+    }
     /// `Σ items` (symbolic types build one n-ary node).
     fn sum(items: &[Self]) -> Self {
         items.iter().fold(Self::zero(), |a, &b| a + b)
@@ -227,6 +232,9 @@ impl Scalar for Expr {
     fn recip(self) -> Expr {
         Expr::recip(self)
     }
+    fn recognise_zero(self) -> Expr {
+        crate::zero::zero_if_identically_zero(self)
+    }
     fn sum(items: &[Expr]) -> Expr {
         Expr::sum(items.iter().copied())
     }
@@ -245,6 +253,11 @@ pub trait Elementary: Scalar {
     fn atan2(self, x: Self) -> Self;
     /// `self ^ e` for a real exponent.
     fn powf(self, e: Self) -> Self;
+    /// Euler's number. The default is `exp(1)`; types with the constant itself override it
+    /// (for [`Expr`], so that substitution keeps the node `e` instead of building `exp(1)`).
+    fn e() -> Self {
+        Self::one().exp()
+    }
     /// `self ^ n` for an integer exponent.
     fn powi(self, n: i64) -> Self {
         if n == 0 {
@@ -289,6 +302,9 @@ impl Elementary for f64 {
     fn powi(self, n: i64) -> f64 {
         f64::powi(self, n.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
     }
+    fn e() -> f64 {
+        std::f64::consts::E
+    }
 }
 
 impl Elementary for Dd {
@@ -310,6 +326,9 @@ impl Elementary for Dd {
     fn powi(self, n: i64) -> Dd {
         Dd::powi(self, n)
     }
+    fn e() -> Dd {
+        Dd::E
+    }
 }
 
 impl Elementary for Expr {
@@ -330,5 +349,8 @@ impl Elementary for Expr {
     }
     fn powi(self, n: i64) -> Expr {
         Expr::powi(self, n)
+    }
+    fn e() -> Expr {
+        Expr::e()
     }
 }

@@ -382,7 +382,7 @@ pub fn eval_generic<S: Elementary>(
             G::Num(r) => num(r),
             G::Float(f) => S::from_f64(*f),
             G::Const(Constant::Pi) => S::pi(),
-            G::Const(Constant::E) => S::one().exp(),
+            G::Const(Constant::E) => S::e(),
             G::Param(i, name) => value_of(*i)
                 .ok_or_else(|| SymError::MissingParameter { name: name.clone() })?,
             G::Add(c0, terms, c0f) => {

@@ -1,1 +1,69 @@
-//! (to be written)
+//! # models — the eom model library
+//!
+//! Built-in models with named parameters, defaults and known answers (the tests crate checks
+//! each against an independent reference). Every model is a function from parameter values to
+//! a symbolic [`Model`]; parameters not given take their defaults.
+//!
+//! ```
+//! let shimmy = models::build("shimmy", &[("u", 1.0)]).unwrap();
+//! assert_eq!(shimmy.scope.get("u").unwrap().nominal(), 1.0);
+//! assert!(models::build("shimy", &[]).unwrap_err().to_string().contains("shimmy"));
+//! ```
+//!
+//! | model | what it is | reference |
+//! |---|---|---|
+//! | `smd` | spring–mass–damper on a slider | closed form |
+//! | `pendulum` | one-degree-of-freedom pendulum on a pin | closed form |
+//! | `shimmy` | Schwab–Meijaard swivel wheel (nonholonomic tyre) | closed-form cubic |
+//! | `bicycle` | Meijaard et al. 2007 Whipple bicycle benchmark | published table |
+//! | `quarter_car` | two-mass suspension with tyre damping driven by road displacement | closed-form transfer functions |
+//! | `top` | heavy symmetric top on a fixed point | closed form |
+//! | `disk` | rolling disk | closed form |
+//! | `chainN` | N masses in series (e.g. `chain50`) | closed form |
+
+#![warn(missing_docs)]
+
+mod bicycle;
+mod catalogue;
+
+pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
+
+/// Errors of the model library.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelError {
+    /// No model of this name.
+    #[error("unknown model `{name}`; models are: {}", known.join(", "))]
+    UnknownModel {
+        /// The name asked for.
+        name: String,
+        /// The names that exist.
+        known: Vec<String>,
+    },
+    /// A parameter that the model does not have.
+    #[error("model `{model}` has no parameter `{name}`; its parameters are: {}", known.join(", "))]
+    UnknownParameter {
+        /// The model.
+        model: String,
+        /// The name asked for.
+        name: String,
+        /// The parameters that exist.
+        known: Vec<String>,
+    },
+    /// A parameter value that the model cannot take.
+    #[error("model `{model}`, parameter `{name}` = {value}: {problem}")]
+    BadValue {
+        /// The model.
+        model: String,
+        /// The parameter.
+        name: String,
+        /// The value.
+        value: f64,
+        /// Why it is not acceptable.
+        problem: String,
+    },
+    /// An error while building the model.
+    #[error(transparent)]
+    Sym(#[from] eom_sym::SymError),
+}
+
+pub use eom_sym::model::Model;

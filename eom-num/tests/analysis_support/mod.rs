@@ -87,10 +87,8 @@ pub fn set_distance(a: &[Complex64], b: &[Complex64]) -> Option<f64> {
 
 /// Whether every element of `a` is within `tol · max(1, |z|)` of some element of `b`.
 pub fn subset_of(a: &[Complex64], b: &[Complex64], tol: f64) -> bool {
-    a.iter().all(|x| {
-        b.iter()
-            .any(|y| (x - y).norm() <= tol * y.norm().max(1.0))
-    })
+    a.iter()
+        .all(|x| b.iter().any(|y| (x - y).norm() <= tol * y.norm().max(1.0)))
 }
 
 /// Eigenvalues by nalgebra's Schur form (independent of faer, used as a cross-check).

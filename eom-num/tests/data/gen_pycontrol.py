@@ -24,6 +24,14 @@ uncontrollable part, an unobservable part, or all four Kalman parts, each built 
 and hidden by a random similarity transform that is orthogonal times a diagonal with entries in
 [0.5, 2] (condition number at most 4, so the hidden zero blocks stay at rounding level); square
 systems with invertible D (their zeros are also eig(A - B D^-1 C)); and non-square ones.
+
+Where python-control is wrong on this data (checked in eom-num/tests/pycontrol.rs):
+* unobservable_9: minreal keeps 5 states instead of 4 (TB01PD's default tolerance is below the
+  rounding of the hidden block; with tol=1e-12 it keeps 4). Its transfer function is right.
+* kalman_4: zeros() misses the two input-decoupling zeros of this 3-input, 2-output system
+  (AB08ND's default tolerance; with tol=1e-12 it finds them).
+* random_4, square_d_2 (n = 1, m = p = 3): zeros() raises SlycotParameterError ('ldwork', the
+  slycot wrapper's default workspace is below AB08ND's minimum); see pc_zeros below.
 """
 
 import json

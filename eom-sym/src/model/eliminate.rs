@@ -122,7 +122,7 @@ fn axpy<S: Scalar>(target: &Row<S>, f: S, src: &Row<S>, skip_col: usize) -> Row<
         } else {
             if ci != skip_col {
                 let s = src[j].1;
-                let v = if s.is_one() { target[i].1 - f } else { target[i].1 - f * s };
+                let v = (if s.is_one() { target[i].1 - f } else { target[i].1 - f * s }).recognise_zero();
                 if !v.is_zero() {
                     out.push((ci, v));
                 }

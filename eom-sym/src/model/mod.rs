@@ -10,11 +10,13 @@ pub mod assemble;
 pub mod eliminate;
 pub mod geometry;
 pub mod items;
+pub mod linearize;
 pub mod reduce;
 pub mod robust;
 
 pub use assemble::{Assembled, assemble};
 pub use items::*;
+pub use linearize::{Linearization, Linearizer, Method};
 pub use robust::{RobustReport, reduce_robust};
 pub use reduce::{Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
 

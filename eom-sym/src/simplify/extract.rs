@@ -1,32 +1,33 @@
-//! DAG-aware extraction.
+//! DAG-aware extraction, costed in the pool's own terms.
 //!
 //! egg's [`Extractor`](egg::Extractor) minimises the *tree* cost: a subterm used twice is paid
-//! twice, so it happily trades one shared node for two private ones, and the generated code
-//! gets slower (see the crate notes: `AᵀBA` went from DAG cost 347 to 421). The ILP extractor
-//! minimises the DAG cost but needs a C solver. This module does what is cheap and safe:
+//! twice, so it happily trades one shared node for two private ones and the generated code gets
+//! slower (the crate notes measured `AᵀBA` going from DAG cost 347 to 421). The ILP extractor
+//! minimises the DAG cost but needs a C solver. And a cost computed on the e-graph is not the
+//! cost of the result anyway: the smart constructors flatten nested sums and products, inline
+//! powers and numeric coefficients into the product or sum that uses them, and collect like
+//! terms. So this module costs every choice by **building it in the pool**:
 //!
-//! 1. **Rank.** A Knuth (generalised Dijkstra) pass computes the tree cost of every class with
-//!    strictly positive node costs and finalises classes in increasing cost. The order in which
-//!    classes are finalised is a topological order: every class has a node whose children all
-//!    come earlier.
-//! 2. **Select.** Classes are visited in rank order; each picks, among its nodes whose children
-//!    all come earlier (so the selection can never be cyclic), the one with the smallest
-//!    `op cost + Σ reference cost of its children`, where the reference cost of an *anchored*
-//!    class is zero (it is computed anyway, so using it again is free) and that of any other
-//!    class is its own selected cost. Anchors are the classes that are shared (≥ 2 uses or a
-//!    root) in some reference selection: the input DAG, or a previous selection.
-//! 3. **Measure.** The DAG cost of a selection is the sum of the op costs of the classes it
-//!    reaches, each once — the same count as [`Expr::op_count`](crate::Expr::op_count),
-//!    weighted by the [`CostModel`](super::CostModel).
-//!
-//! The final word belongs to the pool: the caller rebuilds each candidate through the smart
-//! constructors and compares real op counts.
+//! 1. **Rank.** A Knuth (generalised Dijkstra) pass over the e-graph computes tree costs with
+//!    strictly positive node costs and finalises classes in increasing cost. That order is
+//!    topological: every class has a node whose children all come earlier. (Costs here are a
+//!    rough e-graph estimate; they only fix the order.)
+//! 2. **Select.** Classes are visited in rank order. For each node whose children all come
+//!    earlier (so the selection can never be cyclic), the candidate expression is built through
+//!    the smart constructors from the children's chosen expressions, and costed as the tree
+//!    cost of its pool DAG in which *anchored* pool nodes are free: they are computed anyway,
+//!    so reusing them costs nothing. The cheapest candidate becomes the class's expression.
+//! 3. **Anchors** are the pool nodes shared (two or more parents, or a root) by a reference
+//!    DAG: the input, or the result of a previous selection. The caller tries a few and
+//!    measures each result with [`Expr::op_count`], which is exact.
 
 use super::CostModel;
 use super::lang::{Graph, Math};
+use crate::expr::{Expr, OpCount, reachable};
+use crate::pool::{ExprPool, MINUS_ONE, Node, ONE, ZERO, with_pool};
 use crate::rational::Rational;
 use egg::Id;
-use hashbrown::HashMap;
+use hashbrown::{HashMap, HashSet};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -36,7 +37,7 @@ pub(crate) struct Index {
     pub classes: Vec<Id>,
     pos: HashMap<Id, usize>,
     /// `(class index, node)` with canonical children.
-    pub nodes: Vec<(usize, Math)>,
+    nodes: Vec<(usize, Math)>,
     /// Distinct child class indices per node.
     kids: Vec<Vec<usize>>,
     /// Node indices per class.
@@ -48,6 +49,7 @@ pub(crate) struct Index {
 
 impl Index {
     pub(crate) fn new(eg: &Graph) -> Index {
+        use egg::Language;
         let mut classes: Vec<Id> = eg.classes().map(|c| c.id).collect();
         classes.sort_unstable();
         let pos: HashMap<Id, usize> = classes.iter().enumerate().map(|(k, &c)| (c, k)).collect();
@@ -60,9 +62,8 @@ impl Index {
             let class = &eg[c];
             konst[k] = class.data.konst.clone();
             for n in &class.nodes {
-                let mut node = n.clone();
-                node.children_mut_canonical(eg);
-                let mut ks: Vec<usize> = node.kids().iter().map(|ch| pos[ch]).collect();
+                let node = n.clone().map_children(|ch| eg.find(ch));
+                let mut ks: Vec<usize> = node.children().iter().filter_map(|ch| pos.get(ch).copied()).collect();
                 ks.sort_unstable();
                 ks.dedup();
                 let ni = nodes.len();
@@ -77,49 +78,18 @@ impl Index {
         Index { classes, pos, nodes, kids, class_nodes, parents, konst }
     }
 
-    /// Dense index of a (canonical) class.
+    /// Dense index of a class.
     pub(crate) fn class_index(&self, eg: &Graph, id: Id) -> Option<usize> {
         self.pos.get(&eg.find(id)).copied()
     }
 
-    /// Dense index of a canonical class id (children of [`Index::nodes`] are canonical).
-    pub(crate) fn index_of(&self, id: Id) -> Option<usize> {
-        self.pos.get(&id).copied()
-    }
-
-    fn kid(&self, id: Id) -> usize {
-        self.pos[&id]
-    }
-
-    /// The op cost of node `n`, given the selected node of each child class.
-    pub(crate) fn op_cost(&self, n: usize, sel: &[usize], w: &CostModel) -> u64 {
+    /// A rough e-graph cost of one node (only used to order classes).
+    fn rough_cost(&self, n: usize, w: &CostModel) -> u64 {
         match &self.nodes[n].1 {
             Math::Rat(_) | Math::Atom(_) => 0,
             Math::Add(ch) => w.add * (ch.len() as u64).saturating_sub(1),
-            Math::Mul(ch) => {
-                let mut coef = Rational::ONE;
-                let mut count: i64 = 0;
-                for &c in ch.iter() {
-                    let k = self.kid(c);
-                    match &self.konst[k] {
-                        Some(r) => coef = coef.mul(r).unwrap_or(Rational::int(2)),
-                        None => {
-                            count += 1;
-                            if let Some(&s) = sel.get(k) {
-                                if s != usize::MAX && self.is_reciprocal(s) {
-                                    // x·y⁻¹ is one division, not a multiplication and a division
-                                    count -= 1;
-                                }
-                            }
-                        }
-                    }
-                }
-                if !coef.abs().is_one() {
-                    count += 1;
-                }
-                w.mul * (count.max(1) - 1) as u64
-            }
-            Math::Pow([_, e]) => match &self.konst[self.kid(*e)] {
+            Math::Mul(ch) => w.mul * (ch.len() as u64).saturating_sub(1),
+            Math::Pow([_, e]) => match self.pos.get(e).and_then(|&k| self.konst[k].as_ref()) {
                 Some(r) => power_cost(r, w),
                 None => w.pow,
             },
@@ -127,26 +97,17 @@ impl Index {
         }
     }
 
-    fn is_reciprocal(&self, n: usize) -> bool {
-        match &self.nodes[n].1 {
-            Math::Pow([_, e]) => self.konst[self.kid(*e)].as_ref().is_some_and(|r| r.is_negative() && r.is_integer()),
-            _ => false,
-        }
-    }
-
-    /// Knuth's pass: tree cost (each node costs its op cost plus one) and the finalisation
-    /// order. Returns `(rank, tree selection)`; `rank[k] == usize::MAX` for classes without an
-    /// acyclic term (none in practice).
-    pub(crate) fn rank(&self, w: &CostModel) -> (Vec<usize>, Vec<usize>) {
+    /// Knuth's pass: the finalisation order of the classes (`usize::MAX` for classes without
+    /// an acyclic term, which do not occur for e-graphs grown from a DAG).
+    pub(crate) fn rank(&self, w: &CostModel) -> Vec<usize> {
         let nc = self.classes.len();
         let mut rank = vec![usize::MAX; nc];
-        let mut sel = vec![usize::MAX; nc];
         let mut tree = vec![0u64; nc];
         let mut pending: Vec<usize> = self.kids.iter().map(Vec::len).collect();
         let mut heap: BinaryHeap<Reverse<(u64, usize)>> = BinaryHeap::new();
         for (n, ks) in self.kids.iter().enumerate() {
             if ks.is_empty() {
-                heap.push(Reverse((1 + self.op_cost(n, &sel, w), n)));
+                heap.push(Reverse((1 + self.rough_cost(n, w), n)));
             }
         }
         let mut next = 0;
@@ -157,102 +118,174 @@ impl Index {
             }
             rank[k] = next;
             next += 1;
-            sel[k] = n;
             tree[k] = cost;
             for &p in &self.parents[k] {
                 pending[p] -= 1;
                 if pending[p] == 0 && rank[self.nodes[p].0] == usize::MAX {
-                    let c = self.kids[p].iter().fold(1 + self.op_cost(p, &sel, w), |s, &ch| s.saturating_add(tree[ch]));
+                    let c = self.kids[p].iter().fold(1 + self.rough_cost(p, w), |s, &ch| s.saturating_add(tree[ch]));
                     heap.push(Reverse((c, p)));
                 }
             }
         }
-        (rank, sel)
+        rank
     }
 
-    /// The DAG-aware selection for the given anchors (see the module docs).
-    pub(crate) fn select(&self, rank: &[usize], anchored: &[bool], w: &CostModel) -> Vec<usize> {
+    /// The selection for one anchor set: the chosen expression of every class that has one.
+    pub(crate) fn select(&self, rank: &[usize], anchors: &HashSet<u32>, w: &CostModel) -> Vec<Option<Expr>> {
         let nc = self.classes.len();
         let mut order: Vec<usize> = (0..nc).filter(|&k| rank[k] != usize::MAX).collect();
         order.sort_unstable_by_key(|&k| rank[k]);
-        let mut sel = vec![usize::MAX; nc];
-        let mut refc = vec![0u64; nc];
+        let mut chosen: Vec<Option<Expr>> = vec![None; nc];
+        let mut tc = TreeCost { memo: HashMap::new(), anchors, w: *w };
         for k in order {
-            let mut best: Option<(u64, usize)> = None;
+            let mut best: Option<(u64, Expr)> = None;
             for &n in &self.class_nodes[k] {
                 if !self.kids[n].iter().all(|&ch| rank[ch] < rank[k]) {
                     continue;
                 }
-                let c = self.kids[n].iter().fold(self.op_cost(n, &sel, w), |s, &ch| s.saturating_add(refc[ch]));
-                if best.is_none_or(|(b, _)| c < b) {
-                    best = Some((c, n));
+                let get = |id: &Id| self.pos.get(id).and_then(|&c| chosen[c]);
+                let Some(e) = build(&self.nodes[n].1, get) else { continue };
+                if e.is_invalid() {
+                    continue;
+                }
+                let c = tc.of(e.id());
+                if best.as_ref().is_none_or(|(b, _)| c < *b) {
+                    best = Some((c, e));
                 }
             }
-            if let Some((c, n)) = best {
-                sel[k] = n;
-                refc[k] = if anchored[k] { 0 } else { c };
-            }
+            chosen[k] = best.map(|b| b.1);
         }
-        sel
-    }
-
-    /// Classes reachable from `roots` through the selection, in rank order (children first),
-    /// with the number of selected parents (plus root occurrences) of each.
-    pub(crate) fn reached(&self, roots: &[usize], sel: &[usize], rank: &[usize]) -> (Vec<usize>, Vec<u32>) {
-        let mut uses = vec![0u32; self.classes.len()];
-        let mut seen = vec![false; self.classes.len()];
-        let mut stack: Vec<usize> = Vec::new();
-        let mut out = Vec::new();
-        for &r in roots {
-            uses[r] += 1;
-            stack.push(r);
-        }
-        while let Some(k) = stack.pop() {
-            if seen[k] {
-                continue;
-            }
-            seen[k] = true;
-            out.push(k);
-            if sel[k] == usize::MAX {
-                continue;
-            }
-            for &ch in &self.kids[sel[k]] {
-                uses[ch] += 1;
-                if !seen[ch] {
-                    stack.push(ch);
-                }
-            }
-        }
-        out.sort_unstable_by_key(|&k| rank[k]);
-        (out, uses)
-    }
-
-    /// DAG cost of a selection: every reached class once.
-    pub(crate) fn dag_cost(&self, roots: &[usize], sel: &[usize], rank: &[usize], w: &CostModel) -> Option<u64> {
-        let (reached, _) = self.reached(roots, sel, rank);
-        let mut total = 0u64;
-        for k in reached {
-            if sel[k] == usize::MAX {
-                return None;
-            }
-            total = total.saturating_add(self.op_cost(sel[k], sel, w));
-        }
-        Some(total)
-    }
-
-    /// Anchors: classes used at least twice (or as a root) by a selection.
-    pub(crate) fn shared(&self, roots: &[usize], sel: &[usize], rank: &[usize]) -> Vec<bool> {
-        let (reached, uses) = self.reached(roots, sel, rank);
-        let mut a = vec![false; self.classes.len()];
-        for k in reached {
-            a[k] = uses[k] >= 2 || roots.contains(&k);
-        }
-        a
+        chosen
     }
 }
 
-/// Cost of `x^r` as [`Expr::op_count`](crate::Expr::op_count) counts it.
-pub(crate) fn power_cost(r: &Rational, w: &CostModel) -> u64 {
+/// The expression of an e-node, built through the smart constructors from its children's.
+pub(crate) fn build(node: &Math, get: impl Fn(&Id) -> Option<Expr>) -> Option<Expr> {
+    Some(match node {
+        Math::Rat(r) => Expr::from_rational(r.clone()),
+        Math::Atom(id) => Expr::from_id(*id),
+        Math::Add(ch) => Expr::sum(ch.iter().map(&get).collect::<Option<Vec<_>>>()?),
+        Math::Mul(ch) => Expr::product(ch.iter().map(&get).collect::<Option<Vec<_>>>()?),
+        Math::Pow([b, e]) => {
+            let base = get(b)?;
+            let ex = get(e)?;
+            match ex.as_rational() {
+                Some(r) => base.pow_rational(r),
+                None => base.pow(ex),
+            }
+        }
+        Math::Func(f, [a]) => get(a)?.apply(*f),
+        Math::Atan2([y, x]) => get(y)?.atan2(get(x)?),
+    })
+}
+
+/// Tree cost of pool nodes in which anchored nodes are free (memoised per anchor set).
+struct TreeCost<'a> {
+    memo: HashMap<u32, u64>,
+    anchors: &'a HashSet<u32>,
+    w: CostModel,
+}
+
+impl TreeCost<'_> {
+    /// The cost of computing `id` (itself never free: it is the node being chosen).
+    fn of(&mut self, id: u32) -> u64 {
+        if let Some(&c) = self.memo.get(&id) {
+            return c;
+        }
+        // Iterative post-order: the pool DAG can be deep.
+        let mut stack: Vec<(u32, bool)> = vec![(id, false)];
+        with_pool(|p| {
+            while let Some((x, expanded)) = stack.pop() {
+                if self.memo.contains_key(&x) {
+                    continue;
+                }
+                if !expanded {
+                    stack.push((x, true));
+                    p.for_each_child(x, |c| {
+                        if !self.anchors.contains(&c) && !self.memo.contains_key(&c) {
+                            stack.push((c, false));
+                        }
+                    });
+                    continue;
+                }
+                let mut c = self.w.cost(&node_ops(p, x));
+                p.for_each_child(x, |ch| {
+                    if !self.anchors.contains(&ch) {
+                        c = c.saturating_add(self.memo.get(&ch).copied().unwrap_or(0));
+                    }
+                });
+                self.memo.insert(x, c);
+            }
+        });
+        self.memo.get(&id).copied().unwrap_or(u64::MAX)
+    }
+}
+
+/// Pool nodes with two or more parents in the DAG of `roots`, and the roots themselves.
+pub(crate) fn shared_nodes(roots: &[Expr]) -> HashSet<u32> {
+    let ids = reachable(roots);
+    let mut parents: HashMap<u32, u32> = HashMap::with_capacity(ids.len());
+    with_pool(|p| {
+        for &i in &ids {
+            let mut seen: Vec<u32> = Vec::new();
+            p.for_each_child(i, |c| {
+                if !seen.contains(&c) {
+                    seen.push(c);
+                    *parents.entry(c).or_default() += 1;
+                }
+            });
+        }
+    });
+    let mut s: HashSet<u32> = parents.into_iter().filter(|(_, n)| *n >= 2).map(|(i, _)| i).collect();
+    s.extend(roots.iter().map(|r| r.id()));
+    s
+}
+
+/// The operations of one pool node alone, counted exactly as [`Expr::op_count`] counts them
+/// (a test checks that the two agree on random DAGs).
+pub(crate) fn node_ops(p: &ExprPool, i: u32) -> OpCount {
+    let mut c = OpCount::default();
+    match p.node(i) {
+        Node::Add(..) => {
+            let (c0, pairs) = p.add_parts(i).expect("sum");
+            let n = pairs.len() / 2 + usize::from(c0 != ZERO);
+            c.add += n.saturating_sub(1);
+            for t in pairs.chunks_exact(2) {
+                if t[1] != ONE && t[1] != MINUS_ONE {
+                    c.mul += 1;
+                }
+            }
+        }
+        Node::Mul(..) => {
+            let (coef, pairs) = p.mul_parts(i).expect("product");
+            let mut n = pairs.len() / 2 + usize::from(coef != ONE && coef != MINUS_ONE);
+            for t in pairs.chunks_exact(2) {
+                match p.rational_of(t[1]).and_then(Rational::as_small) {
+                    Some((k, 1)) if k > 0 => c.mul += chain(k as u64) as usize,
+                    Some((-1, 1)) => {
+                        c.div += 1;
+                        n = n.saturating_sub(1);
+                    }
+                    Some((k, 1)) => {
+                        c.div += 1;
+                        n = n.saturating_sub(1);
+                        c.mul += chain(k.unsigned_abs()) as usize;
+                    }
+                    Some((1, 2)) => c.func += 1,
+                    _ => c.pow += 1,
+                }
+            }
+            c.mul += n.saturating_sub(1);
+        }
+        Node::Pow(..) => c.pow += 1,
+        Node::Func(..) | Node::Atan2(..) => c.func += 1,
+        _ => {}
+    }
+    c
+}
+
+/// Cost of `x^r` as [`Expr::op_count`] counts it.
+fn power_cost(r: &Rational, w: &CostModel) -> u64 {
     match r.as_small() {
         Some((1, 1)) => 0,
         Some((k, 1)) if k > 0 => w.mul * chain(k as u64),
@@ -271,18 +304,28 @@ fn chain(k: u64) -> u64 {
     (63 - k.leading_zeros() as u64) + k.count_ones() as u64 - 1
 }
 
-trait NodeExt {
-    fn children_mut_canonical(&mut self, eg: &Graph);
-    fn kids(&self) -> &[Id];
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::{params, random_dag};
 
-impl NodeExt for Math {
-    fn children_mut_canonical(&mut self, eg: &Graph) {
-        use egg::Language;
-        self.update_children(|c| eg.find(c));
-    }
-    fn kids(&self) -> &[Id] {
-        use egg::Language;
-        self.children()
+    #[test]
+    fn node_ops_agree_with_op_count() {
+        for seed in 0..4 {
+            let p = params(6, seed, seed % 2 == 0);
+            let roots = random_dag(&p, 600, 12, seed);
+            let total = with_pool(|pool| {
+                reachable(&roots).iter().fold(OpCount::default(), |mut acc, &i| {
+                    let o = node_ops(pool, i);
+                    acc.add += o.add;
+                    acc.mul += o.mul;
+                    acc.div += o.div;
+                    acc.func += o.func;
+                    acc.pow += o.pow;
+                    acc
+                })
+            });
+            assert_eq!(total, Expr::op_count(&roots));
+        }
     }
 }

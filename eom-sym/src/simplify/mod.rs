@@ -71,6 +71,7 @@ use crate::expr::{Expr, ExprView, OpCount, reachable};
 use crate::matrix::SparseMatrix;
 use crate::pool::{Node, with_pool};
 use egg::{BackoffScheduler, Id, Runner};
+use hashbrown::HashSet;
 use extract::Index;
 use lang::{Graph, Math, Meta, Signs};
 use std::time::{Duration, Instant};
@@ -278,7 +279,8 @@ impl Simplifier {
         }
 
         // 1. Convert.
-        let (egraph, root_ids, shared_ids, n_input) = to_egraph(roots);
+        let (egraph, root_ids, n_input) = to_egraph(roots);
+        let input_anchors = extract::shared_nodes(roots);
 
         // 2. Rewrite.
         let rules = rules::rules(self.node_limit, self.trig);
@@ -293,7 +295,7 @@ impl Simplifier {
         if self.stall_iterations > 0 {
             let k = self.stall_iterations;
             let w = self.cost;
-            let anchors = shared_ids.clone();
+            let anchors = input_anchors.clone();
             let mut history: Vec<u64> = Vec::new();
             runner = runner.with_hook(move |r| {
                 let c = estimate(&r.egraph, &r.roots, &anchors, &w).unwrap_or(u64::MAX);
@@ -323,7 +325,7 @@ impl Simplifier {
         let (nodes, classes) = (eg.total_size(), eg.number_of_classes());
 
         // 3. Extract candidates, 4. rebuild and measure.
-        let best = best_candidate(eg, &runner.roots, &shared_ids, &self.cost);
+        let best = best_candidate(eg, &runner.roots, &input_anchors, &self.cost);
         let Some((new_roots, ops_after)) = best else {
             return Ok(unchanged(stop, iterations, nodes, classes, rewrite_time));
         };
@@ -346,9 +348,8 @@ impl Simplifier {
     }
 }
 
-/// The pool DAG as an e-graph. Returns the e-graph, the root classes, the classes the input
-/// shares (used by two or more nodes, or a root), and the number of e-nodes added.
-fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, Vec<Id>, usize) {
+/// The pool DAG as an e-graph: the e-graph, the root classes and the number of e-nodes.
+fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, usize) {
     let ids = reachable(roots);
     let mut eg = Graph::new(Meta::default());
     // Leaf metadata first: the analysis reads it when the leaves are added.
@@ -361,10 +362,8 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, Vec<Id>, usize) {
         }
     });
     let mut map: hashbrown::HashMap<u32, Id> = hashbrown::HashMap::with_capacity(ids.len());
-    let mut uses: hashbrown::HashMap<u32, u32> = hashbrown::HashMap::new();
     for &id in &ids {
         let e = Expr::from_id(id);
-        let sign = e.sign();
         let node = match e.view() {
             ExprView::Rational(r) => Math::Rat(r),
             ExprView::Float(_) | ExprView::Constant(_) | ExprView::Param(..) | ExprView::Invalid(_) => {
@@ -376,7 +375,6 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, Vec<Id>, usize) {
                     kids.push(map[&constant.id()]);
                 }
                 for (t, c) in terms {
-                    *uses.entry(t.id()).or_default() += 1;
                     let tid = map[&t.id()];
                     if c.is_one() {
                         kids.push(tid);
@@ -385,6 +383,7 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, Vec<Id>, usize) {
                         kids.push(eg.add(Math::Mul(sorted_pair(cid, tid))));
                     }
                 }
+                kids.sort_unstable();
                 Math::Add(kids.into())
             }
             ExprView::Product { coef, factors } => {
@@ -393,7 +392,6 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, Vec<Id>, usize) {
                     kids.push(map[&coef.id()]);
                 }
                 for (b, r) in factors {
-                    *uses.entry(b.id()).or_default() += 1;
                     let bid = map[&b.id()];
                     if r.is_one() {
                         kids.push(bid);
@@ -404,136 +402,75 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, Vec<Id>, usize) {
                 }
                 if kids.len() == 1 {
                     // x^e alone: the Pow node is the class.
-                    let only = kids[0];
-                    map.insert(id, only);
+                    map.insert(id, kids[0]);
                     continue;
                 }
                 kids.sort_unstable();
                 Math::Mul(kids.into())
             }
-            ExprView::Pow(a, b) => {
-                for c in [a, b] {
-                    *uses.entry(c.id()).or_default() += 1;
-                }
-                Math::Pow([map[&a.id()], map[&b.id()]])
-            }
-            ExprView::Func(f, a) => {
-                *uses.entry(a.id()).or_default() += 1;
-                Math::Func(f, [map[&a.id()]])
-            }
-            ExprView::Atan2(y, x) => {
-                for c in [y, x] {
-                    *uses.entry(c.id()).or_default() += 1;
-                }
-                Math::Atan2([map[&y.id()], map[&x.id()]])
-            }
+            ExprView::Pow(a, b) => Math::Pow([map[&a.id()], map[&b.id()]]),
+            ExprView::Func(f, a) => Math::Func(f, [map[&a.id()]]),
+            ExprView::Atan2(y, x) => Math::Atan2([map[&y.id()], map[&x.id()]]),
         };
         let cid = eg.add(node);
         // The pool's sign knowledge may be sharper than what `make` derives; both are sound, so
         // keep the intersection. Parents are added later and see it.
-        let mine = eg[cid].data.sign;
-        let both = Signs::intersect(mine, Signs::from_sign(sign));
+        let both = Signs::intersect(eg[cid].data.sign, Signs::from_sign(e.sign()));
         eg[cid].data.sign = both;
         map.insert(id, cid);
     }
-    for r in roots {
-        *uses.entry(r.id()).or_default() += 2;
-    }
     let root_ids: Vec<Id> = roots.iter().map(|r| map[&r.id()]).collect();
-    let shared: Vec<Id> = uses.iter().filter(|(_, n)| **n >= 2).filter_map(|(id, _)| map.get(id).copied()).collect();
     eg.rebuild();
     let n = eg.total_size();
-    (eg, root_ids, shared, n)
+    (eg, root_ids, n)
 }
 
 fn sorted_pair(a: Id, b: Id) -> Box<[Id]> {
     if a <= b { Box::new([a, b]) } else { Box::new([b, a]) }
 }
 
-/// The DAG cost of the extraction anchored on the input's shared classes (for the stall hook).
-fn estimate(eg: &Graph, roots: &[Id], anchors: &[Id], w: &CostModel) -> Option<u64> {
-    let idx = Index::new(eg);
-    let (rank, _) = idx.rank(w);
-    let mut anchored = vec![false; idx.classes.len()];
-    for &a in anchors {
-        if let Some(k) = idx.class_index(eg, a) {
-            anchored[k] = true;
-        }
-    }
-    let r: Vec<usize> = roots.iter().map(|&r| idx.class_index(eg, r)).collect::<Option<_>>()?;
-    let sel = idx.select(&rank, &anchored, w);
-    idx.dag_cost(&r, &sel, &rank, w)
+/// The expressions chosen for `roots` by one selection.
+fn pick(idx: &Index, eg: &Graph, roots: &[Id], chosen: &[Option<Expr>]) -> Option<Vec<Expr>> {
+    roots.iter().map(|&r| idx.class_index(eg, r).and_then(|k| chosen[k])).collect()
 }
 
-/// Extract the candidates, rebuild each through the pool, return the cheapest (by the real
-/// op count of the rebuilt roots) that is valid.
-fn best_candidate(eg: &Graph, roots: &[Id], anchors: &[Id], w: &CostModel) -> Option<(Vec<Expr>, OpCount)> {
+/// The weighted DAG cost of the extraction anchored on the input's shared nodes (for the stall
+/// hook).
+fn estimate(eg: &Graph, roots: &[Id], anchors: &HashSet<u32>, w: &CostModel) -> Option<u64> {
     let idx = Index::new(eg);
-    let (rank, _) = idx.rank(w);
-    let r: Vec<usize> = roots.iter().map(|&r| idx.class_index(eg, r)).collect::<Option<_>>()?;
-    let nc = idx.classes.len();
-    let mut input_anchors = vec![false; nc];
-    for &a in anchors {
-        if let Some(k) = idx.class_index(eg, a) {
-            input_anchors[k] = true;
-        }
-    }
-    // Anchored on the input's sharing, unanchored (tree-like), then twice anchored on what the
-    // previous selection shares.
-    let mut selections = vec![idx.select(&rank, &input_anchors, w), idx.select(&rank, &vec![false; nc], w)];
-    let mut from = 0;
-    for _ in 0..2 {
-        let shared = idx.shared(&r, &selections[from], &rank);
-        let next = idx.select(&rank, &shared, w);
-        if selections.contains(&next) {
-            break;
-        }
-        selections.push(next);
-        from = selections.len() - 1;
-    }
+    let rank = idx.rank(w);
+    let exprs = pick(&idx, eg, roots, &idx.select(&rank, anchors, w))?;
+    Some(w.of(&exprs))
+}
+
+/// Extract with a few anchor sets (the input's shared nodes, none, then what the best result
+/// so far shares) and return the cheapest valid result by its exact op count.
+fn best_candidate(eg: &Graph, roots: &[Id], input_anchors: &HashSet<u32>, w: &CostModel) -> Option<(Vec<Expr>, OpCount)> {
+    let idx = Index::new(eg);
+    let rank = idx.rank(w);
     let mut best: Option<(Vec<Expr>, OpCount, u64)> = None;
-    for sel in &selections {
-        let Some(exprs) = rebuild(&idx, &r, sel, &rank) else { continue };
+    let consider = |exprs: Option<Vec<Expr>>, best: &mut Option<(Vec<Expr>, OpCount, u64)>| {
+        let Some(exprs) = exprs else { return };
         if exprs.iter().any(|e| e.is_invalid()) {
-            continue;
+            return;
         }
         let ops = Expr::op_count(&exprs);
         let c = w.cost(&ops);
         if best.as_ref().is_none_or(|b| c < b.2) {
-            best = Some((exprs, ops, c));
+            *best = Some((exprs, ops, c));
         }
+    };
+    consider(pick(&idx, eg, roots, &idx.select(&rank, input_anchors, w)), &mut best);
+    consider(pick(&idx, eg, roots, &idx.select(&rank, &HashSet::new(), w)), &mut best);
+    let mut last: Option<HashSet<u32>> = None;
+    for _ in 0..2 {
+        let Some((exprs, ..)) = &best else { break };
+        let anchors = extract::shared_nodes(exprs);
+        if last.as_ref() == Some(&anchors) {
+            break;
+        }
+        consider(pick(&idx, eg, roots, &idx.select(&rank, &anchors, w)), &mut best);
+        last = Some(anchors);
     }
     best.map(|(e, o, _)| (e, o))
-}
-
-/// Rebuild the selected terms of `roots` through the smart constructors.
-fn rebuild(idx: &Index, roots: &[usize], sel: &[usize], rank: &[usize]) -> Option<Vec<Expr>> {
-    let (reached, _) = idx.reached(roots, sel, rank);
-    let mut built: hashbrown::HashMap<usize, Expr> = hashbrown::HashMap::with_capacity(reached.len());
-    for k in reached {
-        let n = *sel.get(k)?;
-        if n == usize::MAX {
-            return None;
-        }
-        let node = &idx.nodes[n].1;
-        let get = |id: &Id| -> Option<Expr> { built.get(&idx.index_of(*id)?).copied() };
-        let e = match node {
-            Math::Rat(r) => Expr::from_rational(r.clone()),
-            Math::Atom(id) => Expr::from_id(*id),
-            Math::Add(ch) => Expr::sum(ch.iter().map(get).collect::<Option<Vec<_>>>()?),
-            Math::Mul(ch) => Expr::product(ch.iter().map(get).collect::<Option<Vec<_>>>()?),
-            Math::Pow([b, e]) => {
-                let base = get(b)?;
-                let ex = get(e)?;
-                match ex.as_rational() {
-                    Some(r) => base.pow_rational(r),
-                    None => base.pow(ex),
-                }
-            }
-            Math::Func(f, [a]) => get(a)?.apply(*f),
-            Math::Atan2([y, x]) => get(y)?.atan2(get(x)?),
-        };
-        built.insert(k, e);
-    }
-    roots.iter().map(|k| built.get(k).copied()).collect()
 }

@@ -196,7 +196,8 @@ impl Poly {
     }
 
     pub(crate) fn pow(&self, k: u32, b: &mut Budget) -> Result<Poly, WorkLimit> {
-        if k.saturating_mul(self.total_degree()) > b.max_degree.saturating_mul(self.nvars.max(1) as u32) {
+        let d = (0..self.nvars).map(|v| self.deg_in(v)).max().unwrap_or(0);
+        if k.saturating_mul(d) > b.max_degree {
             return Err(WorkLimit::Degree);
         }
         let mut result = Poly::one(self.nvars);
@@ -212,10 +213,6 @@ impl Poly {
             }
         }
         Ok(result)
-    }
-
-    fn total_degree(&self) -> u32 {
-        self.terms.iter().map(|(e, _)| e.iter().sum::<u32>()).max().unwrap_or(0)
     }
 
     /// Degree in variable `v` (0 for the zero polynomial).

@@ -113,107 +113,160 @@ impl RationalNormalizer {
     /// nowhere defined.
     pub fn normalize(&self, e: Expr) -> Result<Normalized, SymError> {
         e.check().map_err(|err| SymError::Invalid(Box::new(err)))?;
-        // 1. Find the atoms and the nodes with rational structure.
-        let mut atoms: Vec<Expr> = Vec::new();
-        let mut atom_set: HashSet<Expr> = HashSet::new();
+        // 1. Walk the rational structure: inner nodes (sums, products), opaque atoms, and for
+        //    every atom the lcm of the denominators of the rational exponents it carries.
         let mut inner: HashSet<Expr> = HashSet::new();
+        let mut opaque: HashSet<Expr> = HashSet::new();
+        let mut lcm: HashMap<Expr, i64> = HashMap::new();
         let mut stack = vec![e];
         while let Some(x) = stack.pop() {
-            if inner.contains(&x) || atom_set.contains(&x) {
+            if inner.contains(&x) || opaque.contains(&x) {
                 continue;
             }
-            match classify(x) {
-                Shape::Number(_) => {}
-                Shape::Atom => {
-                    atom_set.insert(x);
-                    atoms.push(x);
-                }
-                Shape::Sum(terms, c0) => {
+            match x.view() {
+                ExprView::Rational(_) => {}
+                ExprView::Sum { constant, terms } => {
                     inner.insert(x);
-                    if let Some(c) = c0 {
-                        stack.push(c);
-                    }
+                    stack.push(constant);
                     for (t, c) in terms {
                         stack.push(t);
                         stack.push(c);
                     }
                 }
-                Shape::Product(coef, factors) => {
+                ExprView::Product { coef, factors } => {
                     inner.insert(x);
                     stack.push(coef);
-                    for (b, _) in factors {
-                        stack.push(b);
+                    for (b, r) in factors {
+                        let q = match r.as_small() {
+                            Some((_, q)) => q,
+                            None => return Ok(Normalized::TooLarge(WorkLimit::Degree)),
+                        };
+                        if q > 1 && !is_opaque(b) {
+                            // A sum, product or number under a root: the root is the atom.
+                            opaque.insert(root(b, q));
+                        } else {
+                            stack.push(b);
+                        }
+                        if q > 1 && is_opaque(b) {
+                            let l = lcm.entry(b).or_insert(1);
+                            *l = num_integer::lcm(*l, q);
+                            if *l > i64::from(self.max_degree) {
+                                return Ok(Normalized::TooLarge(WorkLimit::Degree));
+                            }
+                        }
                     }
                 }
+                _ => {
+                    opaque.insert(x);
+                }
             }
-            if atoms.len() > self.max_atoms {
+            if opaque.len() > self.max_atoms {
                 return Ok(Normalized::TooLarge(WorkLimit::Atoms));
             }
         }
+        // An opaque x that also appears as x^(p/q) is written (x^(1/L))^L, L the lcm of those q:
+        // x ≥ 0 wherever the input is defined (a rational power of a negative number has no
+        // real value in the pool's evaluation), and there the identity holds.
+        let mut atoms: Vec<Expr> = opaque.iter().map(|&x| lcm.get(&x).map_or(x, |&l| root(x, l))).collect();
         atoms.sort();
+        atoms.dedup();
         let n = atoms.len();
         let var: HashMap<Expr, usize> = atoms.iter().enumerate().map(|(i, &a)| (a, i)).collect();
         let mut budget = Budget { max_terms: self.max_terms, max_degree: self.max_degree, max_work: self.max_work, work: 0 };
+        // `x^(p/q)` for an opaque `x`: `(x^(1/L))^(p·L/q)` when x carries root denominators
+        // (q divides L), the atom `x^(1/q)` to the `p` otherwise (only for q = 1 or a
+        // non-opaque base under a root, which is its own atom).
+        let atom_power = |x: Expr, p: i64, q: i64, budget: &mut Budget| -> Result<Rf, Fail> {
+            let (a, k) = match lcm.get(&x) {
+                Some(&l) => (root(x, l), p.checked_mul(l / q).ok_or(Fail::Limit(WorkLimit::Degree))?),
+                None => (root(x, q), p),
+            };
+            let i = *var.get(&a).ok_or(Fail::Limit(WorkLimit::Atoms))?;
+            Rf { num: Poly::var(n, i), den: Poly::one(n) }.powi(k, budget)
+        };
 
         // 2. Bottom-up in pool order (children before parents).
         let mut order: Vec<Expr> = inner.into_iter().collect();
         order.sort();
-        let mut memo: HashMap<Expr, Rf> = HashMap::with_capacity(order.len() + n);
-        let value = |x: Expr, memo: &HashMap<Expr, Rf>| -> Option<Rf> {
+        let mut memo: HashMap<Expr, Rf> = HashMap::with_capacity(order.len());
+        let value = |x: Expr, memo: &HashMap<Expr, Rf>, budget: &mut Budget| -> Result<Rf, Fail> {
             if let Some(r) = memo.get(&x) {
-                return Some(r.clone());
+                return Ok(r.clone());
             }
-            if let Some(&i) = var.get(&x) {
-                return Some(Rf { num: Poly::var(n, i), den: Poly::one(n) });
+            if let Some(r) = x.as_rational() {
+                return Ok(Rf { num: Poly::constant(n, r), den: Poly::one(n) });
             }
-            match classify(x) {
-                Shape::Number(r) => Some(Rf { num: Poly::constant(n, r), den: Poly::one(n) }),
-                _ => None,
+            if opaque.contains(&x) {
+                return atom_power(x, 1, 1, budget);
             }
+            // Every inner node is evaluated after its children (pool ids are topological).
+            Err(Fail::Limit(WorkLimit::Work))
         };
         for x in order {
-            let r = match classify(x) {
-                Shape::Sum(terms, c0) => {
-                    let mut acc = match c0 {
-                        Some(c) => value(c, &memo).ok_or_else(missing)?,
-                        None => Rf::zero(n),
-                    };
-                    for (t, c) in terms {
-                        let tv = value(t, &memo).ok_or_else(missing)?;
-                        let cv = value(c, &memo).ok_or_else(missing)?;
-                        let term = match tri(tv.mul(&cv, &mut budget))? {
-                            Ok(v) => v,
-                            Err(l) => return Ok(Normalized::TooLarge(l)),
-                        };
-                        acc = match tri(acc.add(&term, &mut budget))? {
-                            Ok(v) => v,
-                            Err(l) => return Ok(Normalized::TooLarge(l)),
-                        };
+            let step = |memo: &HashMap<Expr, Rf>, budget: &mut Budget| -> Result<Rf, Fail> {
+                match x.view() {
+                    ExprView::Sum { constant, terms } => {
+                        let mut acc = value(constant, memo, budget)?;
+                        for (t, c) in terms {
+                            let term = value(t, memo, budget)?.mul(&value(c, memo, budget)?, budget)?;
+                            acc = acc.add(&term, budget)?;
+                        }
+                        Ok(acc)
                     }
-                    acc
-                }
-                Shape::Product(coef, factors) => {
-                    let mut acc = value(coef, &memo).ok_or_else(missing)?;
-                    for (b, k) in factors {
-                        let bv = value(b, &memo).ok_or_else(missing)?;
-                        let step = bv.powi(k, &mut budget).and_then(|p| acc.mul(&p, &mut budget));
-                        acc = match tri(step)? {
-                            Ok(v) => v,
-                            Err(l) => return Ok(Normalized::TooLarge(l)),
-                        };
+                    ExprView::Product { coef, factors } => {
+                        let mut acc = value(coef, memo, budget)?;
+                        for (b, r) in factors {
+                            let (p, q) = r.as_small().ok_or(Fail::Limit(WorkLimit::Degree))?;
+                            let f = if is_opaque(b) {
+                                atom_power(b, p, q, budget)?
+                            } else if q == 1 {
+                                value(b, memo, budget)?.powi(p, budget)?
+                            } else {
+                                atom_power(root(b, q), p, 1, budget)?
+                            };
+                            acc = acc.mul(&f, budget)?;
+                        }
+                        Ok(acc)
                     }
-                    acc
+                    _ => Err(Fail::Limit(WorkLimit::Work)),
                 }
-                _ => continue,
             };
-            memo.insert(x, r);
+            match step(&memo, &mut budget) {
+                Ok(r) => {
+                    memo.insert(x, r);
+                }
+                Err(Fail::Limit(l)) => return Ok(Normalized::TooLarge(l)),
+                Err(Fail::ZeroDenominator) => return Err(zero_denominator()),
+            }
         }
-        let rf = value(e, &memo).ok_or_else(missing)?;
+        let rf = match value(e, &memo, &mut budget) {
+            Ok(r) => r,
+            Err(Fail::Limit(l)) => return Ok(Normalized::TooLarge(l)),
+            Err(Fail::ZeroDenominator) => return Err(zero_denominator()),
+        };
         Ok(match rf.to_form(&atoms, &mut budget) {
             Ok(f) => Normalized::Form(f),
             Err(l) => Normalized::TooLarge(l),
         })
     }
+}
+
+/// Parameters, constants, floats, functions, `atan2` and general powers: the symbols of the
+/// polynomials.
+fn is_opaque(x: Expr) -> bool {
+    !matches!(x.view(), ExprView::Rational(_) | ExprView::Sum { .. } | ExprView::Product { .. })
+}
+
+/// `x^(1/q)` through the pool.
+fn root(x: Expr, q: i64) -> Expr {
+    match Rational::new(1, q) {
+        Some(r) => x.pow_rational(r),
+        None => x,
+    }
+}
+
+fn zero_denominator() -> SymError {
+    SymError::DivisionByZero { context: "a denominator is identically zero as a rational function".into() }
 }
 
 /// Rational-function normal form with the default bounds; the input comes back unchanged when
@@ -231,60 +284,6 @@ pub fn normalize_rational(e: Expr) -> Result<Expr, SymError> {
     match RationalNormalizer::default().normalize(e)? {
         Normalized::Form(f) => Ok(f.to_expr()),
         Normalized::TooLarge(_) => Ok(e),
-    }
-}
-
-fn missing() -> SymError {
-    // Every node is visited in pool order after its children: a missing value is a bug, and it
-    // is reported rather than panicking.
-    SymError::Dimension("rational normal form: a subterm was not evaluated before its parent".into())
-}
-
-/// Errors that mean "the input is nowhere defined" pass through; bounds become `Err(limit)`.
-fn tri<T>(r: Result<T, Fail>) -> Result<Result<T, WorkLimit>, SymError> {
-    match r {
-        Ok(v) => Ok(Ok(v)),
-        Err(Fail::Limit(l)) => Ok(Err(l)),
-        Err(Fail::ZeroDenominator) => Err(SymError::DivisionByZero {
-            context: "a denominator is identically zero as a rational function".into(),
-        }),
-    }
-}
-
-enum Shape {
-    Number(Rational),
-    Atom,
-    /// `(term, coefficient)` pairs and the constant term if nonzero.
-    Sum(Vec<(Expr, Expr)>, Option<Expr>),
-    /// Coefficient and `(base, integer exponent)`; rational exponents `p/q` become the atom
-    /// `base^(1/q)` to the power `p`.
-    Product(Expr, Vec<(Expr, i64)>),
-}
-
-fn classify(x: Expr) -> Shape {
-    match x.view() {
-        ExprView::Rational(r) => Shape::Number(r),
-        ExprView::Sum { constant, terms } => {
-            Shape::Sum(terms, if constant.is_zero() { None } else { Some(constant) })
-        }
-        ExprView::Product { coef, factors } => {
-            let mut fs = Vec::with_capacity(factors.len());
-            for (b, r) in factors {
-                match r.as_small() {
-                    Some((p, 1)) => fs.push((b, p)),
-                    Some((p, q)) if q > 1 => {
-                        let root = b.pow_rational(Rational::new(1, q).expect("q > 1"));
-                        if root == x {
-                            return Shape::Atom;
-                        }
-                        fs.push((root, p))
-                    }
-                    _ => return Shape::Atom,
-                }
-            }
-            Shape::Product(coef, fs)
-        }
-        _ => Shape::Atom,
     }
 }
 

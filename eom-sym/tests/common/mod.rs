@@ -74,7 +74,7 @@ pub fn build(r: &Recipe, p: &[Expr]) -> Expr {
         Recipe::Sqrt(a) => build(a, p).abs().sqrt(),
         Recipe::Sin(a) => build(a, p).sin(),
         Recipe::Cos(a) => build(a, p).cos(),
-        Recipe::Exp(a) => (build(a, p) / 4).exp(),
+        Recipe::Exp(a) => (build(a, p) / 4i64).exp(),
         Recipe::Ln(a) => (build(a, p).abs() + Expr::rational(1, 2).unwrap()).ln(),
         Recipe::Abs(a) => build(a, p).abs(),
         Recipe::Atan2(a, b) => build(a, p).atan2(build(b, p)),

@@ -1,0 +1,56 @@
+//! Eigenvalues on a 6-state and a 50-state model: the allocating `eigenvalues` against the
+//! workspace kernel `eigenvalues_in` (the one sweeps call), and modes with vectors.
+//!
+//! Run: `cargo bench -p eom-num --bench eigen`.
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use eom_num::StateSpace;
+use eom_num::modes::{EigenvaluesWorkspace, Modes, eigenvalues, eigenvalues_in};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+/// Deterministic non-symmetric test matrix (a damped chain plus a skew coupling).
+fn matrix(n: usize) -> DMatrix<f64> {
+    DMatrix::from_fn(n, n, |i, j| {
+        let d = i as f64 - j as f64;
+        if i == j {
+            -0.5 - 0.01 * i as f64
+        } else {
+            (1.3 * d).sin() / (1.0 + d.abs())
+        }
+    })
+}
+
+fn bench(cr: &mut Criterion) {
+    let mut group = cr.benchmark_group("eigen");
+    for n in [6usize, 50] {
+        let a = matrix(n);
+        group.bench_with_input(BenchmarkId::new("eigenvalues", n), &a, |b, a| {
+            b.iter(|| eigenvalues(black_box(a)).unwrap())
+        });
+        let mut ws = EigenvaluesWorkspace::new(n);
+        let mut out = vec![Complex64::new(0.0, 0.0); n];
+        group.bench_with_input(BenchmarkId::new("eigenvalues_in", n), &a, |b, a| {
+            b.iter(|| {
+                eigenvalues_in(black_box(a), &mut ws, &mut out).unwrap();
+                black_box(&out);
+            })
+        });
+        let ss = StateSpace::new(
+            a.clone(),
+            DMatrix::zeros(n, 1),
+            DMatrix::zeros(1, n),
+            DMatrix::zeros(1, 1),
+        )
+        .unwrap();
+        group.bench_with_input(BenchmarkId::new("modes", n), &ss, |b, ss| {
+            b.iter(|| Modes::compute(black_box(ss)).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

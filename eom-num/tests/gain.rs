@@ -1,0 +1,164 @@
+//! Steady-state gains against closed forms, including integrating outputs (single and
+//! double integrators) identified exactly.
+
+mod closed_forms;
+
+use closed_forms::{random_similarity, rng, smd};
+use eom_num::gain::{Gain, GainOptions, steady_state_gain, steady_state_gain_with};
+use eom_num::linalg::RankTolerance;
+use eom_num::{NumError, StateSpace};
+use nalgebra::{DMatrix, dmatrix};
+
+fn close(g: Gain, want: f64) -> bool {
+    match g {
+        Gain::Finite(v) => (v - want).abs() <= 1e-12 * want.abs().max(1.0),
+        _ => false,
+    }
+}
+
+fn integrating(g: Gain, order: usize, coefficient: f64) -> bool {
+    match g {
+        Gain::Integrating {
+            order: o,
+            coefficient: c,
+        } => o == order && (c - coefficient).abs() <= 1e-12 * coefficient.abs().max(1.0),
+        _ => false,
+    }
+}
+
+#[test]
+fn regular_a_gives_the_static_compliance() {
+    let k = 250.0;
+    let g = steady_state_gain(&smd(3.0, 0.4, k)).unwrap();
+    assert!(close(g.get(0, 0), 1.0 / k), "{:?}", g.get(0, 0));
+    assert_eq!(g.zero_dimension, 0);
+    assert!(!g.has_integrating());
+    assert!(g.condition > 1.0 && g.condition.is_finite());
+    assert!(g.warnings.is_empty(), "{:?}", g.warnings);
+}
+
+/// Modal form Λ = diag(0, −a), hidden by a random similarity T: A = T Λ T⁻¹, B = T Bm,
+/// C = Cm T⁻¹. Gains follow from the modal form by hand.
+#[test]
+fn integrator_pairs_are_reported_as_integrating() {
+    let a_ = 4.0;
+    let bm = dmatrix![2.0, 0.0; 1.0, 3.0]; // input 1 does not reach the integrator
+    let cm = dmatrix![1.0, 0.0; 0.0, 1.0; 1.0, 1.0];
+    let d = dmatrix![0.0, 0.5; 0.0, 0.0; 0.0, 0.0];
+    let mut r = rng(5);
+    let t = random_similarity(&mut r, 2);
+    let ti = t.clone().try_inverse().unwrap();
+    let lam = dmatrix![0.0, 0.0; 0.0, -a_];
+    let ss = StateSpace::new(&t * lam * &ti, &t * &bm, &cm * &ti, d).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert_eq!(g.zero_dimension, 1);
+    assert_eq!(g.index, 1);
+    assert_eq!(g.a_rank.rank, 1);
+    // Output 0 = integrator state: input 0 integrates with slope 2 (= cm·bm), input 1 does
+    // not reach it: finite D = 0.5.
+    assert!(integrating(g.get(0, 0), 1, 2.0), "{:?}", g.get(0, 0));
+    assert!(close(g.get(0, 1), 0.5), "{:?}", g.get(0, 1));
+    // Output 1 = stable mode: 1/a · b.
+    assert!(close(g.get(1, 0), 1.0 / a_), "{:?}", g.get(1, 0));
+    assert!(close(g.get(1, 1), 3.0 / a_), "{:?}", g.get(1, 1));
+    // Output 2 sees both: integrating from input 0, finite from input 1.
+    assert!(integrating(g.get(2, 0), 1, 2.0), "{:?}", g.get(2, 0));
+    assert!(close(g.get(2, 1), 3.0 / a_), "{:?}", g.get(2, 1));
+    assert!(g.has_integrating());
+    assert_eq!(g.get(0, 0).finite(), None);
+}
+
+#[test]
+fn rigid_body_double_integrator_has_order_two() {
+    // Free mass m (x'' = F/m) next to a spring–mass–damper driven by a second input.
+    let (m, k, c, m2) = (2.0, 50.0, 1.0, 5.0);
+    let a = dmatrix![
+        0.0, 1.0, 0.0, 0.0;
+        0.0, 0.0, 0.0, 0.0;
+        0.0, 0.0, 0.0, 1.0;
+        0.0, 0.0, -k / m2, -c / m2
+    ];
+    let b = dmatrix![0.0, 0.0; 1.0 / m, 0.0; 0.0, 0.0; 0.0, 1.0 / m2];
+    let cc = dmatrix![
+        1.0, 0.0, 0.0, 0.0; // position of the free mass
+        0.0, 1.0, 0.0, 0.0; // its velocity
+        0.0, 0.0, 1.0, 0.0; // spring deflection
+        1.0, 0.0, 1.0, 0.0  // sum
+    ];
+    let mut r = rng(9);
+    let t = random_similarity(&mut r, 4);
+    let ti = t.clone().try_inverse().unwrap();
+    let ss = StateSpace::new(&t * a * &ti, &t * b, cc * &ti, DMatrix::zeros(4, 2)).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert_eq!(g.zero_dimension, 2);
+    assert_eq!(g.index, 2);
+    // x = F t²/(2m): pole of order 2, lim s² G = 1/m; velocity order 1, slope 1/m.
+    assert!(integrating(g.get(0, 0), 2, 1.0 / m), "{:?}", g.get(0, 0));
+    assert!(integrating(g.get(1, 0), 1, 1.0 / m), "{:?}", g.get(1, 0));
+    assert!(close(g.get(2, 0), 0.0), "{:?}", g.get(2, 0));
+    assert!(integrating(g.get(3, 0), 2, 1.0 / m), "{:?}", g.get(3, 0));
+    // The second input only reaches the spring: finite 1/k everywhere it is seen.
+    assert!(close(g.get(0, 1), 0.0), "{:?}", g.get(0, 1));
+    assert!(close(g.get(1, 1), 0.0), "{:?}", g.get(1, 1));
+    assert!(close(g.get(2, 1), 1.0 / k), "{:?}", g.get(2, 1));
+    assert!(close(g.get(3, 1), 1.0 / k), "{:?}", g.get(3, 1));
+    assert!(g.separation_condition < 10.0);
+}
+
+#[test]
+fn cancelling_integrators_give_a_finite_gain() {
+    // Two integrators driven equally, output their difference: G = 1/s − 1/s + 1/(s+1) → 1.
+    let a = dmatrix![0.0, 0.0, 0.0; 0.0, 0.0, 0.0; 0.0, 0.0, -1.0];
+    let b = dmatrix![1.0; 1.0; 1.0];
+    let c = dmatrix![1.0, -1.0, 1.0];
+    let mut r = rng(13);
+    let t = random_similarity(&mut r, 3);
+    let ti = t.clone().try_inverse().unwrap();
+    let ss = StateSpace::new(&t * a * &ti, &t * b, c * &ti, dmatrix![0.0]).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert_eq!(g.zero_dimension, 2);
+    assert_eq!(g.index, 1);
+    assert!(close(g.get(0, 0), 1.0), "{:?}", g.get(0, 0));
+}
+
+#[test]
+fn pure_integrator_system_and_static_gain() {
+    let ss = StateSpace::new(dmatrix![0.0], dmatrix![3.0], dmatrix![2.0], dmatrix![1.0]).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert!(integrating(g.get(0, 0), 1, 6.0), "{:?}", g.get(0, 0));
+    let ss = StateSpace::new(
+        DMatrix::zeros(0, 0),
+        DMatrix::zeros(0, 1),
+        DMatrix::zeros(1, 0),
+        dmatrix![7.0],
+    )
+    .unwrap();
+    assert!(close(steady_state_gain(&ss).unwrap().get(0, 0), 7.0));
+}
+
+#[test]
+fn gain_errors_name_the_problem() {
+    let ss = smd(1.0, 1.0, 1.0);
+    let bad = GainOptions {
+        warn_condition: -1.0,
+        ..Default::default()
+    };
+    assert!(matches!(
+        steady_state_gain_with(&ss, &bad),
+        Err(NumError::InvalidOption(msg)) if msg.contains("warn_condition")
+    ));
+    let bad = GainOptions {
+        rank_tol: RankTolerance::Absolute(-1.0),
+        ..Default::default()
+    };
+    assert!(matches!(
+        steady_state_gain_with(&ss, &bad),
+        Err(NumError::InvalidOption(msg)) if msg.contains("rank tolerance")
+    ));
+    let mut broken = ss;
+    broken.d = DMatrix::zeros(2, 2);
+    assert!(matches!(
+        steady_state_gain(&broken),
+        Err(NumError::Dimension(msg)) if msg.contains("D is 2×2")
+    ));
+}

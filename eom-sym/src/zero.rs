@@ -1,0 +1,237 @@
+//! Recognising expressions that are identically zero although not structurally zero.
+//!
+//! The smart constructors never expand, so a cancellation such as
+//! `k·l·(1 − x) + k·l·x − k·l` stays a sum even though it is zero for every parameter value.
+//! Left in a matrix, such an entry is evaluated as a rounding residue (1e-16 instead of 0): it
+//! costs operations, hides structure (a zero column of A becomes a column of noise), and can
+//! spoil eigenvalue accuracy (a Jordan block at zero perturbed by ε splits by √ε).
+//!
+//! [`is_identically_zero`] decides it by randomized identity testing: a sum whose nominal value
+//! is tiny compared with its terms is evaluated in double-double at two random parameter
+//! points; if it vanishes at both, relative to the size of its terms, to within 1e-24, it is
+//! zero. A nonzero analytic function vanishes on a set of measure zero, so an accidental
+//! agreement at two independent random points to 24 digits does not happen in practice
+//! (the Schwartz–Zippel argument for rational functions). The double-double values of every
+//! node are memoised per thread, so testing many entries of one DAG costs one evaluation of
+//! the DAG per probe point.
+
+use crate::dd::Dd;
+use crate::expr::Expr;
+use crate::pool::{Constant, Func, Node, with_pool};
+use crate::rational::Rational;
+use hashbrown::HashMap;
+use std::cell::RefCell;
+
+const PROBES: usize = 2;
+
+/// Prefilter: a sum is a candidate when `|value| ≤ CANDIDATE · Σ|terms|` at the nominal point.
+const CANDIDATE: f64 = 1e-9;
+/// Decision: zero when `|value| ≤ DECIDE · Σ|terms|` at every probe point (double-double).
+const DECIDE: f64 = 1e-24;
+
+struct Probe {
+    /// Random relative perturbation per parameter index and probe.
+    factors: HashMap<u32, [f64; PROBES]>,
+    /// (value, Σ|terms| for sums) per node and probe.
+    values: HashMap<u32, [(Dd, f64); PROBES]>,
+    state: u64,
+}
+
+thread_local! {
+    static PROBE: RefCell<Probe> = RefCell::new(Probe { factors: HashMap::new(), values: HashMap::new(), state: 0x5eed_1234_abcd_9876 });
+}
+
+impl Probe {
+    fn rand(&mut self) -> f64 {
+        self.state = self.state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn param_value(&mut self, index: u32, nominal: f64, positive: bool, k: usize) -> Dd {
+        if !self.factors.contains_key(&index) {
+            let f = [0.5 + self.rand(), 0.5 + self.rand()];
+            self.factors.insert(index, f);
+        }
+        let f = self.factors[&index][k];
+        // Multiplicative perturbation keeps the sign (positivity assumptions hold); a zero
+        // nominal value gets an additive one.
+        if nominal != 0.0 {
+            Dd::from_f64(nominal) * Dd::from_f64(f)
+        } else if positive {
+            Dd::from_f64(f)
+        } else {
+            Dd::from_f64(f - 1.0)
+        }
+    }
+}
+
+fn rational_dd(r: &Rational) -> Dd {
+    <Dd as crate::scalar::Scalar>::from_rational(r)
+}
+
+/// Evaluate node `id` at probe `k` in double-double (memoised), returning (value, Σ|terms|).
+fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
+    if let Some(v) = p.values.get(&id) {
+        if !v[k].0.hi.is_nan() {
+            return v[k];
+        }
+    }
+    // Iterative post-order over the children (deep DAGs must not overflow the stack).
+    let mut stack = vec![(id, false)];
+    while let Some((n, ready)) = stack.pop() {
+        if p.values.get(&n).is_some_and(|v| !v[k].0.hi.is_nan()) {
+            continue;
+        }
+        let children: Vec<u32> = with_pool(|pool| {
+            let mut c = Vec::new();
+            pool.for_each_child(n, |x| c.push(x));
+            c
+        });
+        if !ready {
+            stack.push((n, true));
+            for c in children {
+                if !p.values.get(&c).is_some_and(|v| !v[k].0.hi.is_nan()) {
+                    stack.push((c, false));
+                }
+            }
+            continue;
+        }
+        let get = |p: &Probe, c: u32| p.values[&c][k];
+        let node = with_pool(|pool| pool.node(n).clone());
+        let res: (Dd, f64) = match node {
+            Node::Num(r) => {
+                let v = rational_dd(&r);
+                (v, v.abs().to_f64())
+            }
+            Node::Float(f) => (Dd::from_f64(f), f.abs()),
+            Node::Const(Constant::Pi) => (Dd::PI, std::f64::consts::PI),
+            Node::Const(Constant::E) => (Dd::E, std::f64::consts::E),
+            Node::Param(i) => {
+                let (nominal, positive) = with_pool(|pool| {
+                    let info = pool.param(i);
+                    (info.nominal, matches!(info.assume, crate::pool::Assumption::Positive))
+                });
+                let v = p.param_value(i, nominal, positive, k);
+                (v, v.abs().to_f64())
+            }
+            Node::Add(..) => {
+                let (c0, pairs) = with_pool(|pool| {
+                    let (c0, pairs) = pool.add_parts(n).expect("sum");
+                    (c0, pairs.to_vec())
+                });
+                let mut s = get(p, c0).0;
+                let mut mag = s.abs().to_f64();
+                for t in pairs.chunks_exact(2) {
+                    let term = get(p, t[1]).0 * get(p, t[0]).0;
+                    mag += term.abs().to_f64();
+                    s += term;
+                }
+                (s, mag)
+            }
+            Node::Mul(..) => {
+                let (c, pairs) = with_pool(|pool| {
+                    let (c, pairs) = pool.mul_parts(n).expect("product");
+                    let v: Vec<(u32, Rational)> = pairs
+                        .chunks_exact(2)
+                        .map(|t| (t[0], pool.rational_of(t[1]).expect("exp").clone()))
+                        .collect();
+                    (c, v)
+                });
+                let mut acc = get(p, c).0;
+                for (b, e) in pairs {
+                    let x = get(p, b).0;
+                    let f = match e.as_small() {
+                        Some((q, 1)) => x.powi(q),
+                        Some((1, 2)) => x.sqrt(),
+                        Some((-1, 2)) => Dd::ONE / x.sqrt(),
+                        _ => x.powf(rational_dd(&e)),
+                    };
+                    acc *= f;
+                }
+                (acc, acc.abs().to_f64())
+            }
+            Node::Pow(a, b) => {
+                let v = get(p, a).0.powf(get(p, b).0);
+                (v, v.abs().to_f64())
+            }
+            Node::Func(f, a) => {
+                let x = get(p, a).0;
+                let v = match f {
+                    Func::Sin => x.sin(),
+                    Func::Cos => x.cos(),
+                    Func::Tan => x.tan(),
+                    Func::Exp => x.exp(),
+                    Func::Ln => x.ln(),
+                    Func::Abs => x.abs(),
+                };
+                (v, v.abs().to_f64())
+            }
+            Node::Atan2(a, b) => {
+                let v = get(p, a).0.atan2(get(p, b).0);
+                (v, v.abs().to_f64())
+            }
+            Node::Invalid(_) => (Dd::from_f64(f64::NAN), f64::NAN),
+        };
+        let entry = p.values.entry(n).or_insert([(Dd::from_f64(f64::NAN), f64::NAN); PROBES]);
+        entry[k] = res;
+    }
+    p.values[&id][k]
+}
+
+/// Is `e` identically zero (see the module docs)? Only sums can hide a cancellation; anything
+/// else is zero only when it is the constant 0.
+pub fn is_identically_zero(e: Expr) -> bool {
+    if e.is_zero() {
+        return true;
+    }
+    let id = e.id();
+    let candidate = with_pool(|pool| {
+        let Some((c0, pairs)) = pool.add_parts(id) else { return false };
+        let v = pool.nominal(id);
+        let mag = pool.nominal(c0).abs()
+            + pairs.chunks_exact(2).map(|t| (pool.nominal(t[0]) * pool.nominal(t[1])).abs()).sum::<f64>();
+        v.is_finite() && mag.is_finite() && v.abs() <= CANDIDATE * mag
+    });
+    if !candidate {
+        return false;
+    }
+    PROBE.with(|p| {
+        let p = &mut p.borrow_mut();
+        (0..PROBES).all(|k| {
+            let (v, mag) = value(p, id, k);
+            v.is_finite() && mag.is_finite() && v.abs().to_f64() <= DECIDE * mag
+        })
+    })
+}
+
+/// `e`, or the constant 0 when `e` is identically zero.
+pub fn zero_if_identically_zero(e: Expr) -> Expr {
+    if is_identically_zero(e) { Expr::zero() } else { e }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hidden_cancellations_are_found_and_real_values_kept() {
+        let k = Expr::param("k", 1.5).unwrap();
+        let l = Expr::param("l", 1.0).unwrap();
+        let x = Expr::param("x", 0.5).unwrap();
+        let hidden = k * l * (Expr::one() - x) + k * l * x - k * l;
+        assert!(!hidden.is_zero(), "not structurally zero");
+        assert!(is_identically_zero(hidden));
+        // Nominally zero but not identically zero: x − 1/2 at x = 1/2.
+        let nominal_zero = x - Expr::rational(1, 2).unwrap();
+        assert_eq!(nominal_zero.nominal(), 0.0);
+        assert!(!is_identically_zero(nominal_zero));
+        // Trigonometric identity hidden in a sum.
+        let t = (Expr::int(2) * x).sin() - Expr::int(2) * x.sin() * x.cos();
+        assert!(is_identically_zero(t));
+        assert!(!is_identically_zero(x.sin() - x));
+    }
+}
