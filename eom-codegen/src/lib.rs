@@ -1,1 +1,619 @@
-//! (to be written)
+//! # eom-codegen — symbolic state-space models as specialised Rust functions
+//!
+//! [`emit`] lowers the expression DAG of a [`SymbolicStateSpace`] (A, B, C, D, the map to the
+//! physical coordinates, and the checks that bound its validity region) to one Rust module:
+//! straight-line code with one `let` per unique operation, parameters as a named struct and as
+//! an array, outputs written sparsely into fixed-size arrays, `#![no_std]`-compatible (through
+//! `libm`), in `f64` or `f32`. The generated functions check the validity region and the
+//! finiteness of their results and return an error value instead of garbage.
+//!
+//! ```
+//! let model = models::build("smd", &[]).unwrap();
+//! let sym = eom_sym::model::Linearizer::new(&model).symbolic().unwrap();
+//! let src = eom_codegen::emit(&sym, &eom_codegen::EmitOptions::default().model_name("smd")).unwrap();
+//! assert!(src.contains("pub fn eval_ab("));
+//! ```
+//!
+//! In a build script, use the [`build::Generate`] builder:
+//!
+//! ```no_run
+//! // build.rs
+//! eom_codegen::build::Generate::model("bicycle").f32().write_to_out_dir("bicycle.rs").unwrap();
+//! // lib.rs:  include!(concat!(env!("OUT_DIR"), "/bicycle.rs"));   // defines `mod bicycle`
+//! ```
+//!
+//! ## The generated module
+//!
+//! For a model `m` the file holds one item, `pub mod m { … }`, with
+//! * constants: sizes (`N_STATES`, `N_INPUTS`, `N_OUTPUTS`, `N_COORDS`, `N_PARAMS`,
+//!   `N_CHECKS`, `WORK_LEN`, `A_LEN`…), names (`PARAM_NAMES`, `PARAM_UNITS`, `STATE_NAMES`…),
+//!   `NOMINAL`, the sparsity patterns `A_NONZEROS`…, the check descriptions `CHECKS`;
+//! * `Params`: one named field per parameter, with `NOMINAL`, `to_array`, `from_array`;
+//! * the kernels `eval_abcd`, `eval_ab`, `eval_cd`, `eval_phys`:
+//!   `fn(p: &[Real; N_PARAMS], a: &mut [Real; A_LEN], …, work: &mut [Real; WORK_LEN]) -> Result<(), Error>`,
+//!   column-major outputs, structural zeros never written;
+//! * `StateSpace`: A, B, C, D and the workspace in one value, `evaluate(&Params)`;
+//! * `Error` (`Validity { check, what }`, `NonFinite { matrix, row, col }`).
+//!
+//! ## Lowering
+//!
+//! See [`lower`](crate#lowering) in the source: shared power chains, one reciprocal per
+//! denominator used more than once, monomials shared across coefficients, `sincos`, folding
+//! of numbers; large evaluations are split into `#[inline(never)]` chunks of at most
+//! [`EmitOptions::max_temporaries`] temporaries that pass values through the work buffer.
+//! Operands are ordered by a structural hash, so the output is a function of the model alone
+//! (same model → same bytes, whatever else the expression pool holds).
+
+#![warn(missing_docs)]
+
+pub mod build;
+mod error;
+mod lower;
+mod options;
+mod order;
+mod problem;
+mod render;
+
+pub use error::CodegenError;
+pub use lower::CodeOps;
+pub use options::{DEFAULT_CHUNK, EmitOptions, Functions, MathLib, Precision};
+pub use render::FunctionStats;
+
+use eom_sym::model::{Linearizer, Model, SymbolicStateSpace};
+use eom_sym::{Expr, OpCount};
+use problem::{Mat, Problem};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+use render::{Ctx, FnSpec, Num};
+
+/// Generated source with statistics.
+#[derive(Clone, Debug)]
+pub struct Emitted {
+    /// The Rust source (one `pub mod`).
+    pub source: String,
+    /// The module name.
+    pub module: String,
+    /// What was generated.
+    pub stats: EmitStats,
+}
+
+/// Statistics of a generated module.
+#[derive(Clone, Debug)]
+pub struct EmitStats {
+    /// Operation counts of the expression DAG of A, B, C, D (each unique node once, as
+    /// [`Expr::op_count`] counts), before lowering.
+    pub dag_ops_abcd: OpCount,
+    /// Unique nodes of A, B, C, D.
+    pub dag_nodes_abcd: usize,
+    /// Per generated function.
+    pub functions: Vec<FunctionStats>,
+    /// Length of the work buffer.
+    pub work_len: usize,
+    /// Validity checks.
+    pub checks: usize,
+    /// Whether the simplifier's result was used (`None`: not run).
+    pub simplified: Option<bool>,
+}
+
+/// Generate the module for a symbolic state-space model.
+pub fn emit(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<String, CodegenError> {
+    Ok(emit_with_stats(sym, opts)?.source)
+}
+
+/// Build the symbolic state-space model of `model` and generate its module (named after the
+/// model unless [`EmitOptions::module`] says otherwise).
+pub fn emit_model(model: &Model<Expr>, opts: &EmitOptions) -> Result<Emitted, CodegenError> {
+    let sym = Linearizer::new(model).symbolic()?;
+    let mut o = opts.clone();
+    if o.model_name.is_none() {
+        o.model_name = Some(model.name.clone());
+    }
+    emit_with_stats(&sym, &o)
+}
+
+/// [`emit`], returning statistics too.
+pub fn emit_with_stats(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, CodegenError> {
+    if opts.max_temporaries == 0 {
+        return Err(CodegenError::BadOption { option: "max_temporaries", problem: "must be at least 1".into() });
+    }
+    let problem = Problem::new(sym, opts.model_name.as_deref(), opts)?;
+    let module = match &opts.module {
+        Some(m) => {
+            let id = problem::module_ident(m);
+            if &id != m {
+                return Err(CodegenError::BadOption {
+                    option: "module",
+                    problem: format!("`{m}` is not a plain lower-case identifier (try `{id}`)"),
+                });
+            }
+            id
+        }
+        None => problem::module_ident(&problem.model),
+    };
+    let num = Num { prec: opts.precision };
+    let ctx = Ctx {
+        num,
+        math: opts.math,
+        problem: &problem,
+        ty: Ident::new(opts.precision.type_name(), Span::call_site()),
+    };
+
+    let f = opts.functions;
+    let mut specs = Vec::new();
+    if f.abcd {
+        specs.push(FnSpec { name: "eval_abcd", mats: vec![Mat::A, Mat::B, Mat::C, Mat::D] });
+    }
+    if f.ab {
+        specs.push(FnSpec { name: "eval_ab", mats: vec![Mat::A, Mat::B] });
+    }
+    if f.cd {
+        specs.push(FnSpec { name: "eval_cd", mats: vec![Mat::C, Mat::D] });
+    }
+    if f.phys {
+        specs.push(FnSpec { name: "eval_phys", mats: vec![Mat::Phys] });
+    }
+    if specs.is_empty() {
+        return Err(CodegenError::BadOption { option: "functions", problem: "no function selected".into() });
+    }
+    let mut fn_items = TokenStream::new();
+    let mut stats = Vec::new();
+    let mut work_len = 0;
+    let mut uses_non_finite = false;
+    for spec in &specs {
+        let plan = render::plan(spec, &problem)?;
+        uses_non_finite |= plan.outputs.iter().any(|o| !matches!(o.3, lower::Operand::Lit(_)));
+        let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
+        work_len = work_len.max(r.work_len);
+        fn_items.extend(r.items);
+        stats.push(r.stats);
+    }
+
+    let abcd_roots: Vec<Expr> =
+        problem.mats[..4].iter().flat_map(|m| m.entries.iter().map(|e| e.2)).collect();
+    let emitted_stats = EmitStats {
+        dag_ops_abcd: Expr::op_count(&abcd_roots),
+        dag_nodes_abcd: Expr::dag_size(&abcd_roots),
+        functions: stats,
+        work_len,
+        checks: problem.checks.len(),
+        simplified: problem.simplified.as_ref().map(|s| s.kept),
+    };
+
+    let items = module_items(&ctx, opts, work_len, uses_non_finite)?;
+    let docs = module_doc(&problem, opts, &emitted_stats);
+    let docs = docs.iter().map(|l| quote!(#[doc = #l]));
+    let modname = Ident::new(&module, Span::call_site());
+    let file = quote! {
+        #(#docs)*
+        #[allow(
+            clippy::all,
+            clippy::pedantic,
+            clippy::nursery,
+            non_snake_case,
+            non_upper_case_globals,
+            unused,
+            uncommon_codepoints,
+            mixed_script_confusables,
+            confusable_idents
+        )]
+        pub mod #modname {
+            #items
+            #fn_items
+        }
+    };
+    let parsed: syn::File = syn::parse2(file).map_err(|e| CodegenError::Syntax(e.to_string()))?;
+    let body = prettyplease::unparse(&parsed);
+    let mut header = format!(
+        "// @generated by eom-codegen {} from model `{}` ({}, {}) — do not edit.\n",
+        env!("CARGO_PKG_VERSION"),
+        problem.model,
+        opts.precision.type_name(),
+        match opts.math {
+            MathLib::Libm => "libm",
+            MathLib::Std => "std math",
+        }
+    );
+    header.push_str("// Include it with `include!(concat!(env!(\"OUT_DIR\"), \"/<file>.rs\"));`.\n\n");
+    Ok(Emitted { source: header + &body, module, stats: emitted_stats })
+}
+
+fn escape_md(s: &str) -> String {
+    s.replace('|', "\\|")
+}
+
+/// A short rendering of an expression for documentation (long ones are summarised).
+fn short(e: Expr) -> String {
+    let s = e.to_string();
+    if s.chars().count() <= 120 {
+        format!("`{s}`")
+    } else {
+        format!("an expression of {} operations", Expr::op_count(&[e]).total())
+    }
+}
+
+fn module_doc(p: &Problem, opts: &EmitOptions, stats: &EmitStats) -> Vec<String> {
+    let n = &p.names;
+    let mut d = vec![
+        format!(" Linearized equations of motion of `{}`: `ẋ = A x + B u`, `y = C x + D u`, `q = Phys x`,", p.model),
+        format!(
+            " with every parameter symbolic, in `{}` (generated by eom-codegen {}; do not edit).",
+            opts.precision.type_name(),
+            env!("CARGO_PKG_VERSION")
+        ),
+        String::new(),
+    ];
+    let list = |names: &[String], units: &[String]| -> String {
+        names
+            .iter()
+            .enumerate()
+            .map(|(k, s)| match units.get(k).filter(|u| !u.is_empty()) {
+                Some(u) => format!("`{s}` [{u}]"),
+                None => format!("`{s}`"),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    d.push(format!(" * states ({}): {}", n.states.len(), list(&n.states, &[])));
+    d.push(format!(" * inputs ({}): {}", n.inputs.len(), list(&n.inputs, &n.input_units)));
+    d.push(format!(" * outputs ({}): {}", n.outputs.len(), list(&n.outputs, &n.output_units)));
+    d.push(format!(" * bodies ({}, six physical coordinates each): {}", n.bodies.len(), list(&n.bodies, &[])));
+    d.push(String::new());
+    d.push(" # Parameters".into());
+    d.push(String::new());
+    d.extend(param_table(p));
+    if !p.fixed.is_empty() {
+        d.push(String::new());
+        let f: Vec<String> = p.fixed.iter().map(|(k, v)| format!("`{k}` = {v:?}")).collect();
+        d.push(format!(" Fixed at generation time (partial evaluation): {}.", f.join(", ")));
+    }
+    d.push(String::new());
+    d.push(" # Validity region".into());
+    d.push(String::new());
+    d.extend(validity_doc(p));
+    d.push(String::new());
+    d.push(" # Cost".into());
+    d.push(String::new());
+    d.push(format!(
+        " The DAG of A, B, C, D has {} unique nodes and {} operations ({} add, {} mul, {} div, {} functions, {} powers).",
+        stats.dag_nodes_abcd,
+        stats.dag_ops_abcd.total(),
+        stats.dag_ops_abcd.add,
+        stats.dag_ops_abcd.mul,
+        stats.dag_ops_abcd.div,
+        stats.dag_ops_abcd.func,
+        stats.dag_ops_abcd.pow
+    ));
+    for f in &stats.functions {
+        d.push(format!(
+            " * `{}`: {} operations ({} add, {} mul, {} div, {} sqrt, {} calls), {} distinct checks, {} stores, {} chunk(s).",
+            f.name,
+            f.ops.total(),
+            f.ops.add,
+            f.ops.mul,
+            f.ops.div,
+            f.ops.sqrt,
+            f.ops.func,
+            f.distinct_checks,
+            f.stores,
+            f.chunks
+        ));
+    }
+    d
+}
+
+fn param_table(p: &Problem) -> Vec<String> {
+    let mut d = vec![" | # | name | nominal | unit | description |".to_string(), " |---|---|---|---|---|".to_string()];
+    for (k, q) in p.params.iter().enumerate() {
+        d.push(format!(
+            " | {k} | `{}` | {:?} | {} | {} |",
+            q.name,
+            q.nominal,
+            escape_md(&q.unit),
+            escape_md(&q.description)
+        ));
+    }
+    d
+}
+
+fn validity_doc(p: &Problem) -> Vec<String> {
+    if p.checks.is_empty() {
+        return vec![" No pivot depends on the parameters: the formulas hold wherever they are finite.".into()];
+    }
+    let mut d = vec![
+        format!(
+            " The formulas come from an elimination whose pivots were chosen at the nominal point. They hold where these {} checks hold (`PIVOT_TOLERANCE` = {:e}, `RANK_TOLERANCE` = {:e}); every evaluation function tests them and returns [`Error::Validity`] naming the first that fails. The margin is the ratio at the nominal point.",
+            p.checks.len(),
+            eom_sym::model::reduce::PIVOT_TOLERANCE,
+            eom_sym::model::reduce::RANK_TOLERANCE
+        ),
+        String::new(),
+    ];
+    for (k, c) in p.checks.iter().enumerate() {
+        let kind = if c.pivot {
+            format!(
+                "pivot {} with {} row entr{}: `|pivot| ≥ PIVOT_TOLERANCE·max(|pivot|, |entries|)`, margin {:.3e}",
+                short(c.value),
+                c.others.len(),
+                if c.others.len() == 1 { "y" } else { "ies" },
+                c.nominal_ratio
+            )
+        } else {
+            format!(
+                "negligible {} against {} entr{}: `|value| ≤ RANK_TOLERANCE·max|entries|`, ratio {:.3e}",
+                short(c.value),
+                c.others.len(),
+                if c.others.len() == 1 { "y" } else { "ies" },
+                c.nominal_ratio
+            )
+        };
+        d.push(format!(" {k}. {}: {kind}", c.what));
+    }
+    d
+}
+
+fn str_array(v: &[String]) -> TokenStream {
+    quote!([#(#v),*])
+}
+
+fn module_items(ctx: &Ctx, opts: &EmitOptions, work_len: usize, uses_non_finite: bool) -> Result<TokenStream, CodegenError> {
+    let p = ctx.problem;
+    let ty = &ctx.ty;
+    let num = ctx.num;
+    let names = &p.names;
+    let us = |n: usize| Literal::usize_unsuffixed(n);
+    let (nx, nu, ny, nq, np, nc) = (
+        us(names.states.len()),
+        us(names.inputs.len()),
+        us(names.outputs.len()),
+        us(p.mats[Mat::Phys.index()].rows),
+        us(p.params.len()),
+        us(p.checks.len()),
+    );
+    let wl = us(work_len);
+    let mut ts = quote! {
+        /// The floating-point type of this module.
+        pub type Real = #ty;
+        /// Number of states (rows and columns of A).
+        pub const N_STATES: usize = #nx;
+        /// Number of inputs (columns of B and D).
+        pub const N_INPUTS: usize = #nu;
+        /// Number of outputs (rows of C and D).
+        pub const N_OUTPUTS: usize = #ny;
+        /// Number of physical coordinates (rows of Phys: six per body).
+        pub const N_COORDS: usize = #nq;
+        /// Number of parameters.
+        pub const N_PARAMS: usize = #np;
+        /// Number of validity checks.
+        pub const N_CHECKS: usize = #nc;
+        /// Length of the work buffer every evaluation function takes (0 when no function is
+        /// split into chunks).
+        pub const WORK_LEN: usize = #wl;
+    };
+    for m in Mat::ALL {
+        let spec = &p.mats[m.index()];
+        let len = format_ident!("{}_LEN", m.lower().to_uppercase());
+        let nzn = format_ident!("{}_NONZEROS", m.lower().to_uppercase());
+        let l = us(spec.rows * spec.cols);
+        let doc1 = format!(" Length of the column-major array of `{}` ({} × {}).", m.variant(), spec.rows, spec.cols);
+        let doc2 = format!(
+            " The structural non-zeros of `{}` as `(row, column)`, column-major: the only entries the evaluation functions write ({} of {}).",
+            m.variant(),
+            spec.entries.len(),
+            spec.rows * spec.cols
+        );
+        let nz: Vec<TokenStream> = spec
+            .entries
+            .iter()
+            .map(|&(i, j, _)| {
+                let (i, j) = (us(i), us(j));
+                quote!((#i, #j))
+            })
+            .collect();
+        let nnz = us(nz.len());
+        ts.extend(quote! {
+            #[doc = #doc1]
+            pub const #len: usize = #l;
+            #[doc = #doc2]
+            pub const #nzn: [(usize, usize); #nnz] = [#(#nz),*];
+        });
+    }
+    let pnames: Vec<String> = p.params.iter().map(|q| q.name.clone()).collect();
+    let punits: Vec<String> = p.params.iter().map(|q| q.unit.clone()).collect();
+    let nominal: Vec<TokenStream> = p.params.iter().map(|q| num.lit(q.nominal, &q.name)).collect::<Result<_, _>>()?;
+    let (sn, inn, iu, on, ou, bn) = (
+        str_array(&names.states),
+        str_array(&names.inputs),
+        str_array(&names.input_units),
+        str_array(&names.outputs),
+        str_array(&names.output_units),
+        str_array(&names.bodies),
+    );
+    let nb = us(names.bodies.len());
+    let nin_u = us(names.input_units.len());
+    let nout_u = us(names.output_units.len());
+    let (pnames, punits) = (str_array(&pnames), str_array(&punits));
+    let checks: Vec<String> = p.checks.iter().map(|c| c.what.clone()).collect();
+    let checks = str_array(&checks);
+    let ptol = num.lit(eom_sym::model::reduce::PIVOT_TOLERANCE, "tolerance")?;
+    let rtol = num.lit(eom_sym::model::reduce::RANK_TOLERANCE, "tolerance")?;
+    ts.extend(quote! {
+        /// Parameter names, in the order of the parameter array.
+        pub const PARAM_NAMES: [&str; N_PARAMS] = #pnames;
+        /// Parameter units (empty when dimensionless or unknown).
+        pub const PARAM_UNITS: [&str; N_PARAMS] = #punits;
+        /// Nominal parameter values (the point where the pivots were chosen).
+        pub const NOMINAL: [Real; N_PARAMS] = [#(#nominal),*];
+        /// State names.
+        pub const STATE_NAMES: [&str; N_STATES] = #sn;
+        /// Input names.
+        pub const INPUT_NAMES: [&str; N_INPUTS] = #inn;
+        /// Input units.
+        pub const INPUT_UNITS: [&str; #nin_u] = #iu;
+        /// Output names.
+        pub const OUTPUT_NAMES: [&str; N_OUTPUTS] = #on;
+        /// Output units.
+        pub const OUTPUT_UNITS: [&str; #nout_u] = #ou;
+        /// Bodies: rows `6k..6k+6` of Phys are body `k`'s `x, y, z, rx, ry, rz`.
+        pub const BODY_NAMES: [&str; #nb] = #bn;
+        /// Relative size below which a pivot counts as broken down.
+        pub const PIVOT_TOLERANCE: Real = #ptol;
+        /// Relative size above which an entry that decided a rank invalidates the decision.
+        pub const RANK_TOLERANCE: Real = #rtol;
+    });
+    let mut cdoc = vec![" The validity checks, in the order they are tested (the index in [`Error::Validity`]).".to_string(), String::new()];
+    cdoc.extend(validity_doc(p));
+    let cdoc = cdoc.iter().map(|l| quote!(#[doc = #l]));
+    ts.extend(quote! {
+        #(#cdoc)*
+        pub const CHECKS: [&str; N_CHECKS] = #checks;
+    });
+
+    // Parameters as a struct.
+    let mut pdoc = vec![" The parameters by name (see [`Params::to_array`] for the array form the kernels take).".to_string(), String::new()];
+    pdoc.extend(param_table(p));
+    let pdoc = pdoc.iter().map(|l| quote!(#[doc = #l]));
+    let mut fields = Vec::new();
+    let mut inits = Vec::new();
+    let mut from = Vec::new();
+    let mut to = Vec::new();
+    for (k, q) in p.params.iter().enumerate() {
+        let f: TokenStream = q.field.parse().map_err(|e| CodegenError::Syntax(format!("field {}: {e}", q.field)))?;
+        let unit = if q.unit.is_empty() { String::new() } else { format!(" [{}]", q.unit) };
+        let doc = format!(" `{}`{unit}: {} (nominal {:?}).", q.name, q.description, q.nominal);
+        let v = num.lit(q.nominal, &q.name)?;
+        let kk = us(k);
+        fields.push(quote!(#[doc = #doc] pub #f: Real));
+        inits.push(quote!(#f: #v));
+        from.push(quote!(#f: p[#kk]));
+        to.push(quote!(self.#f));
+    }
+    ts.extend(quote! {
+        #(#pdoc)*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct Params {
+            #(#fields,)*
+        }
+        impl Params {
+            /// The nominal values.
+            pub const NOMINAL: Params = Params { #(#inits,)* };
+            /// From the array form (order of [`PARAM_NAMES`]).
+            pub const fn from_array(p: &[Real; N_PARAMS]) -> Params {
+                Params { #(#from,)* }
+            }
+            /// The array form the evaluation functions take.
+            pub const fn to_array(&self) -> [Real; N_PARAMS] {
+                [#(#to),*]
+            }
+        }
+        impl Default for Params {
+            fn default() -> Self {
+                Params::NOMINAL
+            }
+        }
+
+        /// The matrices, for error reports.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Matrix {
+            /// State matrix (`N_STATES × N_STATES`).
+            A,
+            /// Input matrix (`N_STATES × N_INPUTS`).
+            B,
+            /// Output matrix (`N_OUTPUTS × N_STATES`).
+            C,
+            /// Feedthrough matrix (`N_OUTPUTS × N_INPUTS`).
+            D,
+            /// Map from the state to the physical coordinates (`N_COORDS × N_STATES`).
+            Phys,
+        }
+
+        /// Why an evaluation produced no result.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Error {
+            /// The parameters are outside the validity region: this check fails.
+            Validity {
+                /// Index into [`CHECKS`].
+                check: usize,
+                /// The check's description (`CHECKS[check]`).
+                what: &'static str,
+            },
+            /// An entry is a NaN or an infinity.
+            NonFinite {
+                /// The matrix.
+                matrix: Matrix,
+                /// Row of the entry.
+                row: usize,
+                /// Column of the entry.
+                col: usize,
+            },
+        }
+
+        impl core::fmt::Display for Error {
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                match self {
+                    Error::Validity { check, what } => write!(f, "outside the validity region: check {} fails ({})", check, what),
+                    Error::NonFinite { matrix, row, col } => write!(f, "entry ({}, {}) of {:?} is not finite", row, col, matrix),
+                }
+            }
+        }
+    });
+    if !p.checks.is_empty() {
+        ts.extend(quote! {
+            /// The first failing check (slow path).
+            #[cold]
+            #[inline(never)]
+            fn validity_error(ok: &[bool]) -> Error {
+                let check = ok.iter().position(|c| !c).unwrap_or(0);
+                Error::Validity { check, what: CHECKS[check] }
+            }
+        });
+    }
+    if uses_non_finite {
+        ts.extend(quote! {
+            /// The first non-finite entry, if any (slow path: the sum of the entries was not
+            /// finite, which may also be an overflow of the sum alone).
+            #[cold]
+            #[inline(never)]
+            fn non_finite(values: &[Real], entries: &[(Matrix, usize, usize, usize)]) -> Option<Error> {
+                entries.iter().find(|e| !values[e.3].is_finite()).map(|e| Error::NonFinite { matrix: e.0, row: e.1, col: e.2 })
+            }
+        });
+    }
+    if opts.functions.abcd {
+        ts.extend(quote! {
+            /// A, B, C, D with the work buffer, evaluated together by [`StateSpace::evaluate`]
+            /// (no allocation; create it once, evaluate it often).
+            #[derive(Clone, Debug, PartialEq)]
+            pub struct StateSpace {
+                a: [Real; A_LEN],
+                b: [Real; B_LEN],
+                c: [Real; C_LEN],
+                d: [Real; D_LEN],
+                work: [Real; WORK_LEN],
+            }
+            impl StateSpace {
+                /// All entries zero.
+                pub const fn new() -> Self {
+                    StateSpace { a: [0.0; A_LEN], b: [0.0; B_LEN], c: [0.0; C_LEN], d: [0.0; D_LEN], work: [0.0; WORK_LEN] }
+                }
+                /// Evaluate at `params`. On error the matrices keep their previous values.
+                pub fn evaluate(&mut self, params: &Params) -> Result<(), Error> {
+                    eval_abcd(&params.to_array(), &mut self.a, &mut self.b, &mut self.c, &mut self.d, &mut self.work)
+                }
+                /// A, column-major (`a[i + j * N_STATES]`).
+                pub fn a(&self) -> &[Real; A_LEN] { &self.a }
+                /// B, column-major (`b[i + j * N_STATES]`).
+                pub fn b(&self) -> &[Real; B_LEN] { &self.b }
+                /// C, column-major (`c[i + j * N_OUTPUTS]`).
+                pub fn c(&self) -> &[Real; C_LEN] { &self.c }
+                /// D, column-major (`d[i + j * N_OUTPUTS]`).
+                pub fn d(&self) -> &[Real; D_LEN] { &self.d }
+            }
+            impl Default for StateSpace {
+                fn default() -> Self {
+                    Self::new()
+                }
+            }
+        });
+    }
+    Ok(ts)
+}

@@ -7,9 +7,11 @@
 //!   tracking add or save.
 //! * `sweep_boundaries`: a full sweep with boundary location against the grid-only run of the
 //!   same sweep (the difference is the boundary-location time): shimmy (2 boundaries, 101
-//!   points) and `A₀ + x·I` families whose rightmost eigenvalue crosses at x = 0 (6 and 50
-//!   states, 21 points).
-//! * `minreal` and `zeros` on 6- and 20-state systems.
+//!   points) and `A₀ + x·I + x²·A₁` families with crossings between grid points (6 and 50
+//!   states, 21 points; the number of evaluations of A is printed).
+//! * `minreal` (with and without the PBH confirmation of each removed mode) and `zeros` on
+//!   6- and 20-state systems with 3 and 8 removable states, against one eigenvalue computation
+//!   of A as the baseline.
 //!
 //! Run: `cargo bench -p eom-num --bench sweep`.
 
@@ -49,8 +51,10 @@ fn family(n: usize, seed: u64) -> (DMatrix<f64>, DMatrix<f64>) {
     (rand_mat(&mut r, n, n), rand_mat(&mut r, n, n) * 0.3)
 }
 
-/// `A₀ + x·I` shifted so that the rightmost eigenvalue of A(x) crosses zero at x = 0.
-fn crossing_family(n: usize, seed: u64) -> DMatrix<f64> {
+/// `A₀ + x·I + x²·A₁`, with A₀ shifted so that the rightmost eigenvalue of `A₀ + x·I` crosses
+/// zero at x = 0.0123 (between grid points); the quadratic term makes the real parts
+/// nonlinear in x, so that locating a crossing takes more than one secant step.
+fn crossing_family(n: usize, seed: u64) -> (DMatrix<f64>, DMatrix<f64>) {
     let mut r = StdRng::seed_from_u64(seed);
     let a0 = rand_mat(&mut r, n, n);
     let max_re = eigenvalues(&a0)
@@ -58,7 +62,10 @@ fn crossing_family(n: usize, seed: u64) -> DMatrix<f64> {
         .iter()
         .map(|z| z.re)
         .fold(f64::NEG_INFINITY, f64::max);
-    a0 - DMatrix::identity(n, n) * max_re
+    (
+        a0 - DMatrix::identity(n, n) * (max_re + 0.0123),
+        rand_mat(&mut r, n, n) * 0.5,
+    )
 }
 
 fn bench_grid(cr: &mut Criterion) {
@@ -105,6 +112,12 @@ fn bench_boundaries(cr: &mut Criterion) {
     group.sample_size(15);
     group.measurement_time(Duration::from_secs(4));
     let sweep = Sweep::linspace(0.0, 1.0, 101);
+    let res = sweep.run(shimmy).unwrap();
+    let evals: usize = res.boundaries.iter().map(|b| b.evaluations).sum();
+    eprintln!(
+        "shimmy3: {} boundaries, {evals} evaluations of A to locate them",
+        res.boundaries.len()
+    );
     group.bench_function("shimmy3_101pts_2_boundaries", |b| {
         b.iter(|| black_box(sweep.run(shimmy).unwrap()))
     });
@@ -113,11 +126,18 @@ fn bench_boundaries(cr: &mut Criterion) {
         b.iter(|| black_box(s.run(shimmy).unwrap()))
     });
     for n in [6usize, 50] {
-        let a0 = crossing_family(n, 2);
-        let f = |x: f64| -> Result<DMatrix<f64>, String> { Ok(&a0 + DMatrix::identity(n, n) * x) };
+        let (a0, a1) = crossing_family(n, 2);
+        let f = |x: f64| -> Result<DMatrix<f64>, String> {
+            Ok(&a0 + DMatrix::identity(n, n) * x + &a1 * (x * x))
+        };
         let s = Sweep::linspace(-0.5, 0.5, 21);
         let res = s.run(f).unwrap();
         assert!(!res.boundaries.is_empty());
+        let evals: usize = res.boundaries.iter().map(|b| b.evaluations).sum();
+        eprintln!(
+            "random{n}: {} boundaries, {evals} evaluations of A to locate them",
+            res.boundaries.len()
+        );
         group.bench_function(
             format!("random{n}_21pts_{}_boundaries", res.boundaries.len()),
             |b| b.iter(|| black_box(s.run(f).unwrap())),
@@ -174,6 +194,13 @@ fn bench_minreal_zeros(cr: &mut Criterion) {
         let sys = reducible(sizes, 3);
         group.bench_function(BenchmarkId::new("minreal", n), |b| {
             b.iter(|| black_box(minimal_realization(&sys, &MinrealOptions::default()).unwrap()))
+        });
+        let quick = MinrealOptions {
+            pbh_check: false,
+            ..Default::default()
+        };
+        group.bench_function(BenchmarkId::new("minreal_without_pbh_check", n), |b| {
+            b.iter(|| black_box(minimal_realization(&sys, &quick).unwrap()))
         });
         group.bench_function(BenchmarkId::new("zeros", n), |b| {
             b.iter(|| black_box(transmission_zeros(&sys).unwrap()))

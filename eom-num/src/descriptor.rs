@@ -50,6 +50,11 @@ use crate::NumError;
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
 
+/// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
+/// are rounding noise and treated as exactly zero (the same scale as the default rank
+/// tolerance, [`RankTolerance::Default`]).
+pub const RANK_NOISE_FACTOR: f64 = crate::linalg::DEFAULT_RANK_SAFETY;
+
 /// Options of [`descriptor_to_state_space`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct DescriptorOptions<'a> {
@@ -225,6 +230,33 @@ pub fn descriptor_to_state_space(
         None => DMatrix::zeros(0, n),
     };
 
+    // 0. Rows and columns of E at the rounding level of ‖E‖ are zero rows/columns (input
+    //    states and massless coordinates after orthonormal projections carry ε-size residues).
+    //    They must be made exactly zero before equilibration, which would otherwise scale the
+    //    noise up to O(1) and turn it into an equation.
+    let mut e_clean = d.e.clone();
+    let mut noise_notes = Vec::new();
+    {
+        let emax = e_clean.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let noise = RANK_NOISE_FACTOR * n as f64 * f64::EPSILON * emax;
+        for i in 0..n {
+            let rmax = e_clean.row(i).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if rmax > 0.0 && rmax <= noise {
+                e_clean.row_mut(i).fill(0.0);
+                noise_notes.push(format!("row {i} of E (largest entry {rmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
+            }
+        }
+        for j in 0..n {
+            let cmax = e_clean.column(j).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if cmax > 0.0 && cmax <= noise {
+                e_clean.column_mut(j).fill(0.0);
+                noise_notes.push(format!("column {j} of E (largest entry {cmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
+            }
+        }
+    }
+    let d_clean = Descriptor { e: e_clean, a: d.a.clone(), b: d.b.clone(), c: d.c.clone(), d: d.d.clone() };
+    let d = &d_clean;
+
     // 1. Equilibrate: E' = R E S, A' = R A S, B' = R B, C' = C S, phys' = phys S.
     let scaling = if opts.equilibrate {
         pencil_scaling(&d.e, &d.a)?
@@ -252,7 +284,7 @@ pub fn descriptor_to_state_space(
     let r = e_rank.rank;
     // The nullspace is exact when it consists of the structural zero rows/columns only.
     let structural = n - r == zeros;
-    let mut warnings = Vec::new();
+    let mut warnings = noise_notes;
     near_note("rank of E", &e_rank, &mut warnings);
     let e_condition = if r == 0 {
         1.0

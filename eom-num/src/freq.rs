@@ -51,6 +51,10 @@ use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
 
+/// Largest number of points of a generated grid (guards against gigabyte allocations from
+/// a mistyped range or density).
+pub const MAX_POINTS: usize = 10_000_000;
+
 /// Unit of user-given frequencies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum FreqUnit {
@@ -876,12 +880,20 @@ impl FrequencyResponse {
 /// The frequency grid in rad/s.
 fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> {
     let ppd = opts.points_per_decade;
-    let log_grid = |lo: f64, hi: f64| -> Vec<f64> {
+    let log_grid = |lo: f64, hi: f64| -> Result<Vec<f64>, NumError> {
         // lo, hi in log10(rad/s); inclusive, ppd points per decade.
-        let steps = ((hi - lo) * ppd as f64).round().max(1.0) as usize;
-        (0..=steps)
+        let steps = ((hi - lo) * ppd as f64).round().max(1.0);
+        if steps > MAX_POINTS as f64 {
+            return Err(NumError::InvalidOption(format!(
+                "frequency grid of {steps:.3e} points ({:.1} decades at {ppd} per decade) \
+                 exceeds the limit of {MAX_POINTS}",
+                hi - lo
+            )));
+        }
+        let steps = steps as usize;
+        Ok((0..=steps)
             .map(|k| 10f64.powf(lo + (hi - lo) * k as f64 / steps as f64))
-            .collect()
+            .collect())
     };
     match &opts.range {
         FreqRange::Points { values, unit } => {
@@ -903,10 +915,7 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
                     "FreqRange::Range {{ low: {low}, high: {high} }}: need 0 < low < high, finite"
                 )));
             }
-            Ok(log_grid(
-                unit.to_rad(*low).log10(),
-                unit.to_rad(*high).log10(),
-            ))
+            log_grid(unit.to_rad(*low).log10(), unit.to_rad(*high).log10())
         }
         FreqRange::Auto => {
             if ppd == 0 {
@@ -916,7 +925,7 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
             }
             let (lo, hi) = auto_decades_hz(&ss.a)?;
             let to_w = (2.0 * PI).log10();
-            Ok(log_grid(lo + to_w, hi + to_w))
+            log_grid(lo + to_w, hi + to_w)
         }
     }
 }

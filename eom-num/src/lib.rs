@@ -116,17 +116,17 @@
 
 #![warn(missing_docs)]
 
-pub mod error;
-pub mod statespace;
-pub mod linalg;
 pub mod descriptor;
-pub mod modes;
+pub mod error;
 pub mod freq;
 pub mod gain;
-pub mod time;
+pub mod linalg;
 pub mod minreal;
-pub mod zeros;
+pub mod modes;
+pub mod statespace;
 pub mod sweep;
+pub mod time;
+pub mod zeros;
 
 pub use error::NumError;
 pub use statespace::{Descriptor, SignalNames, StateSpace};

@@ -63,6 +63,9 @@ pub struct MinrealOptions {
     /// The default `1e-8 ≈ √ε` also covers the √ε spread of a computed double zero
     /// eigenvalue (a rigid-body mode: position and velocity).
     pub stability_rtol: f64,
+    /// Confirm every removal by the PBH test ([`RemovedMode::pbh_residual`]; default
+    /// `true`). It costs one complex SVD of size n per removed mode (or conjugate pair).
+    pub pbh_check: bool,
 }
 
 impl Default for MinrealOptions {
@@ -72,6 +75,7 @@ impl Default for MinrealOptions {
             atol: 0.0,
             balance: true,
             stability_rtol: 1e-8,
+            pbh_check: true,
         }
     }
 }
@@ -235,8 +239,9 @@ pub struct RemovedMode {
     /// `[A − λI; C]` (unobservable) of the full (balanced) system, divided by
     /// `max(‖A‖_F, ‖B‖_F)` or `max(‖A‖_F, ‖C‖_F)`. Rounding level (≈1e-15) when the mode is
     /// exactly decoupled; a value near the rank tolerance means the mode is only weakly
-    /// coupled and removing it changed the transfer function by about that much.
-    pub pbh_residual: f64,
+    /// coupled and removing it changed the transfer function by about that much. `None` when
+    /// [`MinrealOptions::pbh_check`] is off.
+    pub pbh_residual: Option<f64>,
 }
 
 /// What [`minimal_realization`] did.
@@ -591,11 +596,19 @@ fn classify(
     ev: &[Complex64],
     kind: RemovedKind,
     thr: f64,
-    a: &DMatrix<f64>,
-    other: &DMatrix<f64>,
-) -> Vec<RemovedMode> {
-    ev.iter()
-        .map(|&eigenvalue| RemovedMode {
+    pbh: Option<(&DMatrix<f64>, &DMatrix<f64>)>,
+) -> Result<Vec<RemovedMode>, NumError> {
+    let mut out: Vec<RemovedMode> = Vec::with_capacity(ev.len());
+    for &eigenvalue in ev {
+        // The residual of a conjugate is the same (real data): reuse it.
+        let pbh = match (out.last(), pbh) {
+            (_, None) => None,
+            (Some(last), _) if eigenvalue.im != 0.0 && last.eigenvalue == eigenvalue.conj() => {
+                last.pbh_residual
+            }
+            (_, Some((a, other))) => Some(pbh_residual(a, other, eigenvalue, kind)?),
+        };
+        out.push(RemovedMode {
             eigenvalue,
             kind,
             stability: if eigenvalue.re > thr {
@@ -605,15 +618,25 @@ fn classify(
             } else {
                 ModeStability::Marginal
             },
-            pbh_residual: pbh_residual(a, other, eigenvalue, kind),
-        })
-        .collect()
+            pbh_residual: pbh,
+        });
+    }
+    Ok(out)
 }
 
 /// σ_min([A − λI, B]) (uncontrollable) or σ_min([A − λI; C]) (unobservable), relative.
-fn pbh_residual(a: &DMatrix<f64>, other: &DMatrix<f64>, lam: Complex64, kind: RemovedKind) -> f64 {
+fn pbh_residual(
+    a: &DMatrix<f64>,
+    other: &DMatrix<f64>,
+    lam: Complex64,
+    kind: RemovedKind,
+) -> Result<f64, NumError> {
     let n = a.nrows();
-    let shifted = |i: usize, j: usize| {
+    let scale = a.norm().max(other.norm());
+    if scale == 0.0 || n == 0 {
+        return Ok(0.0);
+    }
+    let entry = |i: usize, j: usize| {
         Complex64::new(a[(i, j)], 0.0)
             - if i == j {
                 lam
@@ -623,33 +646,29 @@ fn pbh_residual(a: &DMatrix<f64>, other: &DMatrix<f64>, lam: Complex64, kind: Re
     };
     let m = match kind {
         RemovedKind::Uncontrollable => {
-            let k = other.ncols();
-            DMatrix::from_fn(n, n + k, |i, j| {
+            faer::Mat::<Complex64>::from_fn(n, n + other.ncols(), |i, j| {
                 if j < n {
-                    shifted(i, j)
+                    entry(i, j)
                 } else {
                     Complex64::new(other[(i, j - n)], 0.0)
                 }
             })
         }
         RemovedKind::Unobservable => {
-            let k = other.nrows();
-            DMatrix::from_fn(n + k, n, |i, j| {
+            faer::Mat::<Complex64>::from_fn(n + other.nrows(), n, |i, j| {
                 if i < n {
-                    shifted(i, j)
+                    entry(i, j)
                 } else {
                     Complex64::new(other[(i - n, j)], 0.0)
                 }
             })
         }
     };
-    let scale = a.norm().max(other.norm());
-    if scale == 0.0 {
-        return 0.0;
-    }
     // n singular values for both shapes (n × (n+k) or (n+k) × n).
-    if std::env::var("NOPBH").is_ok() { return 0.0; }
-    m.singular_values().min() / scale
+    let sv = m
+        .singular_values()
+        .map_err(|e| NumError::NoConvergence(format!("PBH test SVD at λ = {lam}: {e:?}")))?;
+    Ok(sv.iter().copied().fold(f64::INFINITY, f64::min) / scale)
 }
 
 /// Minimal realization of `ss` by orthogonal staircase reductions (see the module
@@ -713,16 +732,14 @@ pub fn minimal_realization(
         &ev_u,
         RemovedKind::Uncontrollable,
         stability_threshold,
-        &a0,
-        &b0,
-    );
+        opts.pbh_check.then_some((&a0, &b0)),
+    )?;
     removed.extend(classify(
         &ev_o,
         RemovedKind::Unobservable,
         stability_threshold,
-        &a0,
-        &c0,
-    ));
+        opts.pbh_check.then_some((&a0, &c0)),
+    )?);
     let mut decisions = sc.decisions;
     decisions.extend(so.decisions);
     let report = MinrealReport {

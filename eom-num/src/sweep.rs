@@ -15,6 +15,10 @@
 //! 3. **Neutral branches**: a branch with `|λ| ≤ neutral_rtol · ‖A(x)‖_F` at every point is
 //!    an identically-zero eigenvalue (a rigid-body or integrator mode, e.g. a vehicle's
 //!    lateral position and heading). It is reported but excluded from stability judgements.
+//!    The real part of every other branch is taken together with the real parts of the
+//!    neutral branches (their sum is ≈ 0, accurately, as a trace): where a real root crosses
+//!    zero next to a neutral zero, the two form a defective double eigenvalue whose members are
+//!    only known to √ε, while their sum stays accurate to ε.
 //! 4. **Stability per point**: a point is stable when every non-neutral branch has
 //!    `Re λ < −band`, unstable when one has `Re λ > band`, marginal otherwise, with
 //!    `band = marginal_rtol · ‖A(x)‖_F` (default `marginal_rtol = 100 · n · ε`): real parts
@@ -88,7 +92,8 @@ pub struct SweepPoint {
     /// Eigenvalues in branch order (entry `j` belongs to branch `j` at every point).
     #[serde(serialize_with = "cser::many")]
     pub eigenvalues: Vec<Complex64>,
-    /// Largest real part of the non-neutral branches (`None` if all are neutral).
+    /// Largest real part of the non-neutral branches (`None` if all are neutral), each taken
+    /// together with the real parts of the neutral branches (see the module documentation).
     pub max_real: Option<f64>,
     /// Stability class.
     pub stability: PointStability,
@@ -120,7 +125,7 @@ pub enum Crossing {
 pub struct Boundary {
     /// Parameter value of the crossing.
     pub value: f64,
-    /// The crossing eigenvalue there (its real part is ~0).
+    /// The crossing eigenvalue there (its real part, taken with the neutral branches', is ~0).
     #[serde(serialize_with = "cser::one")]
     pub eigenvalue: Complex64,
     /// The branch that crosses.
@@ -385,10 +390,14 @@ impl Sweep {
             })
             .collect();
 
-        // 4. Stability per point.
+        // 4. Stability per point. Real parts are taken together with the neutral branches'
+        // (whose sum is ≈ 0 and exact as a trace): where a real root crosses zero next to a
+        // neutral zero the two form a defective double eigenvalue, each known only to √ε,
+        // but their sum stays accurate.
+        let neutral_idx: Vec<usize> = (0..n).filter(|&j| neutral[j]).collect();
         let band = |k: usize| marginal_rtol * pts[k].norm;
         let sign = |k: usize, j: usize| -> i8 {
-            let re = tracked[k][j].re;
+            let re = effective_re(&tracked[k], j, &neutral_idx);
             if re > band(k) {
                 1
             } else if re < -band(k) {
@@ -400,10 +409,9 @@ impl Sweep {
         let classify = |eig: &[Complex64], norm: f64| -> (Option<f64>, PointStability) {
             let b = marginal_rtol * norm;
             let mut max_re: Option<f64> = None;
-            for (j, z) in eig.iter().enumerate() {
-                if !neutral[j] {
-                    max_re = Some(max_re.map_or(z.re, |m: f64| m.max(z.re)));
-                }
+            for j in (0..eig.len()).filter(|&j| !neutral[j]) {
+                let re = effective_re(eig, j, &neutral_idx);
+                max_re = Some(max_re.map_or(re, |m: f64| m.max(re)));
             }
             let st = match max_re {
                 None => PointStability::Marginal,
@@ -451,7 +459,8 @@ impl Sweep {
                 .par_iter()
                 .map(|&(j, ka, kb)| {
                     let ends = ((xs[ka], tracked[ka].clone()), (xs[kb], tracked[kb].clone()));
-                    let mut b = ctx.locate(j, ends, self.tolerance, self.max_evaluations)?;
+                    let mut b =
+                        ctx.locate(j, &neutral_idx, ends, self.tolerance, self.max_evaluations)?;
                     let rising = sign(kb, j) > 0;
                     b.crossing = if rising == increasing {
                         Crossing::Destabilizing
@@ -645,6 +654,7 @@ where
     fn locate(
         &self,
         j: usize,
+        neutral: &[usize],
         ends: ((f64, Vec<Complex64>), (f64, Vec<Complex64>)),
         tol: f64,
         max_evaluations: usize,
@@ -652,7 +662,7 @@ where
         let n = ends.0.1.len();
         let mut ws = Some(EigenvaluesWorkspace::new(n));
         let ((mut xa, mut va), (mut xb, mut vb)) = ends;
-        let (mut fa, mut fb) = (va[j].re, vb[j].re);
+        let (mut fa, mut fb) = (effective_re(&va, j, neutral), effective_re(&vb, j, neutral));
         let (mut xc, mut vc, mut fc) = (xa, va.clone(), fa);
         let mut d = xb - xa;
         let mut e = d;
@@ -726,11 +736,11 @@ where
             let ev = self.eval(xb, &mut ws, Some(n))?;
             evaluations += 1;
             vb = assign(&pred, &ev.eig, &pred);
-            fb = vb[j].re;
+            fb = effective_re(&vb, j, neutral);
         }
         Ok(Boundary {
             value: xb,
-            eigenvalue: vb[j],
+            eigenvalue: vb[j] + Complex64::new(fb - vb[j].re, 0.0),
             branch: j,
             crossing: Crossing::Destabilizing,
             bracket: [xb.min(xc), xb.max(xc)],
@@ -738,6 +748,16 @@ where
             converged,
         })
     }
+}
+
+/// Real part of branch `j` plus those of the neutral branches (see step 4 of `run`).
+fn effective_re(values: &[Complex64], j: usize, neutral: &[usize]) -> f64 {
+    values[j].re
+        + neutral
+            .iter()
+            .filter(|&&k| k != j)
+            .map(|&k| values[k].re)
+            .sum::<f64>()
 }
 
 fn interpolate(x0: f64, v0: &[Complex64], x1: f64, v1: &[Complex64], x: f64) -> Vec<Complex64> {

@@ -37,6 +37,10 @@ use crate::linalg::max_abs;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::{StateSpace, check_finite};
 
+/// Largest number of samples of a time grid ([`Horizon::Given`], [`TimeOptions::max_steps`]):
+/// guards against a typo such as a step in ms given as s allocating gigabytes.
+pub const MAX_SAMPLES: usize = 50_000_000;
+
 /// Horizon and step of a time response.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub enum Horizon {
@@ -259,13 +263,19 @@ fn grid(
                     "Horizon::Given dt = {dt}: must be finite and > 0"
                 )));
             }
-            let nt = (t_end / dt).round() as usize + 1;
-            Ok((nt.max(2), dt, None))
+            let steps = (t_end / dt).round();
+            if steps > MAX_SAMPLES as f64 {
+                return Err(NumError::InvalidOption(format!(
+                    "Horizon::Given t_end = {t_end}, dt = {dt}: {steps:.3e} samples exceed the \
+                     limit of {MAX_SAMPLES}"
+                )));
+            }
+            Ok(((steps as usize + 1).max(2), dt, None))
         }
         Horizon::Auto => {
-            if opts.max_steps < 2 {
+            if opts.max_steps < 2 || opts.max_steps > MAX_SAMPLES {
                 return Err(NumError::InvalidOption(format!(
-                    "TimeOptions::max_steps = {}: must be ≥ 2",
+                    "TimeOptions::max_steps = {}: must be in 2..={MAX_SAMPLES}",
                     opts.max_steps
                 )));
             }

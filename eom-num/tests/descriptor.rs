@@ -320,3 +320,30 @@ fn descriptor_errors_name_the_problem() {
         other => panic!("expected NonFinite, got {other:?}"),
     }
 }
+
+/// An input-state row of E that is rounding noise (as after orthonormal projections) must be
+/// treated as zero, not equilibrated up to an O(1) "equation": the reduced transfer function
+/// must equal the descriptor's own `C (sE − A)⁻¹ B + D`.
+#[test]
+fn noise_level_row_of_e_is_not_amplified() {
+    use nalgebra::DMatrix;
+    use num_complex::Complex64;
+    // x1' = x2, 2 x2' = −3 x1 − 0.4 x2 + x3, 0 = −x3 + u (x3 is the input state), y = x1.
+    let mut e = DMatrix::from_row_slice(3, 3, &[1.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0]);
+    // Rounding residue in the algebraic row, the column stays exactly zero.
+    e[(2, 0)] = 8.7e-17;
+    e[(2, 1)] = -3.1e-17;
+    let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, -3.0, -0.4, 1.0, 0.0, 0.0, -1.0]);
+    let b = DMatrix::from_row_slice(3, 1, &[0.0, 0.0, 1.0]);
+    let c = DMatrix::from_row_slice(1, 3, &[1.0, 0.0, 0.0]);
+    let d = eom_num::Descriptor { e, a, b, c, d: DMatrix::zeros(1, 1) };
+    let (ss, rep) = eom_num::descriptor::descriptor_to_state_space(&d, &Default::default()).unwrap();
+    assert_eq!((rep.dynamic, rep.algebraic), (2, 1));
+    assert!(rep.warnings.iter().any(|w| w.contains("rounding noise")), "{:?}", rep.warnings);
+    for s in [Complex64::new(0.3, 1.7), Complex64::new(-0.2, 0.4)] {
+        // Exact: 1 / (2 s² + 0.4 s + 3).
+        let exact = Complex64::new(1.0, 0.0) / (s * s * 2.0 + s * 0.4 + 3.0);
+        let g = eom_num::freq::evaluate_at(&ss, s).unwrap()[(0, 0)];
+        assert!((g - exact).norm() < 1e-13 * exact.norm(), "{g} vs {exact}");
+    }
+}

@@ -352,6 +352,18 @@ fn freq_errors_name_the_problem() {
         FrequencyResponse::compute(&ss, &bad_range),
         Err(NumError::InvalidOption(msg)) if msg.contains("low < high")
     ));
+    let huge = FreqOptions {
+        range: FreqRange::Range {
+            low: 1e-3,
+            high: 1e3,
+            unit: FreqUnit::Hz,
+        },
+        points_per_decade: 1_000_000_000,
+    };
+    assert!(matches!(
+        FrequencyResponse::compute(&ss, &huge),
+        Err(NumError::InvalidOption(msg)) if msg.contains("exceeds the limit")
+    ));
     let bad_points = FreqOptions {
         range: FreqRange::Points {
             values: vec![1.0, -2.0],

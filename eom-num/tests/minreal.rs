@@ -106,7 +106,9 @@ fn kalman_systems_reduce_to_the_controllable_observable_block() {
         // removal.
         assert!(rep.fragile_decisions(1e3).is_empty(), "seed {seed}");
         assert!(
-            rep.removed.iter().all(|r| r.pbh_residual < 1e-14),
+            rep.removed
+                .iter()
+                .all(|r| r.pbh_residual.is_some_and(|v| v < 1e-14)),
             "{rep:?}"
         );
     }
@@ -169,6 +171,14 @@ fn an_unstable_mode_the_sensors_cannot_see_is_reported() {
         assert!((h.eigenvalue.re - 0.3).abs() < 1e-12);
         assert!((h.eigenvalue.im.abs() - (9.0f64 - 0.09).sqrt()).abs() < 1e-12);
     }
+    // The PBH confirmation can be switched off (then it is absent, not a made-up number).
+    let quick = MinrealOptions {
+        pbh_check: false,
+        ..Default::default()
+    };
+    let (_, rep2) = minimal_realization(&sys, &quick).unwrap();
+    assert!(rep2.removed.iter().all(|r| r.pbh_residual.is_none()));
+    assert!(rep.removed.iter().all(|r| r.pbh_residual.unwrap() < 1e-14));
     // The JSON form names the kind and the stability.
     let json = serde_json::to_value(&rep).unwrap();
     assert_eq!(json["removed"][0]["kind"], "Unobservable");

@@ -176,7 +176,10 @@ fn minimal_realization_matches_python_control() {
                         && (r.eigenvalue - extra[0]).norm() < POLE_TOL * extra[0].norm().max(1.0)
                 })
                 .unwrap();
-            assert!(removed.pbh_residual < 1e-12, "{removed:?}");
+            assert!(
+                removed.pbh_residual.is_some_and(|v| v < 1e-12),
+                "{removed:?}"
+            );
             assert_eq!(rep.fragile_decisions(100.0).len(), 1);
             // The independent PBH test says that mode is unobservable.
             assert!(pbh_unobservable(&c.sys, extra[0]) < 1e-13);

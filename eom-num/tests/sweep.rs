@@ -244,6 +244,37 @@ fn a_real_root_crossing_zero_is_located() {
 }
 
 #[test]
+fn a_real_root_crossing_next_to_a_neutral_zero() {
+    // A heading-like integrator (exact zero eigenvalue) next to a real root 0.4 − x that
+    // crosses zero. With the coupling `k` ≠ 0 (heading driven by the crossing state, as
+    // ψ' = r) the two form a defective double zero at x = 0.4: each eigenvalue is then only
+    // known to √ε ≈ 1.5e-8, and locating the root from the branch alone misses by ~1e-8. The
+    // sum of the neutral and the crossing eigenvalue stays accurate, and the sweep uses it.
+    for k in [0.0, 1.0] {
+        let f = move |x: f64| -> Result<DMatrix<f64>, String> {
+            let a = mat(&[
+                &[0.0, k, 0.0, 0.0],
+                &[0.0, 0.4 - x, 0.7, 0.0],
+                &[0.0, 0.0, -1.0, 3.0],
+                &[0.0, 0.0, -3.0, -1.0],
+            ]);
+            let q = rand_orth(&mut rng(12), 4);
+            Ok(q.transpose() * a * q)
+        };
+        let res = Sweep::linspace(0.0, 1.0, 17).run(f).unwrap();
+        assert_eq!(res.branches.iter().filter(|b| b.neutral).count(), 1);
+        assert_eq!(res.boundaries.len(), 1, "{:?}", res.boundaries);
+        let b = &res.boundaries[0];
+        assert!((b.value - 0.4).abs() < 1e-10, "k = {k}: {b:?}");
+        assert!(b.eigenvalue.re.abs() < 1e-10, "k = {k}: {b:?}");
+        assert_eq!(b.crossing, Crossing::Stabilizing);
+        assert_eq!(res.stable_intervals.len(), 1);
+        assert!((res.stable_intervals[0].lo - 0.4).abs() < 1e-10);
+        assert_eq!(res.stable_intervals[0].hi, 1.0);
+    }
+}
+
+#[test]
 fn decreasing_sweeps_give_the_same_intervals() {
     let res = Sweep::linspace(1.0, 0.0, 41).run(shimmy).unwrap();
     let iv = res.stable_intervals[0];

@@ -83,14 +83,18 @@ fn smd_step_and_impulse_match_closed_form() {
 #[test]
 fn lightly_damped_horizon_is_capped_at_fifty_periods() {
     // ζ = 0.001: 5τ would be 800 periods; the horizon stops at 50.
-    let (m, k) = (1.0, 400.0);
+    let (m, k) = (1.0f64, 400.0f64);
     let c = 2.0 * 0.001 * (k * m).sqrt();
     let ss = smd(m, c, k);
     let r = step(&ss, &TimeOptions::default()).unwrap();
     let wd = (k / m - c * c / (4.0 * m * m)).sqrt();
     let period = 2.0 * std::f64::consts::PI / wd;
     let t_end = r.t[r.len() - 1];
-    assert!((t_end - 50.0 * period).abs() <= r.dt, "{t_end} vs {}", 50.0 * period);
+    assert!(
+        (t_end - 50.0 * period).abs() <= r.dt,
+        "{t_end} vs {}",
+        50.0 * period
+    );
     assert!(r.dt <= period / 20.0 + 1e-15);
 }
 
@@ -269,6 +273,10 @@ fn time_errors_name_the_problem() {
     assert!(matches!(
         impulse(&ss, &bad(Horizon::Given { t_end: f64::NAN, dt: 0.1 })),
         Err(NumError::InvalidOption(msg)) if msg.contains("t_end")
+    ));
+    assert!(matches!(
+        step(&ss, &bad(Horizon::Given { t_end: 1e6, dt: 1e-6 })),
+        Err(NumError::InvalidOption(msg)) if msg.contains("exceed the limit")
     ));
     let few = TimeOptions {
         max_steps: 1,

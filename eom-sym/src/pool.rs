@@ -929,8 +929,40 @@ impl ExprPool {
         }
         // Fold numeric bases with integer exponents into the coefficient; drop x^0.
         let mut kept: Vec<(Id, Rational)> = Vec::with_capacity(merged.len());
+        let mut expanded = false;
         for (b, e) in merged {
             if e.is_zero() {
+                continue;
+            }
+            if e.is_integer() && matches!(self.nodes[b as usize], Node::Mul(..)) {
+                // A product base whose fractional powers merged to an integer one, e.g.
+                // (2x²)^(1/2)·(2x²)^(1/2) = (2x²)^1: products are flat, so expand it exactly
+                // (integer power of a product) and merge again. Without this, a·a and a²
+                // were different nodes.
+                let p = self.pow_rational(b, e);
+                match &self.nodes[p as usize] {
+                    Node::Invalid(_) => return p,
+                    Node::Num(_) | Node::Float(_) => {
+                        let v = self.number(p).expect("number");
+                        match coef.mul(&v) {
+                            Ok(c) => coef = c,
+                            Err(err) => return self.invalid(err),
+                        }
+                    }
+                    Node::Mul(..) => {
+                        let (c, pairs) = self.mul_parts(p).expect("product");
+                        let pairs: Vec<u32> = pairs.to_vec();
+                        match coef.mul(&self.number(c).expect("coefficient")) {
+                            Ok(c) => coef = c,
+                            Err(err) => return self.invalid(err),
+                        }
+                        for q in pairs.chunks_exact(2) {
+                            kept.push((q[0], self.rational_of(q[1]).expect("exp").clone()));
+                        }
+                    }
+                    _ => kept.push((p, Rational::ONE)),
+                }
+                expanded = true;
                 continue;
             }
             if self.is_number(b) && e.is_integer() {
@@ -945,6 +977,10 @@ impl ExprPool {
                 continue;
             }
             kept.push((b, e));
+        }
+        if expanded {
+            // The expansion brought new factors (possibly equal to kept ones): merge again.
+            return self.finish_mul(coef, kept);
         }
         // A second pass may have produced adjacent equal bases with opposite signs whose
         // cancellation is allowed: handled above; re-sort for the canonical order.

@@ -141,11 +141,7 @@ impl Scalar for Dd {
         match r.as_small() {
             Some((n, 1)) => Dd::from_i64(n),
             Some((n, d)) => Dd::from_i64(n) / Dd::from_i64(d),
-            None => {
-                // Wide rationals: exact enough through two-part conversions of the parts.
-                let (n, d) = r.to_big_parts();
-                big_to_dd(&n) / big_to_dd(&d)
-            }
+            None => big_to_dd(r),
         }
     }
     fn from_f64(x: f64) -> Dd {
@@ -177,14 +173,20 @@ impl Scalar for Dd {
     }
 }
 
-fn big_to_dd(n: &num_bigint::BigInt) -> Dd {
+/// A wide rational as `hi + lo`: `hi` its nearest double, `lo` the nearest double of the exact
+/// remainder `r − hi`. (Converting the numerator and the denominator separately went through
+/// `i128`, which saturates above 2¹²⁷ — 134¹⁸ came out 12 % too large — and gave `inf/inf`
+/// for parts beyond the `f64` range even when the quotient is moderate.)
+fn big_to_dd(r: &Rational) -> Dd {
     use num_traits::ToPrimitive;
-    let hi = n.to_f64().unwrap_or(f64::INFINITY);
+    let hi = r.to_f64();
     if !hi.is_finite() {
         return Dd::from_f64(hi);
     }
-    let rest = n - num_bigint::BigInt::from(hi as i128);
-    let lo = rest.to_f64().unwrap_or(0.0);
+    let (n, d) = r.to_big_parts();
+    let lo = num_rational::BigRational::from_float(hi)
+        .and_then(|h| (num_rational::BigRational::new(n, d) - h).to_f64())
+        .unwrap_or(0.0);
     Dd::from_f64(hi) + Dd::from_f64(lo)
 }
 

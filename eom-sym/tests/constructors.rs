@@ -568,6 +568,24 @@ fn products_are_flat_and_ordered() {
 }
 
 #[test]
+fn fractional_powers_of_a_product_that_merge_to_an_integer_are_flattened() {
+    // √(2x²) is kept as (2x²)^(1/2) for real x (the base is not split); its square must be
+    // the flat product 2x², whether written a·a or a².
+    let x = real("x");
+    let r2 = (Expr::int(2) * x.powi(2)).sqrt();
+    let (_, f) = product(r2);
+    assert_eq!(f.len(), 1);
+    assert!(matches!(f[0].0.view(), ExprView::Product { .. }));
+    assert_eq!(r2 * r2, Expr::int(2) * x.powi(2));
+    let a = x * r2;
+    assert_eq!(a * a, a.powi(2));
+    assert_eq!(a * a, Expr::int(2) * x.powi(4));
+    // Three halves merge to 3/2: still a fractional power of the product, kept.
+    let (_, f) = product(r2 * r2 * r2 / r2.powi(2) * r2.powi(2));
+    assert!(f.iter().all(|(b, e)| !matches!(b.view(), ExprView::Product { .. }) || !e.is_integer()));
+}
+
+#[test]
 fn numeric_coefficient_distributes_over_a_sum_only() {
     let a = real("a");
     let b = real("b");

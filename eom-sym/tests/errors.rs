@@ -185,6 +185,26 @@ fn big_rationals_promote_without_error() {
     assert!(((v - eom_sym::Dd::ONE).to_f64() - 2f64.powi(-100)).abs() < 1e-45, "{v}");
 }
 
+#[test]
+fn big_rationals_convert_to_double_double_accurately() {
+    use eom_sym::Dd;
+    let rel = |a: Dd, b: Dd| ((a - b) / b).to_f64().abs();
+    let dd = |e: Expr| eval_nominal::<Dd>(&[e]).unwrap()[0];
+    // An integer above 2^127: 134^18 (compared with repeated double-double multiplication).
+    let want = Dd::from_f64(134.0).powi(18);
+    assert!(rel(dd(Expr::int(134).powi(18)), want) < 1e-30, "{}", dd(Expr::int(134).powi(18)));
+    assert!(rel(dd(Expr::int(-134).powi(17)), -Dd::from_f64(134.0).powi(17)) < 1e-30);
+    // Parts beyond the f64 range, moderate quotient: (2/3)^1000 ≈ 8.1e-177 and
+    // (3^700 + 1)/3^700 = 1 + 3^-700 (= 1 in double-double: 3^-700 underflows).
+    let want = (Dd::from_f64(2.0) / Dd::from_f64(3.0)).powi(1000);
+    let got = dd(Expr::rational(2, 3).unwrap().powi(1000));
+    assert!(rel(got, want) < 1e-28, "{got} vs {want}");
+    let t = Expr::int(3).powi(700);
+    let got = dd((t + Expr::one()) / t);
+    assert_eq!(got, Dd::ONE);
+    assert!(Expr::rational(2, 3).unwrap().powi(1000).nominal() > 0.0);
+}
+
 // ------------------------------------------------------------------ floats
 
 #[test]

@@ -309,6 +309,7 @@ struct Stats {
     cases: Cell<u32>,
     invalid: Cell<u32>,
     undefined: Cell<u32>,
+    constant: Cell<u32>,
     skipped: Cell<u32>,
     compared: Cell<u32>,
     sharp: Cell<u32>,
@@ -320,10 +321,11 @@ impl Stats {
     }
     fn report(&self, name: &str) {
         eprintln!(
-            "{name}: {} cases, {} invalid, {} undefined, {} skipped, {} compared ({} sharp)",
+            "{name}: {} cases, {} invalid, {} undefined, {} constant, {} skipped, {} compared ({} sharp)",
             self.cases.get(),
             self.invalid.get(),
             self.undefined.get(),
+            self.constant.get(),
             self.skipped.get(),
             self.compared.get(),
             self.sharp.get()
@@ -430,7 +432,11 @@ fn tape_recursive_and_double_double_evaluation_agree() {
 /// * Non-smooth spots: the signs of every `abs`/`ln` argument, every base with a negative or
 ///   fractional exponent and the `atan2` cut must be the same (and nonzero) at all stencil
 ///   points, else skipped.
-/// * Then `|diff − D(h/2)| ≤ 10⁻⁸·max(|diff|, |D|) + 4·noise + DD_RATIO·E_diff`.
+/// * Then `|diff − D(h/2)| ≤ 10⁻⁸·max(|diff|, |D|) + 4·noise + DD_RATIO·E_diff`, where
+///   `E_diff` is the running bound of the derivative. When the recipe has float constants,
+///   `diff` folds new float coefficients in `f64` (`c·c/2` in `d√|c·x|/dx`), so `2·E_diff`
+///   replaces `DD_RATIO·E_diff` (as for substitution).
+/// * A parameter the expression does not depend on must give a structural zero.
 #[test]
 fn derivative_matches_finite_differences() {
     let p = params();
@@ -453,7 +459,7 @@ fn derivative_matches_finite_differences() {
         let on: Vec<usize> =
             (0..N_PARAMS).filter(|&k| deps.contains(&p[k].param_index().unwrap())).collect();
         if on.is_empty() {
-            Stats::bump(&st.skipped);
+            Stats::bump(&st.constant);
             return Ok(());
         }
         let j = on[j % on.len()];
@@ -500,7 +506,10 @@ fn derivative_matches_finite_differences() {
             Stats::bump(&st.skipped);
             return Ok(());
         }
-        let tol = 1e-8 * scale + 4.0 * noise + DD_RATIO * ed + TINY;
+        // A derivative of an expression with float constants has float coefficients folded in
+        // f64 at construction (c·c/2 for d√|c·x|): allow its own f64 running bound then.
+        let folded = if has_float(&r) { 2.0 * ed } else { DD_RATIO * ed };
+        let tol = 1e-8 * scale + 4.0 * noise + folded + TINY;
         let miss = (ds - d_h2).to_f64().abs();
         prop_assert!(
             miss <= tol,
@@ -509,7 +518,7 @@ fn derivative_matches_finite_differences() {
         );
         Stats::bump(&st.compared);
         // Sharp: the tolerance is the 1e-8 relative term, not the noise allowance.
-        if 4.0 * noise + DD_RATIO * ed <= 1e-10 * scale {
+        if 4.0 * noise + folded <= 1e-10 * scale {
             Stats::bump(&st.sharp);
         }
         Ok(())
@@ -684,6 +693,29 @@ fn non_numeric(e: Expr) -> usize {
     reachable(&[e]).iter().filter(|n| !n.is_number()).count()
 }
 
+/// The recipe with every float constant replaced by a nearby exact rational (k/8).
+fn exact(r: &Recipe) -> Recipe {
+    use Recipe::*;
+    let b = |x: &Recipe| Box::new(exact(x));
+    match r {
+        Float(x) => Rat((x * 8.0).round() as i64, 8),
+        Param(_) | Int(_) | Rat(..) => r.clone(),
+        Add(x, y) => Add(b(x), b(y)),
+        Sub(x, y) => Sub(b(x), b(y)),
+        Mul(x, y) => Mul(b(x), b(y)),
+        Div(x, y) => Div(b(x), b(y)),
+        Atan2(x, y) => Atan2(b(x), b(y)),
+        Neg(x) => Neg(b(x)),
+        Powi(x, n) => Powi(b(x), *n),
+        Sqrt(x) => Sqrt(b(x)),
+        Sin(x) => Sin(b(x)),
+        Cos(x) => Cos(b(x)),
+        Exp(x) => Exp(b(x)),
+        Ln(x) => Ln(b(x)),
+        Abs(x) => Abs(b(x)),
+    }
+}
+
 fn has_float(r: &Recipe) -> bool {
     use Recipe::*;
     match r {
@@ -692,6 +724,17 @@ fn has_float(r: &Recipe) -> bool {
         Add(a, b) | Sub(a, b) | Mul(a, b) | Div(a, b) | Atan2(a, b) => has_float(a) || has_float(b),
         Neg(a) | Powi(a, _) | Sqrt(a) | Sin(a) | Cos(a) | Exp(a) | Ln(a) | Abs(a) => has_float(a),
     }
+}
+
+/// `x` and `y` are the same node, or both invalid with the same error (invalid nodes carry
+/// their own error and are not hash-consed).
+fn same(x: Expr, y: Expr) -> Result<(), TestCaseError> {
+    match (x.check(), y.check()) {
+        (Ok(_), Ok(_)) => prop_assert_eq!(x, y),
+        (Err(ex), Err(ey)) => prop_assert_eq!(ex, ey),
+        (ex, ey) => prop_assert!(false, "one side invalid: {:?} vs {:?}", ex, ey),
+    }
+    Ok(())
 }
 
 /// Building a recipe twice gives the same node, and shared structure is stored once.
@@ -709,13 +752,18 @@ fn building_twice_gives_the_same_node() {
         prop_assert_eq!(a, b);
         // Twice the same subexpression is stored once: a + a and a·a add at most one
         // non-numeric node (and new coefficients or exponents).
+        // (A large float constant may overflow: then both sides are the same error.)
         let n = non_numeric(a);
         let twice = a + a;
-        prop_assert_eq!(twice, Expr::int(2) * a);
-        prop_assert!(non_numeric(twice) <= n + 1, "{a} + {a}");
+        same(twice, Expr::int(2) * a)?;
+        if twice.check().is_ok() {
+            prop_assert!(non_numeric(twice) <= n + 1, "{a} + {a}");
+        }
         let sq = a * a;
-        prop_assert_eq!(sq, a.powi(2));
-        prop_assert!(non_numeric(sq) <= n + 1, "{a}·{a}");
+        same(sq, a.powi(2))?;
+        if sq.check().is_ok() {
+            prop_assert!(non_numeric(sq) <= n + 1, "{a}·{a}");
+        }
         prop_assert_eq!(a - a, Expr::zero());
         prop_assert_eq!(a + Expr::zero(), a);
         prop_assert_eq!(a * Expr::one(), a);
@@ -750,8 +798,11 @@ fn dag_size_is_bounded_by_the_recipe() {
 }
 
 /// Canonical forms do not depend on the order of operations: `a + b = b + a`, `a·b = b·a`,
-/// `(a + b) + c = a + (b + c)` (without float constants: float addition is not associative),
-/// and `(a·b)·c = a·(b·c)` when no operand or partial product is a number.
+/// and, with the float constants replaced by exact ones (float arithmetic is not associative:
+/// a folded coefficient depends on the order), `(a + b) + c = a + (b + c)` and
+/// `(a·b)·c = a·(b·c)`; the latter only
+/// when no operand or partial product is a number (a number times a sum is distributed, a
+/// number times a product is not: `(2·s)·x ≠ 2·(s·x)` for a sum `s`, a known limitation).
 #[test]
 fn canonical_forms_are_order_independent() {
     let p = params();
@@ -763,15 +814,19 @@ fn canonical_forms_are_order_independent() {
             Stats::bump(&st.invalid);
             return Ok(());
         }
-        prop_assert_eq!(a + b, b + a);
-        prop_assert_eq!(a * b, b * a);
-        if !(has_float(&ra) || has_float(&rb) || has_float(&rc)) {
-            prop_assert_eq!((a + b) + c, a + (b + c), "({}) + ({}) + ({})", a, b, c);
-            prop_assert_eq!(Expr::sum([a, b, c]), (c + a) + b);
+        same(a + b, b + a)?;
+        same(a * b, b * a)?;
+        // Associativity on the exact versions of the recipes.
+        let (a, b, c) = (build(&exact(&ra), &p), build(&exact(&rb), &p), build(&exact(&rc), &p));
+        if a.check().is_err() || b.check().is_err() || c.check().is_err() {
+            Stats::bump(&st.skipped);
+            return Ok(());
         }
+        same((a + b) + c, a + (b + c))?;
+        same(Expr::sum([a, b, c]), (c + a) + b)?;
         let numeric = [a, b, c, a * b, b * c].iter().any(|x| x.is_number());
         if !numeric {
-            prop_assert_eq!((a * b) * c, a * (b * c), "({}) · ({}) · ({})", a, b, c);
+            same((a * b) * c, a * (b * c))?;
             Stats::bump(&st.compared);
         }
         Ok(())

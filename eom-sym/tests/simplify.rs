@@ -14,10 +14,13 @@
 
 mod common;
 
-use eom_sym::simplify::{Normalized, RationalNormalizer, Simplifier, StopReason, WorkLimit, normalize_rational};
+use eom_sym::simplify::{
+    Normalized, RationalNormalizer, Simplifier, StopReason, WorkLimit, normalize_rational,
+};
 use eom_sym::testing::{SplitMix, params, random_dag};
 use eom_sym::{
-    Assumption, CostModel, Elementary, Expr, ParamInfo, Rational, Scalar, SparseMatrix, SymError, eval_generic,
+    Assumption, CostModel, Elementary, Expr, ParamInfo, Rational, Scalar, SparseMatrix, SymError,
+    eval_generic,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
@@ -41,19 +44,35 @@ struct Bound {
 
 impl Bound {
     fn exact(v: f64) -> Bound {
-        Bound { v, e: 0.0, undefined: false }
+        Bound {
+            v,
+            e: 0.0,
+            undefined: false,
+        }
     }
     /// A rounded result: the propagated bound plus one rounding.
     fn rounded(v: f64, e: f64, inputs: &[Bound]) -> Bound {
         let undefined = inputs.iter().any(|b| b.undefined);
-        let e = if v.is_finite() { e + U * v.abs() } else { f64::INFINITY };
+        let e = if v.is_finite() {
+            e + U * v.abs()
+        } else {
+            f64::INFINITY
+        };
         Bound { v, e, undefined }
     }
     fn unbounded(v: f64, inputs: &[Bound]) -> Bound {
-        Bound { v, e: f64::INFINITY, undefined: inputs.iter().any(|b| b.undefined) }
+        Bound {
+            v,
+            e: f64::INFINITY,
+            undefined: inputs.iter().any(|b| b.undefined),
+        }
     }
     fn undefined() -> Bound {
-        Bound { v: f64::NAN, e: f64::INFINITY, undefined: true }
+        Bound {
+            v: f64::NAN,
+            e: f64::INFINITY,
+            undefined: true,
+        }
     }
     fn trusted(&self) -> bool {
         !self.undefined && self.v.is_finite() && self.e.is_finite()
@@ -108,7 +127,11 @@ impl Scalar for Bound {
         Bound::exact(1.0)
     }
     fn from_i64(n: i64) -> Bound {
-        if n.unsigned_abs() <= 1 << 53 { Bound::exact(n as f64) } else { Bound::rounded(n as f64, 0.0, &[]) }
+        if n.unsigned_abs() <= 1 << 53 {
+            Bound::exact(n as f64)
+        } else {
+            Bound::rounded(n as f64, 0.0, &[])
+        }
     }
     fn from_rational(r: &Rational) -> Bound {
         Bound::rounded(r.to_f64(), 0.0, &[])
@@ -138,7 +161,10 @@ impl Scalar for Bound {
         Bound::rounded(self.v.cos(), self.e + U, &[self])
     }
     fn abs(self) -> Bound {
-        Bound { v: self.v.abs(), ..self }
+        Bound {
+            v: self.v.abs(),
+            ..self
+        }
     }
     fn nominal(&self) -> f64 {
         self.v
@@ -205,7 +231,14 @@ struct Tally {
 
 /// Compare `a` and `b` (same length) at `points` random parameter points, magnitudes in
 /// [0.25, 3), random signs unless a parameter is declared non-negative.
-fn same_values(a: &[Expr], b: &[Expr], ps: &[Expr], seed: u64, points: usize, tally: &mut Tally) -> Result<(), String> {
+fn same_values(
+    a: &[Expr],
+    b: &[Expr],
+    ps: &[Expr],
+    seed: u64,
+    points: usize,
+    tally: &mut Tally,
+) -> Result<(), String> {
     same_values_in(a, b, ps, seed, points, (0.25, 3.0), tally)
 }
 
@@ -226,8 +259,13 @@ fn same_values_in(
             .map(|p| {
                 let m = rng.uniform(range.0, range.1);
                 let info = p.param_info().expect("parameter");
-                let positive = matches!(info.assume, Assumption::Positive | Assumption::Nonnegative);
-                let sign = if positive || rng.below(2) == 0 { 1.0 } else { -1.0 };
+                let positive =
+                    matches!(info.assume, Assumption::Positive | Assumption::Nonnegative);
+                let sign = if positive || rng.below(2) == 0 {
+                    1.0
+                } else {
+                    -1.0
+                };
                 (p.param_index().expect("parameter"), sign * m)
             })
             .collect();
@@ -240,7 +278,10 @@ fn same_values_in(
                 continue;
             }
             if y.undefined {
-                return Err(format!("entry {k}: the result is undefined where the input is {x:?}\n  {} \n  {}", a[k], b[k]));
+                return Err(format!(
+                    "entry {k}: the result is undefined where the input is {x:?}\n  {} \n  {}",
+                    a[k], b[k]
+                ));
             }
             if !y.trusted() {
                 tally.unverifiable += 1;
@@ -262,13 +303,23 @@ fn check_tally(t: &Tally, what: &str) {
     let total = t.checked + t.skipped + t.unverifiable;
     eprintln!("{what}: {t:?}");
     assert!(total > 0);
-    assert!(t.checked * 10 >= total * 7, "{what}: too few points checked: {t:?}");
+    assert!(
+        t.checked * 10 >= total * 7,
+        "{what}: too few points checked: {t:?}"
+    );
 }
 
 // ------------------------------------------------------------------ helpers
 
 fn param(name: &str, nominal: f64, assume: Assumption) -> Expr {
-    Expr::new_param(ParamInfo { name: name.into(), nominal, unit: None, description: None, assume }).unwrap()
+    Expr::new_param(ParamInfo {
+        name: name.into(),
+        nominal,
+        unit: None,
+        description: None,
+        assume,
+    })
+    .unwrap()
 }
 
 /// `C = Aᵀ·B·A` for a sparse 6×6 `A` (55 % nonzeros: a parameter, a product, a sum or `−2·p`)
@@ -306,7 +357,10 @@ fn atba(seed: u64) -> (SparseMatrix<Expr>, Vec<Expr>) {
 
 #[test]
 fn egg_pass_preserves_values_and_never_raises_the_cost() {
-    let mut runner = TestRunner::new(Config { cases: 192, ..Config::default() });
+    let mut runner = TestRunner::new(Config {
+        cases: 192,
+        ..Config::default()
+    });
     let strategy = (prop::collection::vec(common::recipe(), 1..5), any::<u64>());
     let tally = std::cell::RefCell::new(Tally::default());
     runner
@@ -314,17 +368,27 @@ fn egg_pass_preserves_values_and_never_raises_the_cost() {
             let ps = common::params();
             let roots: Vec<Expr> = recipes.iter().map(|r| common::build(r, &ps)).collect();
             prop_assume!(roots.iter().all(|r| r.check().is_ok()));
-            let out = Simplifier::default().run(&roots).map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let out = Simplifier::default()
+                .run(&roots)
+                .map_err(|e| TestCaseError::fail(e.to_string()))?;
             let w = CostModel::default();
             prop_assert_eq!(out.cost_before, w.of(&roots));
-            prop_assert_eq!(w.of(&out.roots), if out.kept { out.cost_after } else { out.cost_before });
+            prop_assert_eq!(
+                w.of(&out.roots),
+                if out.kept {
+                    out.cost_after
+                } else {
+                    out.cost_before
+                }
+            );
             if out.kept {
                 prop_assert!(out.cost_after < out.cost_before);
             } else {
                 prop_assert_eq!(&out.roots, &roots);
             }
             prop_assert!(out.roots.iter().all(|r| r.check().is_ok()));
-            same_values(&roots, &out.roots, &ps, seed, 4, &mut tally.borrow_mut()).map_err(TestCaseError::fail)?;
+            same_values(&roots, &out.roots, &ps, seed, 4, &mut tally.borrow_mut())
+                .map_err(TestCaseError::fail)?;
             Ok(())
         })
         .unwrap();
@@ -338,14 +402,21 @@ fn egg_pass_on_random_laurent_sums_preserves_values() {
     let term = (-4i64..5, prop::collection::vec(-2i64..4, 5));
     let root = prop::collection::vec(term, 2..7);
     let strategy = (prop::collection::vec(root, 1..4), any::<u64>());
-    let mut runner = TestRunner::new(Config { cases: 128, ..Config::default() });
+    let mut runner = TestRunner::new(Config {
+        cases: 128,
+        ..Config::default()
+    });
     let tally = std::cell::RefCell::new(Tally::default());
     let kept = std::cell::Cell::new(0usize);
     runner
         .run(&strategy, |(roots, seed)| {
             let ps: Vec<Expr> = (0..5)
                 .map(|i| {
-                    let assume = if i < 2 { Assumption::Positive } else { Assumption::Real };
+                    let assume = if i < 2 {
+                        Assumption::Positive
+                    } else {
+                        Assumption::Real
+                    };
                     param(&format!("q{i}"), 0.5 + i as f64 * 0.3, assume)
                 })
                 .collect();
@@ -357,17 +428,31 @@ fn egg_pass_on_random_laurent_sums_preserves_values() {
                     }))
                 })
                 .collect();
-            let out = Simplifier::default().run(&exprs).map_err(|e| TestCaseError::fail(e.to_string()))?;
-            prop_assert_eq!(CostModel::default().of(&out.roots), if out.kept { out.cost_after } else { out.cost_before });
+            let out = Simplifier::default()
+                .run(&exprs)
+                .map_err(|e| TestCaseError::fail(e.to_string()))?;
+            prop_assert_eq!(
+                CostModel::default().of(&out.roots),
+                if out.kept {
+                    out.cost_after
+                } else {
+                    out.cost_before
+                }
+            );
             if out.kept {
                 kept.set(kept.get() + 1);
                 prop_assert!(out.cost_after < out.cost_before);
             }
-            same_values(&exprs, &out.roots, &ps, seed, 4, &mut tally.borrow_mut()).map_err(TestCaseError::fail)?;
+            same_values(&exprs, &out.roots, &ps, seed, 4, &mut tally.borrow_mut())
+                .map_err(TestCaseError::fail)?;
             Ok(())
         })
         .unwrap();
-    assert!(kept.get() >= 64, "only {} of 128 sums were simplified", kept.get());
+    assert!(
+        kept.get() >= 64,
+        "only {} of 128 sums were simplified",
+        kept.get()
+    );
     check_tally(&tally.borrow(), "egg pass on Laurent sums");
 }
 
@@ -395,8 +480,24 @@ fn egg_pass_on_random_dags_preserves_values() {
         let roots = random_dag(&p, 250, 12, seed);
         let out = Simplifier::default().run(&roots).unwrap();
         assert!(out.cost_after < out.cost_before || !out.kept);
-        assert_eq!(CostModel::default().of(&out.roots), if out.kept { out.cost_after } else { out.cost_before });
-        same_values_in(&roots, &out.roots, &p, 100 + seed, 6, (0.5, 2.0), &mut tally).unwrap();
+        assert_eq!(
+            CostModel::default().of(&out.roots),
+            if out.kept {
+                out.cost_after
+            } else {
+                out.cost_before
+            }
+        );
+        same_values_in(
+            &roots,
+            &out.roots,
+            &p,
+            100 + seed,
+            6,
+            (0.5, 2.0),
+            &mut tally,
+        )
+        .unwrap();
     }
     check_tally(&tally, "egg pass on random DAGs");
 }
@@ -436,16 +537,23 @@ fn trigonometric_rules() {
     let c = param("c", 2.0, Assumption::Real);
     let s = Simplifier::default();
     // c·sin²a + c·cos²a → c (the pool folds numeric c itself; a symbolic c needs factoring).
-    let out = s.run(&[c * a.sin().powi(2) + c * a.cos().powi(2) + b]).unwrap();
+    let out = s
+        .run(&[c * a.sin().powi(2) + c * a.cos().powi(2) + b])
+        .unwrap();
     assert_eq!(out.roots[0], c + b);
     // 2 − 2·sin²a → 2·cos²a
-    let out = s.run(&[Expr::int(2) - Expr::int(2) * a.sin().powi(2)]).unwrap();
+    let out = s
+        .run(&[Expr::int(2) - Expr::int(2) * a.sin().powi(2)])
+        .unwrap();
     assert_eq!(out.roots[0], Expr::int(2) * a.cos().powi(2));
     // angle sums, both signs, with a common factor
     let cases = [
         (a.cos() * b.cos() - a.sin() * b.sin(), (a + b).cos()),
         (a.cos() * b.cos() + a.sin() * b.sin(), (a - b).cos()),
-        (c * (a.sin() * b.cos() + a.cos() * b.sin()), c * (a + b).sin()),
+        (
+            c * (a.sin() * b.cos() + a.cos() * b.sin()),
+            c * (a + b).sin(),
+        ),
         (a.sin() * b.cos() - a.cos() * b.sin(), (a - b).sin()),
     ];
     for (input, expect) in cases {
@@ -479,10 +587,20 @@ fn atba_is_simplified_jointly_and_sharing_across_entries_pays() {
         same_values(&entries, &after, &p, seed, 6, &mut tally).unwrap();
         check_tally(&tally, "AᵀBA");
         // Entry by entry, each entry's local optimum ignores what the others share.
-        let separate: Vec<Expr> = entries.iter().map(|&e| Simplifier::default().run(&[e]).unwrap().roots[0]).collect();
+        let separate: Vec<Expr> = entries
+            .iter()
+            .map(|&e| Simplifier::default().run(&[e]).unwrap().roots[0])
+            .collect();
         let separate_cost = w.of(&separate);
-        eprintln!("AᵀBA seed {seed}: input {} joint {} entry-by-entry {}", out.cost_before, out.cost_after, separate_cost);
-        assert!(out.cost_after < separate_cost, "seed {seed}: joint {} separate {separate_cost}", out.cost_after);
+        eprintln!(
+            "AᵀBA seed {seed}: input {} joint {} entry-by-entry {}",
+            out.cost_before, out.cost_after, separate_cost
+        );
+        assert!(
+            out.cost_after < separate_cost,
+            "seed {seed}: joint {} separate {separate_cost}",
+            out.cost_after
+        );
     }
 }
 
@@ -496,21 +614,37 @@ fn limits_stop_the_pass_cleanly_with_the_reason() {
     assert!(full.egraph_nodes > 300);
     // Node limit between the input's size and the saturated size.
     let limit = full.egraph_nodes - 100;
-    let out = Simplifier::default().with_node_limit(limit).run(&roots).unwrap();
+    let out = Simplifier::default()
+        .with_node_limit(limit)
+        .run(&roots)
+        .unwrap();
     assert_eq!(out.stop, StopReason::NodeLimit);
     // The appliers stop adding past the limit: the overshoot is at most one proposal.
-    assert!(out.egraph_nodes <= limit + 64, "{} nodes for a limit of {limit}", out.egraph_nodes);
+    assert!(
+        out.egraph_nodes <= limit + 64,
+        "{} nodes for a limit of {limit}",
+        out.egraph_nodes
+    );
     // Time limit zero: stops before rewriting anything.
-    let out = Simplifier::default().with_time_limit(Duration::ZERO).run(&roots).unwrap();
+    let out = Simplifier::default()
+        .with_time_limit(Duration::ZERO)
+        .run(&roots)
+        .unwrap();
     assert_eq!(out.stop, StopReason::TimeLimit);
     assert!(!out.kept);
     assert_eq!(out.roots, roots);
     // Iteration limit.
-    let out = Simplifier::default().with_iter_limit(1).run(&roots).unwrap();
+    let out = Simplifier::default()
+        .with_iter_limit(1)
+        .run(&roots)
+        .unwrap();
     assert_eq!(out.stop, StopReason::IterationLimit);
     assert_eq!(out.iterations, 1);
     // Stall hook: stop at the first iteration that does not improve the extracted cost.
-    let out = Simplifier::default().with_stall_iterations(1).run(&roots).unwrap();
+    let out = Simplifier::default()
+        .with_stall_iterations(1)
+        .run(&roots)
+        .unwrap();
     assert_eq!(out.stop, StopReason::CostStalled);
     // Whatever stopped it, the result is valid and has the input's values.
     let mut tally = Tally::default();
@@ -518,7 +652,10 @@ fn limits_stop_the_pass_cleanly_with_the_reason() {
     // A big random DAG under a small time budget stops on time.
     let q = params(10, 9, true);
     let big = random_dag(&q, 5000, 36, 9);
-    let out = Simplifier::default().with_time_limit(Duration::from_millis(1)).run(&big).unwrap();
+    let out = Simplifier::default()
+        .with_time_limit(Duration::from_millis(1))
+        .run(&big)
+        .unwrap();
     assert_eq!(out.stop, StopReason::TimeLimit);
     assert!(out.iterations <= 2);
 }
@@ -545,22 +682,41 @@ fn rational_normal_form_textbook_cases() {
     let k = param("k", 8.0, Assumption::Real);
     let a = param("a", 1.5, Assumption::Real);
     let b = param("b", 0.5, Assumption::Real);
-    assert_eq!(normalize_rational((m * k + k * m) / (Expr::int(2) * m)).unwrap(), k);
-    assert_eq!(normalize_rational((a.powi(2) - b.powi(2)) / (a - b)).unwrap(), a + b);
-    assert_eq!(normalize_rational(a.recip() + b.recip()).unwrap(), (a + b) / (a * b));
+    assert_eq!(
+        normalize_rational((m * k + k * m) / (Expr::int(2) * m)).unwrap(),
+        k
+    );
+    assert_eq!(
+        normalize_rational((a.powi(2) - b.powi(2)) / (a - b)).unwrap(),
+        a + b
+    );
+    assert_eq!(
+        normalize_rational(a.recip() + b.recip()).unwrap(),
+        (a + b) / (a * b)
+    );
     // Opaque atoms: (sin²x − 1)/(sin x − 1) = sin x + 1.
     let x = param("x", 0.2, Assumption::Real);
-    assert_eq!(normalize_rational((x.sin().powi(2) - 1) / (x.sin() - 1)).unwrap(), x.sin() + 1);
+    assert_eq!(
+        normalize_rational((x.sin().powi(2) - 1) / (x.sin() - 1)).unwrap(),
+        x.sin() + 1
+    );
     // Rational powers: with s = |a|^(1/2) the pool writes s² as |a|, so |a| and s must be one
     // atom: (s³ − s)/(s² − 1) = s.
     let s = a.abs().sqrt();
-    assert_eq!(normalize_rational((s.powi(3) - s) / (s.powi(2) - 1)).unwrap(), s);
+    assert_eq!(
+        normalize_rational((s.powi(3) - s) / (s.powi(2) - 1)).unwrap(),
+        s
+    );
     // A denominator that vanishes identically is an error, not a silent result.
     let zero_den = ((a + b).powi(2) - a.powi(2) - Expr::int(2) * a * b - b.powi(2)).recip();
-    assert!(matches!(normalize_rational(zero_den), Err(SymError::DivisionByZero { .. })));
+    assert!(matches!(
+        normalize_rational(zero_den),
+        Err(SymError::DivisionByZero { .. })
+    ));
     // Normalised leading coefficient: the denominator is monic, the numerator carries the
     // constant.
-    let e = (Expr::int(6) * a + Expr::int(3) * b) / (Expr::int(4) * a * b + Expr::int(2) * b.powi(2));
+    let e =
+        (Expr::int(6) * a + Expr::int(3) * b) / (Expr::int(4) * a * b + Expr::int(2) * b.powi(2));
     match RationalNormalizer::default().normalize(e).unwrap() {
         Normalized::Form(f) => {
             assert_eq!(f.to_expr(), Expr::rational(3, 2).unwrap() / b);
@@ -572,24 +728,45 @@ fn rational_normal_form_textbook_cases() {
 
 #[test]
 fn rational_normal_form_bounds_are_reported_promptly() {
-    let v: Vec<Expr> = (0..4).map(|i| param(&format!("v{i}"), 1.0 + i as f64, Assumption::Real)).collect();
+    let v: Vec<Expr> = (0..4)
+        .map(|i| param(&format!("v{i}"), 1.0 + i as f64, Assumption::Real))
+        .collect();
     let big = Expr::sum(v.iter().copied()).powi(30) / (v[0] - v[1]);
     let start = std::time::Instant::now();
-    let r = RationalNormalizer::default().with_max_terms(200).normalize(big).unwrap();
+    let r = RationalNormalizer::default()
+        .with_max_terms(200)
+        .normalize(big)
+        .unwrap();
     assert_eq!(r, Normalized::TooLarge(WorkLimit::Terms));
-    assert_eq!(normalize_rational(big).unwrap(), big, "the default bounds also refuse it");
-    let r = RationalNormalizer::default().with_max_degree(10).normalize(big).unwrap();
+    assert_eq!(
+        normalize_rational(big).unwrap(),
+        big,
+        "the default bounds also refuse it"
+    );
+    let r = RationalNormalizer::default()
+        .with_max_degree(10)
+        .normalize(big)
+        .unwrap();
     assert_eq!(r, Normalized::TooLarge(WorkLimit::Degree));
-    let r = RationalNormalizer::default().with_max_work(100).normalize((v[0] + v[1] + v[2]).powi(8) * (v[2] - v[3]).recip()).unwrap();
+    let r = RationalNormalizer::default()
+        .with_max_work(100)
+        .normalize((v[0] + v[1] + v[2]).powi(8) * (v[2] - v[3]).recip())
+        .unwrap();
     assert_eq!(r, Normalized::TooLarge(WorkLimit::Work));
-    let r = RationalNormalizer::default().with_max_atoms(3).normalize(big).unwrap();
+    let r = RationalNormalizer::default()
+        .with_max_atoms(3)
+        .normalize(big)
+        .unwrap();
     assert_eq!(r, Normalized::TooLarge(WorkLimit::Atoms));
     assert!(start.elapsed() < Duration::from_secs(5));
 }
 
 #[test]
 fn rational_normal_form_preserves_values() {
-    let mut runner = TestRunner::new(Config { cases: 256, ..Config::default() });
+    let mut runner = TestRunner::new(Config {
+        cases: 256,
+        ..Config::default()
+    });
     let strategy = (common::recipe(), any::<u64>());
     let tally = std::cell::RefCell::new(Tally::default());
     let formed = std::cell::Cell::new(0usize);
@@ -609,17 +786,27 @@ fn rational_normal_form_preserves_values() {
                 Err(SymError::DivisionByZero { .. }) => {
                     let mut rng = SplitMix(seed);
                     for _ in 0..4 {
-                        let vals: Vec<(u32, f64)> =
-                            ps.iter().map(|p| (p.param_index().unwrap(), rng.uniform(-3.0, 3.0))).collect();
-                        let v = eval_generic::<Bound>(&[e], |i| vals.iter().find(|v| v.0 == i).map(|v| Bound::exact(v.1)));
-                        prop_assert!(v.map_or(true, |v| !v[0].trusted()), "{} has a trusted value at {:?}", e, vals);
+                        let vals: Vec<(u32, f64)> = ps
+                            .iter()
+                            .map(|p| (p.param_index().unwrap(), rng.uniform(-3.0, 3.0)))
+                            .collect();
+                        let v = eval_generic::<Bound>(&[e], |i| {
+                            vals.iter().find(|v| v.0 == i).map(|v| Bound::exact(v.1))
+                        });
+                        prop_assert!(
+                            v.map_or(true, |v| !v[0].trusted()),
+                            "{} has a trusted value at {:?}",
+                            e,
+                            vals
+                        );
                     }
                     return Ok(());
                 }
                 Err(other) => return Err(TestCaseError::fail(other.to_string())),
             };
             prop_assert!(n.check().is_ok());
-            same_values(&[e], &[n], &ps, seed, 4, &mut tally.borrow_mut()).map_err(TestCaseError::fail)?;
+            same_values(&[e], &[n], &ps, seed, 4, &mut tally.borrow_mut())
+                .map_err(TestCaseError::fail)?;
             Ok(())
         })
         .unwrap();
@@ -645,4 +832,3 @@ fn rational_normal_form_cancels_multivariate_common_factors() {
     same_values(&[num / den], &[n], &[x, y, z], 11, 20, &mut tally).unwrap();
     assert!(tally.checked >= 18, "{tally:?}");
 }
-

@@ -17,7 +17,7 @@ pub mod robust;
 pub use assemble::{Assembled, assemble};
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
-pub use robust::{RobustReport, reduce_robust};
+pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use reduce::{Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
 
 use crate::error::SymError;

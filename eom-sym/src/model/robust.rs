@@ -42,8 +42,28 @@ fn put(dst: &mut DMatrix<f64>, r0: usize, c0: usize, src: &DMatrix<f64>, sign: f
     }
 }
 
-/// Reduce a numeric assembled model with orthonormal complements.
-pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustReport), SymError> {
+/// The constrained descriptor model of eom-method §5 on the orthonormal complements of the
+/// constraints: `E ẋ = A x + B u` with `x` the coordinates in `R = null(J_r)`, before any
+/// output is attached. Returned with `R` (full state z = [p; w; s] as `R x`) and `L`.
+pub struct ConstrainedDescriptor {
+    /// `Lᵀ M R`.
+    pub e: DMatrix<f64>,
+    /// `−Lᵀ KC R`.
+    pub a: DMatrix<f64>,
+    /// `Lᵀ [0; 0; I]`.
+    pub b: DMatrix<f64>,
+    /// Right complement (columns span the admissible states).
+    pub r: DMatrix<f64>,
+    /// Rank of the constraint matrix.
+    pub rank: usize,
+    /// Gap of the constraint rank decision.
+    pub gap: f64,
+    /// Warnings.
+    pub warnings: Vec<String>,
+}
+
+/// Build the [`ConstrainedDescriptor`] of a numeric assembled model.
+pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescriptor, SymError> {
     let d = a.dim();
     let m = a.inputs.len();
     let nz = 2 * d + m;
@@ -105,9 +125,26 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
     } else {
         (DMatrix::identity(nz, nz), DMatrix::identity(nz, nz), 0, f64::INFINITY)
     };
-    let e = lc.transpose() * &mz * &r;
-    let am = -(lc.transpose() * &kc * &r);
-    let b = lc.transpose() * &bz;
+    Ok(ConstrainedDescriptor {
+        e: lc.transpose() * &mz * &r,
+        a: -(lc.transpose() * &kc * &r),
+        b: lc.transpose() * &bz,
+        r,
+        rank,
+        gap,
+        warnings,
+    })
+}
+
+/// Reduce a numeric assembled model with orthonormal complements.
+pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustReport), SymError> {
+    let cd = constrained_descriptor(a)?;
+    let d = a.dim();
+    let m = a.inputs.len();
+    let nz = 2 * d + m;
+    let v = dense(&a.velocity);
+    let (e, am, b, r, rank, gap) = (cd.e, cd.a, cd.b, cd.r, cd.rank, cd.gap);
+    let mut warnings = cd.warnings;
 
     // Output rows on z: the direct outputs, plus the velocity outputs that the acceleration
     // sensors differentiate afterwards.

@@ -45,10 +45,13 @@ pub(crate) struct Index {
     /// Parent node indices per class.
     parents: Vec<Vec<usize>>,
     konst: Vec<Option<Rational>>,
+    /// The input expression of the class, if it holds one (see [`Index::select`]).
+    original: Vec<Option<Expr>>,
 }
 
 impl Index {
-    pub(crate) fn new(eg: &Graph) -> Index {
+    /// `originals`: `(class, expression)` pairs of the input DAG.
+    pub(crate) fn new(eg: &Graph, originals: &[(Id, Expr)]) -> Index {
         use egg::Language;
         let mut classes: Vec<Id> = eg.classes().map(|c| c.id).collect();
         classes.sort_unstable();
@@ -63,7 +66,11 @@ impl Index {
             konst[k] = class.data.konst.clone();
             for n in &class.nodes {
                 let node = n.clone().map_children(|ch| eg.find(ch));
-                let mut ks: Vec<usize> = node.children().iter().filter_map(|ch| pos.get(ch).copied()).collect();
+                let mut ks: Vec<usize> = node
+                    .children()
+                    .iter()
+                    .filter_map(|ch| pos.get(ch).copied())
+                    .collect();
                 ks.sort_unstable();
                 ks.dedup();
                 let ni = nodes.len();
@@ -75,7 +82,22 @@ impl Index {
                 kids.push(ks);
             }
         }
-        Index { classes, pos, nodes, kids, class_nodes, parents, konst }
+        let mut original = vec![None; classes.len()];
+        for &(c, e) in originals {
+            if let Some(&k) = pos.get(&eg.find(c)) {
+                original[k] = Some(e);
+            }
+        }
+        Index {
+            classes,
+            pos,
+            nodes,
+            kids,
+            class_nodes,
+            parents,
+            konst,
+            original,
+        }
     }
 
     /// Dense index of a class.
@@ -122,7 +144,11 @@ impl Index {
             for &p in &self.parents[k] {
                 pending[p] -= 1;
                 if pending[p] == 0 && rank[self.nodes[p].0] == usize::MAX {
-                    let c = self.kids[p].iter().fold(1 + self.rough_cost(p, w), |s, &ch| s.saturating_add(tree[ch]));
+                    let c = self.kids[p]
+                        .iter()
+                        .fold(1 + self.rough_cost(p, w), |s, &ch| {
+                            s.saturating_add(tree[ch])
+                        });
                     heap.push(Reverse((c, p)));
                 }
             }
@@ -131,22 +157,51 @@ impl Index {
     }
 
     /// The selection for one anchor set: the chosen expression of every class that has one.
-    pub(crate) fn select(&self, rank: &[usize], anchors: &HashSet<u32>, w: &CostModel) -> Vec<Option<Expr>> {
+    pub(crate) fn select(
+        &self,
+        rank: &[usize],
+        anchors: &HashSet<u32>,
+        w: &CostModel,
+    ) -> Vec<Option<Expr>> {
         let nc = self.classes.len();
         let mut order: Vec<usize> = (0..nc).filter(|&k| rank[k] != usize::MAX).collect();
         order.sort_unstable_by_key(|&k| rank[k]);
         let mut chosen: Vec<Option<Expr>> = vec![None; nc];
-        let mut tc = TreeCost { memo: HashMap::new(), anchors, w: *w };
+        let mut tc = TreeCost {
+            memo: HashMap::new(),
+            anchors,
+            w: *w,
+        };
         for k in order {
-            let mut best: Option<(u64, Expr)> = None;
-            for &n in &self.class_nodes[k] {
-                if !self.kids[n].iter().all(|&ch| rank[ch] < rank[k]) {
+            // Untouched by rewriting (one node, children unchanged): the input's own node,
+            // without rebuilding or costing it (costs are computed lazily for parents).
+            if self.class_nodes[k].len() == 1 && self.original[k].is_some() {
+                let n = self.class_nodes[k][0];
+                if self.kids[n]
+                    .iter()
+                    .all(|&ch| chosen[ch].is_some() && chosen[ch] == self.original[ch])
+                {
+                    chosen[k] = self.original[k];
                     continue;
                 }
+            }
+            let eligible: Vec<usize> = self.class_nodes[k]
+                .iter()
+                .copied()
+                .filter(|&n| self.kids[n].iter().all(|&ch| rank[ch] < rank[k]))
+                .collect();
+            let mut best: Option<(u64, Expr)> = None;
+            for &n in &eligible {
                 let get = |id: &Id| self.pos.get(id).and_then(|&c| chosen[c]);
-                let Some(e) = build(&self.nodes[n].1, get) else { continue };
+                let Some(e) = build(&self.nodes[n].1, get) else {
+                    continue;
+                };
                 if e.is_invalid() {
                     continue;
+                }
+                if eligible.len() == 1 {
+                    best = Some((0, e));
+                    break;
                 }
                 let c = tc.of(e.id());
                 if best.as_ref().is_none_or(|(b, _)| c < *b) {
@@ -236,7 +291,11 @@ pub(crate) fn shared_nodes(roots: &[Expr]) -> HashSet<u32> {
             });
         }
     });
-    let mut s: HashSet<u32> = parents.into_iter().filter(|(_, n)| *n >= 2).map(|(i, _)| i).collect();
+    let mut s: HashSet<u32> = parents
+        .into_iter()
+        .filter(|(_, n)| *n >= 2)
+        .map(|(i, _)| i)
+        .collect();
     s.extend(roots.iter().map(|r| r.id()));
     s
 }
@@ -314,8 +373,9 @@ mod tests {
         for seed in 0..4 {
             let p = params(6, seed, seed % 2 == 0);
             let roots = random_dag(&p, 600, 12, seed);
+            let ids = reachable(&roots);
             let total = with_pool(|pool| {
-                reachable(&roots).iter().fold(OpCount::default(), |mut acc, &i| {
+                ids.iter().fold(OpCount::default(), |mut acc, &i| {
                     let o = node_ops(pool, i);
                     acc.add += o.add;
                     acc.mul += o.mul;

@@ -241,19 +241,47 @@ impl Analysis<Math> for Meta {
     fn make(egraph: &mut EGraph<Math, Self>, enode: &Math, _id: Id) -> Data {
         let sign = |i: &Id| egraph[*i].data.sign;
         match enode {
-            Math::Rat(r) => Data { konst: Some(r.clone()), numeric: true, sign: Signs::of_rational(r) },
+            Math::Rat(r) => Data {
+                konst: Some(r.clone()),
+                numeric: true,
+                sign: Signs::of_rational(r),
+            },
             Math::Atom(a) => {
-                let (numeric, sign) =
-                    egraph.analysis.atom_info.get(a).copied().unwrap_or((false, Signs::ANY));
-                Data { konst: None, numeric, sign }
+                let (numeric, sign) = egraph
+                    .analysis
+                    .atom_info
+                    .get(a)
+                    .copied()
+                    .unwrap_or((false, Signs::ANY));
+                Data {
+                    konst: None,
+                    numeric,
+                    sign,
+                }
             }
             Math::Add(c) => {
-                let s = c.iter().map(sign).reduce(Signs::add).unwrap_or(Signs(Signs::ZERO));
-                Data { konst: None, numeric: false, sign: s }
+                let s = c
+                    .iter()
+                    .map(sign)
+                    .reduce(Signs::add)
+                    .unwrap_or(Signs(Signs::ZERO));
+                Data {
+                    konst: None,
+                    numeric: false,
+                    sign: s,
+                }
             }
             Math::Mul(c) => {
-                let s = c.iter().map(sign).reduce(Signs::mul).unwrap_or(Signs::POSITIVE);
-                Data { konst: None, numeric: false, sign: s }
+                let s = c
+                    .iter()
+                    .map(sign)
+                    .reduce(Signs::mul)
+                    .unwrap_or(Signs::POSITIVE);
+                Data {
+                    konst: None,
+                    numeric: false,
+                    sign: s,
+                }
             }
             Math::Pow([b, e]) => {
                 let s = match &egraph[*e].data.konst {
@@ -261,7 +289,11 @@ impl Analysis<Math> for Meta {
                     None if sign(b).is_positive() => Signs::POSITIVE,
                     None => Signs::ANY,
                 };
-                Data { konst: None, numeric: false, sign: s }
+                Data {
+                    konst: None,
+                    numeric: false,
+                    sign: s,
+                }
             }
             Math::Func(f, [a]) => {
                 let s = match f {
@@ -270,9 +302,17 @@ impl Analysis<Math> for Meta {
                     Func::Abs => Signs::NONNEG,
                     _ => Signs::ANY,
                 };
-                Data { konst: None, numeric: false, sign: s }
+                Data {
+                    konst: None,
+                    numeric: false,
+                    sign: s,
+                }
             }
-            Math::Atan2(_) => Data { konst: None, numeric: false, sign: Signs::ANY },
+            Math::Atan2(_) => Data {
+                konst: None,
+                numeric: false,
+                sign: Signs::ANY,
+            },
         }
     }
 
@@ -316,7 +356,14 @@ mod tests {
 
     #[test]
     fn signs_round_trip_the_pool_sign() {
-        for s in [Sign::ANY, Sign::POSITIVE, Sign::NEGATIVE, Sign::ZERO_ONLY, Sign::NONNEG, Sign::NONZERO] {
+        for s in [
+            Sign::ANY,
+            Sign::POSITIVE,
+            Sign::NEGATIVE,
+            Sign::ZERO_ONLY,
+            Sign::NONNEG,
+            Sign::NONZERO,
+        ] {
             let t = Signs::from_sign(s);
             assert_eq!(t.is_nonzero(), s.is_nonzero());
             assert_eq!(t.is_nonneg(), s.is_nonneg());

@@ -32,13 +32,20 @@ pub(crate) struct Budget {
 impl Budget {
     fn tick(&mut self, n: usize) -> Result<(), WorkLimit> {
         self.work = self.work.saturating_add(n as u64);
-        if self.work > self.max_work { Err(WorkLimit::Work) } else { Ok(()) }
+        if self.work > self.max_work {
+            Err(WorkLimit::Work)
+        } else {
+            Ok(())
+        }
     }
     fn check(&self, p: &Poly) -> Result<(), WorkLimit> {
         if p.terms.len() > self.max_terms {
             return Err(WorkLimit::Terms);
         }
-        if p.terms.iter().any(|(e, _)| e.iter().any(|&k| k > self.max_degree)) {
+        if p.terms
+            .iter()
+            .any(|(e, _)| e.iter().any(|&k| k > self.max_degree))
+        {
             return Err(WorkLimit::Degree);
         }
         Ok(())
@@ -64,13 +71,19 @@ pub(crate) struct Poly {
 
 impl Poly {
     pub(crate) fn zero(nvars: usize) -> Poly {
-        Poly { nvars, terms: Vec::new() }
+        Poly {
+            nvars,
+            terms: Vec::new(),
+        }
     }
     pub(crate) fn constant(nvars: usize, c: Rational) -> Poly {
         if c.is_zero() {
             return Poly::zero(nvars);
         }
-        Poly { nvars, terms: vec![(vec![0; nvars].into(), c)] }
+        Poly {
+            nvars,
+            terms: vec![(vec![0; nvars].into(), c)],
+        }
     }
     pub(crate) fn one(nvars: usize) -> Poly {
         Poly::constant(nvars, Rational::ONE)
@@ -79,7 +92,10 @@ impl Poly {
     pub(crate) fn var(nvars: usize, i: usize) -> Poly {
         let mut e = vec![0; nvars];
         e[i] = 1;
-        Poly { nvars, terms: vec![(e.into(), Rational::ONE)] }
+        Poly {
+            nvars,
+            terms: vec![(e.into(), Rational::ONE)],
+        }
     }
     pub(crate) fn is_zero(&self) -> bool {
         self.terms.is_empty()
@@ -96,7 +112,8 @@ impl Poly {
     }
 
     fn from_unsorted(nvars: usize, map: HashMap<Exps, Rational>) -> Poly {
-        let mut terms: Vec<(Exps, Rational)> = map.into_iter().filter(|(_, c)| !c.is_zero()).collect();
+        let mut terms: Vec<(Exps, Rational)> =
+            map.into_iter().filter(|(_, c)| !c.is_zero()).collect();
         terms.sort_unstable_by(|a, b| cmp_lex(&b.0, &a.0));
         Poly { nvars, terms }
     }
@@ -130,13 +147,23 @@ impl Poly {
                 }
             }
         }
-        let p = Poly { nvars: self.nvars, terms: out };
+        let p = Poly {
+            nvars: self.nvars,
+            terms: out,
+        };
         b.check(&p)?;
         Ok(p)
     }
 
     pub(crate) fn neg(&self) -> Poly {
-        Poly { nvars: self.nvars, terms: self.terms.iter().map(|(e, c)| (e.clone(), c.neg())).collect() }
+        Poly {
+            nvars: self.nvars,
+            terms: self
+                .terms
+                .iter()
+                .map(|(e, c)| (e.clone(), c.neg()))
+                .collect(),
+        }
     }
 
     pub(crate) fn sub(&self, o: &Poly, b: &mut Budget) -> Result<Poly, WorkLimit> {
@@ -148,8 +175,15 @@ impl Poly {
             return Ok(Poly::zero(self.nvars));
         }
         b.tick(self.terms.len())?;
-        let terms = self.terms.iter().map(|(e, x)| Ok((e.clone(), ov(x.mul(c))?))).collect::<Result<_, WorkLimit>>()?;
-        Ok(Poly { nvars: self.nvars, terms })
+        let terms = self
+            .terms
+            .iter()
+            .map(|(e, x)| Ok((e.clone(), ov(x.mul(c))?)))
+            .collect::<Result<_, WorkLimit>>()?;
+        Ok(Poly {
+            nvars: self.nvars,
+            terms,
+        })
     }
 
     /// `self · x^e · c`.
@@ -161,7 +195,10 @@ impl Poly {
             terms.push((ex, ov(k.mul(c))?));
         }
         // Adding the same exponent to every term keeps the lexicographic order.
-        let p = Poly { nvars: self.nvars, terms };
+        let p = Poly {
+            nvars: self.nvars,
+            terms,
+        };
         b.check(&p)?;
         Ok(p)
     }
@@ -177,7 +214,8 @@ impl Poly {
             return o.mul_term(&self.terms[0].0, &self.terms[0].1, b);
         }
         b.tick(self.terms.len().saturating_mul(o.terms.len()))?;
-        let mut map: HashMap<Exps, Rational> = HashMap::with_capacity(self.terms.len() * o.terms.len());
+        let mut map: HashMap<Exps, Rational> =
+            HashMap::with_capacity(self.terms.len() * o.terms.len());
         for (ea, ca) in &self.terms {
             for (eb, cb) in &o.terms {
                 let e: Exps = ea.iter().zip(eb.iter()).map(|(x, y)| x + y).collect();
@@ -242,7 +280,12 @@ impl Poly {
             out[k].push((ex, c.clone()));
         }
         // Zeroing one variable keeps the relative order of terms with the same exponent of v.
-        out.into_iter().map(|terms| Poly { nvars: self.nvars, terms }).collect()
+        out.into_iter()
+            .map(|terms| Poly {
+                nvars: self.nvars,
+                terms,
+            })
+            .collect()
     }
 
     /// The coefficient of the highest power of `v`, and that power.
@@ -256,7 +299,13 @@ impl Poly {
                 terms.push((ex, c.clone()));
             }
         }
-        (Poly { nvars: self.nvars, terms }, d)
+        (
+            Poly {
+                nvars: self.nvars,
+                terms,
+            },
+            d,
+        )
     }
 
     /// The largest monomial dividing every term.
@@ -277,8 +326,15 @@ impl Poly {
 
     /// `self / x^m` for a monomial dividing every term.
     pub(crate) fn div_monomial(&self, m: &[u32]) -> Poly {
-        let terms = self.terms.iter().map(|(e, c)| (e.iter().zip(m).map(|(a, b)| a - b).collect(), c.clone())).collect();
-        Poly { nvars: self.nvars, terms }
+        let terms = self
+            .terms
+            .iter()
+            .map(|(e, c)| (e.iter().zip(m).map(|(a, b)| a - b).collect(), c.clone()))
+            .collect();
+        Poly {
+            nvars: self.nvars,
+            terms,
+        }
     }
 
     /// `self / d` if `d` divides `self` exactly, otherwise `None`.
@@ -309,7 +365,10 @@ impl Poly {
             r = r.sub(&t, b)?;
         }
         // Leading terms of the remainder strictly decrease, so `q` is already sorted.
-        Ok(Some(Poly { nvars: self.nvars, terms: q }))
+        Ok(Some(Poly {
+            nvars: self.nvars,
+            terms: q,
+        }))
     }
 
     /// Divide by the leading coefficient.
@@ -355,7 +414,10 @@ pub(crate) fn gcd(a: &Poly, b: &Poly, bud: &mut Budget) -> Result<Poly, WorkLimi
         return gcd(a, &c, bud);
     }
     // Main variable: the common one of smallest degree (shortest remainder sequence).
-    let v = (0..n).filter(|&v| va[v]).min_by_key(|&v| a.deg_in(v).max(b.deg_in(v))).ok_or(WorkLimit::Work)?;
+    let v = (0..n)
+        .filter(|&v| va[v])
+        .min_by_key(|&v| a.deg_in(v).max(b.deg_in(v)))
+        .ok_or(WorkLimit::Work)?;
     let ca = content_in(a, v, bud)?;
     let cb = content_in(b, v, bud)?;
     let pa = a.div_exact(&ca, bud)?.ok_or(WorkLimit::Work)?;
@@ -407,7 +469,11 @@ fn prem(f: &Poly, g: &Poly, v: usize, bud: &mut Budget) -> Result<Poly, WorkLimi
 
 /// Primitive polynomial remainder sequence of two primitive polynomials in `v`.
 fn prs(a: Poly, b: Poly, v: usize, bud: &mut Budget) -> Result<Poly, WorkLimit> {
-    let (mut f, mut g) = if a.deg_in(v) >= b.deg_in(v) { (a, b) } else { (b, a) };
+    let (mut f, mut g) = if a.deg_in(v) >= b.deg_in(v) {
+        (a, b)
+    } else {
+        (b, a)
+    };
     loop {
         let r = prem(&f, &g, v, bud)?;
         if r.is_zero() {
@@ -426,7 +492,12 @@ mod tests {
     use super::*;
 
     fn budget() -> Budget {
-        Budget { max_terms: 10_000, max_degree: 100, max_work: 10_000_000, work: 0 }
+        Budget {
+            max_terms: 10_000,
+            max_degree: 100,
+            max_work: 10_000_000,
+            work: 0,
+        }
     }
     fn q(n: i64) -> Rational {
         Rational::int(n)
@@ -437,8 +508,16 @@ mod tests {
         let b = &mut budget();
         let (x, y, z) = (Poly::var(3, 0), Poly::var(3, 1), Poly::var(3, 2));
         // f = x + 2y − z, g = x·y + 3, h = z² − x
-        let f = x.add(&y.scale(&q(2), b).unwrap(), b).unwrap().sub(&z, b).unwrap();
-        let g = x.mul(&y, b).unwrap().add(&Poly::constant(3, q(3)), b).unwrap();
+        let f = x
+            .add(&y.scale(&q(2), b).unwrap(), b)
+            .unwrap()
+            .sub(&z, b)
+            .unwrap();
+        let g = x
+            .mul(&y, b)
+            .unwrap()
+            .add(&Poly::constant(3, q(3)), b)
+            .unwrap();
         let h = z.mul(&z, b).unwrap().sub(&x, b).unwrap();
         let a = f.mul(&g, b).unwrap().mul(&g, b).unwrap();
         let c = f.mul(&h, b).unwrap().mul(&g, b).unwrap();
@@ -454,8 +533,15 @@ mod tests {
 
     #[test]
     fn limits_are_reported_not_exceeded() {
-        let mut b = Budget { max_terms: 50, max_degree: 100, max_work: 1_000_000, work: 0 };
-        let s = (0..4).fold(Poly::zero(4), |acc, i| acc.add(&Poly::var(4, i), &mut b).unwrap());
+        let mut b = Budget {
+            max_terms: 50,
+            max_degree: 100,
+            max_work: 1_000_000,
+            work: 0,
+        };
+        let s = (0..4).fold(Poly::zero(4), |acc, i| {
+            acc.add(&Poly::var(4, i), &mut b).unwrap()
+        });
         assert_eq!(s.pow(12, &mut b), Err(WorkLimit::Terms));
     }
 }

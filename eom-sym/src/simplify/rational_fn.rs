@@ -35,7 +35,11 @@ pub struct RationalForm {
 impl RationalForm {
     /// `numerator / denominator` as one expression.
     pub fn to_expr(&self) -> Expr {
-        if self.denominator.is_one() { self.numerator } else { self.numerator * self.denominator.recip() }
+        if self.denominator.is_one() {
+            self.numerator
+        } else {
+            self.numerator * self.denominator.recip()
+        }
     }
 }
 
@@ -82,7 +86,12 @@ pub struct RationalNormalizer {
 impl Default for RationalNormalizer {
     /// 2 000 terms per polynomial, exponents up to 64, 5 million term operations, 64 atoms.
     fn default() -> Self {
-        RationalNormalizer { max_terms: 2_000, max_degree: 64, max_work: 5_000_000, max_atoms: 64 }
+        RationalNormalizer {
+            max_terms: 2_000,
+            max_degree: 64,
+            max_work: 5_000_000,
+            max_atoms: 64,
+        }
     }
 }
 
@@ -167,22 +176,37 @@ impl RationalNormalizer {
         // An opaque x that also appears as x^(p/q) is written (x^(1/L))^L, L the lcm of those q:
         // x ≥ 0 wherever the input is defined (a rational power of a negative number has no
         // real value in the pool's evaluation), and there the identity holds.
-        let mut atoms: Vec<Expr> = opaque.iter().map(|&x| lcm.get(&x).map_or(x, |&l| root(x, l))).collect();
+        let mut atoms: Vec<Expr> = opaque
+            .iter()
+            .map(|&x| lcm.get(&x).map_or(x, |&l| root(x, l)))
+            .collect();
         atoms.sort();
         atoms.dedup();
         let n = atoms.len();
         let var: HashMap<Expr, usize> = atoms.iter().enumerate().map(|(i, &a)| (a, i)).collect();
-        let mut budget = Budget { max_terms: self.max_terms, max_degree: self.max_degree, max_work: self.max_work, work: 0 };
+        let mut budget = Budget {
+            max_terms: self.max_terms,
+            max_degree: self.max_degree,
+            max_work: self.max_work,
+            work: 0,
+        };
         // `x^(p/q)` for an opaque `x`: `(x^(1/L))^(p·L/q)` when x carries root denominators
         // (q divides L), the atom `x^(1/q)` to the `p` otherwise (only for q = 1 or a
         // non-opaque base under a root, which is its own atom).
         let atom_power = |x: Expr, p: i64, q: i64, budget: &mut Budget| -> Result<Rf, Fail> {
             let (a, k) = match lcm.get(&x) {
-                Some(&l) => (root(x, l), p.checked_mul(l / q).ok_or(Fail::Limit(WorkLimit::Degree))?),
+                Some(&l) => (
+                    root(x, l),
+                    p.checked_mul(l / q).ok_or(Fail::Limit(WorkLimit::Degree))?,
+                ),
                 None => (root(x, q), p),
             };
             let i = *var.get(&a).ok_or(Fail::Limit(WorkLimit::Atoms))?;
-            Rf { num: Poly::var(n, i), den: Poly::one(n) }.powi(k, budget)
+            Rf {
+                num: Poly::var(n, i),
+                den: Poly::one(n),
+            }
+            .powi(k, budget)
         };
 
         // 2. Bottom-up in pool order (children before parents).
@@ -194,7 +218,10 @@ impl RationalNormalizer {
                 return Ok(r.clone());
             }
             if let Some(r) = x.as_rational() {
-                return Ok(Rf { num: Poly::constant(n, r), den: Poly::one(n) });
+                return Ok(Rf {
+                    num: Poly::constant(n, r),
+                    den: Poly::one(n),
+                });
             }
             if opaque.contains(&x) {
                 return atom_power(x, 1, 1, budget);
@@ -208,7 +235,8 @@ impl RationalNormalizer {
                     ExprView::Sum { constant, terms } => {
                         let mut acc = value(constant, memo, budget)?;
                         for (t, c) in terms {
-                            let term = value(t, memo, budget)?.mul(&value(c, memo, budget)?, budget)?;
+                            let term =
+                                value(t, memo, budget)?.mul(&value(c, memo, budget)?, budget)?;
                             acc = acc.add(&term, budget)?;
                         }
                         Ok(acc)
@@ -254,7 +282,10 @@ impl RationalNormalizer {
 /// Parameters, constants, floats, functions, `atan2` and general powers: the symbols of the
 /// polynomials.
 fn is_opaque(x: Expr) -> bool {
-    !matches!(x.view(), ExprView::Rational(_) | ExprView::Sum { .. } | ExprView::Product { .. })
+    !matches!(
+        x.view(),
+        ExprView::Rational(_) | ExprView::Sum { .. } | ExprView::Product { .. }
+    )
 }
 
 /// `x^(1/q)` through the pool.
@@ -266,7 +297,9 @@ fn root(x: Expr, q: i64) -> Expr {
 }
 
 fn zero_denominator() -> SymError {
-    SymError::DivisionByZero { context: "a denominator is identically zero as a rational function".into() }
+    SymError::DivisionByZero {
+        context: "a denominator is identically zero as a rational function".into(),
+    }
 }
 
 /// Rational-function normal form with the default bounds; the input comes back unchanged when
@@ -307,7 +340,10 @@ struct Rf {
 
 impl Rf {
     fn zero(n: usize) -> Rf {
-        Rf { num: Poly::zero(n), den: Poly::one(n) }
+        Rf {
+            num: Poly::zero(n),
+            den: Poly::one(n),
+        }
     }
 
     fn exact(p: &Poly, d: &Poly, b: &mut Budget) -> Result<Poly, Fail> {
@@ -359,13 +395,20 @@ impl Rf {
             if self.num.is_zero() {
                 return Err(Fail::ZeroDenominator);
             }
-            Rf { num: self.den.clone(), den: self.num.clone() }.normalised(b)?
+            Rf {
+                num: self.den.clone(),
+                den: self.num.clone(),
+            }
+            .normalised(b)?
         } else {
             self.clone()
         };
         let k = u32::try_from(k.unsigned_abs()).map_err(|_| Fail::Limit(WorkLimit::Degree))?;
         // Powers of coprime polynomials stay coprime.
-        Ok(Rf { num: base.num.pow(k, b)?, den: base.den.pow(k, b)? })
+        Ok(Rf {
+            num: base.num.pow(k, b)?,
+            den: base.den.pow(k, b)?,
+        })
     }
 
     /// Make the denominator monic.
@@ -378,27 +421,49 @@ impl Rf {
             return Ok(self);
         }
         let inv = lc.recip().ok_or(Fail::ZeroDenominator)?;
-        Ok(Rf { num: self.num.scale(&inv, b)?, den: self.den.scale(&inv, b)? })
+        Ok(Rf {
+            num: self.num.scale(&inv, b)?,
+            den: self.den.scale(&inv, b)?,
+        })
     }
 
     /// Rebuild through the pool: `c · m_N · N / (m_D · D)` with the monomial contents
     /// `m_N`, `m_D` factored out and `N` monic.
     fn to_form(&self, atoms: &[Expr], b: &mut Budget) -> Result<RationalForm, WorkLimit> {
         if self.num.is_zero() {
-            return Ok(RationalForm { numerator: Expr::zero(), denominator: Expr::one() });
+            return Ok(RationalForm {
+                numerator: Expr::zero(),
+                denominator: Expr::one(),
+            });
         }
         let mono = |m: &[u32]| -> Expr {
-            Expr::product(m.iter().zip(atoms).filter(|(k, _)| **k > 0).map(|(k, a)| a.powi(*k as i64)))
+            Expr::product(
+                m.iter()
+                    .zip(atoms)
+                    .filter(|(k, _)| **k > 0)
+                    .map(|(k, a)| a.powi(*k as i64)),
+            )
         };
         let poly = |p: &Poly| -> Expr {
-            Expr::sum(p.terms.iter().map(|(e, k)| Expr::from_rational(k.clone()) * mono(e)))
+            Expr::sum(
+                p.terms
+                    .iter()
+                    .map(|(e, k)| Expr::from_rational(k.clone()) * mono(e)),
+            )
         };
         let c = self.num.lc();
         let num = self.num.monic(b)?;
         let mn = num.monomial_content();
         let md = self.den.monomial_content();
-        let numerator = Expr::product([Expr::from_rational(c), mono(&mn), poly(&num.div_monomial(&mn))]);
+        let numerator = Expr::product([
+            Expr::from_rational(c),
+            mono(&mn),
+            poly(&num.div_monomial(&mn)),
+        ]);
         let denominator = Expr::product([mono(&md), poly(&self.den.div_monomial(&md))]);
-        Ok(RationalForm { numerator, denominator })
+        Ok(RationalForm {
+            numerator,
+            denominator,
+        })
     }
 }

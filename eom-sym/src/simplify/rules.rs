@@ -7,13 +7,7 @@
 //! searcher reports a class only if some proposal is not already in it (so the runner can
 //! detect saturation), and the applier adds the proposals and unions them with the class.
 //!
-//! | rule | rewrite | condition |
-//! |---|---|---|
-//! | `factor` | `a·x + a·y + z → a·(x + y) + z` (largest group sharing a factor, its common monomial and a common coefficient pulled out; the two most frequent factors are both tried) | integer exponents of the same sign (`a⁻¹x + a⁻²y → a⁻¹(x + a⁻¹y)` is fine: both sides are undefined at `a = 0`) |
-//! | `cancel` | `x^a · x^b → x^(a+b)` inside one product (through nested products), e.g. `x·y·x⁻¹ → y` | same sign of `a` and `b`, **or** `x` provably nonzero (`Expr::sign().is_nonzero()` semantics): the pool's own condition |
-//! | `collect` | `c₁·m + c₂·m → (c₁+c₂)·m` across the terms of a sum | always |
-//! | `pythagoras` | `c·r·sin²x + c·r·cos²x → c·r`; `k − k·sin²x → k·cos²x`, `k − k·cos²x → k·sin²x` | always |
-//! | `angle-sum` | `c·r·(cos a cos b ∓ sin a sin b) → c·r·cos(a ± b)`, `c·r·(sin a cos b ± cos a sin b) → c·r·sin(a ± b)` | always |
+//! The rule table with conditions is in the [module docs](super).
 //!
 //! No rule distributes, and no rule is an AC rule: the pool already canonicalises AC, and
 //! distribution plus factoring is the combination that explodes.
@@ -23,6 +17,7 @@ use crate::pool::Func;
 use crate::rational::Rational;
 use egg::{Applier, Id, PatternAst, Rewrite, SearchMatches, Searcher, Subst, Symbol, Var};
 use hashbrown::HashMap;
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// How deep [`view`] looks through nested products.
 const VIEW_DEPTH: u32 = 3;
@@ -63,20 +58,28 @@ pub(crate) fn view(eg: &Graph, class: Id, depth: u32) -> Option<Mono> {
     let class = eg.find(class);
     let data = &eg[class].data;
     if let Some(r) = &data.konst {
-        return Some(Mono { coef: r.clone(), factors: vec![] });
+        return Some(Mono {
+            coef: r.clone(),
+            factors: vec![],
+        });
     }
-    if depth > 0 {
-        if let Some(kids) = first_node(eg, class, |n| match n {
-            Math::Mul(k) => Some(k),
-            _ => None,
-        }) {
-            return view_product(eg, kids, depth - 1);
-        }
+    let mul = |n: &'_ Math| match n {
+        Math::Mul(k) => Some(k.clone()),
+        _ => None,
+    };
+    if let Some(kids) = (depth > 0).then(|| first_node(eg, class, mul)).flatten() {
+        return view_product(eg, &kids, depth - 1);
     }
     if let Some((b, e)) = pow_of(eg, class) {
-        return Some(Mono { coef: Rational::ONE, factors: vec![(eg.find(b), e)] });
+        return Some(Mono {
+            coef: Rational::ONE,
+            factors: vec![(eg.find(b), e)],
+        });
     }
-    Some(Mono { coef: Rational::ONE, factors: vec![(class, Rational::ONE)] })
+    Some(Mono {
+        coef: Rational::ONE,
+        factors: vec![(class, Rational::ONE)],
+    })
 }
 
 /// `(base, exponent)` of the first rational power in a class.
@@ -164,7 +167,13 @@ fn p_mono(coef: Rational, factors: Vec<(Build, Rational)>) -> Build {
 }
 
 fn p_class_mono(coef: Rational, factors: &[(Id, Rational)]) -> Build {
-    p_mono(coef, factors.iter().map(|(b, e)| (Build::Class(*b), e.clone())).collect())
+    p_mono(
+        coef,
+        factors
+            .iter()
+            .map(|(b, e)| (Build::Class(*b), e.clone()))
+            .collect(),
+    )
 }
 
 fn p_add(eg: &Graph, terms: Vec<Build>) -> Option<Build> {
@@ -225,11 +234,17 @@ fn lookup(eg: &Graph, b: &Build) -> Option<Id> {
         Build::Class(id) => Some(eg.find(*id)),
         Build::Rat(r) => eg.lookup(Math::Rat(r.clone())),
         Build::Add(items) => {
-            let ids = items.iter().map(|x| lookup(eg, x)).collect::<Option<Vec<_>>>()?;
+            let ids = items
+                .iter()
+                .map(|x| lookup(eg, x))
+                .collect::<Option<Vec<_>>>()?;
             eg.lookup(Math::Add(sorted(ids)))
         }
         Build::Mul(items) => {
-            let ids = items.iter().map(|x| lookup(eg, x)).collect::<Option<Vec<_>>>()?;
+            let ids = items
+                .iter()
+                .map(|x| lookup(eg, x))
+                .collect::<Option<Vec<_>>>()?;
             eg.lookup(Math::Mul(sorted(ids)))
         }
         Build::Pow(base, e) => {
@@ -281,8 +296,36 @@ fn nodes_of(eg: &Graph, class: Id, sums: bool) -> Vec<Vec<Id>> {
         .collect()
 }
 
+/// Views of the terms of sums, shared by the rules: during one search phase the e-graph does
+/// not change, and all sum rules need the same views. The cache is cleared whenever the
+/// e-graph's size changes. (A view computed before a merge is still true afterwards — classes
+/// only merge — so a stale entry would be sound, only less complete.)
+#[derive(Default)]
+pub(crate) struct ViewCache {
+    stamp: (usize, usize),
+    map: HashMap<Id, Option<Mono>>,
+}
+
+pub(crate) type SharedViews = Arc<Mutex<ViewCache>>;
+
+fn cached_view(cache: &SharedViews, eg: &Graph, class: Id) -> Option<Mono> {
+    let class = eg.find(class);
+    let stamp = (eg.total_size(), eg.number_of_classes());
+    let mut c = cache.lock().unwrap_or_else(PoisonError::into_inner);
+    if c.stamp != stamp {
+        c.map.clear();
+        c.stamp = stamp;
+    }
+    if let Some(v) = c.map.get(&class) {
+        return v.clone();
+    }
+    let v = view(eg, class, VIEW_DEPTH);
+    c.map.insert(class, v.clone());
+    v
+}
+
 /// The proposals of one rule for one class.
-pub(crate) fn proposals(kind: Kind, eg: &Graph, class: Id) -> Vec<Build> {
+pub(crate) fn proposals(kind: Kind, eg: &Graph, class: Id, cache: &SharedViews) -> Vec<Build> {
     let class = eg.find(class);
     let mut out = Vec::new();
     match kind {
@@ -296,7 +339,8 @@ pub(crate) fn proposals(kind: Kind, eg: &Graph, class: Id) -> Vec<Build> {
                 if kids.len() < 2 {
                     continue;
                 }
-                let views: Vec<Option<Mono>> = kids.iter().map(|&k| view(eg, k, VIEW_DEPTH)).collect();
+                let views: Vec<Option<Mono>> =
+                    kids.iter().map(|&k| cached_view(cache, eg, k)).collect();
                 match kind {
                     Kind::Factor => out.extend(factor(eg, &kids, &views)),
                     Kind::Collect => out.extend(collect(eg, &kids, &views)),
@@ -321,16 +365,19 @@ fn exponents(eg: &Graph, m: &Mono) -> Option<HashMap<Id, Option<Rational>>> {
 }
 
 fn factor(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Vec<Build> {
-    let exps: Vec<Option<HashMap<Id, Option<Rational>>>> =
-        views.iter().map(|v| v.as_ref().and_then(|m| exponents(eg, m))).collect();
+    let exps: Vec<Option<HashMap<Id, Option<Rational>>>> = views
+        .iter()
+        .map(|v| v.as_ref().and_then(|m| exponents(eg, m)))
+        .collect();
     // Count, per (base, sign of exponent), the terms that contain it with an integer exponent.
     let mut count: HashMap<(Id, bool), usize> = HashMap::new();
     for map in exps.iter().flatten() {
         for (b, e) in map {
-            if let Some(e) = e {
-                if e.is_integer() && !eg[*b].data.numeric {
-                    *count.entry((*b, e.is_negative())).or_default() += 1;
-                }
+            if let Some(e) = e
+                && e.is_integer()
+                && !eg[*b].data.numeric
+            {
+                *count.entry((*b, e.is_negative())).or_default() += 1;
             }
         }
     }
@@ -354,9 +401,11 @@ fn factor_by(
     neg: bool,
 ) -> Option<Build> {
     let has = |i: usize| {
-        exps[i].as_ref().and_then(|m| m.get(&base)).and_then(|e| e.as_ref()).is_some_and(|e| {
-            e.is_integer() && e.is_negative() == neg
-        })
+        exps[i]
+            .as_ref()
+            .and_then(|m| m.get(&base))
+            .and_then(|e| e.as_ref())
+            .is_some_and(|e| e.is_integer() && e.is_negative() == neg)
     };
     let group: Vec<usize> = (0..kids.len()).filter(|&i| has(i)).collect();
     if group.len() < 2 {
@@ -390,13 +439,18 @@ fn factor_by(
             common.push((*b, m));
         }
     }
-    common.sort_by(|a, b| a.0.cmp(&b.0));
+    common.sort_by_key(|a| a.0);
     // A common coefficient (up to sign) is pulled out too, so that the inner coefficients are
     // ±1 (free in generated code).
     let c0 = views[group[0]].as_ref()?.coef.clone();
-    let same_magnitude =
-        group.iter().all(|&i| views[i].as_ref().is_some_and(|v| v.coef.abs() == c0.abs()));
-    let pull = if same_magnitude && !c0.is_one() { c0 } else { Rational::ONE };
+    let same_magnitude = group
+        .iter()
+        .all(|&i| views[i].as_ref().is_some_and(|v| v.coef.abs() == c0.abs()));
+    let pull = if same_magnitude && !c0.is_one() {
+        c0
+    } else {
+        Rational::ONE
+    };
     let mut quotients = Vec::with_capacity(group.len());
     for &i in &group {
         let v = views[i].as_ref()?;
@@ -417,8 +471,10 @@ fn factor_by(
         quotients.push(p_class_mono(coef, &rest));
     }
     let inner = p_add(eg, quotients)?;
-    let mut fs: Vec<(Build, Rational)> =
-        common.iter().map(|(b, e)| (Build::Class(*b), e.clone())).collect();
+    let mut fs: Vec<(Build, Rational)> = common
+        .iter()
+        .map(|(b, e)| (Build::Class(*b), e.clone()))
+        .collect();
     fs.push((inner, Rational::ONE));
     let factored = p_mono(pull, fs);
     if group.len() == kids.len() {
@@ -443,7 +499,9 @@ fn cancel(eg: &Graph, kids: &[Id]) -> Option<Build> {
 }
 
 fn collect(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Option<Build> {
-    let mut groups: Vec<(Vec<(Id, Rational)>, Rational, Vec<usize>)> = Vec::new();
+    // (merged factors, summed coefficient, member terms)
+    type Group = (Vec<(Id, Rational)>, Rational, Vec<usize>);
+    let mut groups: Vec<Group> = Vec::new();
     let mut index: HashMap<Vec<(Id, Rational)>, usize> = HashMap::new();
     let mut constant = Rational::ZERO;
     let mut n_const = 0;
@@ -508,7 +566,9 @@ fn trig_terms(eg: &Graph, views: &[Option<Mono>], power: &Rational) -> Vec<TrigT
     let mut out = Vec::new();
     for (i, v) in views.iter().enumerate() {
         let Some(v) = v else { continue };
-        let Some((merged, _)) = merge_factors(eg, &v.factors) else { continue };
+        let Some((merged, _)) = merge_factors(eg, &v.factors) else {
+            continue;
+        };
         for (k, (b, e)) in merged.iter().enumerate() {
             if e != power {
                 continue;
@@ -516,7 +576,14 @@ fn trig_terms(eg: &Graph, views: &[Option<Mono>], power: &Rational) -> Vec<TrigT
             if let Some((func, arg)) = trig_of(eg, *b) {
                 let mut rest = merged.clone();
                 rest.remove(k);
-                out.push(TrigTerm { index: i, base: *b, func, arg, coef: v.coef.clone(), rest });
+                out.push(TrigTerm {
+                    index: i,
+                    base: *b,
+                    func,
+                    arg,
+                    coef: v.coef.clone(),
+                    rest,
+                });
             }
         }
     }
@@ -554,14 +621,20 @@ fn pythagoras(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Option<Build> 
         }
     }
     // k − k·sin²x → k·cos²x (and with sin and cos swapped).
-    if let Some(ki) = (0..kids.len()).find(|&i| views[i].as_ref().is_some_and(|v| v.factors.is_empty())) {
+    if let Some(ki) =
+        (0..kids.len()).find(|&i| views[i].as_ref().is_some_and(|v| v.factors.is_empty()))
+    {
         let k = views[ki].as_ref()?.coef.clone();
         if !used[ki] && !k.is_zero() {
             for t in &tt {
                 if !used[t.index] && t.rest.is_empty() && t.coef == k.neg() {
                     used[ki] = true;
                     used[t.index] = true;
-                    let other = if t.func == Func::Sin { Func::Cos } else { Func::Sin };
+                    let other = if t.func == Func::Sin {
+                        Func::Cos
+                    } else {
+                        Func::Sin
+                    };
                     let f = Build::Func(other, Box::new(Build::Class(t.arg)));
                     new_terms.push(p_mono(k.clone(), vec![(f, two.clone())]));
                     break;
@@ -610,7 +683,13 @@ fn angle_sum(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Option<Build> {
             .collect();
         let (x, y) = ((mine[0].func, mine[0].arg), (mine[1].func, mine[1].arg));
         let (fa, fb) = if x <= y { (x, y) } else { (y, x) };
-        pairs.push(Pair { index: i, fa, fb, coef: mine[0].coef.clone(), rest });
+        pairs.push(Pair {
+            index: i,
+            fa,
+            fb,
+            coef: mine[0].coef.clone(),
+            rest,
+        });
     }
     if pairs.len() < 2 {
         return None;
@@ -618,7 +697,11 @@ fn angle_sum(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Option<Build> {
     let mut used = vec![false; kids.len()];
     let mut new_terms = Vec::new();
     let sum = |a: Id, b: Id, minus: bool| -> Option<Build> {
-        let second = if minus { p_mono(Rational::MINUS_ONE, vec![(Build::Class(b), one.clone())]) } else { Build::Class(b) };
+        let second = if minus {
+            p_mono(Rational::MINUS_ONE, vec![(Build::Class(b), one.clone())])
+        } else {
+            Build::Class(b)
+        };
         p_add(eg, vec![Build::Class(a), second])
     };
     for i in 0..pairs.len() {
@@ -657,8 +740,11 @@ fn angle_sum(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Option<Build> {
             if let Some((f, arg)) = result {
                 used[p.index] = true;
                 used[q.index] = true;
-                let mut fs: Vec<(Build, Rational)> =
-                    p.rest.iter().map(|(b, e)| (Build::Class(*b), e.clone())).collect();
+                let mut fs: Vec<(Build, Rational)> = p
+                    .rest
+                    .iter()
+                    .map(|(b, e)| (Build::Class(*b), e.clone()))
+                    .collect();
                 fs.push((Build::Func(f, Box::new(arg)), one.clone()));
                 new_terms.push(p_mono(p.coef.clone(), fs));
             }
@@ -681,6 +767,7 @@ fn angle_sum(eg: &Graph, kids: &[Id], views: &[Option<Mono>]) -> Option<Build> {
 /// One rule as an egg searcher and applier.
 pub(crate) struct Rule {
     kind: Kind,
+    views: SharedViews,
     /// The applier adds nothing once the e-graph holds more e-nodes than this, so one batch of
     /// applications cannot overshoot the runner's node limit by more than one proposal.
     node_cap: usize,
@@ -697,8 +784,14 @@ impl Searcher<Math, super::lang::Meta> for Rule {
             return None;
         }
         let class = eg.find(eclass);
-        let new = proposals(self.kind, eg, class).iter().any(|b| lookup(eg, b) != Some(class));
-        new.then(|| SearchMatches { eclass: class, substs: vec![Subst::default()], ast: None })
+        let new = proposals(self.kind, eg, class, &self.views)
+            .iter()
+            .any(|b| lookup(eg, b) != Some(class));
+        new.then(|| SearchMatches {
+            eclass: class,
+            substs: vec![Subst::default()],
+            ast: None,
+        })
     }
 
     fn vars(&self) -> Vec<Var> {
@@ -720,7 +813,7 @@ impl Applier<Math, super::lang::Meta> for Rule {
         }
         let class = eg.find(eclass);
         let mut changed = Vec::new();
-        for b in proposals(self.kind, eg, class) {
+        for b in proposals(self.kind, eg, class, &self.views) {
             let id = materialize(eg, &b);
             if eg.union(class, id) {
                 changed.push(eg.find(class));
@@ -736,8 +829,16 @@ pub(crate) fn rules(node_cap: usize, trig: bool) -> Vec<Rewrite<Math, super::lan
     if trig {
         kinds.extend([Kind::Pythagoras, Kind::AngleSum]);
     }
+    let views = SharedViews::default();
     kinds
         .into_iter()
-        .filter_map(|kind| Rewrite::new(kind.name(), Rule { kind, node_cap }, Rule { kind, node_cap }).ok())
+        .filter_map(|kind| {
+            let rule = || Rule {
+                kind,
+                views: views.clone(),
+                node_cap,
+            };
+            Rewrite::new(kind.name(), rule(), rule()).ok()
+        })
         .collect()
 }

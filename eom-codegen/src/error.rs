@@ -1,0 +1,47 @@
+//! [`CodegenError`]: the one error type of the crate.
+
+use eom_sym::SymError;
+
+/// Everything that can go wrong while generating code.
+#[derive(Debug, thiserror::Error)]
+pub enum CodegenError {
+    /// The symbolic side failed (building, reducing or simplifying the model), or an
+    /// expression cannot be evaluated (an invalid node, a parameter missing from the list).
+    #[error(transparent)]
+    Sym(#[from] SymError),
+    /// A built-in model could not be built.
+    #[error(transparent)]
+    Model(#[from] models::ModelError),
+    /// A numeric constant that has no finite value in the chosen precision.
+    #[error("{matrix}: the constant {value:?} is not finite in {precision}")]
+    NonFiniteConstant {
+        /// Where the constant occurs.
+        matrix: String,
+        /// The constant, as an `f64`.
+        value: f64,
+        /// `f64` or `f32`.
+        precision: &'static str,
+    },
+    /// An option that cannot be honoured, naming the option.
+    #[error("option `{option}`: {problem}")]
+    BadOption {
+        /// The option.
+        option: &'static str,
+        /// What is wrong.
+        problem: String,
+    },
+    /// The generated tokens do not parse as a Rust file (a bug of this crate).
+    #[error("generated code does not parse: {0}")]
+    Syntax(String),
+    /// Reading or writing a file (the `build.rs` helper).
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// An environment variable a build script needs (`OUT_DIR`) is not set.
+    #[error("environment variable `{0}` is not set (is this running inside a build script?)")]
+    MissingEnv(&'static str),
+}

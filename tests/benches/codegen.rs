@@ -1,0 +1,117 @@
+//! Generated code against the tape interpreter on the same expressions, in the same run:
+//! bicycle A..D with all parameters symbolic (libm and std math, f64 and f32), shimmy, chain50,
+//! and the generation time. Parameter vectors cycle through 64 points near nominal so that
+//! nothing is constant-folded.
+//!
+//! `cargo bench -p tests --bench codegen`
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use eom_codegen::EmitOptions;
+use eom_sym::Tape;
+use eom_sym::model::{Linearizer, ValidityCheck};
+use rand::{Rng, SeedableRng};
+use std::hint::black_box;
+
+include!(concat!(env!("OUT_DIR"), "/generated.rs"));
+
+fn points(nominal: &[f64], n: usize) -> Vec<Vec<f64>> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+    (0..n).map(|_| nominal.iter().map(|x| x * rng.random_range(0.95..1.05)).collect()).collect()
+}
+
+/// The tape of what `eval_abcd` computes: the A..D entries and the check expressions.
+fn abcd_tape(model: &str) -> Tape {
+    let m = models::build(model, &[]).expect("model");
+    let sym = Linearizer::new(&m).symbolic().expect("symbolic");
+    let ss = sym.state_space();
+    let mut roots: Vec<eom_sym::Expr> = Vec::new();
+    for mat in [&ss.a, &ss.b, &ss.c, &ss.d] {
+        roots.extend(mat.iter().filter(|e| !e.is_zero()).copied());
+    }
+    for c in &sym.reduction.checks {
+        match c {
+            ValidityCheck::Pivot { value, row, .. } => {
+                roots.push(*value);
+                roots.extend(row);
+            }
+            ValidityCheck::Negligible { value, scale, .. } => {
+                roots.push(*value);
+                roots.extend(scale);
+            }
+        }
+    }
+    Tape::new(&roots, m.scope.params()).expect("tape")
+}
+
+macro_rules! bench_abcd {
+    ($c:expr, $label:expr, $m:path, $ty:ty) => {{
+        use $m as g;
+        let pts: Vec<[$ty; g::N_PARAMS]> = points(&g::NOMINAL.map(|x| x as f64), 64)
+            .iter()
+            .map(|p| core::array::from_fn(|k| p[k] as $ty))
+            .collect();
+        let mut a = [0.0; g::A_LEN];
+        let mut b = [0.0; g::B_LEN];
+        let mut c = [0.0; g::C_LEN];
+        let mut d = [0.0; g::D_LEN];
+        let mut w = [0.0; g::WORK_LEN];
+        let mut k = 0;
+        $c.bench_function($label, |bch| {
+            bch.iter(|| {
+                k = (k + 1) & 63;
+                let r = g::eval_abcd(black_box(&pts[k]), &mut a, &mut b, &mut c, &mut d, &mut w);
+                black_box((&a, &b, &c, &d));
+                r
+            })
+        });
+    }};
+}
+
+fn bench_tape(c: &mut Criterion, label: &str, model: &str) {
+    let tape = abcd_tape(model);
+    let m = models::build(model, &[]).expect("model");
+    let pts = points(&m.scope.nominal_values(), 64);
+    let mut out = vec![0.0; tape.n_outputs()];
+    let mut work = vec![0.0; tape.work_len()];
+    let mut k = 0;
+    c.bench_function(label, |b| {
+        b.iter(|| {
+            k = (k + 1) & 63;
+            tape.eval_into(black_box(&pts[k]), &mut out, &mut work).expect("eval");
+            black_box(&out);
+        })
+    });
+}
+
+fn evaluation(c: &mut Criterion) {
+    bench_abcd!(c, "bicycle/abcd/generated f64 libm", gen64::bicycle, f64);
+    bench_abcd!(c, "bicycle/abcd/generated f64 std", gen64::bicycle_std, f64);
+    bench_abcd!(c, "bicycle/abcd/generated f64 simplified", gen64::bicycle_simplified, f64);
+    bench_abcd!(c, "bicycle/abcd/generated f64 chunks of 16", gen64::bicycle_chunked, f64);
+    bench_abcd!(c, "bicycle/abcd/generated f32 libm", gen32::bicycle, f32);
+    bench_abcd!(c, "bicycle/abcd/generated f64 v only", gen64::bicycle_speed, f64);
+    bench_tape(c, "bicycle/abcd/tape", "bicycle");
+    bench_abcd!(c, "shimmy/abcd/generated f64", gen64::shimmy, f64);
+    bench_abcd!(c, "shimmy/abcd/generated f32", gen32::shimmy, f32);
+    bench_tape(c, "shimmy/abcd/tape", "shimmy");
+    bench_abcd!(c, "chain50/abcd/generated f64", gen64::chain50, f64);
+    bench_abcd!(c, "chain50/abcd/generated f32", gen32::chain50, f32);
+    bench_tape(c, "chain50/abcd/tape", "chain50");
+}
+
+fn generation(c: &mut Criterion) {
+    for name in ["bicycle", "chain50"] {
+        let m = models::build(name, &[]).expect("model");
+        c.bench_function(&format!("{name}/generate/symbolic state space"), |b| {
+            b.iter(|| Linearizer::new(black_box(&m)).symbolic().expect("symbolic"))
+        });
+        let sym = Linearizer::new(&m).symbolic().expect("symbolic");
+        let opts = EmitOptions::default().model_name(name);
+        c.bench_function(&format!("{name}/generate/emit"), |b| {
+            b.iter(|| eom_codegen::emit(black_box(&sym), &opts).expect("emit"))
+        });
+    }
+}
+
+criterion_group!(benches, evaluation, generation);
+criterion_main!(benches);
