@@ -1,1 +1,310 @@
-fn main() {}
+//! `eom` — linearized equations of motion of the built-in multibody models: list them,
+//! analyse one at a point, sweep a parameter for stability boundaries, generate Rust code.
+//!
+//! Exit codes: 0 success; 2 unknown model or parameter, malformed argument (the message on
+//! standard error lists the valid names); 1 any other failure (e.g. a point outside the
+//! validity region of the symbolic reduction with `--method symbolic`).
+
+#![warn(missing_docs)]
+
+mod analyze;
+mod analyze_text;
+mod codegen;
+mod compiled;
+mod error;
+mod format;
+mod list;
+mod params;
+mod sweep;
+
+use crate::analyze::{AnalyzeOptions, FreqRequest};
+use crate::codegen::CodegenRequest;
+use crate::error::CliError;
+use crate::params::{ModelChoice, SweepSpec, parse_freq_range};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use eom_sym::model::Method;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "eom",
+    version,
+    about = "Linearized equations of motion of multibody systems: analyse, sweep, generate code",
+    long_about = "Linearized equations of motion of multibody systems with symbolic parameters.\n\n\
+        eom builds a built-in model (see `eom list`), reduces it to a state-space model \
+        ẋ = A x + B u, y = C x + D u, and analyses it: modes, what the sensors see, \
+        steady-state gains, zeros, frequency response, stability over a parameter range. \
+        It can also compile the symbolic model into a Rust module.",
+    after_help = "Examples:\n  \
+        eom list\n  \
+        eom analyze shimmy --set u=1\n  \
+        eom analyze bicycle --set v=5 --format json\n  \
+        eom analyze quarter_car --freq --freq-range 0.1:100 --points 50\n  \
+        eom sweep bicycle --param v=0:10:101\n  \
+        eom codegen bicycle -o bicycle.rs --f32 --no-std\n\n\
+        Exit codes: 0 success, 2 unknown model/parameter or malformed argument, 1 other failures."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List the built-in models with their parameters (defaults, units, allowed values)
+    List {
+        /// Output format
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+    /// Analyse a model at one point: modes, minimal realization, gains, zeros, frequency response
+    #[command(long_about = "Analyse a model at one point.\n\n\
+        Prints every eigenvalue of the state-space model with natural frequency (Hz), damping \
+        ratio, time constant, damped period and stability — real poles show their corner \
+        frequency, zero (rigid-body/integrator) modes are labelled; then the modes seen from \
+        the inputs and outputs (minimal realization) with a note for every mode it removes \
+        (uncontrollable or unobservable, and whether it is unstable); steady-state gains, with \
+        integrating pairs reported as such; transmission zeros; warnings of the linearization.")]
+    Analyze(AnalyzeArgs),
+    /// Sweep one parameter: eigenvalue branches, stability boundaries, stable intervals
+    #[command(long_about = "Sweep one parameter over an equally spaced grid.\n\n\
+        The model is reduced symbolically once and its compiled state matrix is evaluated at \
+        every value in parallel; values outside the validity region of the symbolic reduction \
+        are evaluated by the robust (SVD) path instead, and reported. Eigenvalues are tracked \
+        as continuous branches; identically zero branches (a vehicle's lateral position and \
+        heading) are neutral and excluded from stability; stability boundaries are located to \
+        1e-10 in the parameter; stable intervals are listed.")]
+    Sweep(SweepArgs),
+    /// Generate a Rust module that evaluates the model's state-space matrices
+    #[command(
+        long_about = "Generate a Rust module that evaluates A, B, C, D (and the map to \
+        the bodies' coordinates) of the symbolic model for any parameter values, checking the \
+        validity region of the symbolic reduction. The file holds one `pub mod MODEL { … }`; \
+        include it with `include!`."
+    )]
+    Codegen(CodegenArgs),
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum Format {
+    /// Human-readable tables
+    Text,
+    /// Pretty-printed JSON
+    Json,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum SweepFormat {
+    /// Human-readable table with boundaries and stable intervals
+    Text,
+    /// Pretty-printed JSON
+    Json,
+    /// One row per value: value, re1, im1, … (eigenvalues in branch order)
+    Csv,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum MethodArg {
+    /// Reduce symbolically with pivots chosen at the model's defaults, evaluate at the point
+    /// (fails outside the validity region of those pivots)
+    Symbolic,
+    /// The same elimination in f64 at the point, pivots chosen there
+    Numeric,
+    /// Orthonormal (SVD) complements and descriptor reduction
+    Robust,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::Symbolic => Method::Symbolic,
+            MethodArg::Numeric => Method::Numeric,
+            MethodArg::Robust => Method::Robust,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+struct AnalyzeArgs {
+    /// Model name (see `eom list`; chains as chainN, e.g. chain50)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// Set a parameter (repeatable); the others keep their defaults
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Reduction method
+    #[arg(long, value_enum, default_value_t = MethodArg::Numeric)]
+    method: MethodArg,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Also compute the frequency response of every output/input pair
+    #[arg(long)]
+    freq: bool,
+    /// Frequency range in Hz for the response (implies --freq; default: whole decades around
+    /// the modes)
+    #[arg(long, value_name = "LOW:HIGH")]
+    freq_range: Option<String>,
+    /// Number of logarithmically spaced frequencies (implies --freq; default: 200 per decade)
+    #[arg(long, value_name = "N")]
+    points: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+struct SweepArgs {
+    /// Model name (see `eom list`)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// The swept parameter and its grid: COUNT equally spaced values from START to STOP
+    #[arg(long, value_name = "NAME=START:STOP:COUNT", required = true)]
+    param: String,
+    /// Set another parameter (repeatable); the others keep their defaults
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = SweepFormat::Text)]
+    format: SweepFormat,
+}
+
+#[derive(Args, Debug)]
+struct CodegenArgs {
+    /// Model name (see `eom list`)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// Output file
+    #[arg(short, long, value_name = "FILE.rs")]
+    output: PathBuf,
+    /// Generate f32 code (default f64)
+    #[arg(long)]
+    f32: bool,
+    /// Code for #![no_std] targets: elementary functions from the `libm` crate
+    #[arg(long)]
+    no_std: bool,
+    /// Simplify the expressions first (bounded e-graph rewriting; kept only when cheaper)
+    #[arg(long)]
+    simplify: bool,
+    /// Nominal parameter value (repeatable): where the pivots are chosen, and the default of
+    /// the generated `Params::NOMINAL`
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Name of the generated module (default: from the model name)
+    #[arg(long, value_name = "NAME")]
+    module: Option<String>,
+}
+
+/// Where the output goes: standard output, or a note on standard error.
+struct Output {
+    stdout: String,
+    stderr: String,
+}
+
+fn json<T: serde::Serialize>(v: &T) -> Result<String, CliError> {
+    let mut s = serde_json::to_string_pretty(v)?;
+    s.push('\n');
+    Ok(s)
+}
+
+fn run(cli: Cli) -> Result<Output, CliError> {
+    let mut stderr = String::new();
+    let stdout = match cli.command {
+        Command::List { format } => {
+            let e = list::entries();
+            match format {
+                Format::Text => list::to_text(&e),
+                Format::Json => json(&e)?,
+            }
+        }
+        Command::Analyze(a) => {
+            let choice = ModelChoice::resolve(&a.model)?;
+            let overrides = choice.parse_sets(&a.set)?;
+            let range = a.freq_range.as_deref().map(parse_freq_range).transpose()?;
+            if a.points == Some(0) {
+                return Err(CliError::BadArgument {
+                    argument: "--points 0".into(),
+                    problem: "at least one frequency is needed".into(),
+                });
+            }
+            let freq = (a.freq || range.is_some() || a.points.is_some()).then_some(FreqRequest {
+                range,
+                points: a.points,
+            });
+            let opts = AnalyzeOptions {
+                method: a.method.into(),
+                freq,
+            };
+            let r = analyze::analyze(&choice, &overrides, &opts)?;
+            match a.format {
+                Format::Text => r.to_text(),
+                Format::Json => json(&r)?,
+            }
+        }
+        Command::Sweep(s) => {
+            let choice = ModelChoice::resolve(&s.model)?;
+            let spec = SweepSpec::parse(&s.param)?;
+            choice.param(&spec.name)?;
+            let overrides = choice.parse_sets(&s.set)?;
+            let r = sweep::sweep(&choice, &spec, &overrides)?;
+            match s.format {
+                SweepFormat::Text => r.to_text(),
+                SweepFormat::Json => json(&r)?,
+                SweepFormat::Csv => {
+                    // Keep the CSV clean; the evaluation note goes to standard error.
+                    stderr = r.evaluation_note();
+                    r.to_csv()
+                }
+            }
+        }
+        Command::Codegen(c) => {
+            let choice = ModelChoice::resolve(&c.model)?;
+            let overrides = choice.parse_sets(&c.set)?;
+            let req = CodegenRequest {
+                f32: c.f32,
+                no_std: c.no_std,
+                simplify: c.simplify,
+                module: c.module,
+            };
+            codegen::codegen(&choice, &overrides, &req, &c.output)?
+        }
+    };
+    Ok(Output { stdout, stderr })
+}
+
+fn write_all(mut w: impl Write, text: &str, what: &str) -> Result<(), CliError> {
+    match w.write_all(text.as_bytes()).and_then(|_| w.flush()) {
+        // A closed pipe (`eom … | head`) is the reader's choice, not a failure.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        r => r.map_err(|source| CliError::Io {
+            path: what.into(),
+            source,
+        }),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = run(cli).and_then(|out| {
+        write_all(std::io::stderr().lock(), &out.stderr, "standard error")?;
+        write_all(std::io::stdout().lock(), &out.stdout, "standard output")
+    });
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // Nothing more can be done if standard error is closed too.
+            let _ = writeln!(std::io::stderr(), "error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+}

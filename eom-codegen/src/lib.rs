@@ -37,9 +37,22 @@
 //!
 //! ## Lowering
 //!
-//! See [`lower`](crate#lowering) in the source: shared power chains, one reciprocal per
-//! denominator used more than once, monomials shared across coefficients, `sincos`, folding
-//! of numbers; large evaluations are split into `#[inline(never)]` chunks of at most
+//! One `let` per unique operation of the DAG, and beyond that:
+//! * integer powers by shared multiplication chains (no `powi`), half-integer powers through
+//!   one `sqrt`;
+//! * one reciprocal per denominator that two or more products divide by; other divisions
+//!   share one `/` per product;
+//! * numeric scales (signs and coefficients) travel with values into the sums and products
+//!   that use them, so `k/m`, `−k/m` and `2k/m` cost one product;
+//! * `x^a·x^−a` cancels when a validity check keeps `x` away from zero (exact wherever the
+//!   result is returned);
+//! * `sin x` and `cos x` come from one `sincos`; operations on numbers are folded;
+//! * pairs of operands that several products (or sums) share become one temporary (greedy);
+//! * the validity checks are branch-free comparisons with precomputed bounds, tested with a
+//!   single branch; finiteness is one sum of the computed entries, with a slow path that names
+//!   the entry.
+//!
+//! Large evaluations are split into `#[inline(never)]` chunks of at most
 //! [`EmitOptions::max_temporaries`] temporaries that pass values through the work buffer.
 //! Operands are ordered by a structural hash, so the output is a function of the model alone
 //! (same model → same bytes, whatever else the expression pool holds).
@@ -158,10 +171,8 @@ pub fn emit_with_stats(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<E
     let mut fn_items = TokenStream::new();
     let mut stats = Vec::new();
     let mut work_len = 0;
-    let mut uses_non_finite = false;
     for spec in &specs {
         let plan = render::plan(spec, &problem)?;
-        uses_non_finite |= plan.outputs.iter().any(|o| !matches!(o.3, lower::Operand::Lit(_)));
         let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
         work_len = work_len.max(r.work_len);
         fn_items.extend(r.items);
@@ -179,7 +190,7 @@ pub fn emit_with_stats(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<E
         simplified: problem.simplified.as_ref().map(|s| s.kept),
     };
 
-    let items = module_items(&ctx, opts, work_len, uses_non_finite)?;
+    let items = module_items(&ctx, opts, work_len)?;
     let docs = module_doc(&problem, opts, &emitted_stats);
     let docs = docs.iter().map(|l| quote!(#[doc = #l]));
     let modname = Ident::new(&module, Span::call_site());
@@ -355,7 +366,7 @@ fn str_array(v: &[String]) -> TokenStream {
     quote!([#(#v),*])
 }
 
-fn module_items(ctx: &Ctx, opts: &EmitOptions, work_len: usize, uses_non_finite: bool) -> Result<TokenStream, CodegenError> {
+fn module_items(ctx: &Ctx, opts: &EmitOptions, work_len: usize) -> Result<TokenStream, CodegenError> {
     let p = ctx.problem;
     let ty = &ctx.ty;
     let num = ctx.num;
@@ -556,28 +567,30 @@ fn module_items(ctx: &Ctx, opts: &EmitOptions, work_len: usize, uses_non_finite:
             }
         }
     });
-    if !p.checks.is_empty() {
-        ts.extend(quote! {
-            /// The first failing check (slow path).
-            #[cold]
-            #[inline(never)]
-            fn validity_error(ok: &[bool]) -> Error {
-                let check = ok.iter().position(|c| !c).unwrap_or(0);
-                Error::Validity { check, what: CHECKS[check] }
+    ts.extend(quote! {
+        /// The first failure in the order the interpreter reports them (slow path): a check
+        /// that fails or whose pivot is not finite, else an entry that is not finite (the fast
+        /// path tests finiteness with one sum, which may also overflow by itself: then `None`).
+        #[inline(always)]
+        fn failure(ok: &[bool], mag: &[Real], values: &[Real], entries: &[(Matrix, usize, usize, usize)]) -> Option<Error> {
+            let mut check = 0;
+            while check < ok.len() {
+                if !ok[check] || !mag[check].is_finite() {
+                    return Some(Error::Validity { check, what: CHECKS[check] });
+                }
+                check += 1;
             }
-        });
-    }
-    if uses_non_finite {
-        ts.extend(quote! {
-            /// The first non-finite entry, if any (slow path: the sum of the entries was not
-            /// finite, which may also be an overflow of the sum alone).
-            #[cold]
-            #[inline(never)]
-            fn non_finite(values: &[Real], entries: &[(Matrix, usize, usize, usize)]) -> Option<Error> {
-                entries.iter().find(|e| !values[e.3].is_finite()).map(|e| Error::NonFinite { matrix: e.0, row: e.1, col: e.2 })
+            let mut k = 0;
+            while k < entries.len() {
+                let e = entries[k];
+                if !values[e.3].is_finite() {
+                    return Some(Error::NonFinite { matrix: e.0, row: e.1, col: e.2 });
+                }
+                k += 1;
             }
-        });
-    }
+            None
+        }
+    });
     if opts.functions.abcd {
         ts.extend(quote! {
             /// A, B, C, D with the work buffer, evaluated together by [`StateSpace::evaluate`]

@@ -156,8 +156,9 @@ impl CodeOps {
 pub(crate) struct Lowered {
     pub insts: Vec<Inst>,
     pub n_temps: u32,
-    /// The operand of each root.
-    pub roots: Vec<Operand>,
+    /// The value of each root: an operand, negated if the flag is set (other scales are
+    /// materialised).
+    pub roots: Vec<(Operand, bool)>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
@@ -178,36 +179,63 @@ fn classify(r: &Rational) -> Exponent {
     }
 }
 
+/// A lowered value: `scale · op`. Scales are folded into the coefficients of the sums and
+/// products that use the value, so `k/m`, `−k/m` and `2k/m` share one computation and a
+/// negation costs nothing unless it reaches an output or a function argument.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Val {
+    op: Operand,
+    scale: f64,
+}
+
+impl Val {
+    fn of(op: Operand) -> Val {
+        Val { op, scale: 1.0 }
+    }
+}
+
+/// What the first pass learns for the second: which bases share a reciprocal, which bases a
+/// checked pivot keeps away from zero. Both keyed by the first pass's operand of the base
+/// (its class: expressions that lower to the same value up to a scale).
+#[derive(Default)]
+struct Analysis {
+    class: HashMap<Expr, OpKey>,
+    shared_denominators: HashSet<(OpKey, bool)>,
+    nonzero: HashSet<OpKey>,
+}
+
 struct Lowerer<'a> {
     dag: &'a Dag,
     insts: Vec<Inst>,
     n_temps: u32,
-    memo: HashMap<Expr, Operand>,
+    memo: HashMap<Expr, Val>,
     pow_memo: HashMap<(OpKey, i64), Operand>,
     sqrt_memo: HashMap<OpKey, Operand>,
     recip_memo: HashMap<OpKey, Operand>,
     powf_memo: HashMap<(OpKey, u64), Operand>,
-    mono_memo: HashMap<Vec<(Expr, Rational)>, Operand>,
-    /// Factor lists that occur with two or more distinct coefficients.
-    shared_monomials: HashSet<Vec<(Expr, Rational)>>,
-    /// Denominator atoms `(base, through sqrt)` used by two or more products.
-    shared_denominators: HashSet<(Expr, bool)>,
+    call_memo: HashMap<(u8, OpKey, OpKey), Operand>,
+    scaled_memo: HashMap<(OpKey, u64), Operand>,
+    mono_memo: HashMap<Vec<(OpKey, Rational)>, Operand>,
+    sum_memo: HashMap<(u64, Vec<(OpKey, u64)>), Operand>,
+    sincos_memo: HashMap<OpKey, (Operand, Operand)>,
     /// Arguments of both a `sin` and a `cos`.
     sincos_args: HashSet<Expr>,
-    sincos_memo: HashMap<Expr, (Operand, Operand)>,
+    /// From the first pass (empty during it).
+    analysis: Analysis,
+    /// Recorded during the first pass: uses of each denominator atom by distinct monomials,
+    /// and the factors of each monomial.
+    den_count: HashMap<(OpKey, bool), usize>,
+    mono_factors: HashMap<OpKey, Vec<(OpKey, Rational)>>,
 }
 
-/// Lower `roots` (whose DAG is `dag`).
-pub(crate) fn lower(dag: &Dag, roots: &[Expr]) -> Result<Lowered, CodegenError> {
-    // Pre-pass: which monomials, denominators and trigonometric arguments are shared.
-    let mut coefs: HashMap<Vec<(Expr, Rational)>, HashSet<u64>> = HashMap::new();
+/// Lower `roots` (whose DAG is `dag`). `pivots` are the values that the validity checks keep
+/// away from zero: a base that is one of them (or a factor of one) cancels against itself
+/// (`x²·x⁻² → 1`), which is exact wherever the checks pass.
+pub(crate) fn lower(dag: &Dag, roots: &[Expr], pivots: &[Expr]) -> Result<Lowered, CodegenError> {
     let mut sin_args = HashSet::new();
     let mut cos_args = HashSet::new();
     for e in &dag.order {
         match &dag.nodes[e] {
-            Node::Product { coef, factors } => {
-                coefs.entry(factors.clone()).or_default().insert(coef.to_bits());
-            }
             Node::Func(Func::Sin, a) => {
                 sin_args.insert(*a);
             }
@@ -217,21 +245,258 @@ pub(crate) fn lower(dag: &Dag, roots: &[Expr]) -> Result<Lowered, CodegenError> 
             _ => {}
         }
     }
-    let shared_monomials: HashSet<_> = coefs.iter().filter(|(_, c)| c.len() >= 2).map(|(k, _)| k.clone()).collect();
-    let mut den_uses: HashMap<(Expr, bool), usize> = HashMap::new();
-    // Each distinct factor list is lowered once (shared or not), so count per list.
-    for factors in coefs.keys() {
-        for (b, r) in factors {
-            match classify(r) {
-                Exponent::Int(k) if k < 0 => *den_uses.entry((*b, false)).or_default() += 1,
-                Exponent::Half(p) if p < 0 => *den_uses.entry((*b, true)).or_default() += 1,
-                _ => {}
+    let sincos_args: HashSet<Expr> = sin_args.intersection(&cos_args).copied().collect();
+
+    // Pass 1: plain lowering, to learn the classes, the shared denominators and the pivots.
+    let first = run(dag, sincos_args.clone(), Analysis::default())?;
+    let mut analysis = Analysis::default();
+    for (e, v) in &first.memo {
+        if !matches!(v.op, Operand::Lit(_)) {
+            analysis.class.insert(*e, v.op.key());
+        }
+    }
+    analysis.shared_denominators = first.den_count.iter().filter(|(_, n)| **n >= 2).map(|(k, _)| *k).collect();
+    for p in pivots {
+        let Some(v) = first.memo.get(p) else { continue };
+        if matches!(v.op, Operand::Lit(_)) {
+            continue;
+        }
+        analysis.nonzero.insert(v.op.key());
+        // A finite nonzero product has nonzero factors (those with positive exponents).
+        if let Some(f) = first.mono_factors.get(&v.op.key()) {
+            for (k, r) in f {
+                if !r.is_negative() {
+                    analysis.nonzero.insert(*k);
+                }
             }
         }
     }
-    let shared_denominators = den_uses.into_iter().filter(|(_, n)| *n >= 2).map(|(k, _)| k).collect();
-    let sincos_args = sin_args.intersection(&cos_args).copied().collect();
 
+    // Pass 2: with what pass 1 found.
+    let mut l = run(dag, sincos_args, analysis)?;
+    let mut out = Vec::with_capacity(roots.len());
+    for r in roots {
+        let v = l.memo[r];
+        out.push(if v.scale == 1.0 || v.scale == -1.0 || matches!(v.op, Operand::Lit(_)) {
+            match v.op {
+                Operand::Lit(x) => (Operand::Lit(x * v.scale), false),
+                op => (op, v.scale == -1.0),
+            }
+        } else {
+            (l.materialize(v), false)
+        });
+    }
+    let mut lowered = Lowered { insts: l.insts, n_temps: l.n_temps, roots: out };
+    common_pairs(&mut lowered);
+    renumber(&mut lowered);
+    Ok(lowered)
+}
+
+/// Work budget of [`common_pairs`] (pair occurrences counted over all iterations): bounds the
+/// generation time of very large models, where the pass then stops early.
+const PAIR_BUDGET: usize = 50_000_000;
+
+/// A pair of operands that several products multiply, or several sums add with the same
+/// coefficient ratio.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+enum Pair {
+    Mul(OpKey, OpKey),
+    /// `a + ratio·b` (ratio as bits).
+    Add(OpKey, OpKey, u64),
+}
+
+fn pairs_of(rhs: &Rhs, out: &mut Vec<Pair>) {
+    out.clear();
+    match rhs {
+        Rhs::Prod { num, .. } if num.len() >= 2 => {
+            for i in 0..num.len() {
+                for j in i + 1..num.len() {
+                    let (x, y) = (num[i].key(), num[j].key());
+                    out.push(if x <= y { Pair::Mul(x, y) } else { Pair::Mul(y, x) });
+                }
+            }
+        }
+        Rhs::Sum { terms, .. } if terms.len() >= 2 => {
+            for i in 0..terms.len() {
+                for j in i + 1..terms.len() {
+                    let ((x, cx), (y, cy)) = (terms[i], terms[j]);
+                    let ((a, ca), (b, cb)) = if x.key() <= y.key() { ((x, cx), (y, cy)) } else { ((y, cy), (x, cx)) };
+                    let ratio = cb / ca;
+                    // Only exact ratios: `ca·(a + ratio·b)` must be `ca·a + cb·b` term by term.
+                    if ratio * ca == cb && ratio.is_finite() {
+                        out.push(Pair::Add(a.key(), b.key(), ratio.to_bits()));
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+    out.sort_unstable();
+    out.dedup();
+}
+
+/// Greedy extraction of common pairs: the pair that most instructions share becomes one
+/// temporary (or reuses an instruction that computes exactly it), until no pair is shared.
+/// Each step saves one multiplication or addition per sharing instruction but one.
+fn common_pairs(l: &mut Lowered) {
+    let mut budget = PAIR_BUDGET;
+    let mut buf = Vec::new();
+    let operand_of = |k: OpKey| match k {
+        OpKey::Temp(t) => Operand::Temp(t),
+        OpKey::Param(p) => Operand::Param(p),
+        OpKey::Lit(b) => Operand::Lit(f64::from_bits(b)),
+    };
+    loop {
+        let mut counts: HashMap<Pair, usize> = HashMap::new();
+        for inst in &l.insts {
+            pairs_of(&inst.rhs, &mut buf);
+            budget = budget.saturating_sub(buf.len());
+            for p in &buf {
+                *counts.entry(*p).or_default() += 1;
+            }
+        }
+        if budget == 0 {
+            return;
+        }
+        let Some((&pair, _)) = counts.iter().filter(|(_, n)| **n >= 2).max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0))) else {
+            return;
+        };
+        let users: Vec<usize> = (0..l.insts.len())
+            .filter(|&i| {
+                pairs_of(&l.insts[i].rhs, &mut buf);
+                buf.contains(&pair)
+            })
+            .collect();
+        // An instruction that is exactly the pair (coefficient 1, nothing else) and comes
+        // before every other user can be reused.
+        let exact = users.iter().copied().find(|&i| match (&l.insts[i].rhs, pair) {
+            (Rhs::Prod { coef, num, den }, Pair::Mul(..)) => *coef == 1.0 && num.len() == 2 && den.is_empty(),
+            // `a + ratio·b` exactly: the coefficient of the lower-keyed term is 1 (then the other
+            // one is `ratio`, since the instruction contains the pair).
+            (Rhs::Sum { c0, terms }, Pair::Add(..)) => {
+                *c0 == 0.0 && terms.len() == 2 && {
+                    let low = if terms[0].0.key() <= terms[1].0.key() { terms[0] } else { terms[1] };
+                    low.1 == 1.0
+                }
+            }
+            _ => false,
+        });
+        let (target, first_user) = match exact {
+            Some(i) if i == users[0] => (Operand::Temp(l.insts[i].def), 1),
+            _ => {
+                let def = l.n_temps;
+                l.n_temps += 1;
+                let rhs = match pair {
+                    Pair::Mul(a, b) => Rhs::Prod { coef: 1.0, num: vec![operand_of(a), operand_of(b)], den: vec![] },
+                    Pair::Add(a, b, r) => Rhs::Sum { c0: 0.0, terms: vec![(operand_of(a), 1.0), (operand_of(b), f64::from_bits(r))] },
+                };
+                l.insts.insert(users[0], Inst { def, rhs });
+                (Operand::Temp(def), 0)
+            }
+        };
+        let shift = usize::from(first_user == 0);
+        for (n, &u) in users.iter().enumerate() {
+            if n < first_user {
+                continue;
+            }
+            let i = u + shift;
+            match (&mut l.insts[i].rhs, pair) {
+                (Rhs::Prod { num, .. }, Pair::Mul(a, b)) => {
+                    let ia = num.iter().position(|o| o.key() == a).expect("pair member");
+                    num.remove(ia);
+                    let ib = num.iter().position(|o| o.key() == b).expect("pair member");
+                    num.remove(ib);
+                    num.push(target);
+                }
+                (Rhs::Sum { terms, .. }, Pair::Add(a, b, _)) => {
+                    let ia = terms.iter().position(|t| t.0.key() == a).expect("pair member");
+                    let ca = terms.remove(ia).1;
+                    let ib = terms.iter().position(|t| t.0.key() == b).expect("pair member");
+                    terms.remove(ib);
+                    terms.push((target, ca));
+                    // Keep a positive term first (no leading negation).
+                    if let Some(k) = terms.iter().position(|t| t.1 > 0.0) {
+                        let t = terms.remove(k);
+                        terms.insert(0, t);
+                    }
+                }
+                _ => unreachable!("users contain the pair"),
+            }
+        }
+    }
+}
+
+/// Drop copies (`let t = u;`, left by [`common_pairs`] when a user was exactly the pair) and
+/// number temporaries in order of definition.
+fn renumber(l: &mut Lowered) {
+    let mut alias: HashMap<u32, Operand> = HashMap::new();
+    let resolve = |o: &mut Operand, alias: &HashMap<u32, Operand>| {
+        while let Operand::Temp(t) = *o {
+            match alias.get(&t) {
+                Some(a) => *o = *a,
+                None => break,
+            }
+        }
+    };
+    let mut kept = Vec::with_capacity(l.insts.len());
+    for mut inst in std::mem::take(&mut l.insts) {
+        match &mut inst.rhs {
+            Rhs::Sum { terms, .. } => terms.iter_mut().for_each(|t| resolve(&mut t.0, &alias)),
+            Rhs::Prod { num, den, .. } => num.iter_mut().chain(den.iter_mut()).for_each(|o| resolve(o, &alias)),
+            Rhs::Call1(_, x) | Rhs::SinCos(x) => resolve(x, &alias),
+            Rhs::Call2(_, x, y) => {
+                resolve(x, &alias);
+                resolve(y, &alias);
+            }
+        }
+        let copy = match &inst.rhs {
+            Rhs::Prod { coef, num, den } if *coef == 1.0 && num.len() == 1 && den.is_empty() => Some(num[0]),
+            Rhs::Sum { c0, terms } if *c0 == 0.0 && terms.len() == 1 && terms[0].1 == 1.0 => Some(terms[0].0),
+            _ => None,
+        };
+        match copy {
+            Some(o) => {
+                alias.insert(inst.def, o);
+            }
+            None => kept.push(inst),
+        }
+    }
+    l.insts = kept;
+    for r in l.roots.iter_mut() {
+        resolve(&mut r.0, &alias);
+    }
+    let mut map: HashMap<u32, u32> = HashMap::with_capacity(l.n_temps as usize);
+    let mut next = 0;
+    for inst in &l.insts {
+        for d in 0..inst.rhs.defs() {
+            map.insert(inst.def + d, next + d);
+        }
+        next += inst.rhs.defs();
+    }
+    let f = |o: &mut Operand| {
+        if let Operand::Temp(t) = o {
+            *t = map[t];
+        }
+    };
+    for inst in l.insts.iter_mut() {
+        inst.def = map[&inst.def];
+        match &mut inst.rhs {
+            Rhs::Sum { terms, .. } => terms.iter_mut().for_each(|t| f(&mut t.0)),
+            Rhs::Prod { num, den, .. } => num.iter_mut().chain(den.iter_mut()).for_each(f),
+            Rhs::Call1(_, x) | Rhs::SinCos(x) => f(x),
+            Rhs::Call2(_, x, y) => {
+                f(x);
+                f(y);
+            }
+        }
+    }
+    for r in l.roots.iter_mut() {
+        f(&mut r.0);
+    }
+    l.n_temps = next;
+}
+
+fn run(dag: &Dag, sincos_args: HashSet<Expr>, analysis: Analysis) -> Result<Lowerer<'_>, CodegenError> {
     let mut l = Lowerer {
         dag,
         insts: Vec::new(),
@@ -241,18 +506,21 @@ pub(crate) fn lower(dag: &Dag, roots: &[Expr]) -> Result<Lowered, CodegenError> 
         sqrt_memo: HashMap::new(),
         recip_memo: HashMap::new(),
         powf_memo: HashMap::new(),
+        call_memo: HashMap::new(),
+        scaled_memo: HashMap::new(),
         mono_memo: HashMap::new(),
-        shared_monomials,
-        shared_denominators,
-        sincos_args,
+        sum_memo: HashMap::new(),
         sincos_memo: HashMap::new(),
+        sincos_args,
+        analysis,
+        den_count: HashMap::new(),
+        mono_factors: HashMap::new(),
     };
     for &e in &dag.order {
-        let op = l.node(e)?;
-        l.memo.insert(e, op);
+        let v = l.node(e)?;
+        l.memo.insert(e, v);
     }
-    let roots = roots.iter().map(|r| l.memo[r]).collect();
-    Ok(Lowered { insts: l.insts, n_temps: l.n_temps, roots })
+    Ok(l)
 }
 
 impl Lowerer<'_> {
@@ -266,41 +534,77 @@ impl Lowerer<'_> {
         Operand::Temp(def)
     }
 
-    fn node(&mut self, e: Expr) -> Result<Operand, CodegenError> {
+    /// `scale · op` as one operand.
+    fn materialize(&mut self, v: Val) -> Operand {
+        if v.scale == 1.0 {
+            return v.op;
+        }
+        if let Operand::Lit(x) = v.op {
+            return Operand::Lit(x * v.scale);
+        }
+        let key = (v.op.key(), v.scale.to_bits());
+        if let Some(o) = self.scaled_memo.get(&key) {
+            return *o;
+        }
+        let o = self.push(Rhs::Prod { coef: v.scale, num: vec![v.op], den: vec![] });
+        self.scaled_memo.insert(key, o);
+        o
+    }
+
+    fn call1(&mut self, f: Fn1, x: Operand) -> Operand {
+        let key = (f as u8, x.key(), x.key());
+        if let Some(o) = self.call_memo.get(&key) {
+            return *o;
+        }
+        let o = self.push(Rhs::Call1(f, x));
+        self.call_memo.insert(key, o);
+        o
+    }
+
+    fn call2(&mut self, f: Fn2, x: Operand, y: Operand) -> Operand {
+        let key = (16 + f as u8, x.key(), y.key());
+        if let Some(o) = self.call_memo.get(&key) {
+            return *o;
+        }
+        let o = self.push(Rhs::Call2(f, x, y));
+        self.call_memo.insert(key, o);
+        o
+    }
+
+    fn node(&mut self, e: Expr) -> Result<Val, CodegenError> {
         let node = self.dag.nodes[&e].clone();
         Ok(match node {
-            Node::Number(x) => Operand::Lit(x),
-            Node::Param(k) => Operand::Param(k),
-            Node::Sum { c0, terms } => {
-                let terms = terms.iter().map(|(x, c)| (self.memo[x], *c)).collect();
-                self.push(Rhs::Sum { c0, terms })
-            }
-            Node::Product { coef, factors } => {
-                if self.shared_monomials.contains(&factors) {
-                    let m = self.monomial(&factors);
-                    if coef == 1.0 { m } else { self.push(Rhs::Prod { coef, num: vec![m], den: vec![] }) }
-                } else {
-                    self.product(coef, &factors)
-                }
-            }
+            Node::Number(x) => Val::of(Operand::Lit(x)),
+            Node::Param(k) => Val::of(Operand::Param(k)),
+            Node::Sum { c0, terms } => self.sum(c0, &terms),
+            Node::Product { coef, factors } => self.product(coef, &factors),
             Node::Pow(a, b) => {
                 let (a, b) = (self.memo[&a], self.memo[&b]);
-                self.push(Rhs::Call2(Fn2::Pow, a, b))
+                let (a, b) = (self.materialize(a), self.materialize(b));
+                Val::of(self.call2(Fn2::Pow, a, b))
             }
             Node::Atan2(y, x) => {
                 let (y, x) = (self.memo[&y], self.memo[&x]);
-                self.push(Rhs::Call2(Fn2::Atan2, y, x))
+                let (y, x) = (self.materialize(y), self.materialize(x));
+                Val::of(self.call2(Fn2::Atan2, y, x))
             }
             Node::Func(f, a) => {
-                let x = self.memo[&a];
-                match f {
+                let v = self.memo[&a];
+                // Odd and even functions absorb a sign; abs absorbs any scale.
+                let (x, outer) = match (f, v.scale) {
+                    (Func::Abs, s) => (v.op, s.abs()),
+                    (Func::Sin | Func::Tan, s) if s == -1.0 => (v.op, -1.0),
+                    (Func::Cos, s) if s == -1.0 => (v.op, 1.0),
+                    _ => (self.materialize(v), 1.0),
+                };
+                let op = match f {
                     Func::Sin | Func::Cos if self.sincos_args.contains(&a) && !matches!(x, Operand::Lit(_)) => {
-                        let (s, c) = match self.sincos_memo.get(&a) {
+                        let (s, c) = match self.sincos_memo.get(&x.key()) {
                             Some(sc) => *sc,
                             None => {
                                 let Operand::Temp(t) = self.push(Rhs::SinCos(x)) else { unreachable!("not a literal") };
                                 let sc = (Operand::Temp(t), Operand::Temp(t + 1));
-                                self.sincos_memo.insert(a, sc);
+                                self.sincos_memo.insert(x.key(), sc);
                                 sc
                             }
                         };
@@ -315,32 +619,142 @@ impl Lowerer<'_> {
                             Func::Ln => Fn1::Ln,
                             Func::Abs => Fn1::Abs,
                         };
-                        self.push(Rhs::Call1(g, x))
+                        self.call1(g, x)
                     }
-                }
+                };
+                Val { op, scale: outer }
             }
         })
     }
 
-    fn monomial(&mut self, factors: &[(Expr, Rational)]) -> Operand {
-        if let Some(m) = self.mono_memo.get(factors) {
-            return *m;
+    fn sum(&mut self, c0: f64, terms: &[(Expr, f64)]) -> Val {
+        let mut c0 = c0;
+        let mut acc: Vec<(Operand, f64)> = Vec::with_capacity(terms.len());
+        for (t, c) in terms {
+            let v = self.memo[t];
+            match v.op {
+                Operand::Lit(x) => c0 += c * v.scale * x,
+                op => acc.push((op, c * v.scale)),
+            }
         }
-        let m = self.product(1.0, factors);
-        self.mono_memo.insert(factors.to_vec(), m);
-        m
+        // Terms that became the same value (up to a scale) merge.
+        acc.sort_by_key(|a| a.0.key());
+        let mut merged: Vec<(Operand, f64)> = Vec::with_capacity(acc.len());
+        for (op, c) in acc {
+            match merged.last_mut() {
+                Some(last) if last.0 == op => last.1 += c,
+                _ => merged.push((op, c)),
+            }
+        }
+        merged.retain(|t| t.1 != 0.0);
+        if merged.is_empty() {
+            return Val::of(Operand::Lit(c0));
+        }
+        if merged.len() == 1 && c0 == 0.0 {
+            return Val { op: merged[0].0, scale: merged[0].1 };
+        }
+        // Canonical sign: the first term positive (so `a − b` and `b − a` share).
+        let sign = if merged[0].1 < 0.0 { -1.0 } else { 1.0 };
+        if sign < 0.0 {
+            c0 = -c0;
+            for t in merged.iter_mut() {
+                t.1 = -t.1;
+            }
+        }
+        // `+0.0` and `-0.0` are the same constant term.
+        if c0 == 0.0 {
+            c0 = 0.0;
+        }
+        let key = (c0.to_bits(), merged.iter().map(|t| (t.0.key(), t.1.to_bits())).collect::<Vec<_>>());
+        if let Some(o) = self.sum_memo.get(&key) {
+            return Val { op: *o, scale: sign };
+        }
+        let o = self.push(Rhs::Sum { c0, terms: merged });
+        self.sum_memo.insert(key, o);
+        Val { op: o, scale: sign }
     }
 
-    fn product(&mut self, coef: f64, factors: &[(Expr, Rational)]) -> Operand {
+    fn product(&mut self, coef: f64, factors: &[(Expr, Rational)]) -> Val {
         let mut coef = coef;
+        // Bases with their scales folded into the coefficient where the power allows it.
+        let mut items: Vec<(Operand, Rational, Option<OpKey>)> = Vec::with_capacity(factors.len());
+        for (b, r) in factors {
+            let v = self.memo[b];
+            let class = self.analysis.class.get(b).copied();
+            if let Operand::Lit(x) = v.op {
+                let x = x * v.scale;
+                coef *= match classify(r) {
+                    Exponent::Int(k) => x.powi(k as i32),
+                    _ => x.powf(r.to_f64()),
+                };
+                continue;
+            }
+            match classify(r) {
+                Exponent::Int(k) => {
+                    coef *= v.scale.powi(k as i32);
+                    items.push((v.op, r.clone(), class));
+                }
+                _ if v.scale > 0.0 => {
+                    coef *= v.scale.powf(r.to_f64());
+                    items.push((v.op, r.clone(), class));
+                }
+                _ => {
+                    let m = self.materialize(v);
+                    items.push((m, r.clone(), class));
+                }
+            }
+        }
+        // Equal bases merge: exponents of one sign always, of both signs when a checked
+        // pivot keeps the base away from zero.
+        items.sort_by(|a, b| a.0.key().cmp(&b.0.key()).then(a.1.cmp(&b.1)));
+        let mut merged: Vec<(Operand, Rational, Option<OpKey>)> = Vec::with_capacity(items.len());
+        for it in items {
+            if let Some(last) = merged.last_mut() {
+                if last.0 == it.0 {
+                    let same_sign = last.1.is_negative() == it.1.is_negative();
+                    let nonzero = it.2.is_some_and(|c| self.analysis.nonzero.contains(&c))
+                        || last.2.is_some_and(|c| self.analysis.nonzero.contains(&c));
+                    if same_sign || nonzero {
+                        if let Ok(s) = last.1.add(&it.1) {
+                            last.1 = s;
+                            continue;
+                        }
+                    }
+                }
+            }
+            merged.push(it);
+        }
+        merged.retain(|m| !m.1.is_zero());
+        if merged.is_empty() {
+            return Val::of(Operand::Lit(coef));
+        }
+        if merged.len() == 1 && merged[0].1.is_one() {
+            return Val { op: merged[0].0, scale: coef };
+        }
+        let key: Vec<(OpKey, Rational)> = merged.iter().map(|m| (m.0.key(), m.1.clone())).collect();
+        if let Some(o) = self.mono_memo.get(&key) {
+            return Val { op: *o, scale: coef };
+        }
+        let o = self.monomial(&merged);
+        self.mono_memo.insert(key.clone(), o);
+        if let Operand::Temp(_) = o {
+            self.mono_factors.insert(o.key(), key);
+        }
+        Val { op: o, scale: coef }
+    }
+
+    /// `Π base^exponent` (coefficient 1).
+    fn monomial(&mut self, items: &[(Operand, Rational, Option<OpKey>)]) -> Operand {
         let mut num = Vec::new();
         let mut den = Vec::new();
-        for (b, r) in factors {
-            let x = self.memo[b];
+        for (x, r, class) in items {
+            let x = *x;
+            let shared = |half: bool, l: &Self| class.is_some_and(|c| l.analysis.shared_denominators.contains(&(c, half)));
             match classify(r) {
                 Exponent::Int(k) if k > 0 => num.push(self.pow(x, k)),
                 Exponent::Int(k) => {
-                    if self.shared_denominators.contains(&(*b, false)) {
+                    *self.den_count.entry((x.key(), false)).or_default() += 1;
+                    if shared(false, self) {
                         let rx = self.recip(x);
                         num.push(self.pow(rx, -k));
                     } else {
@@ -351,38 +765,23 @@ impl Lowerer<'_> {
                     let s = self.sqrt(x);
                     if p > 0 {
                         num.push(self.pow(s, p));
-                    } else if self.shared_denominators.contains(&(*b, true)) {
-                        let rs = self.recip(s);
-                        num.push(self.pow(rs, -p));
                     } else {
-                        den.push(self.pow(s, -p));
+                        *self.den_count.entry((x.key(), true)).or_default() += 1;
+                        if shared(true, self) {
+                            let rs = self.recip(s);
+                            num.push(self.pow(rs, -p));
+                        } else {
+                            den.push(self.pow(s, -p));
+                        }
                     }
                 }
                 Exponent::Other => num.push(self.powf(x, r.to_f64())),
             }
         }
-        // Numbers go into the coefficient.
-        num.retain(|o| match o {
-            Operand::Lit(v) => {
-                coef *= v;
-                false
-            }
-            _ => true,
-        });
-        den.retain(|o| match o {
-            Operand::Lit(v) => {
-                coef /= v;
-                false
-            }
-            _ => true,
-        });
-        if num.len() == 1 && den.is_empty() && coef == 1.0 {
+        if num.len() == 1 && den.is_empty() {
             return num[0];
         }
-        if num.is_empty() && den.is_empty() {
-            return Operand::Lit(coef);
-        }
-        self.push(Rhs::Prod { coef, num, den })
+        self.push(Rhs::Prod { coef: 1.0, num, den })
     }
 
     /// `x^k`, `k ≥ 1`, by a shared square-and-multiply chain.

@@ -216,9 +216,13 @@ impl Problem {
                 map.push((p, Expr::float(*v)?));
                 fixed.push((n.clone(), *v));
             }
-            let new = subs_many(&gather(&mats, &checks), &map)?;
+            let invalid = |e: eom_sym::SymError| CodegenError::BadOption {
+                option: "fix",
+                problem: format!("the fixed values leave an expression without a value: {e}"),
+            };
+            let new = subs_many(&gather(&mats, &checks), &map).map_err(invalid)?;
             for e in &new {
-                e.check()?;
+                e.check().map_err(invalid)?;
             }
             scatter(&mut mats, &mut checks, &new);
             params.retain(|p| !map.iter().any(|(q, _)| q == p));

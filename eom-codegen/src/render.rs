@@ -133,10 +133,14 @@ impl Ctx<'_> {
 
     fn rhs(&self, rhs: &Rhs) -> Result<TokenStream, CodegenError> {
         Ok(match rhs {
+            // Balanced trees: Rust keeps the written order of floating-point operations, so a
+            // chain `a + b + c + d` is three dependent additions; `(a + b) + (c + d)` is two.
             Rhs::Sum { c0, terms } => {
-                let mut ts: Option<TokenStream> = None;
+                let mut pos: Vec<TokenStream> = Vec::new();
+                let mut neg: Vec<TokenStream> = Vec::new();
                 if *c0 != 0.0 {
-                    ts = Some(self.num.lit(*c0, "sum")?);
+                    let l = self.num.lit(c0.abs(), "sum")?;
+                    if *c0 > 0.0 { pos.push(l) } else { neg.push(l) }
                 }
                 for (x, c) in terms {
                     let xv = self.operand(*x)?;
@@ -147,14 +151,21 @@ impl Ctx<'_> {
                         let l = self.num.lit(mag, "coefficient")?;
                         quote!(#l * #xv)
                     };
-                    ts = Some(match (ts, *c < 0.0) {
-                        (None, false) => term,
-                        (None, true) => quote!(-#term),
-                        (Some(acc), false) => quote!(#acc + #term),
-                        (Some(acc), true) => quote!(#acc - #term),
-                    });
+                    if *c > 0.0 { pos.push(term) } else { neg.push(term) }
                 }
-                ts.unwrap_or_else(|| quote!(0.0))
+                match (pos.is_empty(), neg.is_empty()) {
+                    (true, true) => quote!(0.0),
+                    (false, true) => balanced(&pos, quote!(+), false),
+                    (true, false) => {
+                        let n = balanced(&neg, quote!(+), true);
+                        quote!(-#n)
+                    }
+                    (false, false) => {
+                        let p = balanced(&pos, quote!(+), false);
+                        let n = balanced(&neg, quote!(+), true);
+                        quote!(#p - #n)
+                    }
+                }
             }
             Rhs::Prod { coef, num, den } => {
                 let mut factors: Vec<TokenStream> = Vec::new();
@@ -164,18 +175,14 @@ impl Ctx<'_> {
                 for x in num {
                     factors.push(self.operand(*x)?);
                 }
-                let mut e = if factors.is_empty() {
-                    quote!(1.0)
-                } else {
-                    let first = &factors[0];
-                    let rest = &factors[1..];
-                    quote!(#first #(* #rest)*)
-                };
+                let mut e = if factors.is_empty() { quote!(1.0) } else { balanced(&factors, quote!(*), false) };
                 if !den.is_empty() {
                     let d: Vec<TokenStream> = den.iter().map(|x| self.operand(*x)).collect::<Result<_, _>>()?;
-                    let first = &d[0];
-                    let rest = &d[1..];
-                    e = if d.len() == 1 { quote!(#e / #first) } else { quote!(#e / (#first #(* #rest)*)) };
+                    let d = balanced(&d, quote!(*), true);
+                    if factors.len() > 1 {
+                        e = quote!((#e));
+                    }
+                    e = quote!(#e / #d);
                 }
                 if *coef < 0.0 { quote!(-#e) } else { e }
             }
@@ -265,8 +272,8 @@ pub(crate) struct FnPlan {
     pub name: &'static str,
     pub mats: Vec<Mat>,
     pub lowered: Lowered,
-    /// `(matrix, row, col, value)`, in matrix order then column-major.
-    pub outputs: Vec<(Mat, usize, usize, Operand)>,
+    /// `(matrix, row, col, value, negated)`, in matrix order then column-major.
+    pub outputs: Vec<(Mat, usize, usize, Operand, bool)>,
     /// Per check of the problem: `(value, others)`.
     pub checks: Vec<(Operand, Vec<Operand>)>,
 }
@@ -308,13 +315,15 @@ pub(crate) fn plan(spec: &FnSpec, problem: &Problem) -> Result<FnPlan, CodegenEr
     }
     let pos: HashMap<u32, u32> = problem.param_index.iter().enumerate().map(|(k, &i)| (i, k as u32)).collect();
     let dag = crate::order::build(&roots, &pos)?;
-    let lowered = crate::lower::lower(&dag, &roots)?;
-    let outputs = where_.iter().zip(&lowered.roots[..n_out]).map(|(&(m, i, j), &o)| (m, i, j, o)).collect();
+    let pivots: Vec<eom_sym::Expr> = problem.checks.iter().filter(|c| c.pivot).map(|c| c.value).collect();
+    let lowered = crate::lower::lower(&dag, &roots, &pivots)?;
+    let outputs = where_.iter().zip(&lowered.roots[..n_out]).map(|(&(m, i, j), &(o, neg))| (m, i, j, o, neg)).collect();
     let mut k = n_out;
     let mut checks = Vec::new();
     for c in &problem.checks {
-        let v = lowered.roots[k];
-        let o = lowered.roots[k + 1..k + 1 + c.others.len()].to_vec();
+        // The checks use magnitudes (and `v == 0`), so a sign does not matter.
+        let v = lowered.roots[k].0;
+        let o = lowered.roots[k + 1..k + 1 + c.others.len()].iter().map(|r| r.0).collect();
         k += 1 + c.others.len();
         checks.push((v, o));
     }
@@ -493,15 +502,27 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
         }
     }
 
-    // Validity checks: identical checks are evaluated once.
-    let (checks_ts, check_comparisons, distinct_checks) = render_checks(ctx, &plan.checks, &ctx.problem.checks)?;
-    body.extend(checks_ts);
+    // Validity checks: identical checks are evaluated once, then one branch on all of them.
+    let checks = render_checks(ctx, &plan.checks, &ctx.problem.checks)?;
+    let (check_comparisons, distinct_checks) = (checks.comparisons, checks.distinct);
+    body.extend(checks.lets);
+    let (oks, mags) = (&checks.ok, &checks.mag);
+    if distinct_checks > 0 {
+        let all: Vec<Ident> = (0..distinct_checks).map(|k| format_ident!("ok{}", k)).collect();
+        body.extend(quote! {
+            if !(#(#all)&*) {
+                if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[], &[]) {
+                    return Err(e);
+                }
+            }
+        });
+    }
 
     // Finiteness: the sum of all computed entries is finite iff every entry is, unless it
     // overflows, which the slow path sorts out.
     let mut values: Vec<Operand> = Vec::new();
     let mut table = Vec::new();
-    for &(m, i, j, o) in &plan.outputs {
+    for &(m, i, j, o, _) in &plan.outputs {
         if matches!(o, Operand::Lit(_)) {
             continue;
         }
@@ -516,9 +537,11 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
         let (i, j, k) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j), Literal::usize_unsuffixed(k));
         table.push(quote!((Matrix::#mv, #i, #j, #k)));
     }
-    if !values.is_empty() {
+    if !values.is_empty() || !checks.mags.is_empty() {
         let vals: Vec<TokenStream> = values.iter().map(|v| ctx.operand(*v)).collect::<Result<_, _>>()?;
-        let sum = balanced_sum(&vals);
+        let mut summands = vals.clone();
+        summands.extend(checks.mags.iter().map(|m| quote!(#m)));
+        let sum = balanced_sum(&summands);
         let tname = format_ident!("{}_ENTRIES", plan.name.to_uppercase());
         let n = Literal::usize_unsuffixed(table.len());
         let doc = format!(" Computed entries of [`{}`]: matrix, row, column, index of the value.", plan.name);
@@ -529,7 +552,7 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
         body.extend(quote! {
             let sum: #ty = #sum;
             if !sum.is_finite() {
-                if let Some(e) = non_finite(&[#(#vals),*], &#tname) {
+                if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[#(#vals),*], &#tname) {
                     return Err(e);
                 }
             }
@@ -538,11 +561,15 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
 
     // Stores.
     let mut stores = 0;
-    for &(m, i, j, o) in &plan.outputs {
+    for &(m, i, j, o, neg) in &plan.outputs {
         let arr = Ident::new(m.lower(), Span::call_site());
         let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
         let v = ctx.operand(o)?;
-        body.extend(quote!(#arr[#idx] = #v;));
+        // A negation does not change finiteness, so the check above used the plain value.
+        body.extend(if neg { quote!(#arr[#idx] = -#v;) } else { quote!(#arr[#idx] = #v;) });
+        if neg {
+            ops.neg += 1;
+        }
         stores += 1;
     }
     body.extend(quote!(Ok(())));
@@ -590,7 +617,7 @@ fn fn_doc(problem: &Problem, plan: &FnPlan, which: &str, n_chunks: usize, work_l
         d.push(" The formulas hold for every parameter value where they are finite.".into());
     } else {
         d.push(format!(
-            " The formulas come from an elimination with pivots chosen at the nominal point: they are valid in the region where the {} checks of [`CHECKS`] hold (see [`Params`] for the region at a glance).",
+            " The formulas come from an elimination with pivots chosen at the nominal point: they are valid in the region where the {} checks of [`CHECKS`] hold.",
             problem.checks.len()
         ));
     }
@@ -614,6 +641,30 @@ fn fn_doc(problem: &Problem, plan: &FnPlan, which: &str, n_chunks: usize, work_l
     d
 }
 
+/// `v[0] op v[1] op …` as a balanced tree (`(a op b) op (c op d)`); `wrap` parenthesises a
+/// result of more than one operand (for use after `-` or `/`).
+fn balanced(v: &[TokenStream], op: TokenStream, wrap: bool) -> TokenStream {
+    fn go(v: &[TokenStream], op: &TokenStream) -> TokenStream {
+        match v.len() {
+            0 => quote!(0.0),
+            1 => v[0].clone(),
+            2 => {
+                let (a, b) = (&v[0], &v[1]);
+                quote!(#a #op #b)
+            }
+            n => {
+                let (l, r) = v.split_at(n.div_ceil(2));
+                let (l, r) = (go(l, op), go(r, op));
+                // Left-associative: only the right operand needs parentheses when compound.
+                let r = if v.len() - n.div_ceil(2) > 1 { quote!((#r)) } else { r };
+                quote!(#l #op #r)
+            }
+        }
+    }
+    let t = go(v, &op);
+    if wrap && v.len() > 1 { quote!((#t)) } else { t }
+}
+
 fn balanced_sum(v: &[TokenStream]) -> TokenStream {
     match v.len() {
         0 => quote!(0.0),
@@ -632,29 +683,44 @@ fn balanced_sum(v: &[TokenStream]) -> TokenStream {
     }
 }
 
-/// The boolean of each distinct check, then one branch on their conjunction.
-fn render_checks(
-    ctx: &Ctx,
-    checks: &[(Operand, Vec<Operand>)],
-    specs: &[Check],
-) -> Result<(TokenStream, usize, usize), CodegenError> {
+/// The rendered validity checks.
+struct Checks {
+    /// `let` statements of the distinct checks.
+    lets: TokenStream,
+    /// Per check of the problem: its boolean (`okN` or `true`).
+    ok: Vec<TokenStream>,
+    /// Per check: the magnitude that must also be finite (`avN` or `0.0`). Finiteness is
+    /// tested together with the entries (one sum), so the fast path has no `< ∞` per pivot.
+    mag: Vec<TokenStream>,
+    /// The distinct `avN`.
+    mags: Vec<Ident>,
+    comparisons: usize,
+    distinct: usize,
+}
+
+/// The boolean of each distinct check (identical checks are evaluated once).
+fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check]) -> Result<Checks, CodegenError> {
     let num = ctx.num;
     let pivot_tol = num.round(eom_sym::model::reduce::PIVOT_TOLERANCE);
     let rank_tol = num.round(eom_sym::model::reduce::RANK_TOLERANCE);
     let mut ts = TokenStream::new();
-    let mut seen: HashMap<(bool, Vec<crate::lower::OpKey>), TokenStream> = HashMap::new();
+    let mut seen: HashMap<(bool, Vec<crate::lower::OpKey>), (TokenStream, TokenStream)> = HashMap::new();
     let mut per_check: Vec<TokenStream> = Vec::new();
+    let mut per_mag: Vec<TokenStream> = Vec::new();
+    let mut mags: Vec<Ident> = Vec::new();
     let mut comparisons = 0;
     let mut distinct = 0;
     for ((v, others), spec) in checks.iter().zip(specs) {
         let mut key = vec![v.key()];
         key.extend(others.iter().map(|o| o.key()));
         let key = (spec.pivot, key);
-        if let Some(b) = seen.get(&key) {
+        if let Some((b, m)) = seen.get(&key) {
             per_check.push(b.clone());
+            per_mag.push(m.clone());
             continue;
         }
         let mut conds: Vec<TokenStream> = Vec::new();
+        let mut mag = quote!(0.0);
         let mut always = false;
         if spec.pivot {
             // |v| ≥ tol·max(|v|, |r|…) with v finite and the maximum positive
@@ -687,12 +753,16 @@ fn render_checks(
                     let vv = ctx.receiver(*v)?;
                     let av = format_ident!("av{}", distinct);
                     ts.extend(quote!(let #av = #vv.abs();));
-                    let ty = &ctx.ty;
-                    conds.push(quote!((#av > 0.0)));
-                    conds.push(quote!((#av < #ty::INFINITY)));
+                    mag = quote!(#av);
+                    mags.push(av.clone());
                     let tl = num.lit(pivot_tol, "tolerance")?;
                     let mut lit_max: f64 = 0.0;
+                    let mut seen_r: Vec<crate::lower::OpKey> = Vec::new();
                     for r in others {
+                        if seen_r.contains(&r.key()) || r.key() == v.key() {
+                            continue;
+                        }
+                        seen_r.push(r.key());
                         match r {
                             Operand::Lit(y) => lit_max = lit_max.max(num.mul(pivot_tol, num.round(*y).abs())),
                             _ => {
@@ -701,9 +771,12 @@ fn render_checks(
                             }
                         }
                     }
+                    // `av > 0` (the maximum is positive), implied by `av ≥ bound` when the bound is.
                     if lit_max > 0.0 {
                         let l = num.lit(lit_max, "pivot bound")?;
-                        conds.push(quote!((#av >= #l)));
+                        conds.insert(0, quote!((#av >= #l)));
+                    } else {
+                        conds.insert(0, quote!((#av > 0.0)));
                     }
                 }
             }
@@ -759,24 +832,18 @@ fn render_checks(
             }
         }
         if always || conds.is_empty() {
-            seen.insert(key, quote!(true));
+            seen.insert(key, (quote!(true), mag.clone()));
             per_check.push(quote!(true));
+            per_mag.push(mag);
             continue;
         }
         comparisons += conds.len();
         let ok = format_ident!("ok{}", distinct);
         distinct += 1;
         ts.extend(quote!(let #ok: bool = #(#conds)&*;));
-        seen.insert(key, quote!(#ok));
+        seen.insert(key, (quote!(#ok), mag.clone()));
         per_check.push(quote!(#ok));
+        per_mag.push(mag);
     }
-    if distinct > 0 {
-        let oks: Vec<Ident> = (0..distinct).map(|k| format_ident!("ok{}", k)).collect();
-        ts.extend(quote! {
-            if !(#(#oks)&*) {
-                return Err(validity_error(&[#(#per_check),*]));
-            }
-        });
-    }
-    Ok((ts, comparisons, distinct))
+    Ok(Checks { lets: ts, ok: per_check, mag: per_mag, mags, comparisons, distinct })
 }

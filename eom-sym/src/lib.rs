@@ -28,7 +28,7 @@ pub use diff::diff_many;
 pub use display::{ExprMatrix, Latex, display_matrix, latex_matrix};
 pub use error::SymError;
 pub use expr::{Expr, ExprView, OpCount};
-pub use matrix::SparseMatrix;
+pub use matrix::{SparseMatrix, Triplets};
 pub use parse::parse;
 pub use pool::{Assumption, Constant, ExprPool, Func, ParamInfo, PoolStats, Sign};
 pub use rational::Rational;

@@ -10,27 +10,89 @@ use crate::error::SymError;
 use crate::scalar::Scalar;
 use nalgebra::DMatrix;
 
-/// A sparse matrix: each row holds its structural non-zeros sorted by column.
+/// A sparse matrix in compressed-row form: the structural non-zeros of row `i` are
+/// `entries[row_ptr[i]..row_ptr[i + 1]]`, sorted by column. One allocation per matrix, not
+/// one per row, so numeric scalars pay little for the generic code.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SparseMatrix<S> {
     nrows: usize,
     ncols: usize,
-    rows: Vec<Vec<(usize, S)>>,
+    row_ptr: Vec<usize>,
+    entries: Vec<(usize, S)>,
+}
+
+/// A coordinate-list builder for [`SparseMatrix`]: push `(row, col, value)` in any order;
+/// duplicates are summed (one n-ary [`Scalar::sum`] per entry) when the matrix is built.
+#[derive(Clone, Debug)]
+pub struct Triplets<S> {
+    nrows: usize,
+    ncols: usize,
+    items: Vec<(usize, usize, S)>,
+}
+
+impl<S: Scalar> Triplets<S> {
+    /// An empty builder for an `nrows × ncols` matrix.
+    pub fn new(nrows: usize, ncols: usize) -> Self {
+        Triplets { nrows, ncols, items: Vec::new() }
+    }
+    /// Add `v` at `(i, j)` (structural zeros are skipped).
+    pub fn push(&mut self, i: usize, j: usize, v: S) {
+        assert!(i < self.nrows && j < self.ncols, "index ({i}, {j}) out of bounds");
+        if !v.is_zero() {
+            self.items.push((i, j, v));
+        }
+    }
+    /// Build the matrix.
+    pub fn build(mut self) -> SparseMatrix<S> {
+        self.items.sort_by_key(|e| (e.0, e.1));
+        let mut m = SparseMatrix { nrows: self.nrows, ncols: self.ncols, row_ptr: Vec::with_capacity(self.nrows + 1), entries: Vec::with_capacity(self.items.len()) };
+        m.row_ptr.push(0);
+        let mut terms: Vec<S> = Vec::new();
+        let mut p = 0;
+        for i in 0..self.nrows {
+            while p < self.items.len() && self.items[p].0 == i {
+                let j = self.items[p].1;
+                terms.clear();
+                while p < self.items.len() && self.items[p].0 == i && self.items[p].1 == j {
+                    terms.push(self.items[p].2);
+                    p += 1;
+                }
+                let v = if terms.len() == 1 { terms[0] } else { S::sum(&terms).recognise_zero() };
+                if !v.is_zero() {
+                    m.entries.push((j, v));
+                }
+            }
+            m.row_ptr.push(m.entries.len());
+        }
+        m
+    }
 }
 
 impl<S: Scalar> SparseMatrix<S> {
     /// The `nrows × ncols` zero matrix.
     pub fn zeros(nrows: usize, ncols: usize) -> Self {
-        SparseMatrix { nrows, ncols, rows: vec![Vec::new(); nrows] }
+        SparseMatrix { nrows, ncols, row_ptr: vec![0; nrows + 1], entries: Vec::new() }
+    }
+
+    /// Build row by row: `f(i, out)` pushes the non-zeros of row `i`, sorted by column.
+    fn from_row_fn(nrows: usize, ncols: usize, f: impl FnMut(usize, &mut Vec<(usize, S)>)) -> Self {
+        Self::from_row_fn_with(nrows, ncols, 0, f)
+    }
+
+    /// [`Self::from_row_fn`] with a capacity hint for the number of non-zeros.
+    fn from_row_fn_with(nrows: usize, ncols: usize, nnz_hint: usize, mut f: impl FnMut(usize, &mut Vec<(usize, S)>)) -> Self {
+        let mut m = SparseMatrix { nrows, ncols, row_ptr: Vec::with_capacity(nrows + 1), entries: Vec::with_capacity(nnz_hint) };
+        m.row_ptr.push(0);
+        for i in 0..nrows {
+            f(i, &mut m.entries);
+            m.row_ptr.push(m.entries.len());
+        }
+        m
     }
 
     /// The identity.
     pub fn identity(n: usize) -> Self {
-        let mut m = Self::zeros(n, n);
-        for i in 0..n {
-            m.rows[i].push((i, S::one()));
-        }
-        m
+        Self::from_row_fn(n, n, |i, out| out.push((i, S::one())))
     }
 
     /// From a dense matrix (structural zeros dropped).
@@ -38,36 +100,34 @@ impl<S: Scalar> SparseMatrix<S> {
     where
         S: nalgebra::Scalar,
     {
-        let mut m = Self::zeros(d.nrows(), d.ncols());
-        for i in 0..d.nrows() {
+        Self::from_row_fn(d.nrows(), d.ncols(), |i, out| {
             for j in 0..d.ncols() {
                 let v = d[(i, j)];
                 if !v.is_zero() {
-                    m.rows[i].push((j, v));
+                    out.push((j, v));
                 }
             }
-        }
-        m
+        })
     }
 
     /// From row-major nested data.
     pub fn from_rows(rows: &[Vec<S>]) -> Result<Self, SymError> {
         let ncols = rows.first().map_or(0, |r| r.len());
-        let mut m = Self::zeros(rows.len(), ncols);
-        for (i, r) in rows.iter().enumerate() {
-            if r.len() != ncols {
-                return Err(SymError::Dimension(format!(
-                    "row {i} has {} entries, row 0 has {ncols}",
-                    r.len()
-                )));
-            }
-            for (j, &v) in r.iter().enumerate() {
+        if let Some((i, r)) = rows.iter().enumerate().find(|(_, r)| r.len() != ncols) {
+            return Err(SymError::Dimension(format!("row {i} has {} entries, row 0 has {ncols}", r.len())));
+        }
+        Ok(Self::from_row_fn(rows.len(), ncols, |i, out| {
+            for (j, &v) in rows[i].iter().enumerate() {
                 if !v.is_zero() {
-                    m.rows[i].push((j, v));
+                    out.push((j, v));
                 }
             }
-        }
-        Ok(m)
+        }))
+    }
+
+    /// From sparse rows (each sorted by column).
+    pub fn from_sparse_rows(rows: &[Vec<(usize, S)>], ncols: usize) -> Self {
+        Self::from_row_fn(rows.len(), ncols, |i, out| out.extend(rows[i].iter().copied().filter(|e| !e.1.is_zero())))
     }
 
     /// Number of rows.
@@ -80,32 +140,41 @@ impl<S: Scalar> SparseMatrix<S> {
     }
     /// Number of structural non-zeros.
     pub fn nnz(&self) -> usize {
-        self.rows.iter().map(Vec::len).sum()
+        self.entries.len()
+    }
+
+    /// The non-zeros of row `i`, sorted by column.
+    pub fn row(&self, i: usize) -> &[(usize, S)] {
+        &self.entries[self.row_ptr[i]..self.row_ptr[i + 1]]
     }
 
     /// Entry `(i, j)` (zero when not stored).
     pub fn get(&self, i: usize, j: usize) -> S {
-        match self.rows[i].binary_search_by_key(&j, |e| e.0) {
-            Ok(k) => self.rows[i][k].1,
+        let r = self.row(i);
+        match r.binary_search_by_key(&j, |e| e.0) {
+            Ok(k) => r[k].1,
             Err(_) => S::zero(),
         }
     }
 
-    /// Set entry `(i, j)`; storing a structural zero removes the entry.
+    /// Set entry `(i, j)`; storing a structural zero removes the entry. (Linear in the number
+    /// of non-zeros: build with [`Triplets`] when setting many entries.)
     pub fn set(&mut self, i: usize, j: usize, v: S) {
         assert!(i < self.nrows && j < self.ncols, "index ({i}, {j}) out of bounds");
-        let row = &mut self.rows[i];
-        match row.binary_search_by_key(&j, |e| e.0) {
+        let (a, b) = (self.row_ptr[i], self.row_ptr[i + 1]);
+        match self.entries[a..b].binary_search_by_key(&j, |e| e.0) {
             Ok(k) => {
                 if v.is_zero() {
-                    row.remove(k);
+                    self.entries.remove(a + k);
+                    self.row_ptr[i + 1..].iter_mut().for_each(|p| *p -= 1);
                 } else {
-                    row[k].1 = v;
+                    self.entries[a + k].1 = v;
                 }
             }
             Err(k) => {
                 if !v.is_zero() {
-                    row.insert(k, (j, v));
+                    self.entries.insert(a + k, (j, v));
+                    self.row_ptr[i + 1..].iter_mut().for_each(|p| *p += 1);
                 }
             }
         }
@@ -120,14 +189,9 @@ impl<S: Scalar> SparseMatrix<S> {
         self.set(i, j, if cur.is_zero() { v } else { (cur + v).recognise_zero() });
     }
 
-    /// The non-zeros of row `i`, sorted by column.
-    pub fn row(&self, i: usize) -> &[(usize, S)] {
-        &self.rows[i]
-    }
-
     /// All non-zeros as `(row, col, value)`, row-major.
     pub fn iter(&self) -> impl Iterator<Item = (usize, usize, S)> + '_ {
-        self.rows.iter().enumerate().flat_map(|(i, r)| r.iter().map(move |&(j, v)| (i, j, v)))
+        (0..self.nrows).flat_map(move |i| self.row(i).iter().map(move |&(j, v)| (i, j, v)))
     }
 
     /// The sparsity pattern as `(row, col)` pairs.
@@ -137,25 +201,37 @@ impl<S: Scalar> SparseMatrix<S> {
 
     /// Transpose.
     pub fn transpose(&self) -> Self {
-        let mut t = Self::zeros(self.ncols, self.nrows);
-        for (i, j, v) in self.iter() {
-            t.rows[j].push((i, v));
+        // Counting sort by column keeps each new row sorted.
+        let mut count = vec![0usize; self.ncols + 1];
+        for &(j, _) in &self.entries {
+            count[j + 1] += 1;
         }
-        t
+        for j in 0..self.ncols {
+            count[j + 1] += count[j];
+        }
+        let row_ptr = count.clone();
+        let mut next = count;
+        let mut entries: Vec<(usize, S)> = Vec::with_capacity(self.entries.len());
+        // SAFETY-free fill: place into a vector of options, then unwrap.
+        let mut slots: Vec<Option<(usize, S)>> = vec![None; self.entries.len()];
+        for (i, j, v) in self.iter() {
+            slots[next[j]] = Some((i, v));
+            next[j] += 1;
+        }
+        entries.extend(slots.into_iter().map(|e| e.expect("every slot filled")));
+        SparseMatrix { nrows: self.ncols, ncols: self.nrows, row_ptr, entries }
     }
 
     /// Apply `f` to every non-zero (results that are structural zeros are dropped).
     pub fn map<T: Scalar>(&self, mut f: impl FnMut(S) -> T) -> SparseMatrix<T> {
-        let mut m = SparseMatrix::zeros(self.nrows, self.ncols);
-        for (i, r) in self.rows.iter().enumerate() {
-            for &(j, v) in r {
+        SparseMatrix::from_row_fn_with(self.nrows, self.ncols, self.nnz(), |i, out| {
+            for &(j, v) in self.row(i) {
                 let w = f(v);
                 if !w.is_zero() {
-                    m.rows[i].push((j, w));
+                    out.push((j, w));
                 }
             }
-        }
-        m
+        })
     }
 
     /// `self · other`; every entry is one n-ary sum of its product terms.
@@ -166,29 +242,32 @@ impl<S: Scalar> SparseMatrix<S> {
                 self.nrows, self.ncols, other.nrows, other.ncols
             )));
         }
-        let mut out = Self::zeros(self.nrows, other.ncols);
-        let mut acc: Vec<Vec<S>> = vec![Vec::new(); other.ncols];
-        let mut touched: Vec<usize> = Vec::new();
-        for i in 0..self.nrows {
-            for &(k, a) in &self.rows[i] {
-                for &(j, b) in &other.rows[k] {
-                    if acc[j].is_empty() {
-                        touched.push(j);
-                    }
-                    acc[j].push(if a.is_one() { b } else if b.is_one() { a } else { a * b });
+        // Flat accumulator: (column, product) pairs of one row, grouped by column.
+        let products: usize = self.entries.iter().map(|&(k, _)| other.row_ptr[k + 1] - other.row_ptr[k]).sum();
+        let mut acc: Vec<(usize, S)> = Vec::with_capacity(other.ncols.min(products));
+        let mut terms: Vec<S> = Vec::with_capacity(8);
+        Ok(Self::from_row_fn_with(self.nrows, other.ncols, products.min(self.nrows * other.ncols), |i, out| {
+            acc.clear();
+            for &(k, a) in self.row(i) {
+                for &(j, b) in other.row(k) {
+                    acc.push((j, if a.is_one() { b } else if b.is_one() { a } else { a * b }));
                 }
             }
-            touched.sort_unstable();
-            for &j in &touched {
-                let v = S::sum(&acc[j]).recognise_zero();
-                acc[j].clear();
+            acc.sort_by_key(|e| e.0);
+            let mut p = 0;
+            while p < acc.len() {
+                let j = acc[p].0;
+                terms.clear();
+                while p < acc.len() && acc[p].0 == j {
+                    terms.push(acc[p].1);
+                    p += 1;
+                }
+                let v = if terms.len() == 1 { terms[0] } else { S::sum(&terms).recognise_zero() };
                 if !v.is_zero() {
-                    out.rows[i].push((j, v));
+                    out.push((j, v));
                 }
             }
-            touched.clear();
-        }
-        Ok(out)
+        }))
     }
 
     /// `self + other`.
@@ -207,11 +286,9 @@ impl<S: Scalar> SparseMatrix<S> {
                 self.nrows, self.ncols, other.nrows, other.ncols
             )));
         }
-        let mut out = Self::zeros(self.nrows, self.ncols);
-        for i in 0..self.nrows {
-            let (a, b) = (&self.rows[i], &other.rows[i]);
+        Ok(Self::from_row_fn_with(self.nrows, self.ncols, self.nnz() + other.nnz(), |i, out| {
+            let (a, b) = (self.row(i), other.row(i));
             let (mut p, mut q) = (0, 0);
-            let row = &mut out.rows[i];
             while p < a.len() || q < b.len() {
                 let ja = a.get(p).map_or(usize::MAX, |e| e.0);
                 let jb = b.get(q).map_or(usize::MAX, |e| e.0);
@@ -228,11 +305,10 @@ impl<S: Scalar> SparseMatrix<S> {
                     (ja, (if negate { x - y } else { x + y }).recognise_zero())
                 };
                 if !v.is_zero() {
-                    row.push((j, v));
+                    out.push((j, v));
                 }
             }
-        }
-        Ok(out)
+        }))
     }
 
     /// `c · self`.
@@ -254,16 +330,18 @@ impl<S: Scalar> SparseMatrix<S> {
         for (k, &c) in cols.iter().enumerate() {
             colmap[c] = k;
         }
-        let mut out = Self::zeros(rows.len(), cols.len());
-        for (k, &r) in rows.iter().enumerate() {
-            for &(j, v) in &self.rows[r] {
+        let monotone = cols.windows(2).all(|w| w[0] < w[1]);
+        Self::from_row_fn_with(rows.len(), cols.len(), self.nnz().min(rows.len() * cols.len()), |k, out| {
+            let start = out.len();
+            for &(j, v) in self.row(rows[k]) {
                 if colmap[j] != usize::MAX {
-                    out.rows[k].push((colmap[j], v));
+                    out.push((colmap[j], v));
                 }
             }
-            out.rows[k].sort_by_key(|e| e.0);
-        }
-        out
+            if !monotone {
+                out[start..].sort_by_key(|e| e.0);
+            }
+        })
     }
 
     /// Assemble a block matrix from a grid of optional blocks (`None` = zero block). Every
@@ -295,24 +373,25 @@ impl<S: Scalar> SparseMatrix<S> {
         }
         let heights: Vec<usize> = heights.into_iter().map(|h| h.unwrap_or(0)).collect();
         let widths: Vec<usize> = widths.into_iter().map(|w| w.unwrap_or(0)).collect();
-        let mut out = Self::zeros(heights.iter().sum(), widths.iter().sum());
-        let mut r0 = 0;
-        for (bi, row) in grid.iter().enumerate() {
-            let mut c0 = 0;
-            for (bj, b) in row.iter().enumerate() {
-                if let Some(b) = b {
-                    for (i, j, v) in b.iter() {
-                        out.rows[r0 + i].push((c0 + j, v));
-                    }
-                }
-                c0 += widths[bj];
-            }
-            for r in &mut out.rows[r0..r0 + heights[bi]] {
-                r.sort_by_key(|e| e.0);
-            }
-            r0 += heights[bi];
+        let mut col0 = vec![0; nbc];
+        for bj in 1..nbc {
+            col0[bj] = col0[bj - 1] + widths[bj - 1];
         }
-        Ok(out)
+        let mut rowmap = Vec::with_capacity(heights.iter().sum());
+        for (bi, &h) in heights.iter().enumerate() {
+            for i in 0..h {
+                rowmap.push((bi, i));
+            }
+        }
+        let nnz: usize = grid.iter().flatten().flatten().map(|b| b.nnz()).sum();
+        Ok(Self::from_row_fn_with(rowmap.len(), widths.iter().sum(), nnz, |r, out| {
+            let (bi, i) = rowmap[r];
+            for (bj, b) in grid[bi].iter().enumerate() {
+                if let Some(b) = b {
+                    out.extend(b.row(i).iter().map(|&(j, v)| (col0[bj] + j, v)));
+                }
+            }
+        }))
     }
 
     /// Dense copy.

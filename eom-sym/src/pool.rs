@@ -404,6 +404,9 @@ pub struct PoolStats {
     pub arena: usize,
     /// Parameters declared.
     pub params: usize,
+    /// Interning calls so far: every lookup of a node by its key, whether it found an existing
+    /// node or created a new one (for throughput measurements).
+    pub interns: u64,
 }
 
 /// The expression pool: the arena of unique nodes of one thread.
@@ -420,7 +423,23 @@ pub struct ExprPool {
     params: Vec<ParamInfo>,
     param_node: Vec<Id>,
     errors: Vec<SymError>,
+    interns: u64,
+    /// Hash of each node's key, so that growing the table does not rehash the keys and a probe
+    /// compares keys only on a full hash match.
+    hashes: Vec<u64>,
+    /// Ids of the small rationals `n/1` and `n/2`, `|n| ≤ SMALL` (most coefficients and
+    /// exponents), found without hashing; `NONE` until first built.
+    small: [[Id; 2 * SMALL as usize + 1]; 2],
+    /// Scratch buffers of the sum and product constructors, reused to avoid allocating on every
+    /// call (taken with `mem::take`, so a nested call simply gets a fresh one).
+    terms_buf: Vec<(Id, Number)>,
+    factors_buf: Vec<(Id, Rational)>,
+    key_buf: Vec<u32>,
 }
+
+/// Range of the direct-mapped small rationals.
+const SMALL: i64 = 16;
+const NONE: Id = Id::MAX;
 
 thread_local! {
     static POOL: RefCell<ExprPool> = RefCell::new(ExprPool::new());
@@ -446,6 +465,12 @@ impl ExprPool {
             params: Vec::new(),
             param_node: Vec::new(),
             errors: Vec::new(),
+            interns: 0,
+            hashes: Vec::new(),
+            small: [[NONE; 2 * SMALL as usize + 1]; 2],
+            terms_buf: Vec::new(),
+            factors_buf: Vec::new(),
+            key_buf: Vec::new(),
         };
         let z = p.rational(Rational::ZERO);
         let o = p.rational(Rational::ONE);
@@ -460,6 +485,7 @@ impl ExprPool {
             nodes: p.nodes.len(),
             arena: p.args.len(),
             params: p.params.len(),
+            interns: p.interns,
         })
     }
 
@@ -554,9 +580,12 @@ impl ExprPool {
     }
 
     fn intern(&mut self, key: Key<'_>) -> Id {
+        self.interns += 1;
         let h = Self::hash_key(&key);
-        let (nodes, args) = (&self.nodes, &self.args);
-        let found = self.table.find(h, |&id| key_at(nodes, args, id) == key);
+        let (nodes, args, hashes) = (&self.nodes, &self.args, &self.hashes);
+        let found = self
+            .table
+            .find(h, |&id| hashes[id as usize] == h && key_at(nodes, args, id) == key);
         if let Some(&id) = found {
             return id;
         }
@@ -584,8 +613,9 @@ impl ExprPool {
         self.nodes.push(node);
         self.nominal.push(nom);
         self.sign.push(sign);
-        let (nodes, args) = (&self.nodes, &self.args);
-        self.table.insert_unique(h, id, |&i| Self::hash_key(&key_at(nodes, args, i)));
+        self.hashes.push(h);
+        let hashes = &self.hashes;
+        self.table.insert_unique(h, id, |&i| hashes[i as usize]);
         id
     }
 
@@ -652,6 +682,18 @@ impl ExprPool {
     // ---------------------------------------------------------------- leaves
 
     pub(crate) fn rational(&mut self, r: Rational) -> Id {
+        if let Rational::Small(n, d @ (1 | 2)) = r {
+            if n.abs() <= SMALL {
+                let slot = &mut self.small[(d - 1) as usize][(n + SMALL) as usize];
+                if *slot != NONE {
+                    self.interns += 1;
+                    return *slot;
+                }
+                let id = self.intern(Key::Num(&r));
+                self.small[(d - 1) as usize][(n + SMALL) as usize] = id;
+                return id;
+            }
+        }
         self.intern(Key::Num(&r))
     }
 
@@ -719,13 +761,19 @@ impl ExprPool {
             _ => {}
         }
         let mut c0 = Number::Rat(Rational::ZERO);
-        let mut terms: Vec<(Id, Number)> = Vec::with_capacity(items.len() + 4);
+        let mut terms = std::mem::take(&mut self.terms_buf);
+        terms.clear();
+        let mut id = None;
         for &it in items {
             if let Err(e) = self.collect_add(it, &Number::Rat(Rational::ONE), &mut c0, &mut terms) {
-                return self.invalid(e);
+                id = Some(self.invalid(e));
+                break;
             }
         }
-        self.finish_add(c0, terms)
+        let id = id.unwrap_or_else(|| self.finish_add(c0, &mut terms));
+        terms.clear();
+        self.terms_buf = terms;
+        id
     }
 
     /// Push `scale·item` into a sum under construction.
@@ -774,44 +822,56 @@ impl ExprPool {
         if pairs.len() == 2 && pairs[1] == ONE {
             return pairs[0];
         }
-        let mut key: Vec<u32> = Vec::with_capacity(pairs.len() + 1);
+        let mut key = std::mem::take(&mut self.key_buf);
+        key.clear();
         key.push(ONE);
-        key.extend_from_slice(pairs);
-        self.intern(Key::Mul(&key))
+        key.extend_from_slice(self.mul_parts(id).expect("product").1);
+        let id = self.intern(Key::Mul(&key));
+        self.key_buf = key;
+        id
     }
 
-    fn finish_add(&mut self, c0: Number, mut terms: Vec<(Id, Number)>) -> Id {
+    /// The canonical sum `c0 + Σ terms`. `terms` is consumed (left in an unspecified state).
+    fn finish_add(&mut self, c0: Number, terms: &mut Vec<(Id, Number)>) -> Id {
+        // Stable sort: the coefficients of equal terms are added in a fixed order.
         terms.sort_by_key(|t| t.0);
-        let mut merged: Vec<(Id, Number)> = Vec::with_capacity(terms.len());
-        for (t, c) in terms {
-            match merged.last_mut() {
-                Some((lt, lc)) if *lt == t => match lc.add(&c) {
-                    Ok(s) => *lc = s,
+        // Merge equal terms in place.
+        let mut w = 0;
+        for i in 0..terms.len() {
+            if w > 0 && terms[w - 1].0 == terms[i].0 {
+                match terms[w - 1].1.add(&terms[i].1) {
+                    Ok(s) => terms[w - 1].1 = s,
                     Err(e) => return self.invalid(e),
-                },
-                _ => merged.push((t, c)),
+                }
+            } else {
+                terms.swap(w, i);
+                w += 1;
             }
         }
-        merged.retain(|(_, c)| !c.is_zero());
-        let c0 = match self.pythagoras(&mut merged, c0) {
+        terms.truncate(w);
+        terms.retain(|(_, c)| !c.is_zero());
+        let c0 = match self.pythagoras(terms, c0) {
             Ok(c) => c,
             Err(e) => return self.invalid(e),
         };
-        if merged.is_empty() {
+        if terms.is_empty() {
             return self.num(c0);
         }
-        if c0.is_zero() && merged.len() == 1 {
-            let (t, c) = merged.pop().expect("one term");
+        if c0.is_zero() && terms.len() == 1 {
+            let (t, c) = terms.pop().expect("one term");
             return self.scale(t, c);
         }
-        let mut key: Vec<u32> = Vec::with_capacity(1 + 2 * merged.len());
+        let mut key = std::mem::take(&mut self.key_buf);
+        key.clear();
         key.push(self.num(c0));
-        for (t, c) in merged {
+        for (t, c) in terms.drain(..) {
             key.push(t);
             let cid = self.num(c);
             key.push(cid);
         }
-        self.intern(Key::Add(&key))
+        let id = self.intern(Key::Add(&key));
+        self.key_buf = key;
+        id
     }
 
     /// `c·sin²x + c·cos²x → c` (always safe). Terms are `(sin x)²` / `(cos x)²` products.
@@ -851,7 +911,9 @@ impl ExprPool {
             return t;
         }
         let cid = self.num(c);
-        let mut key: Vec<u32> = vec![cid];
+        let mut key = std::mem::take(&mut self.key_buf);
+        key.clear();
+        key.push(cid);
         match self.mul_parts(t) {
             Some((_, pairs)) => key.extend_from_slice(pairs),
             None => {
@@ -859,7 +921,9 @@ impl ExprPool {
                 key.push(ONE);
             }
         }
-        self.intern(Key::Mul(&key))
+        let id = self.intern(Key::Mul(&key));
+        self.key_buf = key;
+        id
     }
 
     // ---------------------------------------------------------------- products
@@ -877,22 +941,39 @@ impl ExprPool {
             _ => {}
         }
         let mut coef = Number::Rat(Rational::ONE);
-        let mut factors: Vec<(Id, Rational)> = Vec::with_capacity(items.len() + 4);
+        let mut factors = std::mem::take(&mut self.factors_buf);
+        factors.clear();
+        let id = self.mul_items(items, &mut coef, &mut factors);
+        let id = id.unwrap_or_else(|| {
+            if coef.is_zero() { ZERO } else { self.finish_mul(coef, &mut factors) }
+        });
+        factors.clear();
+        self.factors_buf = factors;
+        id
+    }
+
+    /// Flatten the factors of `items` into `coef` and `factors`; `Some(invalid)` on an error.
+    fn mul_items(
+        &mut self,
+        items: &[Id],
+        coef: &mut Number,
+        factors: &mut Vec<(Id, Rational)>,
+    ) -> Option<Id> {
         for &it in items {
             match &self.nodes[it as usize] {
                 Node::Num(_) | Node::Float(_) => {
                     let v = self.number(it).expect("number");
                     match coef.mul(&v) {
-                        Ok(c) => coef = c,
-                        Err(e) => return self.invalid(e),
+                        Ok(c) => *coef = c,
+                        Err(e) => return Some(self.invalid(e)),
                     }
                 }
                 Node::Mul(s, l) => {
                     let (s, l) = (*s as usize, *l as usize);
                     let c = self.number(self.args[s]).expect("coefficient");
                     match coef.mul(&c) {
-                        Ok(c) => coef = c,
-                        Err(e) => return self.invalid(e),
+                        Ok(c) => *coef = c,
+                        Err(e) => return Some(self.invalid(e)),
                     }
                     for k in 0..(l - 1) / 2 {
                         let b = self.args[s + 1 + 2 * k];
@@ -903,21 +984,23 @@ impl ExprPool {
                 _ => factors.push((it, Rational::ONE)),
             }
         }
-        if coef.is_zero() {
-            return ZERO;
-        }
-        self.finish_mul(coef, factors)
+        None
     }
 
-    fn finish_mul(&mut self, mut coef: Number, mut factors: Vec<(Id, Rational)>) -> Id {
+    /// The canonical product `coef·Π factors`. `factors` is consumed (left in an unspecified
+    /// state).
+    fn finish_mul(&mut self, mut coef: Number, factors: &mut Vec<(Id, Rational)>) -> Id {
         // Sort by base, positive exponents before negative ones.
         factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
-        let mut merged: Vec<(Id, Rational)> = Vec::with_capacity(factors.len());
-        for (b, e) in factors {
-            if let Some((lb, le)) = merged.last_mut() {
-                if *lb == b && (le.signum() == e.signum() || self.sign(b).is_nonzero()) {
-                    match le.add(&e) {
-                        Ok(s) => *le = s,
+        // Merge equal bases in place.
+        let mut w = 0;
+        for i in 0..factors.len() {
+            if w > 0 {
+                let (b, lb) = (factors[i].0, factors[w - 1].0);
+                let same_sign = factors[w - 1].1.signum() == factors[i].1.signum();
+                if lb == b && (same_sign || self.sign(b).is_nonzero()) {
+                    match factors[w - 1].1.add(&factors[i].1) {
+                        Ok(s) => factors[w - 1].1 = s,
                         Err(_) => return self.invalid(SymError::RationalOverflow),
                     }
                     continue;
@@ -925,12 +1008,18 @@ impl ExprPool {
                 // Same base, opposite sign, base may vanish: keep a second entry so that
                 // no division is cancelled (see the table in the module docs).
             }
-            merged.push((b, e));
+            factors.swap(w, i);
+            w += 1;
         }
-        // Fold numeric bases with integer exponents into the coefficient; drop x^0.
-        let mut kept: Vec<(Id, Rational)> = Vec::with_capacity(merged.len());
+        factors.truncate(w);
+        // Fold numeric bases with integer exponents into the coefficient; drop x^0. The kept
+        // factors are compacted in place; expansions (rare) go to `extra`.
+        let mut kept = 0;
+        let mut extra: Vec<(Id, Rational)> = Vec::new();
         let mut expanded = false;
-        for (b, e) in merged {
+        for i in 0..factors.len() {
+            let b = factors[i].0;
+            let e = std::mem::replace(&mut factors[i].1, Rational::ZERO);
             if e.is_zero() {
                 continue;
             }
@@ -957,10 +1046,10 @@ impl ExprPool {
                             Err(err) => return self.invalid(err),
                         }
                         for q in pairs.chunks_exact(2) {
-                            kept.push((q[0], self.rational_of(q[1]).expect("exp").clone()));
+                            extra.push((q[0], self.rational_of(q[1]).expect("exp").clone()));
                         }
                     }
-                    _ => kept.push((p, Rational::ONE)),
+                    _ => extra.push((p, Rational::ONE)),
                 }
                 expanded = true;
                 continue;
@@ -976,15 +1065,19 @@ impl ExprPool {
                 }
                 continue;
             }
-            kept.push((b, e));
+            factors[kept] = (b, e);
+            kept += 1;
         }
+        factors.truncate(kept);
         if expanded {
             // The expansion brought new factors (possibly equal to kept ones): merge again.
-            return self.finish_mul(coef, kept);
+            factors.append(&mut extra);
+            return self.finish_mul(coef, factors);
         }
         // A second pass may have produced adjacent equal bases with opposite signs whose
         // cancellation is allowed: handled above; re-sort for the canonical order.
-        kept.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
+        factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
+        let kept = factors;
         if kept.is_empty() {
             return self.num(coef);
         }
@@ -996,21 +1089,28 @@ impl ExprPool {
             if matches!(self.nodes[b as usize], Node::Add(..)) {
                 // Distribute a numeric coefficient over a sum (canonical sums).
                 let mut c0 = Number::Rat(Rational::ZERO);
-                let mut terms = Vec::new();
-                if let Err(e) = self.collect_add(b, &coef, &mut c0, &mut terms) {
-                    return self.invalid(e);
-                }
-                return self.finish_add(c0, terms);
+                let mut terms = std::mem::take(&mut self.terms_buf);
+                terms.clear();
+                let id = match self.collect_add(b, &coef, &mut c0, &mut terms) {
+                    Ok(()) => self.finish_add(c0, &mut terms),
+                    Err(e) => self.invalid(e),
+                };
+                terms.clear();
+                self.terms_buf = terms;
+                return id;
             }
         }
-        let mut key: Vec<u32> = Vec::with_capacity(1 + 2 * kept.len());
+        let mut key = std::mem::take(&mut self.key_buf);
+        key.clear();
         key.push(self.num(coef));
-        for (b, e) in kept {
+        for (b, e) in kept.drain(..) {
             key.push(b);
             let eid = self.rational(e);
             key.push(eid);
         }
-        self.intern(Key::Mul(&key))
+        let id = self.intern(Key::Mul(&key));
+        self.key_buf = key;
+        id
     }
 
     /// A numeric base to an integer power.

@@ -56,6 +56,12 @@ impl Rational {
             n = -n;
             d = -d;
         }
+        // Integers need no reduction (the gcd is the costly part of small arithmetic).
+        if d == 1 {
+            if let Ok(n) = i64::try_from(n) {
+                return Rational::Small(n, 1);
+            }
+        }
         let g = n.gcd(&d);
         if g > 1 {
             n /= g;
@@ -224,6 +230,18 @@ impl Rational {
     /// `self + o`.
     pub fn add(&self, o: &Rational) -> Result<Rational, RationalOverflow> {
         if let (Rational::Small(a, b), Rational::Small(c, d)) = (self, o) {
+            // Fast paths (exact): integers, and adding zero.
+            if *b == 1 && *d == 1 {
+                if let Some(n) = a.checked_add(*c) {
+                    return Ok(Rational::Small(n, 1));
+                }
+            }
+            if *a == 0 {
+                return Ok(o.clone());
+            }
+            if *c == 0 {
+                return Ok(self.clone());
+            }
             let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
             if let (Some(x), Some(y)) = (a.checked_mul(d), c.checked_mul(b)) {
                 if let (Some(n), Some(den)) = (x.checked_add(y), b.checked_mul(d)) {
@@ -242,6 +260,18 @@ impl Rational {
     /// `self · o`.
     pub fn mul(&self, o: &Rational) -> Result<Rational, RationalOverflow> {
         if let (Rational::Small(a, b), Rational::Small(c, d)) = (self, o) {
+            // Fast paths (exact): integers, and multiplying by one.
+            if *b == 1 && *d == 1 {
+                if let Some(n) = a.checked_mul(*c) {
+                    return Ok(Rational::Small(n, 1));
+                }
+            }
+            if *a == 1 && *b == 1 {
+                return Ok(o.clone());
+            }
+            if *c == 1 && *d == 1 {
+                return Ok(self.clone());
+            }
             let n = (*a as i128) * (*c as i128);
             let den = (*b as i128) * (*d as i128);
             return Ok(Rational::from_i128(n, den));

@@ -24,6 +24,9 @@ pub trait Scalar:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
+    /// Is this a symbolic type (results are expressions whose validity elsewhere must be
+    /// recorded)? Numeric types evaluate at one point, where their own pivots are valid.
+    const SYMBOLIC: bool = false;
     /// 0.
     fn zero() -> Self;
     /// 1.
@@ -191,6 +194,7 @@ fn big_to_dd(r: &Rational) -> Dd {
 }
 
 impl Scalar for Expr {
+    const SYMBOLIC: bool = true;
     fn zero() -> Expr {
         Expr::zero()
     }

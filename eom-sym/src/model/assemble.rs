@@ -27,8 +27,31 @@ use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit}
 use super::items::*;
 use super::Model;
 use crate::error::SymError;
-use crate::matrix::SparseMatrix;
+use crate::matrix::{SparseMatrix, Triplets};
 use crate::scalar::Scalar;
+
+/// Which row of an item a constraint or elastic row is (formatted only when displayed).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RowLabel {
+    /// Item kind, e.g. "rigid point".
+    pub kind: &'static str,
+    /// Item name.
+    pub item: Name,
+    /// "force", "moment", "end row" or "" for a line item's single row.
+    pub part: &'static str,
+    /// 1-based index within the part (0 for a single row).
+    pub index: usize,
+}
+
+impl std::fmt::Display for RowLabel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} `{}`", self.kind, self.item)?;
+        if !self.part.is_empty() {
+            write!(f, " {} {}", self.part, self.index)?;
+        }
+        Ok(())
+    }
+}
 
 /// Static force carried by an item at the nominal configuration.
 #[derive(Clone, Debug, PartialEq)]
@@ -74,11 +97,11 @@ pub struct Assembled<S> {
     /// Holonomic constraint Jacobian `J` (q × d).
     pub holonomic: SparseMatrix<S>,
     /// Label of each row of `J`.
-    pub holonomic_rows: Vec<String>,
+    pub holonomic_rows: Vec<RowLabel>,
     /// Nonholonomic constraint Jacobian `N` (t × d), acting on `w`.
     pub nonholonomic: SparseMatrix<S>,
     /// Label of each row of `N`.
-    pub nonholonomic_rows: Vec<String>,
+    pub nonholonomic_rows: Vec<RowLabel>,
     /// Input force matrix `F_u` (d × m).
     pub input_force: SparseMatrix<S>,
     /// Input rate force matrix `G_u` (d × m).
@@ -113,7 +136,7 @@ impl<S: Scalar> Assembled<S> {
 /// A point or line item's Jacobian rows on the bodies' coordinates.
 struct Rows<S> {
     rows: Vec<Row<S>>,
-    labels: Vec<String>,
+    labels: Vec<RowLabel>,
 }
 
 fn push_entries<S: Scalar>(row: &mut Vec<(usize, S)>, body: Option<usize>, trans: &Vec3<S>, rot: &Vec3<S>, sign: bool) {
@@ -181,23 +204,23 @@ impl<S: Scalar> Ctx<'_, S> {
     fn cg(&self, k: Option<usize>) -> Vec3<S> {
         k.map_or(zero3(), |k| self.model.bodies[k].location)
     }
-    fn point(&self, p: &Point<S>, what: &str) -> (Rows<S>, Vec<Vec3<S>>, Vec<Vec3<S>>, [Option<usize>; 2], [Vec3<S>; 2]) {
+    fn point(&self, p: &Point<S>, kind: &'static str, name: &Name) -> (Rows<S>, Vec<Vec3<S>>, Vec<Vec3<S>>, [Option<usize>; 2], [Vec3<S>; 2]) {
         let b = [self.idx(&p.bodies[0]), self.idx(&p.bodies[1])];
         let r = [sub(&p.location, &self.cg(b[0])), sub(&p.location, &self.cg(b[1]))];
         let f = directions(p.forces, &p.axis);
         let m = directions(p.moments, &p.axis);
         let rows = point_rows(b, r, &f, &m);
-        let mut labels = Vec::new();
+        let mut labels = Vec::with_capacity(f.len() + m.len());
         for k in 0..f.len() {
-            labels.push(format!("{what} force {}", k + 1));
+            labels.push(RowLabel { kind, item: name.clone(), part: "force", index: k + 1 });
         }
         for k in 0..m.len() {
-            labels.push(format!("{what} moment {}", k + 1));
+            labels.push(RowLabel { kind, item: name.clone(), part: "moment", index: k + 1 });
         }
         (Rows { rows, labels }, f, m, b, r)
     }
     /// Line item: rows (1), unit vector, length, bodies, radii.
-    fn line(&self, l: &Line<S>, what: &str) -> (Rows<S>, Vec3<S>, S, [Option<usize>; 2], [Vec3<S>; 2]) {
+    fn line(&self, l: &Line<S>, kind: &'static str, name: &Name) -> (Rows<S>, Vec3<S>, S, [Option<usize>; 2], [Vec3<S>; 2]) {
         let b = [self.idx(&l.bodies[0]), self.idx(&l.bodies[1])];
         let t = sub(&l.ends[1], &l.ends[0]);
         let len = geometry::norm(&t);
@@ -208,33 +231,27 @@ impl<S: Scalar> Ctx<'_, S> {
         } else {
             point_rows(b, r, std::slice::from_ref(&u), &[])
         };
-        (Rows { rows, labels: vec![what.to_string()] }, u, len, b, r)
+        (Rows { rows, labels: vec![RowLabel { kind, item: name.clone(), part: "", index: 0 }] }, u, len, b, r)
     }
 }
 
 fn rows_to_matrix<S: Scalar>(rows: &[Row<S>], ncols: usize) -> SparseMatrix<S> {
-    let mut m = SparseMatrix::zeros(rows.len(), ncols);
-    for (i, r) in rows.iter().enumerate() {
-        for &(j, v) in r {
-            m.set(i, j, v);
-        }
-    }
-    m
+    SparseMatrix::from_sparse_rows(rows, ncols)
 }
 
 /// Add a 3×3 block at (row offset, col offset) of body blocks (ground dropped).
-fn add_block<S: Scalar>(m: &mut SparseMatrix<S>, bi: Option<usize>, ri: usize, bj: Option<usize>, rj: usize, blk: &Mat3<S>, sign: f64) {
+fn add_block<S: Scalar>(m: &mut Triplets<S>, bi: Option<usize>, ri: usize, bj: Option<usize>, rj: usize, blk: &Mat3<S>, sign: f64) {
     let (Some(bi), Some(bj)) = (bi, bj) else { return };
     for (i, row) in blk.iter().enumerate() {
         for (j, &v) in row.iter().enumerate() {
             if !v.is_zero() {
-                m.add_to(6 * bi + ri + i, 6 * bj + rj + j, if sign > 0.0 { v } else { -v });
+                m.push(6 * bi + ri + i, 6 * bj + rj + j, if sign > 0.0 { v } else { -v });
             }
         }
     }
 }
 
-fn add_rows_block<S: Scalar>(m: &mut SparseMatrix<S>, rows: &[Row<S>], props: &[Vec<S>]) -> Result<(), SymError> {
+fn add_rows_block<S: Scalar>(m: &mut Triplets<S>, rows: &[Row<S>], props: &[Vec<S>]) -> Result<(), SymError> {
     // m += Rᵀ P R for the item's rows R and property block P.
     let n = rows.len();
     for a in 0..n {
@@ -246,7 +263,7 @@ fn add_rows_block<S: Scalar>(m: &mut SparseMatrix<S>, rows: &[Row<S>], props: &[
             for &(i, x) in &rows[a] {
                 for &(j, y) in &rows[b] {
                     let v = if p.is_one() { x * y } else { p * x * y };
-                    m.add_to(i, j, v);
+                    m.push(i, j, v);
                 }
             }
         }
@@ -267,12 +284,12 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     let d = 6 * nb;
 
     // ---------------------------------------------------------------- mass (§4.1)
-    let mut mass = SparseMatrix::zeros(d, d);
-    let mut mv = SparseMatrix::zeros(d, d);
-    let mut vel = SparseMatrix::zeros(d, d);
+    let mut mass = Triplets::new(d, d);
+    let mut mv = Triplets::new(d, d);
+    let mut vel = Triplets::new(d, d);
     for (k, b) in model.bodies.iter().enumerate() {
         for i in 0..3 {
-            mass.add_to(6 * k + i, 6 * k + i, b.mass);
+            mass.push(6 * k + i, 6 * k + i, b.mass);
         }
         let inertia = inertia_tensor(b);
         add_block(&mut mass, Some(k), 3, Some(k), 3, &inertia, 1.0);
@@ -292,7 +309,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
 
     // ---------------------------------------------------------------- loads (§4.2)
     let mut applied = vec![S::zero(); d];
-    let mut k_load = SparseMatrix::zeros(d, d);
+    let mut k_load = Triplets::new(d, d);
     for l in &model.loads {
         let (Some(p1), p2) = (cx.idx(&l.body), cx.idx(&l.frame)) else {
             warnings.push(format!("load `{}` acts on the ground and has no effect", l.name));
@@ -322,15 +339,15 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
 
     // ---------------------------------------------------------------- elastic items (§4.3)
     let mut h_rows: Vec<Row<S>> = Vec::new();
-    let mut h_labels: Vec<String> = Vec::new();
-    let mut k_el = SparseMatrix::zeros(d, d);
-    let mut c_el = SparseMatrix::zeros(d, d);
-    let mut m_el = SparseMatrix::zeros(d, d);
+    let mut h_labels: Vec<RowLabel> = Vec::new();
+    let mut k_el = Triplets::new(d, d);
+    let mut c_el = Triplets::new(d, d);
+    let mut m_el = Triplets::new(d, d);
     // Per elastic row: stiffness blocks for the compatibility equations.
     let mut stiff_blocks: Vec<(usize, Vec<Vec<S>>)> = Vec::new();
     let mut spring_geo = Vec::new();
     for s in &model.springs {
-        let (rows, u, len, b, r) = cx.line(&s.line, &format!("spring `{}`", s.name));
+        let (rows, u, len, b, r) = cx.line(&s.line, "spring", &s.name);
         let start = h_rows.len();
         add_rows_block(&mut k_el, &rows.rows, &[vec![s.stiffness]])?;
         add_rows_block(&mut c_el, &rows.rows, &[vec![s.damping]])?;
@@ -342,8 +359,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     }
     let mut flex_geo = Vec::new();
     for f in &model.flex_points {
-        let what = format!("flex point `{}`", f.name);
-        let (rows, fd, md, b, r) = cx.point(&f.point, &what);
+        let (rows, fd, md, b, r) = cx.point(&f.point, "flex point", &f.name);
         let kdiag: Vec<S> = fd.iter().map(|_| f.stiffness[0]).chain(md.iter().map(|_| f.stiffness[1])).collect();
         let cdiag: Vec<S> = fd.iter().map(|_| f.damping[0]).chain(md.iter().map(|_| f.damping[1])).collect();
         let kb = f.stiffness_matrix.clone().unwrap_or_else(|| diag(&kdiag));
@@ -368,25 +384,25 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
 
     // ---------------------------------------------------------------- constraints (§4.4)
     let mut j_rows: Vec<Row<S>> = Vec::new();
-    let mut j_labels: Vec<String> = Vec::new();
+    let mut j_labels: Vec<RowLabel> = Vec::new();
     let mut link_geo = Vec::new();
     for l in &model.links {
-        let (rows, u, len, b, r) = cx.line(&l.line, &format!("link `{}`", l.name));
+        let (rows, u, len, b, r) = cx.line(&l.line, "link", &l.name);
         j_rows.extend(rows.rows);
         j_labels.extend(rows.labels);
         link_geo.push((u, len, b, r, l.line.twist));
     }
     let mut rigid_geo = Vec::new();
     for p in &model.rigid_points {
-        let (rows, fd, md, b, r) = cx.point(&p.point, &format!("rigid point `{}`", p.name));
+        let (rows, fd, md, b, r) = cx.point(&p.point, "rigid point", &p.name);
         j_rows.extend(rows.rows);
         j_labels.extend(rows.labels);
         rigid_geo.push((fd, md, b, r));
     }
     let mut n_rows: Vec<Row<S>> = Vec::new();
-    let mut n_labels: Vec<String> = Vec::new();
+    let mut n_labels: Vec<RowLabel> = Vec::new();
     for p in &model.nh_points {
-        let (rows, ..) = cx.point(&p.point, &format!("nh point `{}`", p.name));
+        let (rows, ..) = cx.point(&p.point, "nh point", &p.name);
         n_rows.extend(rows.rows);
         n_labels.extend(rows.labels);
     }
@@ -398,11 +414,12 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         .enumerate()
         .filter_map(|(i, s)| s.preload.map(|p| (i, p, s.stiffness)))
         .collect();
+    let k_el = k_el.build();
     let (lambda_c, lambda_e, statics) =
         solve_statics(d, &j_rows, &h_rows, &applied, &known, &stiff_blocks, &k_el, &j_labels, &model.bodies)?;
 
     // ---------------------------------------------------------------- tangent stiffness (§4.6)
-    let mut k_t = SparseMatrix::zeros(d, d);
+    let mut k_t = Triplets::new(d, d);
     let mut preloads = Vec::new();
     let mut jc = 0;
     for (l, (u, len, b, r, twist)) in model.links.iter().zip(&link_geo) {
@@ -444,51 +461,51 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
 
     // ---------------------------------------------------------------- inputs and outputs
     let nin = model.actuators.len();
-    let mut f_u = SparseMatrix::zeros(d, nin);
-    let mut g_u = SparseMatrix::zeros(d, nin);
+    let mut f_u = Triplets::new(d, nin);
+    let mut g_u = Triplets::new(d, nin);
     for (a, act) in model.actuators.iter().enumerate() {
-        let (rows, ..) = cx.line(&act.line, &format!("actuator `{}`", act.name));
+        let (rows, ..) = cx.line(&act.line, "actuator", &act.name);
         for &(i, v) in &rows.rows[0] {
-            f_u.add_to(i, a, -(act.gain * v));
+            f_u.push(i, a, -(act.gain * v));
             if !act.rate_gain.is_zero() {
-                g_u.add_to(i, a, -(act.rate_gain * v));
+                g_u.push(i, a, -(act.rate_gain * v));
             }
         }
     }
     let nout = model.sensors.len();
-    let mut c_s = SparseMatrix::zeros(nout, d);
-    let mut d_s = SparseMatrix::zeros(nout, nin);
+    let mut c_s = Triplets::new(nout, d);
+    let mut d_s = Triplets::new(nout, nin);
     let mut kinds = Vec::new();
     for (o, sen) in model.sensors.iter().enumerate() {
-        let (rows, ..) = cx.line(&sen.line, &format!("sensor `{}`", sen.name));
+        let (rows, ..) = cx.line(&sen.line, "sensor", &sen.name);
         for &(j, v) in &rows.rows[0] {
-            c_s.add_to(o, j, -(sen.gain * v));
+            c_s.push(o, j, -(sen.gain * v));
         }
         kinds.push((sen.order, sen.frame));
         if let Some(a) = &sen.actuator {
             let k = model.actuators.iter().position(|x| &x.name == a).expect("validated");
-            d_s.add_to(o, k, sen.actuator_gain);
+            d_s.push(o, k, sen.actuator_gain);
         }
     }
 
-    let stiffness = k_el.add(&k_t)?.add(&k_load)?;
+    let stiffness = k_el.add(&k_t.build())?.add(&k_load.build())?;
     Ok(Assembled {
         name: model.name.clone(),
         bodies: model.bodies.iter().map(|b| b.name.to_string()).collect(),
         locations: model.bodies.iter().map(|b| b.location).collect(),
-        mass: mass.add(&m_el)?,
+        mass: mass.build().add(&m_el.build())?,
         stiffness,
-        damping: c_el.add(&mv)?,
-        velocity: vel,
+        damping: c_el.build().add(&mv.build())?,
+        velocity: vel.build(),
         holonomic: rows_to_matrix(&j_rows, d),
         holonomic_rows: j_labels,
         nonholonomic: rows_to_matrix(&n_rows, d),
         nonholonomic_rows: n_labels,
-        input_force: f_u,
-        input_rate_force: g_u,
-        sensor_rows: c_s,
+        input_force: f_u.build(),
+        input_rate_force: g_u.build(),
+        sensor_rows: c_s.build(),
         sensor_kinds: kinds,
-        feedthrough: d_s,
+        feedthrough: d_s.build(),
         inputs: model.actuators.iter().map(|a| (a.name.to_string(), a.units.clone())).collect(),
         outputs: model.sensors.iter().map(|s| (s.name.to_string(), s.units.clone())).collect(),
         applied,
@@ -601,7 +618,7 @@ fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, S
         }
         let _ = k;
     }
-    let labels = (1..=8).map(|k| format!("beam `{}` end row {k}", bm.name)).collect();
+    let labels = (1..=8).map(|k| RowLabel { kind: "beam", item: bm.name.clone(), part: "end row", index: k }).collect();
     // D and E of eom-method §4.3 on [e1·δx1, e2·δx1, e1·θ1, e2·θ1, e1·δx2, e2·δx2, e1·θ2, e2·θ2].
     let s = |x: i64| S::from_i64(x);
     let two_l = s(2) / l;
@@ -666,7 +683,7 @@ fn line_preload<S: Scalar>(item: String, t: S, u: &Vec3<S>, twist: bool) -> Prel
 
 /// Geometric stiffness of a line item with tension `t` (eom-method §4.6).
 fn line_tangent<S: Scalar>(
-    k: &mut SparseMatrix<S>,
+    k: &mut Triplets<S>,
     t: S,
     u: &Vec3<S>,
     len: S,
@@ -711,7 +728,7 @@ fn line_tangent<S: Scalar>(
 }
 
 /// Geometric stiffness of a point item carrying force `f` and moment `mm` on body 1.
-fn point_tangent<S: Scalar>(k: &mut SparseMatrix<S>, p: &Point<S>, f: &Vec3<S>, mm: &Vec3<S>, b: [Option<usize>; 2], r: &[Vec3<S>; 2]) {
+fn point_tangent<S: Scalar>(k: &mut Triplets<S>, p: &Point<S>, f: &Vec3<S>, mm: &Vec3<S>, b: [Option<usize>; 2], r: &[Vec3<S>; 2]) {
     let rolling = !geometry::is_zero(&p.rolling_axis);
     let p1 = b[0];
     let p2 = b[1];
@@ -775,7 +792,7 @@ fn solve_statics<S: Scalar>(
     known: &[(usize, S, S)],
     stiff_blocks: &[(usize, Vec<Vec<S>>)],
     k_el: &SparseMatrix<S>,
-    j_labels: &[String],
+    j_labels: &[RowLabel],
     bodies: &[Body<S>],
 ) -> Result<StaticsResult<S>, SymError> {
     let q = j_rows.len();
@@ -871,7 +888,7 @@ fn solve_statics<S: Scalar>(
         if tr.plan.pivots.len() < n {
             return Err(SymError::Singular(format!(
                 "the model is statically indeterminate (rank {rank} of {nu} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",
-                j_labels.join(", ")
+                j_labels.iter().map(|l| l.to_string()).collect::<Vec<_>>().join(", ")
             )));
         }
         let mut z = vec![S::zero(); n];

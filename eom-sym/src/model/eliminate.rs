@@ -101,21 +101,22 @@ fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
     row.binary_search_by_key(&col, |e| e.0).ok().map(|k| row[k].1)
 }
 
-/// `row_r − f · row_p`, skipping structural zeros.
-fn axpy<S: Scalar>(target: &Row<S>, f: S, src: &Row<S>, skip_col: usize) -> Row<S> {
-    let mut out = Vec::with_capacity(target.len() + src.len());
+/// `target ← target − f · src` (the pivot column `skip_col` is dropped), skipping structural
+/// zeros; `scratch` is reused so that repeated updates do not allocate.
+fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scratch: &mut Row<S>) {
+    scratch.clear();
     let (mut i, mut j) = (0, 0);
     while i < target.len() || j < src.len() {
         let ci = target.get(i).map_or(usize::MAX, |e| e.0);
         let cj = src.get(j).map_or(usize::MAX, |e| e.0);
         if ci < cj {
-            out.push(target[i]);
+            scratch.push(target[i]);
             i += 1;
         } else if cj < ci {
             if cj != skip_col {
                 let v = -(f * src[j].1);
                 if !v.is_zero() {
-                    out.push((cj, v));
+                    scratch.push((cj, v));
                 }
             }
             j += 1;
@@ -124,14 +125,14 @@ fn axpy<S: Scalar>(target: &Row<S>, f: S, src: &Row<S>, skip_col: usize) -> Row<
                 let s = src[j].1;
                 let v = (if s.is_one() { target[i].1 - f } else { target[i].1 - f * s }).recognise_zero();
                 if !v.is_zero() {
-                    out.push((ci, v));
+                    scratch.push((ci, v));
                 }
             }
             i += 1;
             j += 1;
         }
     }
-    out
+    std::mem::swap(target, scratch);
 }
 
 fn row_scale<S: Scalar>(row: &Row<S>, eligible: usize) -> f64 {
@@ -156,7 +157,11 @@ pub fn rref<S: Scalar>(
     plan: Option<&EliminationPlan>,
 ) -> Result<Rref<S>, SymError> {
     let nrows = rows.len();
-    let orig = rows.clone();
+    // Validity records are needed when the result is symbolic (valid elsewhere only if its
+    // pivots hold) or replays a plan chosen elsewhere; a numeric elimination that chooses its
+    // own pivots at its own point needs none.
+    let record = S::SYMBOLIC || plan.is_some();
+    let orig = if record { rows.clone() } else { Vec::new() };
     let scale: Vec<f64> = rows.iter().map(|r| row_scale(r, eligible)).collect();
     let mut pivoted = vec![false; nrows];
     let mut col_done = vec![false; eligible];
@@ -167,11 +172,11 @@ pub fn rref<S: Scalar>(
         let p = get(&rows[r], c).ok_or_else(|| {
             SymError::Singular(format!("planned pivot ({r}, {c}) is a structural zero"))
         })?;
-        let record = PivotRecord {
+        let rec = PivotRecord {
             row: r,
             col: c,
             value: p,
-            row_entries: rows[r].iter().filter(|e| e.0 < eligible && e.0 != c).map(|e| e.1).collect(),
+            row_entries: if record { rows[r].iter().filter(|e| e.0 < eligible && e.0 != c).map(|e| e.1).collect() } else { Vec::new() },
         };
         // Normalise the pivot row.
         if !p.is_one() {
@@ -180,23 +185,25 @@ pub fn rref<S: Scalar>(
                 e.1 = if e.0 == c { S::one() } else { e.1 * inv };
             }
         }
-        let prow = rows[r].clone();
-        for (k, row) in rows.iter_mut().enumerate() {
-            if k == r {
-                continue;
-            }
+        let prow = std::mem::take(&mut rows[r]);
+        let mut scratch = Vec::with_capacity(prow.len() * 2);
+        for row in rows.iter_mut() {
             if let Some(f) = get(row, c) {
-                *row = axpy(row, f, &prow, c);
+                axpy(row, f, &prow, c, &mut scratch);
             }
         }
-        Ok(record)
+        rows[r] = prow;
+        Ok(rec)
     };
 
     let mut step = |rows: &mut Vec<Row<S>>, r: usize, c: usize, pivoted: &mut Vec<bool>, col_done: &mut Vec<bool>| -> Result<(), SymError> {
         if r >= nrows || c >= eligible || pivoted[r] || col_done[c] {
             return Err(SymError::Singular(format!("invalid pivot ({r}, {c}) in an elimination plan")));
         }
-        records.push(apply(rows, r, c)?);
+        let rec = apply(rows, r, c)?;
+        if record {
+            records.push(rec);
+        }
         pivoted[r] = true;
         col_done[c] = true;
         out_plan.pivots.push((r, c));
@@ -225,17 +232,15 @@ pub fn rref<S: Scalar>(
                 if pivoted[r] {
                     continue;
                 }
-                let entries: Vec<(usize, f64)> = row
-                    .iter()
-                    .filter(|e| e.0 < eligible && !col_done[e.0])
-                    .map(|e| (e.0, e.1.nominal().abs()))
-                    .collect();
-                let rmax = entries.iter().map(|e| e.1).fold(0.0, f64::max);
+                let eligible_entries = || {
+                    row.iter().filter(|e| e.0 < eligible && !col_done[e.0]).map(|e| (e.0, e.1.nominal().abs()))
+                };
+                let rmax = eligible_entries().map(|e| e.1).fold(0.0, f64::max);
                 if !(rmax > NEGLIGIBLE * scale[r]) || !rmax.is_finite() {
                     continue;
                 }
-                let rc = entries.iter().filter(|e| e.1 > NEGLIGIBLE * scale[r]).count();
-                for &(c, v) in &entries {
+                let rc = eligible_entries().filter(|e| e.1 > NEGLIGIBLE * scale[r]).count();
+                for (c, v) in eligible_entries() {
                     if v < THRESHOLD * rmax {
                         continue;
                     }
@@ -259,7 +264,7 @@ pub fn rref<S: Scalar>(
     }
 
     let mut rank_records = Vec::new();
-    for &r in &out_plan.redundant {
+    for &r in out_plan.redundant.iter().filter(|_| record) {
         for e in rows[r].iter().filter(|e| e.0 < eligible) {
             rank_records.push(RankRecord {
                 row: r,

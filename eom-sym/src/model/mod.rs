@@ -14,11 +14,11 @@ pub mod linearize;
 pub mod reduce;
 pub mod robust;
 
-pub use assemble::{Assembled, assemble};
+pub use assemble::{Assembled, RowLabel, assemble};
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
-pub use reduce::{Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
+pub use reduce::{CheckLabel, Coord, Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
 
 use crate::error::SymError;
 use crate::expr::Expr;
@@ -128,6 +128,79 @@ impl<S: Scalar> Model<S> {
     /// Index of a body by name (`None` for the ground).
     pub(crate) fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| &*b.name == name)
+    }
+
+    /// Visit every field in the order of [`Model::map`], without building anything.
+    pub fn for_each_field(&self, f: &mut dyn FnMut(&S)) {
+        let v3 = |a: &Vec3<S>, f: &mut dyn FnMut(&S)| a.iter().for_each(|x| f(x));
+        let line = |l: &Line<S>, f: &mut dyn FnMut(&S)| {
+            v3(&l.ends[0], f);
+            v3(&l.ends[1], f);
+        };
+        let point = |p: &Point<S>, f: &mut dyn FnMut(&S)| {
+            v3(&p.location, f);
+            v3(&p.axis, f);
+            v3(&p.rolling_axis, f);
+        };
+        for b in &self.bodies {
+            v3(&b.location, f);
+            f(&b.mass);
+            v3(&b.moments, f);
+            v3(&b.products, f);
+            v3(&b.velocity, f);
+            v3(&b.angular_velocity, f);
+        }
+        for l in &self.loads {
+            v3(&l.location, f);
+            v3(&l.force, f);
+            v3(&l.moment, f);
+        }
+        for l in &self.links {
+            line(&l.line, f);
+        }
+        for s in &self.springs {
+            line(&s.line, f);
+            f(&s.stiffness);
+            f(&s.damping);
+            f(&s.inertance);
+            if let Some(p) = &s.preload {
+                f(p);
+            }
+        }
+        for b in &self.beams {
+            v3(&b.ends[0], f);
+            v3(&b.ends[1], f);
+            f(&b.stiffness[0]);
+            f(&b.stiffness[1]);
+            f(&b.mpul);
+            v3(&b.perp, f);
+        }
+        for r in &self.rigid_points {
+            point(&r.point, f);
+        }
+        for r in &self.flex_points {
+            point(&r.point, f);
+            f(&r.stiffness[0]);
+            f(&r.stiffness[1]);
+            f(&r.damping[0]);
+            f(&r.damping[1]);
+            for m in [&r.stiffness_matrix, &r.damping_matrix].into_iter().flatten() {
+                m.iter().flatten().for_each(|x| f(x));
+            }
+        }
+        for r in &self.nh_points {
+            point(&r.point, f);
+        }
+        for a in &self.actuators {
+            line(&a.line, f);
+            f(&a.gain);
+            f(&a.rate_gain);
+        }
+        for s in &self.sensors {
+            line(&s.line, f);
+            f(&s.gain);
+            f(&s.actuator_gain);
+        }
     }
 
     /// Convert every field with `f`, visiting fields in a fixed order.
@@ -256,10 +329,7 @@ impl<S: Scalar> Model<S> {
     pub fn fields(&self) -> Vec<(String, S)> {
         // Map into a model that records the visit order, then label from the structure.
         let mut vals = Vec::new();
-        let _ = self.map(&mut |x: &S| {
-            vals.push(*x);
-            S::zero()
-        });
+        self.for_each_field(&mut |x: &S| vals.push(*x));
         let labels = self.field_labels();
         debug_assert_eq!(labels.len(), vals.len());
         labels.into_iter().zip(vals).collect()
@@ -365,13 +435,19 @@ impl<S: Scalar> Model<S> {
             field: field.to_string(),
             problem,
         };
-        // Values.
-        for (label, x) in self.fields() {
-            let v = x.nominal();
-            if !v.is_finite() {
-                let (item, field) = label.split_once('.').unwrap_or((&label, ""));
-                return Err(err(item.to_string(), field, format!("value {v} is not finite")));
+        // Values (labels are built only to report a bad one).
+        let mut bad = None;
+        let mut k = 0;
+        self.for_each_field(&mut |x: &S| {
+            if bad.is_none() && !x.nominal().is_finite() {
+                bad = Some((k, x.nominal()));
             }
+            k += 1;
+        });
+        if let Some((k, v)) = bad {
+            let label = &self.field_labels()[k];
+            let (item, field) = label.split_once('.').unwrap_or((label, ""));
+            return Err(err(item.to_string(), field, format!("value {v} is not finite")));
         }
         // Names.
         let mut bodies = HashSet::new();

@@ -23,12 +23,13 @@
 //! scalar type; the pivots and the negligible entries of the rank decisions are returned as
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
-use super::assemble::Assembled;
+use super::assemble::{Assembled, RowLabel};
+use super::items::Name;
 use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, rref};
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::SymError;
 use crate::expr::Expr;
-use crate::matrix::SparseMatrix;
+use crate::matrix::{SparseMatrix, Triplets};
 use crate::scalar::Scalar;
 use crate::tape::{Tape, TapeWorkspace};
 use eom_num::{SignalNames, StateSpace};
@@ -57,13 +58,91 @@ pub struct ReductionPlan {
     pub mass: EliminationPlan,
 }
 
+/// A coordinate or velocity of a body (formatted only when displayed).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Coord {
+    /// Body name.
+    pub body: Name,
+    /// 0..6: x, y, z, rx, ry, rz.
+    pub dof: usize,
+    /// The perturbation velocity (vx … wz) instead of the displacement.
+    pub velocity: bool,
+}
+
+impl std::fmt::Display for Coord {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = if self.velocity { VELO[self.dof] } else { COORD[self.dof] };
+        write!(f, "{}.{n}", self.body)
+    }
+}
+
+/// What a validity check guards (formatted only when displayed).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum CheckLabel {
+    /// A pivot of the position-constraint elimination.
+    PositionPivot {
+        /// The dependent coordinate.
+        coord: Coord,
+        /// The constraint row.
+        row: RowLabel,
+    },
+    /// A position-constraint row declared redundant.
+    PositionRank {
+        /// The row.
+        row: RowLabel,
+    },
+    /// A pivot of the velocity-constraint elimination.
+    VelocityPivot {
+        /// The dependent velocity.
+        coord: Coord,
+        /// The constraint row.
+        row: RowLabel,
+    },
+    /// A velocity-constraint row declared redundant.
+    VelocityRank {
+        /// The row.
+        row: RowLabel,
+    },
+    /// The right-hand side of a redundant velocity row must vanish.
+    VelocityConsistency {
+        /// The row.
+        row: RowLabel,
+    },
+    /// A pivot of the reduced mass matrix.
+    MassPivot {
+        /// The eliminated velocity.
+        state: Coord,
+        /// The equation row.
+        row: Coord,
+    },
+    /// A reduced-mass row declared singular.
+    MassRank {
+        /// The row.
+        row: Coord,
+    },
+}
+
+impl std::fmt::Display for CheckLabel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CheckLabel::PositionPivot { coord, row } => write!(f, "pivot on {coord} in position constraint {row}"),
+            CheckLabel::PositionRank { row } => write!(f, "redundancy of position constraint {row}"),
+            CheckLabel::VelocityPivot { coord, row } => write!(f, "pivot on the velocity of {coord} in velocity constraint {row}"),
+            CheckLabel::VelocityRank { row } => write!(f, "redundancy of velocity constraint {row}"),
+            CheckLabel::VelocityConsistency { row } => write!(f, "consistency of redundant velocity constraint {row}"),
+            CheckLabel::MassPivot { state, row } => write!(f, "reduced mass pivot of {state} (row {row})"),
+            CheckLabel::MassRank { row } => write!(f, "redundancy of reduced mass row {row}"),
+        }
+    }
+}
+
 /// One condition for a symbolic result to be valid at an evaluation point.
 #[derive(Clone, Debug)]
 pub enum ValidityCheck<S> {
     /// `|value| ≥ PIVOT_TOLERANCE · max(|value|, |row entries|)`.
     Pivot {
         /// What the pivot eliminates.
-        what: String,
+        what: CheckLabel,
         /// The pivot.
         value: S,
         /// The other entries of its row.
@@ -72,7 +151,7 @@ pub enum ValidityCheck<S> {
     /// `|value| ≤ RANK_TOLERANCE · max |scale entries|`.
     Negligible {
         /// Which rank decision.
-        what: String,
+        what: CheckLabel,
         /// The entry that must stay negligible.
         value: S,
         /// The entries that set its scale.
@@ -82,7 +161,12 @@ pub enum ValidityCheck<S> {
 
 impl<S: Scalar> ValidityCheck<S> {
     /// Description of the check.
-    pub fn what(&self) -> &str {
+    pub fn what(&self) -> String {
+        self.label().to_string()
+    }
+
+    /// What the check guards.
+    pub fn label(&self) -> &CheckLabel {
         match self {
             ValidityCheck::Pivot { what, .. } | ValidityCheck::Negligible { what, .. } => what,
         }
@@ -169,19 +253,20 @@ fn vstack<S: Scalar>(a: &SparseMatrix<S>, b: &SparseMatrix<S>) -> Result<SparseM
     SparseMatrix::block(&[vec![Some(a)], vec![Some(b)]])
 }
 
-fn record_checks<S: Scalar>(r: &Rref<S>, label: &dyn Fn(usize, usize) -> String, out: &mut Vec<ValidityCheck<S>>) {
+fn record_checks<S: Scalar>(
+    r: &Rref<S>,
+    pivot_label: &dyn Fn(usize, usize) -> CheckLabel,
+    rank_label: &dyn Fn(usize) -> CheckLabel,
+    out: &mut Vec<ValidityCheck<S>>,
+) {
     for PivotRecord { row, col, value, row_entries } in &r.pivot_records {
         if value.is_one() || (row_entries.is_empty() && value.nominal() != 0.0 && is_constant(value)) {
             continue;
         }
-        out.push(ValidityCheck::Pivot { what: label(*row, *col), value: *value, row: row_entries.clone() });
+        out.push(ValidityCheck::Pivot { what: pivot_label(*row, *col), value: *value, row: row_entries.clone() });
     }
     for RankRecord { row, value, scale_entries } in &r.rank_records {
-        out.push(ValidityCheck::Negligible {
-            what: format!("redundancy of {}", label(*row, usize::MAX)),
-            value: *value,
-            scale: scale_entries.clone(),
-        });
+        out.push(ValidityCheck::Negligible { what: rank_label(*row), value: *value, scale: scale_entries.clone() });
     }
 }
 
@@ -200,7 +285,9 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let d = a.dim();
     let mut report = ReductionReport { coordinates: d, ..Default::default() };
     report.warnings = a.warnings.clone();
-    let coord_name = |g: usize| format!("{}.{}", a.bodies[g / 6], COORD[g % 6]);
+    let body_names: Vec<Name> = a.bodies.iter().map(|b| Name::from(b.as_str())).collect();
+    let coord = |g: usize, velocity: bool| Coord { body: body_names[g / 6].clone(), dof: g % 6, velocity };
+    let coord_name = |g: usize| coord(g, false).to_string();
 
     // ------------------------------------------------------------ 1. pinned coordinates
     let (active, j_keep) = match plan {
@@ -226,17 +313,20 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
                     break;
                 }
             }
-            let pinned_rows: Vec<usize> = pin_row.iter().flatten().copied().collect();
+            let mut pinning = vec![false; a.holonomic.nrows()];
+            for &r in pin_row.iter().flatten() {
+                pinning[r] = true;
+            }
             let active: Vec<usize> = (0..d).filter(|&g| pin_row[g].is_none()).collect();
-            let j_keep: Vec<usize> = (0..a.holonomic.nrows()).filter(|r| !pinned_rows.contains(r)).collect();
+            let j_keep: Vec<usize> = (0..a.holonomic.nrows()).filter(|&r| !pinning[r]).collect();
             (active, j_keep)
         }
     };
-    for g in 0..d {
-        if !active.contains(&g) {
-            report.pinned.push(coord_name(g));
-        }
+    let mut is_active = vec![false; d];
+    for &g in &active {
+        is_active[g] = true;
     }
+    report.pinned = (0..d).filter(|&g| !is_active[g]).map(coord_name).collect();
     let n = active.len();
     let jm = a.holonomic.select(&j_keep, &active);
     let nm = a.nonholonomic.select(&(0..a.nonholonomic.nrows()).collect::<Vec<_>>(), &active);
@@ -254,35 +344,34 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
 
     // ------------------------------------------------------------ 2. positions
     let rj = rref(to_rows(&jm), n, &[], plan.map(|p| &p.position))?;
-    let pos_label = |r: usize, c: usize| {
-        if c == usize::MAX {
-            format!("position constraint {}", jlabel(r))
-        } else {
-            format!("pivot on {} in position constraint {}", coord_name(active[c]), jlabel(r))
-        }
-    };
-    record_checks(&rj, &pos_label, &mut checks);
+    record_checks(
+        &rj,
+        &|r, c| CheckLabel::PositionPivot { coord: coord(active[c], false), row: jlabel(r) },
+        &|r| CheckLabel::PositionRank { row: jlabel(r) },
+        &mut checks,
+    );
     for &r in &rj.plan.redundant {
-        report.redundant.push(jlabel(r));
+        report.redundant.push(jlabel(r).to_string());
     }
     let dep_p = rj.is_pivot_col();
     let indep_p: Vec<usize> = (0..n).filter(|&c| !dep_p[c]).collect();
     let np = indep_p.len();
-    let mut rp = SparseMatrix::zeros(n, np);
-    for (t, &k) in indep_p.iter().enumerate() {
-        rp.set(k, t, S::one());
-    }
     let mut indep_pos = vec![usize::MAX; n];
     for (t, &k) in indep_p.iter().enumerate() {
         indep_pos[k] = t;
     }
+    let mut rp = Triplets::new(n, np);
+    for (t, &k) in indep_p.iter().enumerate() {
+        rp.push(k, t, S::one());
+    }
     for &(r, c) in &rj.plan.pivots {
         for &(k, v) in &rj.rows[r] {
             if k != c && k < n && indep_pos[k] != usize::MAX {
-                rp.set(c, indep_pos[k], -v);
+                rp.push(c, indep_pos[k], -v);
             }
         }
     }
+    let rp = rp.build();
 
     // ------------------------------------------------------------ 3. velocities
     let rhs = jm.mul(&vel)?.mul(&rp)?;
@@ -293,26 +382,25 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let g = vstack(&g_top, &g_bot)?;
     let g_label = |r: usize| if r < nq { jlabel(r) } else { a.nonholonomic_rows[r - nq].clone() };
     let rg = rref(to_rows(&g), n, &rj.plan.pivots, plan.map(|p| &p.velocity))?;
-    let vel_label = |r: usize, c: usize| {
-        if c == usize::MAX {
-            format!("velocity constraint {}", g_label(r))
-        } else {
-            format!("pivot on the velocity of {} in velocity constraint {}", coord_name(active[c]), g_label(r))
-        }
-    };
     // The replayed position pivots are already checked; record the new ones.
-    let mut rg_new = rg.clone();
-    rg_new.pivot_records.retain(|p| !rj.plan.pivots.contains(&(p.row, p.col)));
-    record_checks(&rg_new, &vel_label, &mut checks);
+    let mut rg = rg;
+    let all_records = std::mem::take(&mut rg.pivot_records);
+    rg.pivot_records = all_records.into_iter().skip(rj.plan.pivots.len()).collect();
+    record_checks(
+        &rg,
+        &|r, c| CheckLabel::VelocityPivot { coord: coord(active[c], true), row: g_label(r) },
+        &|r| CheckLabel::VelocityRank { row: g_label(r) },
+        &mut checks,
+    );
     for &r in &rg.plan.redundant {
         if r >= nq {
-            report.redundant.push(g_label(r));
+            report.redundant.push(g_label(r).to_string());
         }
         // A redundant velocity row must also be consistent (its right-hand side negligible).
         for &(k, v) in &rg.rows[r] {
             if k >= n {
                 checks.push(ValidityCheck::Negligible {
-                    what: format!("consistency of redundant velocity constraint {}", g_label(r)),
+                    what: CheckLabel::VelocityConsistency { row: g_label(r) },
                     value: v,
                     scale: g.row(r).iter().map(|e| e.1).collect(),
                 });
@@ -326,22 +414,23 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     for (t, &k) in indep_w.iter().enumerate() {
         indep_wpos[k] = t;
     }
-    let mut rw = SparseMatrix::zeros(n, nw);
-    let mut wp = SparseMatrix::zeros(n, np);
+    let mut rw = Triplets::new(n, nw);
+    let mut wp = Triplets::new(n, np);
     for (t, &k) in indep_w.iter().enumerate() {
-        rw.set(k, t, S::one());
+        rw.push(k, t, S::one());
     }
     for &(r, c) in &rg.plan.pivots {
         for &(k, v) in &rg.rows[r] {
             if k < n {
                 if k != c && indep_wpos[k] != usize::MAX {
-                    rw.set(c, indep_wpos[k], -v);
+                    rw.push(c, indep_wpos[k], -v);
                 }
             } else {
-                wp.set(c, k - n, v);
+                wp.push(c, k - n, v);
             }
         }
     }
+    let (rw, wp) = (rw.build(), wp.build());
     report.position_states = np;
     report.velocity_states = nw;
 
@@ -360,15 +449,14 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let g2 = rwt.mul(&g_u)?;
     let m_aug = hstack(&hstack(&m_r, &rhs_a)?, &hstack(&b2, &g2)?)?;
     let rm = rref(to_rows(&m_aug), nw, &[], plan.map(|p| &p.mass))?;
-    let vname = |t: usize| format!("{}.{}", a.bodies[active[indep_w[t]] / 6], VELO[active[indep_w[t]] % 6]);
-    let mass_label = |r: usize, c: usize| {
-        if c == usize::MAX {
-            format!("reduced mass row of {}", vname(r))
-        } else {
-            format!("reduced mass pivot of {} (row {})", vname(c), vname(r))
-        }
-    };
-    record_checks(&rm, &mass_label, &mut checks);
+    let vcoord = |t: usize| coord(active[indep_w[t]], true);
+    let vname = |t: usize| vcoord(t).to_string();
+    record_checks(
+        &rm,
+        &|r, c| CheckLabel::MassPivot { state: vcoord(c), row: vcoord(r) },
+        &|r| CheckLabel::MassRank { row: vcoord(r) },
+        &mut checks,
+    );
     if !rm.plan.redundant.is_empty() {
         let names: Vec<String> = rm.plan.redundant.iter().map(|&r| vname(r)).collect();
         return Err(SymError::Unsupported(format!(
@@ -388,8 +476,11 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
 
     // ------------------------------------------------------------ 5. outputs
     let nout = c_s.nrows();
-    let mut c_out = SparseMatrix::zeros(nout, nx);
-    let mut d_out = a.feedthrough.clone();
+    let mut c_out = Triplets::new(nout, nx);
+    let mut d_out = Triplets::new(nout, a.feedthrough.ncols());
+    for (i, j, v) in a.feedthrough.iter() {
+        d_out.push(i, j, v);
+    }
     for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
         let row = c_s.select(&[o], &(0..n).collect::<Vec<_>>());
         let (c_row, d_row) = match (order, frame) {
@@ -423,18 +514,19 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
             }
         };
         for (_, j, v) in c_row.iter() {
-            c_out.set(o, j, v);
+            c_out.push(o, j, v);
         }
         for (_, j, v) in d_row.iter() {
-            d_out.add_to(o, j, v);
+            d_out.push(o, j, v);
         }
     }
 
     // ------------------------------------------------------------ 6. map back and names
-    let mut phys = SparseMatrix::zeros(d, nx);
+    let mut phys = Triplets::new(d, nx);
     for (i, j, v) in pfull.iter() {
-        phys.set(active[i], j, v);
+        phys.push(active[i], j, v);
     }
+    let (phys, c_out, d_out) = (phys.build(), c_out.build(), d_out.build());
     let mut states: Vec<String> = indep_p.iter().map(|&k| coord_name(active[k])).collect();
     states.extend((0..nw).map(vname));
     let names = SignalNames {
@@ -473,13 +565,13 @@ fn to_dense<S: Scalar>(m: &SparseMatrix<S>) -> DMatrix<S> {
 /// The reduced rows of a square elimination with its right-hand sides, pivot rows reordered
 /// so that row `c` holds the solution for unknown `c`.
 fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> SparseMatrix<S> {
-    let mut m = SparseMatrix::zeros(nunk, nunk + nrhs);
+    let mut m = Triplets::new(nunk, nunk + nrhs);
     for &(row, c) in &r.plan.pivots {
         for &(k, v) in &r.rows[row] {
-            m.set(c, k, v);
+            m.push(c, k, v);
         }
     }
-    m
+    m.build()
 }
 
 fn rate_check<S: Scalar>(cg: &SparseMatrix<S>, output: &str, inputs: &[(String, String)]) -> Result<(), SymError> {

@@ -14,7 +14,7 @@
 //!    mirrors the pool: n-ary `Add`/`Mul`, `Pow` with an exact rational exponent leaf, exact
 //!    rational leaves, parameters/constants/floats as opaque leaves that keep their pool id.
 //! 2. **Rewrite.** A targeted rule set (see [Rule set](self#rule-set) below) under egg's
-//!    [`BackoffScheduler`](egg::BackoffScheduler) and a bounded runner: node, iteration and
+//!    [`egg::BackoffScheduler`] and a bounded runner: node, iteration and
 //!    time limits, plus a hook that stops when the extracted DAG cost has not improved for
 //!    [`Simplifier::with_stall_iterations`] iterations. egg checks its limits only between
 //!    rule applications, so the appliers themselves also stop adding nodes past the node

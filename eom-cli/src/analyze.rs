@@ -1,0 +1,697 @@
+//! `eom analyze`: the linear analysis of one model at one point — modes, the minimal
+//! realization with every removed mode accounted for, steady-state gains, transmission zeros
+//! and, on request, the frequency response.
+//!
+//! Where this differs from EoM.jl's `analyze` (eom-method §7, §13.5–13.7): the mode table is
+//! that of the whole state-space model, not of its minimal realization, so no mode is hidden;
+//! every mode the minimal realization removes is listed with the reason (uncontrollable or
+//! unobservable) and its stability; a real pole shows its corner frequency instead of 0 Hz;
+//! integrating input/output pairs are reported as such instead of by a low-frequency value.
+
+use crate::error::CliError;
+use crate::format::{ReIm, eigenvalue, g, re_im};
+use crate::params::ModelChoice;
+use eom_num::StateSpace;
+use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
+use eom_num::gain::{Gain, steady_state_gain};
+use eom_num::minreal::{
+    MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
+};
+use eom_num::modes::{Mode, ModeKind, Modes, Stability};
+use eom_num::zeros::transmission_zeros;
+use eom_sym::SymError;
+use eom_sym::model::{Linearizer, Method};
+use num_complex::Complex64;
+use serde::{Serialize, Serializer};
+
+/// Significant digits of the text tables.
+pub(crate) const SIG: usize = 6;
+
+/// Width at which lists are wrapped.
+pub(crate) const WIDTH: usize = 100;
+
+/// What to compute besides the always-present parts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnalyzeOptions {
+    /// Reduction method.
+    pub method: Method,
+    /// Frequency response, when asked for.
+    pub freq: Option<FreqRequest>,
+}
+
+/// The frequency grid asked for on the command line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FreqRequest {
+    /// `LOW:HIGH` in Hz (`None`: from the eigenvalues).
+    pub range: Option<(f64, f64)>,
+    /// Total number of logarithmically spaced points (`None`: 200 per decade).
+    pub points: Option<usize>,
+}
+
+/// Everything `eom analyze` reports; serialized as the JSON output and rendered as text.
+#[derive(Clone, Debug, Serialize)]
+pub struct Analysis {
+    /// Model name as given.
+    pub model: String,
+    /// `symbolic`, `numeric` or `robust`.
+    pub method: &'static str,
+    /// Every parameter with the value used, in catalogue order.
+    #[serde(serialize_with = "ordered_map")]
+    pub parameters: Vec<(String, f64)>,
+    /// Units of the parameters, in the same order.
+    #[serde(serialize_with = "ordered_map")]
+    pub parameter_units: Vec<(String, String)>,
+    /// Number of states of the reduced state-space model.
+    pub states: usize,
+    /// Names of the states.
+    pub state_names: Vec<String>,
+    /// Inputs with units.
+    pub inputs: Vec<Signal>,
+    /// Outputs with units.
+    pub outputs: Vec<Signal>,
+    /// Every eigenvalue of the state-space model, sorted by real part, then imaginary part.
+    pub eigenvalues: Vec<ReIm>,
+    /// `stable` (every mode decays), `marginal` (none grows, some do not decay) or
+    /// `unstable`.
+    pub stability: &'static str,
+    /// Whether every mode is stable.
+    pub stable: bool,
+    /// One entry per eigenvalue, in the order of `eigenvalues`.
+    pub modes: Vec<ModeReport>,
+    /// The input/output view (`null` with a warning if it could not be computed).
+    pub minimal: Option<MinimalReport>,
+    /// Per output/input pair (`null` with a warning if it could not be computed).
+    pub steady_state_gain: Option<Vec<GainEntry>>,
+    /// Transmission zeros of the minimal realization, sorted by (re, im); `null` when not
+    /// defined (no inputs or no outputs) or not computable (see `warnings`).
+    pub zeros: Option<Vec<ReIm>>,
+    /// Warnings of the linearization and of the analyses.
+    pub warnings: Vec<String>,
+    /// The frequency response (only with `--freq`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frequency_response: Option<FreqReport>,
+}
+
+/// An input or output signal.
+#[derive(Clone, Debug, Serialize)]
+pub struct Signal {
+    /// Name.
+    pub name: String,
+    /// Unit (may be empty).
+    pub unit: String,
+}
+
+/// One mode (eigenvalue) with its modal quantities.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModeReport {
+    /// The eigenvalue in 1/s.
+    pub eigenvalue: ReIm,
+    /// `zero` (rigid-body or integrator mode), `real` or `oscillatory`.
+    pub kind: &'static str,
+    /// `|λ|/2π` in Hz (a real pole's corner frequency; 0 for a zero mode).
+    pub natural_frequency_hz: f64,
+    /// `−Re λ/|λ|` (±1 for a real pole; `null` for a zero mode).
+    pub damping_ratio: Option<f64>,
+    /// `−1/Re λ` in s (negative for a growing mode; `null` = infinite).
+    pub time_constant: Option<f64>,
+    /// Damped period `2π/|Im λ|` in s (EoM's "wavelength"; `null` for real and zero modes).
+    pub period: Option<f64>,
+    /// `stable`, `marginal` or `unstable`.
+    pub stability: &'static str,
+    /// Whether the mode decays.
+    pub stable: bool,
+}
+
+/// The minimal realization: what the inputs and outputs see.
+#[derive(Clone, Debug, Serialize)]
+pub struct MinimalReport {
+    /// States of the minimal realization.
+    pub states: usize,
+    /// Its eigenvalues, sorted by (re, im).
+    pub eigenvalues: Vec<ReIm>,
+    /// Its modes, in the order of `eigenvalues`.
+    pub modes: Vec<ModeReport>,
+    /// Every mode it removed.
+    pub removed: Vec<RemovedReport>,
+}
+
+/// A mode removed by the minimal realization.
+#[derive(Clone, Debug, Serialize)]
+pub struct RemovedReport {
+    /// The eigenvalue.
+    pub eigenvalue: ReIm,
+    /// `uncontrollable` (the inputs cannot excite it) or `unobservable` (the outputs cannot
+    /// see it).
+    pub reason: &'static str,
+    /// `stable`, `marginal` or `unstable`.
+    pub stability: &'static str,
+    /// Kind of the nearest mode of the full model (`zero`, `real`, `oscillatory`).
+    pub kind: &'static str,
+    /// PBH residual confirming the removal (rounding level when exactly decoupled).
+    pub pbh_residual: Option<f64>,
+    /// What this means, in words.
+    pub note: String,
+}
+
+/// The steady-state gain of one output/input pair.
+#[derive(Clone, Debug, Serialize)]
+pub struct GainEntry {
+    /// Output name.
+    pub output: String,
+    /// Input name.
+    pub input: String,
+    /// `output unit/input unit` (empty when both are unitless).
+    pub unit: String,
+    /// The finite gain `G(0)`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub value: Option<f64>,
+    /// The output integrates a constant input.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub integrating: Option<Integrating>,
+}
+
+/// An integrating pair: `G(s)` has a pole of order `order` at 0.
+#[derive(Clone, Debug, Serialize)]
+pub struct Integrating {
+    /// Order of the pole at s = 0 (1: a step gives a ramp).
+    pub order: usize,
+    /// `lim s^order G(s)` (for order 1 the ramp slope per unit step, per second).
+    pub coefficient: f64,
+}
+
+/// The frequency response of every pair.
+#[derive(Clone, Debug, Serialize)]
+pub struct FreqReport {
+    /// Frequencies in Hz.
+    pub frequency_hz: Vec<f64>,
+    /// Per frequency: whether jω is numerically a pole (the response is infinite there).
+    pub singular: Vec<bool>,
+    /// One entry per output/input pair.
+    pub pairs: Vec<FreqPair>,
+}
+
+/// The frequency response of one pair.
+#[derive(Clone, Debug, Serialize)]
+pub struct FreqPair {
+    /// Output name.
+    pub output: String,
+    /// Input name.
+    pub input: String,
+    /// `20 log10 |G|` in dB (`null` where infinite: a pole on the axis, or an exact zero).
+    pub magnitude_db: Vec<Option<f64>>,
+    /// Phase in degrees, unwrapped along frequency.
+    pub phase_deg: Vec<f64>,
+}
+
+fn ordered_map<S: Serializer, V: Serialize>(v: &[(String, V)], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(v.iter().map(|(k, x)| (k, x)))
+}
+
+fn method_name(m: Method) -> &'static str {
+    match m {
+        Method::Symbolic => "symbolic",
+        Method::Numeric => "numeric",
+        Method::Robust => "robust",
+    }
+}
+
+fn kind_name(k: ModeKind) -> &'static str {
+    match k {
+        ModeKind::Zero => "zero",
+        ModeKind::Real => "real",
+        ModeKind::Oscillatory => "oscillatory",
+    }
+}
+
+fn stability_name(s: Stability) -> &'static str {
+    match s {
+        Stability::Stable => "stable",
+        Stability::Marginal => "marginal",
+        Stability::Unstable => "unstable",
+    }
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+fn mode_report(m: &Mode) -> ModeReport {
+    ModeReport {
+        eigenvalue: m.eigenvalue.into(),
+        kind: kind_name(m.kind),
+        natural_frequency_hz: m.natural_frequency_hz,
+        damping_ratio: m.damping_ratio,
+        time_constant: finite(m.time_constant),
+        period: finite(m.damped_period),
+        stability: stability_name(m.stability),
+        stable: m.stability == Stability::Stable,
+    }
+}
+
+fn overall_stability(modes: &Modes) -> &'static str {
+    if modes.is_stable() {
+        "stable"
+    } else if modes
+        .modes
+        .iter()
+        .any(|m| m.stability == Stability::Unstable)
+    {
+        "unstable"
+    } else {
+        "marginal"
+    }
+}
+
+fn signals(count: usize, names: &[String], units: &[String], what: &str) -> Vec<Signal> {
+    (0..count)
+        .map(|k| Signal {
+            name: names
+                .get(k)
+                .filter(|n| !n.is_empty())
+                .cloned()
+                .unwrap_or_else(|| format!("{what} {}", k + 1)),
+            unit: units.get(k).cloned().unwrap_or_default(),
+        })
+        .collect()
+}
+
+fn ratio_unit(out: &str, inp: &str) -> String {
+    let den = if inp.contains([' ', '/', '*']) {
+        format!("({inp})")
+    } else {
+        inp.to_string()
+    };
+    match (out.is_empty(), inp.is_empty()) {
+        (true, true) => String::new(),
+        (false, true) => out.to_string(),
+        (true, false) => format!("1/{den}"),
+        (false, false) => format!("{out}/{den}"),
+    }
+}
+
+/// Linearizes the model at the point and runs every analysis.
+///
+/// With [`Method::Symbolic`] the model is reduced with pivots chosen at the catalogue defaults
+/// and evaluated at the requested point, so a point outside the symbolic validity region is an
+/// error ([`eom_sym::SymError::PivotBreakdown`]); the other methods reduce at the point.
+pub fn analyze(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    opts: &AnalyzeOptions,
+) -> Result<Analysis, CliError> {
+    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    // Building at the point validates the names and values (positive masses, …).
+    let at_point = models::build(&choice.name, &ov)?;
+    let lin = match opts.method {
+        Method::Symbolic => {
+            let nominal = models::build(&choice.name, &[])?;
+            Linearizer::new(&nominal)
+                .at(&ov)
+                .method(Method::Symbolic)
+                .run()
+                .map_err(|e| match e {
+                    SymError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion { source: e },
+                    e => CliError::Sym(e),
+                })?
+        }
+        m => Linearizer::new(&at_point).method(m).run()?,
+    };
+    let warnings = lin
+        .warnings
+        .iter()
+        .map(|w| format!("linearization: {w}"))
+        .collect();
+    let mut r = analyze_state_space(&lin.state_space, warnings, opts.freq.as_ref())?;
+    r.model = choice.name.clone();
+    r.method = method_name(lin.method);
+    r.parameters = choice.values(overrides);
+    r.parameter_units = choice
+        .info
+        .params
+        .iter()
+        .map(|p| (p.name.to_string(), p.unit.to_string()))
+        .collect();
+    Ok(r)
+}
+
+/// The analyses of a state-space model (model name, method and parameters left empty).
+fn analyze_state_space(
+    ss: &StateSpace<f64>,
+    mut warnings: Vec<String>,
+    freq: Option<&FreqRequest>,
+) -> Result<Analysis, CliError> {
+    let modes = Modes::compute(ss)?;
+    let n = &ss.names;
+    let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
+    let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
+
+    let reduced = minimal_realization(ss, &MinrealOptions::default());
+    let minimal = match reduced
+        .as_ref()
+        .map_err(|e| CliError::Num(e.clone()))
+        .and_then(|(ssm, rep)| minimal_view(ssm, rep, &modes, &mut warnings))
+    {
+        Ok(m) => Some(m),
+        Err(e) => {
+            warnings.push(format!("minimal realization not computed: {e}"));
+            None
+        }
+    };
+    let steady_state_gain = match gains(ss, &inputs, &outputs, &mut warnings) {
+        Ok(g) => Some(g),
+        Err(e) => {
+            warnings.push(format!("steady-state gains not computed: {e}"));
+            None
+        }
+    };
+    let zeros = if ss.inputs() == 0 || ss.outputs() == 0 {
+        None
+    } else {
+        match reduced.and_then(|(m, _)| transmission_zeros(&m)) {
+            Ok(z) => Some(re_im(&z)),
+            Err(e) => {
+                warnings.push(format!("transmission zeros not computed: {e}"));
+                None
+            }
+        }
+    };
+    let frequency_response = match freq {
+        Some(req) => Some(frequency_response(ss, req, &inputs, &outputs)?),
+        None => None,
+    };
+    Ok(Analysis {
+        model: String::new(),
+        method: "",
+        parameters: Vec::new(),
+        parameter_units: Vec::new(),
+        states: ss.states(),
+        state_names: ss.names.states.clone(),
+        inputs,
+        outputs,
+        eigenvalues: re_im(&modes.eigenvalues()),
+        stability: overall_stability(&modes),
+        stable: modes.is_stable(),
+        modes: modes.modes.iter().map(mode_report).collect(),
+        minimal,
+        steady_state_gain,
+        zeros,
+        warnings,
+        frequency_response,
+    })
+}
+
+fn minimal_view(
+    ssm: &StateSpace<f64>,
+    rep: &MinrealReport,
+    modes: &Modes,
+    warnings: &mut Vec<String>,
+) -> Result<MinimalReport, CliError> {
+    for d in rep.fragile_decisions(100.0) {
+        let stage = match d.stage {
+            RankStage::Controllability => "controllability",
+            RankStage::Observability => "observability",
+            _ => "rank",
+        };
+        warnings.push(format!(
+            "minimal realization: the {stage} rank decision at step {} is within a factor 100 of \
+             its tolerance {} (singular values {}): another choice of units could change which \
+             modes count as removed",
+            d.step,
+            g(d.tolerance, 3),
+            d.singular_values
+                .iter()
+                .map(|s| g(*s, 3))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    let mmodes = Modes::compute(ssm)?;
+    let removed = rep
+        .removed
+        .iter()
+        .map(|r| {
+            let kind = modes
+                .modes
+                .iter()
+                .min_by(|a, b| {
+                    (a.eigenvalue - r.eigenvalue)
+                        .norm()
+                        .total_cmp(&(b.eigenvalue - r.eigenvalue).norm())
+                })
+                .map_or(ModeKind::Real, |m| m.kind);
+            let reason = match r.kind {
+                RemovedKind::Uncontrollable => "uncontrollable",
+                RemovedKind::Unobservable => "unobservable",
+            };
+            let stability = match r.stability {
+                ModeStability::Stable => "stable",
+                ModeStability::Marginal => "marginal",
+                ModeStability::Unstable => "unstable",
+            };
+            RemovedReport {
+                eigenvalue: r.eigenvalue.into(),
+                reason,
+                stability,
+                kind: kind_name(kind),
+                pbh_residual: r.pbh_residual,
+                note: removed_note(r.eigenvalue, r.kind, r.stability, kind),
+            }
+        })
+        .collect();
+    Ok(MinimalReport {
+        states: ssm.states(),
+        eigenvalues: re_im(&mmodes.eigenvalues()),
+        modes: mmodes.modes.iter().map(mode_report).collect(),
+        removed,
+    })
+}
+
+fn removed_note(z: Complex64, why: RemovedKind, st: ModeStability, kind: ModeKind) -> String {
+    let what = match kind {
+        ModeKind::Zero => "zero (rigid-body/integrator) mode",
+        ModeKind::Real => "real mode",
+        ModeKind::Oscillatory => "oscillatory mode",
+    };
+    let cause = match why {
+        RemovedKind::Uncontrollable => "the inputs cannot excite it",
+        RemovedKind::Unobservable => "the outputs cannot see it",
+    };
+    let lam = eigenvalue(z, SIG, false);
+    match st {
+        ModeStability::Unstable => format!(
+            "UNSTABLE {what} {lam} is {}: {cause}, yet it grows in the physical system",
+            if why == RemovedKind::Uncontrollable {
+                "uncontrollable"
+            } else {
+                "unobservable"
+            }
+        ),
+        ModeStability::Marginal => format!(
+            "marginal {what} {lam} is {}: {cause}; it does not decay",
+            if why == RemovedKind::Uncontrollable {
+                "uncontrollable"
+            } else {
+                "unobservable"
+            }
+        ),
+        ModeStability::Stable => format!(
+            "stable {what} {lam} is {}: {cause}",
+            if why == RemovedKind::Uncontrollable {
+                "uncontrollable"
+            } else {
+                "unobservable"
+            }
+        ),
+    }
+}
+
+fn gains(
+    ss: &StateSpace<f64>,
+    inputs: &[Signal],
+    outputs: &[Signal],
+    warnings: &mut Vec<String>,
+) -> Result<Vec<GainEntry>, CliError> {
+    let gain = steady_state_gain(ss)?;
+    warnings.extend(
+        gain.warnings
+            .iter()
+            .map(|w| format!("steady-state gain: {w}")),
+    );
+    let mut out = Vec::with_capacity(inputs.len() * outputs.len());
+    for (i, o) in outputs.iter().enumerate() {
+        for (j, u) in inputs.iter().enumerate() {
+            let (value, integrating) = match gain.get(i, j) {
+                Gain::Finite(v) => (Some(v), None),
+                Gain::Integrating { order, coefficient } => {
+                    (None, Some(Integrating { order, coefficient }))
+                }
+            };
+            out.push(GainEntry {
+                output: o.name.clone(),
+                input: u.name.clone(),
+                unit: ratio_unit(&o.unit, &u.unit),
+                value,
+                integrating,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// `n` logarithmically spaced values from `lo` to `hi`, both included.
+fn logspace(lo: f64, hi: f64, n: usize) -> Vec<f64> {
+    if n == 1 {
+        return vec![lo];
+    }
+    let (a, b) = (lo.log10(), hi.log10());
+    (0..n)
+        .map(|k| {
+            if k + 1 == n {
+                hi
+            } else {
+                10f64.powf(a + (b - a) * k as f64 / (n - 1) as f64)
+            }
+        })
+        .collect()
+}
+
+fn frequency_response(
+    ss: &StateSpace<f64>,
+    req: &FreqRequest,
+    inputs: &[Signal],
+    outputs: &[Signal],
+) -> Result<FreqReport, CliError> {
+    let range = match (req.range, req.points) {
+        (None, None) => FreqRange::Auto,
+        (Some((low, high)), None) => FreqRange::Range {
+            low,
+            high,
+            unit: FreqUnit::Hz,
+        },
+        (Some((lo, hi)), Some(n)) => FreqRange::Points {
+            values: logspace(lo, hi, n),
+            unit: FreqUnit::Hz,
+        },
+        (None, Some(n)) => {
+            // The automatic range (whole decades around the modes), then n points across it.
+            let probe = FrequencyResponse::compute(
+                ss,
+                &FreqOptions {
+                    range: FreqRange::Auto,
+                    points_per_decade: 1,
+                },
+            )?;
+            let lo = probe.freq_hz.first().copied().unwrap_or(0.01);
+            let hi = probe.freq_hz.last().copied().unwrap_or(100.0);
+            FreqRange::Points {
+                values: logspace(lo, hi, n),
+                unit: FreqUnit::Hz,
+            }
+        }
+    };
+    let fr = FrequencyResponse::compute(
+        ss,
+        &FreqOptions {
+            range,
+            ..FreqOptions::default()
+        },
+    )?;
+    let mut pairs = Vec::with_capacity(inputs.len() * outputs.len());
+    for (i, o) in outputs.iter().enumerate() {
+        for (j, u) in inputs.iter().enumerate() {
+            pairs.push(FreqPair {
+                output: o.name.clone(),
+                input: u.name.clone(),
+                magnitude_db: fr
+                    .magnitude_db_of(i, j)
+                    .iter()
+                    .map(|&x| finite(x))
+                    .collect(),
+                phase_deg: fr.phase_deg_of(i, j).to_vec(),
+            });
+        }
+    }
+    Ok(FreqReport {
+        frequency_hz: fr.freq_hz.clone(),
+        singular: fr.singular.clone(),
+        pairs,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::dmatrix;
+
+    /// A double integrator `ÿ = u` observed by y: G(s) = 1/s², an integrating pair of order 2
+    /// with coefficient 1, and a double zero mode.
+    #[test]
+    fn integrating_pairs_are_reported_as_such() {
+        let ss = StateSpace::new(
+            dmatrix![0.0, 1.0; 0.0, 0.0],
+            dmatrix![0.0; 1.0],
+            dmatrix![1.0, 0.0; 0.0, 1.0],
+            dmatrix![0.0; 0.0],
+        )
+        .unwrap();
+        let r = analyze_state_space(&ss, Vec::new(), None).unwrap();
+        let g = r.steady_state_gain.as_ref().unwrap();
+        let i = g[0]
+            .integrating
+            .as_ref()
+            .expect("position integrates twice");
+        assert_eq!(i.order, 2);
+        assert!((i.coefficient - 1.0).abs() < 1e-12, "{}", i.coefficient);
+        let i = g[1].integrating.as_ref().expect("velocity integrates once");
+        assert_eq!(i.order, 1);
+        assert!((i.coefficient - 1.0).abs() < 1e-12, "{}", i.coefficient);
+        assert!(g.iter().all(|e| e.value.is_none()));
+        assert!(
+            r.modes
+                .iter()
+                .all(|m| m.kind == "zero" && m.stability == "marginal")
+        );
+        let text = r.to_text();
+        assert!(
+            text.contains("integrating (pole of order 2 at s = 0)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("a unit step gives a ramp of slope 1"),
+            "{text}"
+        );
+        let json = serde_json::to_value(&r).unwrap();
+        assert_eq!(json["steady_state_gain"][0]["integrating"]["order"], 2);
+        assert!(json["steady_state_gain"][0].get("value").is_none());
+    }
+
+    /// An unstable mode that the output cannot see must be listed, never hidden.
+    #[test]
+    fn unobservable_unstable_modes_are_reported() {
+        // ẋ1 = −x1 + u, ẋ2 = 0.5 x2 + u, y = x1: the growing x2 is invisible at the output.
+        let ss = StateSpace::new(
+            dmatrix![-1.0, 0.0; 0.0, 0.5],
+            dmatrix![1.0; 1.0],
+            dmatrix![1.0, 0.0],
+            dmatrix![0.0],
+        )
+        .unwrap();
+        let r = analyze_state_space(&ss, Vec::new(), None).unwrap();
+        assert_eq!(r.stability, "unstable");
+        let m = r.minimal.as_ref().unwrap();
+        assert_eq!(m.states, 1);
+        assert_eq!(m.removed.len(), 1);
+        let rm = &m.removed[0];
+        assert_eq!(
+            (rm.reason, rm.stability, rm.kind),
+            ("unobservable", "unstable", "real")
+        );
+        assert!((rm.eigenvalue.re - 0.5).abs() < 1e-12);
+        assert!(
+            r.to_text()
+                .contains("UNSTABLE real mode 0.5 is unobservable"),
+            "{}",
+            r.to_text()
+        );
+    }
+}

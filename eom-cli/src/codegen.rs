@@ -1,0 +1,99 @@
+//! `eom codegen`: the symbolic state-space model of a built-in model as a Rust module, by
+//! `eom_codegen::emit_model` (cargo feature `codegen`, on by default). A build without the
+//! feature has the subcommand, which then reports that code generation is not available.
+
+use crate::error::CliError;
+use crate::params::ModelChoice;
+use std::path::Path;
+
+/// What to generate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CodegenRequest {
+    /// `f32` instead of `f64`.
+    pub f32: bool,
+    /// Code that compiles under `#![no_std]` (elementary functions from `libm`); otherwise the
+    /// inherent `std` methods are used.
+    pub no_std: bool,
+    /// Run the bounded simplification before lowering.
+    pub simplify: bool,
+    /// Name of the generated module (default: from the model name).
+    pub module: Option<String>,
+}
+
+/// Generates the module for the model (with `overrides` as the nominal values, where the
+/// pivots are chosen and the default of `Params::NOMINAL`), writes it to `path` (only when its
+/// content changes) and returns the summary to print.
+#[cfg(feature = "codegen")]
+pub fn codegen(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    req: &CodegenRequest,
+    path: &Path,
+) -> Result<String, CliError> {
+    use eom_codegen::EmitOptions;
+    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    let model = models::build(&choice.name, &ov)?;
+    let mut opts = EmitOptions::default().simplify(req.simplify);
+    if req.f32 {
+        opts = opts.f32();
+    }
+    if !req.no_std {
+        opts = opts.std_math();
+    }
+    if let Some(m) = &req.module {
+        opts = opts.module(m);
+    }
+    let emitted = eom_codegen::emit_model(&model, &opts)?;
+    eom_codegen::build::write_if_changed(path, &emitted.source)?;
+    Ok(summary(&emitted, path, req))
+}
+
+/// Without the `codegen` feature: checks the model and parameters (so that usage errors are
+/// reported as such), then reports that code generation is not available.
+#[cfg(not(feature = "codegen"))]
+pub fn codegen(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    _req: &CodegenRequest,
+    path: &Path,
+) -> Result<String, CliError> {
+    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    models::build(&choice.name, &ov)?;
+    Err(CliError::Unavailable(format!(
+        "code generation is not available in this build of eom (built without the cargo \
+         feature `codegen`, which links the eom-codegen crate); nothing was written to {}. \
+         Rebuild with `cargo build -p eom-cli --features codegen`.",
+        path.display()
+    )))
+}
+
+/// The summary printed after writing.
+#[cfg(feature = "codegen")]
+fn summary(e: &eom_codegen::Emitted, path: &Path, req: &CodegenRequest) -> String {
+    let s = &e.stats;
+    let lines = e.source.lines().count();
+    let math = if req.no_std {
+        "no_std, elementary functions from libm (which the consuming crate then needs)"
+    } else {
+        "std math"
+    };
+    let mut t = format!(
+        "wrote {} ({lines} lines): module `{}`, {}, {math}, {} validity check(s)\n",
+        path.display(),
+        e.module,
+        if req.f32 { "f32" } else { "f64" },
+        s.checks,
+    );
+    match s.simplified {
+        Some(true) => t.push_str("simplification: used (cheaper than the original)\n"),
+        Some(false) => t.push_str("simplification: run, original kept (not cheaper)\n"),
+        None => {}
+    }
+    t.push_str(&format!(
+        "use it with: include!(\"{}\");  // then `{}::StateSpace`, `{}::Params`, …\n",
+        path.display(),
+        e.module,
+        e.module
+    ));
+    t
+}

@@ -1,0 +1,88 @@
+//! [`CliError`]: the one error type of the `eom` binary, and its exit codes.
+
+use eom_num::NumError;
+use eom_num::sweep::SweepError;
+use eom_sym::SymError;
+use models::ModelError;
+
+/// Exit code of a usage error: unknown model or parameter, malformed argument (the same code
+/// clap uses for its own argument errors).
+pub const EXIT_USAGE: u8 = 2;
+
+/// Exit code of every other failure (numerical trouble, I/O, code generation).
+pub const EXIT_FAILURE: u8 = 1;
+
+/// Everything that can go wrong in a command. Messages name the argument, parameter, model or
+/// point at fault and, for unknown names, list the valid ones.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// The model library rejected the model, a parameter name or a parameter value.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// A malformed command-line argument (`--set`, `--param`, `--freq-range`, …).
+    #[error("argument `{argument}`: {problem}")]
+    BadArgument {
+        /// The argument as given (with its option).
+        argument: String,
+        /// What is wrong with it, and what is expected.
+        problem: String,
+    },
+    /// Building, reducing or evaluating the model failed.
+    #[error(transparent)]
+    Sym(#[from] SymError),
+    /// `--method symbolic` at a point outside the validity region of the symbolic reduction.
+    #[error(
+        "{source}\n  (--method symbolic reduces the model with pivots chosen at its default \
+         parameter values and evaluates the result at the point; here use --method numeric, \
+         which chooses the pivots at the point, or --method robust)"
+    )]
+    OutsideSymbolicRegion {
+        /// The failed validity check.
+        source: SymError,
+    },
+    /// A numeric analysis failed.
+    #[error(transparent)]
+    Num(#[from] NumError),
+    /// A parameter sweep failed (the message names the parameter value).
+    #[error(transparent)]
+    Sweep(#[from] Box<SweepError<CliError>>),
+    /// Code generation failed.
+    #[cfg(feature = "codegen")]
+    #[error(transparent)]
+    Codegen(#[from] eom_codegen::CodegenError),
+    /// A feature this build does not include.
+    #[cfg(not(feature = "codegen"))]
+    #[error("{0}")]
+    Unavailable(String),
+    /// Two computations that must agree do not (a bug, or an interface that changed under
+    /// this crate).
+    #[error("internal inconsistency: {0}")]
+    Inconsistent(String),
+    /// JSON serialization failed.
+    #[error("writing JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// Reading or writing a file or a stream.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file (or `standard output`).
+        path: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+impl CliError {
+    /// The process exit code for this error: [`EXIT_USAGE`] for unknown names and malformed
+    /// arguments, [`EXIT_FAILURE`] otherwise.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Model(
+                ModelError::UnknownModel { .. }
+                | ModelError::UnknownParameter { .. }
+                | ModelError::BadValue { .. },
+            )
+            | CliError::BadArgument { .. } => EXIT_USAGE,
+            _ => EXIT_FAILURE,
+        }
+    }
+}

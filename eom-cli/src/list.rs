@@ -1,0 +1,101 @@
+//! `eom list`: the built-in models and their parameters.
+
+use crate::format::{g, table};
+use eom_sym::Assumption;
+use serde::Serialize;
+
+/// One model of the catalogue.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModelEntry {
+    /// Name (`chainN` is a pattern: `chain10`, `chain50`, …).
+    pub name: String,
+    /// Whether the name is a pattern with a size N.
+    pub pattern: bool,
+    /// One-line description.
+    pub description: String,
+    /// Parameters.
+    pub parameters: Vec<ParamEntry>,
+}
+
+/// One parameter.
+#[derive(Clone, Debug, Serialize)]
+pub struct ParamEntry {
+    /// Name.
+    pub name: String,
+    /// Default value.
+    pub default: f64,
+    /// Unit.
+    pub unit: String,
+    /// Allowed values: `> 0`, `>= 0`, `!= 0` or `any`.
+    pub allowed: &'static str,
+    /// Description.
+    pub description: String,
+}
+
+fn allowed(a: Assumption) -> &'static str {
+    match a {
+        Assumption::Positive => "> 0",
+        Assumption::Nonnegative => ">= 0",
+        Assumption::Nonzero => "!= 0",
+        Assumption::Real => "any",
+    }
+}
+
+/// The catalogue.
+pub fn entries() -> Vec<ModelEntry> {
+    models::catalogue()
+        .into_iter()
+        .map(|m| ModelEntry {
+            name: m.name.to_string(),
+            // A catalogue name that cannot be looked up as such is a pattern (`chainN`).
+            pattern: models::find(m.name).is_err(),
+            description: m.description.to_string(),
+            parameters: m
+                .params
+                .iter()
+                .map(|p| ParamEntry {
+                    name: p.name.to_string(),
+                    default: p.default,
+                    unit: p.unit.to_string(),
+                    allowed: allowed(p.assume),
+                    description: p.description.to_string(),
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+/// The catalogue as text.
+pub fn to_text(entries: &[ModelEntry]) -> String {
+    let mut t = String::from(
+        "Built-in models (use: eom analyze MODEL --set NAME=VALUE …; parameters not set take \
+         their defaults)\n",
+    );
+    for m in entries {
+        let name = if m.pattern {
+            format!("{} (N ≥ 1, e.g. chain10, chain50)", m.name)
+        } else {
+            m.name.clone()
+        };
+        t.push_str(&format!("\n{name} — {}\n", m.description));
+        let rows: Vec<Vec<String>> = m
+            .parameters
+            .iter()
+            .map(|p| {
+                vec![
+                    p.name.clone(),
+                    g(p.default, 6),
+                    p.unit.clone(),
+                    p.allowed.to_string(),
+                    p.description.clone(),
+                ]
+            })
+            .collect();
+        t.push_str(&table(
+            &["parameter", "default", "unit", "allowed", "description"],
+            &rows,
+            2,
+        ));
+    }
+    t
+}

@@ -1,0 +1,236 @@
+//! Models and parameters on the command line: resolving a model name, parsing `--set
+//! NAME=VALUE` and `--param NAME=START:STOP:COUNT`, the full parameter list of a model.
+
+use crate::error::CliError;
+use models::{ModelError, ModelInfo, ParamSpec};
+
+/// A built-in model chosen by name (`chain50` resolves to the `chainN` entry with size 50).
+#[derive(Clone, Debug)]
+pub struct ModelChoice {
+    /// The name as given (`chain50`).
+    pub name: String,
+    /// The catalogue entry.
+    pub info: ModelInfo,
+}
+
+impl ModelChoice {
+    /// Looks the model up; an unknown name is [`ModelError::UnknownModel`], which lists the
+    /// models.
+    pub fn resolve(name: &str) -> Result<ModelChoice, CliError> {
+        let (info, _) = models::find(name)?;
+        Ok(ModelChoice {
+            name: name.to_string(),
+            info,
+        })
+    }
+
+    /// The parameter names, in catalogue order.
+    pub fn param_names(&self) -> Vec<String> {
+        self.info
+            .params
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect()
+    }
+
+    /// The catalogue entry of a parameter, or [`ModelError::UnknownParameter`] listing them.
+    pub fn param(&self, name: &str) -> Result<&ParamSpec, CliError> {
+        self.info
+            .params
+            .iter()
+            .find(|p| p.name == name)
+            .ok_or_else(|| {
+                CliError::Model(ModelError::UnknownParameter {
+                    model: self.name.clone(),
+                    name: name.to_string(),
+                    known: self.param_names(),
+                })
+            })
+    }
+
+    /// Every parameter with its value: the override where given, else the default.
+    pub fn values(&self, overrides: &[(String, f64)]) -> Vec<(String, f64)> {
+        self.info
+            .params
+            .iter()
+            .map(|p| {
+                let v = overrides
+                    .iter()
+                    .find(|(k, _)| k == p.name)
+                    .map_or(p.default, |o| o.1);
+                (p.name.to_string(), v)
+            })
+            .collect()
+    }
+
+    /// Parses the `--set NAME=VALUE` arguments. Errors name the argument and list the
+    /// parameters of the model.
+    pub fn parse_sets(&self, sets: &[String]) -> Result<Vec<(String, f64)>, CliError> {
+        let mut out: Vec<(String, f64)> = Vec::with_capacity(sets.len());
+        for s in sets {
+            let bad = |problem: String| CliError::BadArgument {
+                argument: format!("--set {s}"),
+                problem: format!(
+                    "{problem}; the parameters of model `{}` are: {}",
+                    self.name,
+                    self.param_names().join(", ")
+                ),
+            };
+            let Some((name, value)) = s.split_once('=') else {
+                return Err(bad("expected NAME=VALUE (e.g. --set u=1)".into()));
+            };
+            let name = name.trim();
+            if name.is_empty() {
+                return Err(bad("the parameter name before `=` is missing".into()));
+            }
+            self.param(name)?;
+            let value = parse_number(value).map_err(bad)?;
+            if out.iter().any(|(k, _)| k == name) {
+                return Err(bad(format!("parameter `{name}` is set more than once")));
+            }
+            out.push((name.to_string(), value));
+        }
+        Ok(out)
+    }
+}
+
+/// Parses a finite number; the error says what was found.
+pub fn parse_number(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    match t.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(format!("the value `{t}` is {v}, a finite number is needed")),
+        Err(_) if t.is_empty() => Err("the value is missing".into()),
+        Err(_) => Err(format!("`{t}` is not a number")),
+    }
+}
+
+/// A parameter sweep `NAME=START:STOP:COUNT`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// The swept parameter.
+    pub name: String,
+    /// First value.
+    pub start: f64,
+    /// Last value.
+    pub stop: f64,
+    /// Number of equally spaced values, both ends included.
+    pub count: usize,
+}
+
+impl SweepSpec {
+    /// Parses `NAME=START:STOP:COUNT` (the name is checked against the model later).
+    pub fn parse(text: &str) -> Result<SweepSpec, CliError> {
+        let bad = |problem: String| CliError::BadArgument {
+            argument: format!("--param {text}"),
+            problem,
+        };
+        let Some((name, range)) = text.split_once('=') else {
+            return Err(bad(
+                "expected NAME=START:STOP:COUNT (e.g. --param v=0:10:101)".into(),
+            ));
+        };
+        let name = name.trim();
+        if name.is_empty() {
+            return Err(bad("the parameter name before `=` is missing".into()));
+        }
+        let parts: Vec<&str> = range.split(':').collect();
+        let [start, stop, count] = parts[..] else {
+            return Err(bad(format!(
+                "expected START:STOP:COUNT after `{name}=`, found {} field(s) in `{range}`",
+                parts.len()
+            )));
+        };
+        let start = parse_number(start).map_err(|e| bad(format!("START: {e}")))?;
+        let stop = parse_number(stop).map_err(|e| bad(format!("STOP: {e}")))?;
+        let count: usize = count.trim().parse().map_err(|_| {
+            bad(format!(
+                "COUNT: `{}` is not a whole number ≥ 1",
+                count.trim()
+            ))
+        })?;
+        if count == 0 {
+            return Err(bad("COUNT must be at least 1".into()));
+        }
+        if count > 1 && start == stop {
+            return Err(bad(format!(
+                "START and STOP are both {start}: {count} points need two different ends"
+            )));
+        }
+        Ok(SweepSpec {
+            name: name.to_string(),
+            start,
+            stop,
+            count,
+        })
+    }
+
+    /// Smallest and largest value of the sweep.
+    pub fn bounds(&self) -> (f64, f64) {
+        (self.start.min(self.stop), self.start.max(self.stop))
+    }
+}
+
+/// Parses a frequency range `LOW:HIGH` in Hz (`0 < LOW < HIGH`).
+pub fn parse_freq_range(text: &str) -> Result<(f64, f64), CliError> {
+    let bad = |problem: String| CliError::BadArgument {
+        argument: format!("--freq-range {text}"),
+        problem,
+    };
+    let Some((lo, hi)) = text.split_once(':') else {
+        return Err(bad(
+            "expected LOW:HIGH in Hz (e.g. --freq-range 0.1:100)".into()
+        ));
+    };
+    let lo = parse_number(lo).map_err(|e| bad(format!("LOW: {e}")))?;
+    let hi = parse_number(hi).map_err(|e| bad(format!("HIGH: {e}")))?;
+    if !(lo > 0.0 && hi > lo) {
+        return Err(bad(format!(
+            "need 0 < LOW < HIGH (a logarithmic grid), got LOW = {lo}, HIGH = {hi}"
+        )));
+    }
+    Ok((lo, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_spec_accepts_negative_ends_and_rejects_bad_fields() {
+        let s = SweepSpec::parse("c=-1.2:-0.8:21").unwrap();
+        assert_eq!(
+            (s.name.as_str(), s.start, s.stop, s.count),
+            ("c", -1.2, -0.8, 21)
+        );
+        for bad in [
+            "v",
+            "v=0:10",
+            "v=0:10:0",
+            "v=a:1:3",
+            "v=1:1:3",
+            "=0:1:2",
+            "v=0:1:2.5",
+        ] {
+            assert!(
+                matches!(SweepSpec::parse(bad), Err(CliError::BadArgument { .. })),
+                "{bad}"
+            );
+        }
+    }
+
+    #[test]
+    fn set_errors_name_the_argument_and_list_the_parameters() {
+        let m = ModelChoice::resolve("smd").unwrap();
+        let e = m.parse_sets(&["k".into()]).unwrap_err().to_string();
+        assert!(e.contains("--set k") && e.contains("m, k, c"), "{e}");
+        let e = m.parse_sets(&["q=1".into()]).unwrap_err().to_string();
+        assert!(e.contains("`q`") && e.contains("m, k, c"), "{e}");
+        let e = m.parse_sets(&["k=inf".into()]).unwrap_err().to_string();
+        assert!(e.contains("finite"), "{e}");
+        assert_eq!(
+            m.parse_sets(&["k=2".into(), " c = 0.5".into()]).unwrap(),
+            vec![("k".to_string(), 2.0), ("c".to_string(), 0.5)]
+        );
+    }
+}

@@ -1,0 +1,446 @@
+//! `eom sweep`: eigenvalues over a parameter grid, stability boundaries and stable intervals.
+//!
+//! The model is reduced symbolically **once** ([`Linearizer::symbolic`], pivots chosen at one
+//! point of the range) and its state matrix is evaluated from the compiled tape at every
+//! sweep value, in parallel ([`eom_num::sweep::Sweep`]: branch tracking, neutral branches,
+//! boundaries located by Brent's method, stable intervals). A value outside the validity
+//! region of the symbolic reduction (a recorded pivot breaks down) is evaluated by the robust
+//! (SVD) path instead, and every such value is reported.
+
+use crate::compiled::CompiledModel;
+use crate::error::CliError;
+use crate::format::{eigenvalue, g, table, wrap_list};
+use crate::params::{ModelChoice, SweepSpec};
+use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
+use eom_sym::model::{Linearizer, Method, Model};
+use eom_sym::{Assumption, Expr, SymError};
+use models::ModelError;
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use serde::{Serialize, Serializer};
+use std::cell::RefCell;
+use std::sync::Mutex;
+
+/// Absolute tolerance in the swept parameter to which boundaries are located.
+pub const BOUNDARY_TOLERANCE: f64 = 1e-10;
+
+/// The result of `eom sweep`, serialized as its JSON output.
+#[derive(Clone, Debug, Serialize)]
+pub struct SweepReport {
+    /// Model name as given.
+    pub model: String,
+    /// The sweep: `param`, `points` (value, eigenvalues in branch order, max_real, stability,
+    /// norm), `branches` (neutral or not), `stable_intervals` (`[lo, hi]`), `boundaries`
+    /// (value, eigenvalue, branch, crossing, bracket, evaluations, converged).
+    #[serde(flatten)]
+    pub result: SweepResult,
+    /// First value, last value and number of values of the grid.
+    pub range: Range,
+    /// The other parameters with the values used, in catalogue order.
+    #[serde(serialize_with = "ordered_map")]
+    pub fixed: Vec<(String, f64)>,
+    /// Absolute tolerance of the boundary locations in the parameter.
+    pub boundary_tolerance: f64,
+    /// How the state matrix was evaluated.
+    pub evaluation: Evaluation,
+}
+
+/// The sweep grid.
+#[derive(Clone, Debug, Serialize)]
+pub struct Range {
+    /// First value.
+    pub start: f64,
+    /// Last value.
+    pub stop: f64,
+    /// Number of values (both ends included).
+    pub count: usize,
+}
+
+/// How the state matrix was evaluated.
+#[derive(Clone, Debug, Serialize)]
+pub struct Evaluation {
+    /// `symbolic` (compiled once, robust fallback per point) or `robust` (every point, when
+    /// the symbolic reduction is not available for this model).
+    pub method: &'static str,
+    /// Value of the swept parameter at which the symbolic pivots were chosen.
+    pub pivots_at: f64,
+    /// Why the symbolic reduction is not used (`method = robust`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub symbolic_unavailable: Option<String>,
+    /// Grid values evaluated by the robust path instead of the symbolic model.
+    pub fallback: Fallback,
+}
+
+/// Values where the symbolic model could not be used.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Fallback {
+    /// Number of grid values evaluated by the robust path.
+    pub count: usize,
+    /// Those grid values, increasing.
+    pub values: Vec<f64>,
+    /// Further robust evaluations between grid values (while locating boundaries).
+    pub off_grid: usize,
+    /// The distinct reasons (the failed validity check).
+    pub reasons: Vec<String>,
+}
+
+fn ordered_map<S: Serializer>(v: &[(String, f64)], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(v.iter().map(|(k, x)| (k, x)))
+}
+
+/// How to rebuild the model inside a worker thread (expressions cannot cross threads).
+#[derive(Clone, Debug, PartialEq)]
+struct ModelRecipe {
+    name: String,
+    nominal: Vec<(String, f64)>,
+}
+
+thread_local! {
+    /// The model of this thread, for robust evaluations, built on first use.
+    static THREAD_MODEL: RefCell<Option<(ModelRecipe, Model<Expr>)>> = const { RefCell::new(None) };
+}
+
+impl ModelRecipe {
+    fn build(&self) -> Result<Model<Expr>, ModelError> {
+        let ov: Vec<(&str, f64)> = self.nominal.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        models::build(&self.name, &ov)
+    }
+
+    /// A at `param = x` by the robust path, with this thread's copy of the model.
+    fn robust_state_matrix(&self, param: &str, x: f64) -> Result<DMatrix<f64>, CliError> {
+        THREAD_MODEL.with(|cell| {
+            let mut slot = cell.try_borrow_mut().map_err(|_| {
+                CliError::Inconsistent("re-entrant robust evaluation in one thread".into())
+            })?;
+            if slot.as_ref().is_none_or(|(r, _)| r != self) {
+                *slot = Some((self.clone(), self.build()?));
+            }
+            match slot.as_ref() {
+                Some((_, model)) => {
+                    let lin = Linearizer::new(model)
+                        .at(&[(param, x)])
+                        .method(Method::Robust)
+                        .run()?;
+                    Ok(lin.state_space.a)
+                }
+                None => Err(CliError::Inconsistent("thread model missing".into())),
+            }
+        })
+    }
+}
+
+/// Checks every value of the range against the parameter's sign assumption, with the model
+/// library's own error ([`ModelError::BadValue`]).
+fn check_range(
+    choice: &ModelChoice,
+    spec: &SweepSpec,
+    overrides: &[(String, f64)],
+) -> Result<(), CliError> {
+    let p = choice.param(&spec.name)?;
+    let (lo, hi) = spec.bounds();
+    if p.assume == Assumption::Nonzero && lo <= 0.0 && hi >= 0.0 {
+        return Err(CliError::Model(ModelError::BadValue {
+            model: choice.name.clone(),
+            name: spec.name.clone(),
+            value: 0.0,
+            problem: format!("must not be zero, and the sweep [{lo}, {hi}] includes 0"),
+        }));
+    }
+    // The sign assumptions are intervals: checking both ends covers the range.
+    for x in [lo, hi] {
+        let mut ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        ov.push((spec.name.as_str(), x));
+        models::build(&choice.name, &ov)?;
+    }
+    Ok(())
+}
+
+/// Runs the sweep.
+pub fn sweep(
+    choice: &ModelChoice,
+    spec: &SweepSpec,
+    overrides: &[(String, f64)],
+) -> Result<SweepReport, CliError> {
+    let param = choice.param(&spec.name)?;
+    if overrides.iter().any(|(k, _)| k == &spec.name) {
+        return Err(CliError::BadArgument {
+            argument: format!("--set {}", spec.name),
+            problem: format!(
+                "`{}` is the swept parameter (--param); it cannot also be set",
+                spec.name
+            ),
+        });
+    }
+    check_range(choice, spec, overrides)?;
+    let (lo, hi) = spec.bounds();
+    // Pivots are chosen where the model is most likely regular: its default, when that lies in
+    // the range; else the middle of the range.
+    let pivots_at = if (lo..=hi).contains(&param.default) {
+        param.default
+    } else {
+        0.5 * (lo + hi)
+    };
+    let mut nominal = overrides.to_vec();
+    nominal.push((spec.name.clone(), pivots_at));
+    let recipe = ModelRecipe {
+        name: choice.name.clone(),
+        nominal,
+    };
+    let model = recipe.build()?;
+    let names = model.scope.names();
+    let base = model.scope.nominal_values();
+    let k = names
+        .iter()
+        .position(|n| n == &spec.name)
+        .ok_or_else(|| CliError::Inconsistent(format!("`{}` not in the model", spec.name)))?;
+    let (compiled, unavailable) = match Linearizer::new(&model).symbolic() {
+        Ok(sym) => (Some(CompiledModel::new(&sym, &base)?), None),
+        Err(e) => (None, Some(e.to_string())),
+    };
+
+    let used: Mutex<Vec<(f64, String)>> = Mutex::new(Vec::new());
+    let record = |x: f64, why: String| {
+        let mut u = used.lock().unwrap_or_else(|p| p.into_inner());
+        u.push((x, why));
+    };
+    let grid = Sweep::linspace(spec.start, spec.stop, spec.count)
+        .with_param_name(spec.name.clone())
+        .with_tolerance(BOUNDARY_TOLERANCE);
+    let result = grid
+        .run(|x| -> Result<DMatrix<f64>, CliError> {
+            let Some(c) = &compiled else {
+                return recipe.robust_state_matrix(&spec.name, x);
+            };
+            let mut v = base.clone();
+            v[k] = x;
+            match c.state_matrix(&v) {
+                Ok(a) => Ok(a),
+                Err(SymError::PivotBreakdown(why)) => {
+                    record(x, why);
+                    recipe.robust_state_matrix(&spec.name, x)
+                }
+                Err(e @ SymError::EvalNonFinite { .. }) => {
+                    record(x, e.to_string());
+                    recipe.robust_state_matrix(&spec.name, x)
+                }
+                Err(e) => Err(e.into()),
+            }
+        })
+        .map_err(|e| CliError::Sweep(Box::new(e)))?;
+
+    let mut fallback = Fallback::default();
+    let used = used.into_inner().unwrap_or_else(|p| p.into_inner());
+    let values = grid.values();
+    for (x, why) in used {
+        if values.contains(&x) {
+            if !fallback.values.contains(&x) {
+                fallback.values.push(x);
+            }
+        } else {
+            fallback.off_grid += 1;
+        }
+        if !fallback.reasons.contains(&why) {
+            fallback.reasons.push(why);
+        }
+    }
+    fallback.values.sort_by(f64::total_cmp);
+    fallback.count = fallback.values.len();
+    let fixed = choice
+        .values(overrides)
+        .into_iter()
+        .filter(|(n, _)| n != &spec.name)
+        .collect();
+    Ok(SweepReport {
+        model: choice.name.clone(),
+        result,
+        range: Range {
+            start: spec.start,
+            stop: spec.stop,
+            count: spec.count,
+        },
+        fixed,
+        boundary_tolerance: BOUNDARY_TOLERANCE,
+        evaluation: Evaluation {
+            method: if compiled.is_some() {
+                "symbolic"
+            } else {
+                "robust"
+            },
+            pivots_at,
+            symbolic_unavailable: unavailable,
+            fallback,
+        },
+    })
+}
+
+/// Most eigenvalues shown per row of the text table.
+const SHOWN: usize = 6;
+
+impl SweepReport {
+    /// The fallback notice (also printed on standard error for CSV output).
+    pub fn evaluation_note(&self) -> String {
+        let e = &self.evaluation;
+        let p = &self.result.param;
+        let mut s = match &e.symbolic_unavailable {
+            Some(why) => format!(
+                "Evaluation: robust path at every value (the symbolic reduction is not available: \
+                 {why})"
+            ),
+            None => format!(
+                "Evaluation: symbolic model compiled once (pivots chosen at {p} = {}); robust \
+                 fallback at {} of {} grid values",
+                g(e.pivots_at, 10),
+                e.fallback.count,
+                self.range.count
+            ),
+        };
+        if e.fallback.count > 0 {
+            let list: Vec<String> = e.fallback.values.iter().map(|v| format!("{v}")).collect();
+            s.push_str(&format!(" ({p} = {})", list.join(", ")));
+        }
+        if e.fallback.off_grid > 0 {
+            s.push_str(&format!(
+                ", and at {} value(s) between grid points",
+                e.fallback.off_grid
+            ));
+        }
+        s.push('\n');
+        for r in &e.fallback.reasons {
+            s.push_str(&format!("  outside the symbolic validity region: {r}\n"));
+        }
+        s
+    }
+
+    /// CSV: `value,re1,im1,…` with the eigenvalues in branch order (column j follows one
+    /// branch along the sweep).
+    pub fn to_csv(&self) -> String {
+        let n = self.result.branches.len();
+        let mut s = String::from("value");
+        for j in 1..=n {
+            s.push_str(&format!(",re{j},im{j}"));
+        }
+        s.push('\n');
+        for p in &self.result.points {
+            s.push_str(&format!("{:?}", p.value));
+            for z in &p.eigenvalues {
+                s.push_str(&format!(",{:?},{:?}", z.re, z.im));
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    fn eigenvalue_cell(&self, p: &SweepPoint) -> String {
+        let neutral: Vec<bool> = self.result.branches.iter().map(|b| b.neutral).collect();
+        let mut shown: Vec<Complex64> = p
+            .eigenvalues
+            .iter()
+            .enumerate()
+            .filter(|&(j, z)| !neutral.get(j).copied().unwrap_or(false) && z.im >= 0.0)
+            .map(|(_, z)| *z)
+            .collect();
+        // Least stable first.
+        shown.sort_by(|a, b| b.re.total_cmp(&a.re).then(b.im.total_cmp(&a.im)));
+        let more = shown.len().saturating_sub(SHOWN);
+        let mut cell: Vec<String> = shown
+            .iter()
+            .take(SHOWN)
+            .map(|z| eigenvalue(*z, 5, z.im > 0.0))
+            .collect();
+        if more > 0 {
+            cell.push(format!("… {more} more"));
+        }
+        cell.join(", ")
+    }
+
+    /// The human-readable report.
+    pub fn to_text(&self) -> String {
+        let r = &self.result;
+        let p = &r.param;
+        let mut t = format!(
+            "Sweep of {p} from {} to {} ({} values), model {}\n",
+            self.range.start, self.range.stop, self.range.count, self.model
+        );
+        if !self.fixed.is_empty() {
+            let fixed: Vec<String> = self
+                .fixed
+                .iter()
+                .map(|(n, v)| format!("{n} = {}", g(*v, 6)))
+                .collect();
+            t.push_str(&wrap_list("Fixed:", &fixed, 100));
+        }
+        t.push_str(&self.evaluation_note());
+        let nn = r.branches.iter().filter(|b| b.neutral).count();
+        t.push_str(&format!(
+            "Branches: {} ({nn} neutral: identically zero, e.g. a vehicle's lateral position and \
+             heading; excluded from stability)\n\n",
+            r.branches.len()
+        ));
+        let rows: Vec<Vec<String>> = r
+            .points
+            .iter()
+            .map(|pt| {
+                vec![
+                    g(pt.value, 8),
+                    match pt.stability {
+                        PointStability::Stable => "stable",
+                        PointStability::Marginal => "marginal",
+                        PointStability::Unstable => "unstable",
+                    }
+                    .to_string(),
+                    pt.max_real.map_or_else(|| "-".into(), |x| g(x, 5)),
+                    self.eigenvalue_cell(pt),
+                ]
+            })
+            .collect();
+        t.push_str(&table(
+            &[
+                p.as_str(),
+                "stability",
+                "max Re λ",
+                "eigenvalues [1/s] (least stable first)",
+            ],
+            &rows,
+            2,
+        ));
+        t.push('\n');
+
+        t.push_str(&format!(
+            "Stability boundaries (located to {} in {p})\n",
+            g(self.boundary_tolerance, 3)
+        ));
+        if r.boundaries.is_empty() {
+            t.push_str("  none in the range\n");
+        }
+        for b in &r.boundaries {
+            let dir = match b.crossing {
+                Crossing::Destabilizing => "destabilizing",
+                Crossing::Stabilizing => "stabilizing",
+            };
+            let conv = if b.converged {
+                String::new()
+            } else {
+                format!(
+                    " — NOT converged, root in [{}, {}]",
+                    b.bracket[0], b.bracket[1]
+                )
+            };
+            t.push_str(&format!(
+                "  {p} = {}  {dir}  eigenvalue {} (branch {}, {} evaluations){conv}\n",
+                b.value,
+                eigenvalue(b.eigenvalue, 6, false),
+                b.branch + 1,
+                b.evaluations
+            ));
+        }
+        t.push('\n');
+        t.push_str(&format!("Stable intervals of {p}\n"));
+        if r.stable_intervals.is_empty() {
+            t.push_str("  none: unstable or marginal over the whole range\n");
+        }
+        for i in &r.stable_intervals {
+            t.push_str(&format!("  [{}, {}]\n", i.lo, i.hi));
+        }
+        t
+    }
+}

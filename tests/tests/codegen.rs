@@ -1,0 +1,507 @@
+//! Generated code (eom-codegen, compiled by `build.rs` for every built-in model) against the
+//! tape interpreter (`SymbolicStateSpace::evaluate`, entry by entry) and against the robust
+//! SVD path (a different basis: transfer functions at a few points), at random parameter points
+//! near nominal; the validity region and non-finite results reported as errors, the same way
+//! the interpreter reports them; sparse outputs; determinism; one formatting snapshot.
+
+use eom_num::StateSpace;
+use eom_sym::SymError;
+use eom_sym::model::{Linearizer, Method, SymbolicStateSpace};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use proptest::prelude::*;
+
+include!(concat!(env!("OUT_DIR"), "/generated.rs"));
+
+/// A generated error in a common form.
+#[derive(Clone, Debug, PartialEq)]
+enum GenErr {
+    Validity(usize, &'static str),
+    NonFinite(String, usize, usize),
+}
+
+type Eval = fn(&[f64]) -> Result<Vec<Vec<f64>>, GenErr>;
+
+/// One generated module behind a uniform interface (`f64` in and out).
+struct Gen {
+    model: &'static str,
+    abcd: Eval,
+    ab: Eval,
+    cd: Eval,
+    phys: Eval,
+    nonzeros: [&'static [(usize, usize)]; 5],
+    checks: &'static [&'static str],
+    param_names: &'static [&'static str],
+}
+
+macro_rules! generated {
+    ($model:expr, $m:path, $ty:ty) => {{
+        use $m as g;
+        fn conv(e: g::Error) -> GenErr {
+            match e {
+                g::Error::Validity { check, what } => GenErr::Validity(check, what),
+                g::Error::NonFinite { matrix, row, col } => GenErr::NonFinite(format!("{matrix:?}"), row, col),
+            }
+        }
+        fn params(p: &[f64]) -> [$ty; g::N_PARAMS] {
+            core::array::from_fn(|k| p[k] as $ty)
+        }
+        fn back<const N: usize>(x: &[$ty; N]) -> Vec<f64> {
+            x.iter().map(|&v| v as f64).collect()
+        }
+        Gen {
+            model: $model,
+            abcd: |p| {
+                let (mut a, mut b, mut c, mut d, mut w) =
+                    ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::C_LEN], [0.0; g::D_LEN], [0.0; g::WORK_LEN]);
+                g::eval_abcd(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w).map_err(conv)?;
+                Ok(vec![back(&a), back(&b), back(&c), back(&d)])
+            },
+            ab: |p| {
+                let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
+                g::eval_ab(&params(p), &mut a, &mut b, &mut w).map_err(conv)?;
+                Ok(vec![back(&a), back(&b)])
+            },
+            cd: |p| {
+                let (mut c, mut d, mut w) = ([0.0; g::C_LEN], [0.0; g::D_LEN], [0.0; g::WORK_LEN]);
+                g::eval_cd(&params(p), &mut c, &mut d, &mut w).map_err(conv)?;
+                Ok(vec![back(&c), back(&d)])
+            },
+            phys: |p| {
+                let (mut q, mut w) = ([0.0; g::PHYS_LEN], [0.0; g::WORK_LEN]);
+                g::eval_phys(&params(p), &mut q, &mut w).map_err(conv)?;
+                Ok(vec![back(&q)])
+            },
+            nonzeros: [&g::A_NONZEROS, &g::B_NONZEROS, &g::C_NONZEROS, &g::D_NONZEROS, &g::PHYS_NONZEROS],
+            checks: &g::CHECKS,
+            param_names: &g::PARAM_NAMES,
+        }
+    }};
+}
+
+fn all_f64() -> Vec<Gen> {
+    vec![
+        generated!("smd", gen64::smd, f64),
+        generated!("pendulum", gen64::pendulum, f64),
+        generated!("shimmy", gen64::shimmy, f64),
+        generated!("bicycle", gen64::bicycle, f64),
+        generated!("quarter_car", gen64::quarter_car, f64),
+        generated!("top", gen64::top, f64),
+        generated!("disk", gen64::disk, f64),
+        generated!("chain1", gen64::chain1, f64),
+        generated!("chain3", gen64::chain3, f64),
+        generated!("chain50", gen64::chain50, f64),
+    ]
+}
+
+fn all_f32() -> Vec<Gen> {
+    vec![
+        generated!("smd", gen32::smd, f32),
+        generated!("pendulum", gen32::pendulum, f32),
+        generated!("shimmy", gen32::shimmy, f32),
+        generated!("bicycle", gen32::bicycle, f32),
+        generated!("quarter_car", gen32::quarter_car, f32),
+        generated!("top", gen32::top, f32),
+        generated!("disk", gen32::disk, f32),
+        generated!("chain1", gen32::chain1, f32),
+        generated!("chain3", gen32::chain3, f32),
+        generated!("chain50", gen32::chain50, f32),
+    ]
+}
+
+/// Variants of the bicycle and chain with their reference model.
+fn variants() -> Vec<Gen> {
+    vec![
+        generated!("bicycle", gen64::bicycle_std, f64),
+        generated!("bicycle", gen64::bicycle_chunked, f64),
+        generated!("bicycle", gen64::bicycle_simplified, f64),
+        generated!("chain50", gen64::chain50_chunked, f64),
+    ]
+}
+
+struct Reference {
+    sym: SymbolicStateSpace,
+    model: eom_sym::model::Model,
+}
+
+fn reference(name: &str) -> Reference {
+    let model = models::build(name, &[]).expect("model");
+    let sym = Linearizer::new(&model).symbolic().expect("symbolic");
+    Reference { sym, model }
+}
+
+fn to_vecs(ss: &StateSpace<f64>) -> Vec<Vec<f64>> {
+    [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys].iter().map(|m| m.as_slice().to_vec()).collect()
+}
+
+/// Largest entry difference relative to the largest entry of the reference matrix.
+fn rel_diff(got: &[f64], want: &[f64]) -> f64 {
+    assert_eq!(got.len(), want.len());
+    let scale = want.iter().fold(0.0f64, |a, b| a.max(b.abs())).max(f64::MIN_POSITIVE);
+    got.iter().zip(want).fold(0.0f64, |a, (x, y)| a.max((x - y).abs())) / scale
+}
+
+/// The interpreter's error in the common form (`None` for other errors).
+fn sym_err(e: &SymError, g: &Gen) -> Option<GenErr> {
+    match e {
+        SymError::PivotBreakdown(msg) => {
+            let k = g.checks.iter().position(|c| msg.starts_with(&format!("{c} (value")))?;
+            Some(GenErr::Validity(k, g.checks[k]))
+        }
+        SymError::EvalNonFinite { what, .. } => Some(GenErr::NonFinite(what.clone(), 0, 0)),
+        _ => None,
+    }
+}
+
+/// Compare a generated module with the interpreter at `values`: both succeed with equal
+/// matrices (to `tol` relative to each matrix), or both fail on the same check.
+fn compare(g: &Gen, r: &Reference, values: &[f64], tol: f64) -> Result<bool, TestCaseError> {
+    let want = r.sym.evaluate(values);
+    let got = (g.abcd)(values).and_then(|mut m| {
+        m.extend((g.phys)(values)?);
+        Ok(m)
+    });
+    match (got, want) {
+        (Ok(got), Ok(want)) => {
+            let want = to_vecs(&want);
+            for (k, name) in ["A", "B", "C", "D", "Phys"].iter().enumerate() {
+                let d = rel_diff(&got[k], &want[k]);
+                prop_assert!(d <= tol, "{}: {name} differs by {d:e} at {values:?}", g.model);
+            }
+            // The kernels for parts agree with the whole.
+            let ab = (g.ab)(values).expect("eval_ab after eval_abcd succeeded");
+            let cd = (g.cd)(values).expect("eval_cd after eval_abcd succeeded");
+            for (x, y) in ab.iter().chain(&cd).zip(&got[..4]) {
+                prop_assert!(rel_diff(x, y) <= 1e-14, "{}: partial kernels differ", g.model);
+            }
+            Ok(true)
+        }
+        (Err(GenErr::Validity(k, what)), Err(e)) => {
+            prop_assert_eq!(sym_err(&e, g), Some(GenErr::Validity(k, what)), "{}: different failing check", g.model);
+            Ok(false)
+        }
+        (Err(GenErr::NonFinite(..)), Err(SymError::EvalNonFinite { .. })) => Ok(false),
+        (got, want) => Err(TestCaseError::fail(format!(
+            "{}: generated {:?} but the interpreter {:?} at {values:?}",
+            g.model,
+            got.map(|_| "succeeded"),
+            want.map(|_| "succeeded")
+        ))),
+    }
+}
+
+/// `G(s) = C (sI − A)⁻¹ B + D`.
+fn transfer(a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>, d: &DMatrix<f64>, s: Complex64) -> DMatrix<Complex64> {
+    let z = |m: &DMatrix<f64>| m.map(|x| Complex64::new(x, 0.0));
+    let n = a.nrows();
+    let x = (DMatrix::<Complex64>::identity(n, n) * s - z(a)).lu().solve(&z(b)).expect("s is not a pole");
+    z(c) * x + z(d)
+}
+
+fn near_nominal(nominal: Vec<f64>) -> impl Strategy<Value = Vec<f64>> {
+    let n = nominal.len();
+    proptest::collection::vec(0.7f64..1.3, n)
+        .prop_map(move |f| nominal.iter().zip(&f).map(|(x, s)| if *x == 0.0 { s - 1.0 } else { x * s }).collect())
+}
+
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() }
+}
+
+#[test]
+fn compiled_equals_interpreter_and_robust_path() {
+    for g in all_f64() {
+        let r = reference(g.model);
+        assert_eq!(
+            g.param_names.to_vec(),
+            r.model.scope.names().iter().map(String::as_str).collect::<Vec<_>>(),
+            "{}: parameter order",
+            g.model
+        );
+        let ok = std::cell::Cell::new(0);
+        let cases = if g.model == "chain50" { 8 } else { 32 };
+        proptest!(config(cases), |(values in near_nominal(r.model.scope.nominal_values()))| {
+            if compare(&g, &r, &values, 1e-12)? {
+                ok.set(ok.get() + 1);
+                // Invariants against the robust path (its own basis).
+                let named: Vec<(&str, f64)> = g.param_names.iter().copied().zip(values.iter().copied()).collect();
+                let robust = Linearizer::new(&r.model).at(&named).method(Method::Robust).run()
+                    .map_err(|e| TestCaseError::fail(format!("{}: robust path: {e}", g.model)))?.state_space;
+                let m = (g.abcd)(&values).expect("succeeded above");
+                let ss = r.sym.state_space();
+                let mat = |k: usize, rows: usize, cols: usize| DMatrix::from_column_slice(rows, cols, &m[k]);
+                let (a, b) = (mat(0, ss.a.nrows(), ss.a.ncols()), mat(1, ss.b.nrows(), ss.b.ncols()));
+                let (c, d) = (mat(2, ss.c.nrows(), ss.c.ncols()), mat(3, ss.d.nrows(), ss.d.ncols()));
+                for s in [Complex64::new(0.3, 1.7), Complex64::new(-0.05, 11.0)] {
+                    let g1 = transfer(&a, &b, &c, &d, s);
+                    let g2 = transfer(&robust.a, &robust.b, &robust.c, &robust.d, s);
+                    let scale = g2.iter().map(|z| z.norm()).fold(0.0, f64::max).max(1e-300);
+                    let diff = (g1 - g2).iter().map(|z| z.norm()).fold(0.0, f64::max) / scale;
+                    prop_assert!(diff <= 1e-8, "{}: transfer function at {s} differs from the robust path by {diff:e}", g.model);
+                }
+            }
+        });
+        assert!(ok.get() > 0, "{}: no random point inside the validity region", g.model);
+    }
+}
+
+#[test]
+fn variants_equal_interpreter() {
+    for g in variants() {
+        let r = reference(g.model);
+        proptest!(config(16), |(values in near_nominal(r.model.scope.nominal_values()))| {
+            compare(&g, &r, &values, 1e-11)?;
+        });
+    }
+}
+
+#[test]
+fn chunked_code_computes_the_same_bits() {
+    let (whole, chunked) = (generated!("bicycle", gen64::bicycle, f64), generated!("bicycle", gen64::bicycle_chunked, f64));
+    let (cw, cc) = (generated!("chain50", gen64::chain50, f64), generated!("chain50", gen64::chain50_chunked, f64));
+    assert!(gen64::bicycle_chunked::WORK_LEN > 0 && gen64::chain50_chunked::WORK_LEN > 0, "chunking not exercised");
+    for (x, y) in [(&whole, &chunked), (&cw, &cc)] {
+        let r = reference(x.model);
+        proptest!(config(16), |(values in near_nominal(r.model.scope.nominal_values()))| {
+            prop_assert_eq!((x.abcd)(&values), (y.abcd)(&values));
+            prop_assert_eq!((x.phys)(&values), (y.phys)(&values));
+        });
+    }
+}
+
+#[test]
+fn f32_code_is_close_to_f64() {
+    for g in all_f32() {
+        let r = reference(g.model);
+        // Round the point to f32 first, so both sides see the same parameters.
+        proptest!(config(16), |(values in near_nominal(r.model.scope.nominal_values()))| {
+            let values: Vec<f64> = values.iter().map(|&x| x as f32 as f64).collect();
+            if let (Ok(got), Ok(want)) = ((g.abcd)(&values), r.sym.evaluate(&values)) {
+                let want = to_vecs(&want);
+                for k in 0..4 {
+                    let d = rel_diff(&got[k], &want[k]);
+                    prop_assert!(d <= 2e-4, "{} (f32): matrix {k} differs by {d:e}", g.model);
+                }
+            }
+        });
+    }
+}
+
+#[test]
+fn partial_evaluation_keeps_only_the_speed() {
+    use gen64::bicycle_speed as g;
+    assert_eq!(g::PARAM_NAMES, ["v"]);
+    let r = reference("bicycle");
+    let nominal = r.model.scope.nominal_values();
+    let iv = r.model.scope.names().iter().position(|n| n == "v").expect("v");
+    for v in [0.5, 2.0, 4.3, 6.0, 10.0] {
+        let mut values = nominal.clone();
+        values[iv] = v;
+        let want = r.sym.evaluate(&values).expect("valid");
+        let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
+        g::eval_ab(&[v], &mut a, &mut b, &mut w).expect("valid");
+        assert!(rel_diff(&a, want.a.as_slice()) <= 1e-12 && rel_diff(&b, want.b.as_slice()) <= 1e-12, "v = {v}");
+    }
+}
+
+#[test]
+fn outside_the_validity_region_both_refuse_with_the_same_check() {
+    let gens = all_f64();
+    let find = |m: &str| gens.iter().find(|g| g.model == m).expect("generated");
+    // Bicycle: a vertical steer axis (λ = π/2) breaks the pivot on cos λ.
+    // Shimmy: I + m l² x² = 0 breaks the reduced-mass pivot.
+    // Chain: zero mass breaks the reduced-mass pivots.
+    let cases: [(&str, &[(&str, f64)], &str); 4] = [
+        ("bicycle", &[("lambda", std::f64::consts::FRAC_PI_2)], "steer hinge"),
+        ("shimmy", &[("I", -5.0 * 0.25)], "reduced mass pivot"),
+        ("chain3", &[("m", 0.0)], "reduced mass pivot"),
+        ("smd", &[("m", 1e-300 * 1e-300)], "reduced mass pivot"),
+    ];
+    for (model, at, what) in cases {
+        let g = find(model);
+        let r = reference(model);
+        let values = r.model.scope.values_with(at).expect("values");
+        let e = r.sym.evaluate(&values).expect_err("the interpreter refuses");
+        assert!(matches!(e, SymError::PivotBreakdown(_)), "{model}: {e}");
+        // The generated code refuses with the same check, and leaves the outputs untouched.
+        let got = (g.abcd)(&values).expect_err("the generated code refuses");
+        assert_eq!(Some(got.clone()), sym_err(&e, g), "{model}");
+        match got {
+            GenErr::Validity(_, w) => assert!(w.contains(what), "{model}: {w}"),
+            other => panic!("{model}: {other:?}"),
+        }
+        assert_eq!((g.ab)(&values).expect_err("refuses"), got);
+        assert_eq!((g.cd)(&values).expect_err("refuses"), got);
+        assert_eq!((g.phys)(&values).expect_err("refuses"), got);
+    }
+    // Untouched outputs, on the real API.
+    use gen64::bicycle as b;
+    let mut p = b::Params::NOMINAL;
+    p.lambda = std::f64::consts::FRAC_PI_2;
+    let (mut a, mut bb, mut c, mut d, mut w) = ([7.25; b::A_LEN], [7.25; b::B_LEN], [7.25; b::C_LEN], [7.25; b::D_LEN], [0.0; b::WORK_LEN]);
+    let e = b::eval_abcd(&p.to_array(), &mut a, &mut bb, &mut c, &mut d, &mut w).expect_err("outside");
+    assert!(e.to_string().contains("outside the validity region"), "{e}");
+    assert!(a.iter().chain(&bb).chain(&c).chain(&d).all(|&x| x == 7.25));
+}
+
+#[test]
+fn non_finite_entries_are_errors_but_overflowing_sums_are_not() {
+    use gen64::smd as g;
+    let r = reference("smd");
+    // k = ∞: A(1, 0) = −k/m is infinite; the interpreter refuses too.
+    let p = [1.0, f64::INFINITY, 0.1];
+    assert!(matches!(r.sym.evaluate(&p), Err(SymError::EvalNonFinite { .. })));
+    let (mut a, mut b, mut c, mut d, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::C_LEN], [0.0; g::D_LEN], [0.0; g::WORK_LEN]);
+    assert_eq!(
+        g::eval_abcd(&p, &mut a, &mut b, &mut c, &mut d, &mut w),
+        Err(g::Error::NonFinite { matrix: g::Matrix::A, row: 1, col: 0 })
+    );
+    // NaN stiffness, same.
+    assert!(g::eval_ab(&[1.0, f64::NAN, 0.1], &mut a, &mut b, &mut w).is_err());
+    // Entries near the largest float: their sum overflows, each entry is finite.
+    let p = [1.0, 1.5e308, 1.5e308];
+    g::eval_abcd(&p, &mut a, &mut b, &mut c, &mut d, &mut w).expect("finite entries");
+    let want = r.sym.evaluate(&p).expect("finite");
+    assert_eq!(a.as_slice(), want.a.as_slice());
+}
+
+#[test]
+fn only_structural_nonzeros_are_written() {
+    for g in all_f64() {
+        let r = reference(g.model);
+        let nominal = r.model.scope.nominal_values();
+        let ss = r.sym.state_space();
+        let mats = [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys];
+        // The pattern constants are the structural non-zeros of the expressions.
+        for (k, m) in mats.iter().enumerate() {
+            let want: Vec<(usize, usize)> = (0..m.ncols())
+                .flat_map(|j| (0..m.nrows()).map(move |i| (i, j)))
+                .filter(|&(i, j)| !m[(i, j)].is_zero())
+                .collect();
+            assert_eq!(g.nonzeros[k], want.as_slice(), "{}: pattern of matrix {k}", g.model);
+        }
+        // A kernel writing into arrays full of a sentinel leaves the other entries alone.
+        let got = (g.abcd)(&nominal).expect("nominal is valid");
+        let want = r.sym.evaluate(&nominal).expect("nominal");
+        for (k, m) in [&want.a, &want.b, &want.c, &want.d].iter().enumerate() {
+            assert!(rel_diff(&got[k], m.as_slice()) <= 1e-12, "{}", g.model);
+        }
+    }
+    use gen64::shimmy as s;
+    let (mut a, mut b, mut c, mut d, mut w) = ([-3.5; s::A_LEN], [-3.5; s::B_LEN], [-3.5; s::C_LEN], [-3.5; s::D_LEN], [0.0; s::WORK_LEN]);
+    s::eval_abcd(&s::NOMINAL, &mut a, &mut b, &mut c, &mut d, &mut w).expect("nominal");
+    for (arr, nz, rows) in [(&a[..], &s::A_NONZEROS[..], s::N_STATES), (&b[..], &s::B_NONZEROS[..], s::N_STATES), (&c[..], &s::C_NONZEROS[..], s::N_OUTPUTS), (&d[..], &s::D_NONZEROS[..], s::N_OUTPUTS)] {
+        for (idx, x) in arr.iter().enumerate() {
+            let structural = nz.contains(&(idx % rows, idx / rows));
+            assert_eq!(*x == -3.5, !structural, "entry {idx}");
+        }
+    }
+}
+
+#[test]
+fn params_struct_and_state_space_value() {
+    use gen64::bicycle as b;
+    let p = b::Params::NOMINAL;
+    assert_eq!(p.to_array(), b::NOMINAL);
+    assert_eq!(b::Params::from_array(&b::NOMINAL), p);
+    assert_eq!(b::Params::default(), p);
+    let mut ss = b::StateSpace::new();
+    let mut q = p;
+    q.v = 5.0;
+    ss.evaluate(&q).expect("valid");
+    let r = reference("bicycle");
+    let want = r.sym.evaluate(&q.to_array()).expect("valid");
+    assert!(rel_diff(ss.a(), want.a.as_slice()) <= 1e-12);
+    assert!(rel_diff(ss.b(), want.b.as_slice()) <= 1e-12);
+    assert_eq!(b::PARAM_UNITS[b::PARAM_NAMES.iter().position(|n| *n == "v").expect("v")], "m/s");
+}
+
+#[test]
+fn generation_is_deterministic() {
+    let dir = env!("OUT_DIR");
+    let first = std::fs::read_to_string(format!("{dir}/smd_first.rs")).expect("file");
+    let again = std::fs::read_to_string(format!("{dir}/smd_again.rs")).expect("file");
+    assert_eq!(first, again, "smd generated in a fresh pool and after other models differ");
+    let m = models::build("bicycle", &[]).expect("bicycle");
+    let opts = eom_codegen::EmitOptions::default();
+    let x = eom_codegen::emit_model(&m, &opts).expect("emit").source;
+    let _other = eom_codegen::emit_model(&models::build("chain3", &[]).expect("chain"), &opts).expect("emit");
+    let y = eom_codegen::emit_model(&models::build("bicycle", &[]).expect("bicycle"), &opts).expect("emit").source;
+    assert_eq!(x, y);
+}
+
+#[test]
+fn generated_libm_code_uses_core_only() {
+    let dir = env!("OUT_DIR");
+    for entry in std::fs::read_dir(dir).expect("OUT_DIR") {
+        let path = entry.expect("entry").path();
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default().to_string();
+        if !name.ends_with(".rs") || name.contains("_std") || name == "generated.rs" {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("read");
+        assert!(!text.contains("std::") && !text.contains(".sin(") && !text.contains(".sqrt("), "{name} needs std");
+    }
+}
+
+#[test]
+fn bad_options_are_typed_errors_naming_the_option() {
+    use eom_codegen::{CodegenError, EmitOptions, emit_model};
+    let m = models::build("smd", &[]).expect("smd");
+    let e = emit_model(&m, &EmitOptions::default().module("Not A Module")).expect_err("bad module");
+    assert!(matches!(e, CodegenError::BadOption { option: "module", .. }), "{e}");
+    let e = emit_model(&m, &EmitOptions::default().fix("mass", 2.0)).expect_err("unknown parameter");
+    assert!(e.to_string().contains("mass") && e.to_string().contains("m, k, c"), "{e}");
+    let e = emit_model(&m, &EmitOptions::default().fix("m", 0.0)).expect_err("division by zero");
+    assert!(matches!(e, CodegenError::BadOption { option: "fix", .. }), "{e}");
+    let bike = models::build("bicycle", &[]).expect("bicycle");
+    let e = emit_model(&bike, &EmitOptions::default().fix("lambda", std::f64::consts::FRAC_PI_2)).expect_err("outside");
+    assert!(matches!(e, CodegenError::BadOption { option: "fix", .. }) && e.to_string().contains("steer hinge"), "{e}");
+    let e = emit_model(&m, &EmitOptions::default().max_temporaries(0)).expect_err("zero chunk");
+    assert!(matches!(e, CodegenError::BadOption { option: "max_temporaries", .. }), "{e}");
+    let e = eom_codegen::build::Generate::model("bicycel").emit().expect_err("unknown model");
+    assert!(e.to_string().contains("bicycle"), "{e}");
+}
+
+/// Formatting snapshot of a tiny model (the only exact-text test).
+#[test]
+fn smd_eval_ab_formatting_snapshot() {
+    let m = models::build("smd", &[]).expect("smd");
+    let src = eom_codegen::emit_model(&m, &eom_codegen::EmitOptions::default()).expect("emit").source;
+    let start = src.find("    pub fn eval_ab(").expect("eval_ab");
+    let end = start + src[start..].find("\n    }\n").expect("end") + 7;
+    let expected = SMD_EVAL_AB;
+    assert_eq!(&src[start..end], expected, "formatting of smd's eval_ab changed:\n{}", &src[start..end]);
+}
+
+const SMD_EVAL_AB: &str = r#"    pub fn eval_ab(
+        p: &[f64; N_PARAMS],
+        a: &mut [f64; A_LEN],
+        b: &mut [f64; B_LEN],
+        work: &mut [f64; WORK_LEN],
+    ) -> Result<(), Error> {
+        let _ = work;
+        let p_m: f64 = p[0];
+        let p_k: f64 = p[1];
+        let p_c: f64 = p[2];
+        let t0: f64 = 1.0 / p_m;
+        let t1: f64 = t0 * p_k;
+        let t2: f64 = t0 * p_c;
+        let av0 = p_m.abs();
+        let ok0: bool = (av0 > 0.0) & (av0 < f64::INFINITY);
+        if !(ok0) {
+            return Err(validity_error(&[ok0]));
+        }
+        let sum: f64 = t1 + (t2 + t0);
+        if !sum.is_finite() {
+            if let Some(e) = non_finite(&[t1, t2, t0], &EVAL_AB_ENTRIES) {
+                return Err(e);
+            }
+        }
+        a[1] = -t1;
+        a[2] = 1.0;
+        a[3] = -t2;
+        b[1] = t0;
+        Ok(())
+    }
+"#;
