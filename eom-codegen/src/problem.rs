@@ -159,10 +159,10 @@ impl Problem {
             .iter()
             .map(|c| match c {
                 ValidityCheck::Pivot { what, value, row } => {
-                    Check { what: what.clone(), pivot: true, value: *value, others: row.clone(), nominal_ratio: 0.0 }
+                    Check { what: what.to_string(), pivot: true, value: *value, others: row.clone(), nominal_ratio: 0.0 }
                 }
                 ValidityCheck::Negligible { what, value, scale } => {
-                    Check { what: what.clone(), pivot: false, value: *value, others: scale.clone(), nominal_ratio: 0.0 }
+                    Check { what: what.to_string(), pivot: false, value: *value, others: scale.clone(), nominal_ratio: 0.0 }
                 }
             })
             .collect();

@@ -18,7 +18,7 @@ pub use assemble::{Assembled, RowLabel, assemble};
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
-pub use reduce::{CheckLabel, Coord, Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
+pub use reduce::{CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
 
 use crate::error::SymError;
 use crate::expr::Expr;

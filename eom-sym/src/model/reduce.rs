@@ -31,7 +31,7 @@ use crate::error::SymError;
 use crate::expr::Expr;
 use crate::matrix::{SparseMatrix, Triplets};
 use crate::scalar::Scalar;
-use crate::tape::{Tape, TapeWorkspace};
+use crate::tape::Tape;
 use eom_num::{SignalNames, StateSpace};
 use nalgebra::DMatrix;
 
@@ -591,9 +591,21 @@ pub struct SymbolicStateSpace {
     pub reduction: Reduction<Expr>,
     /// Parameters in the order values are given.
     pub params: Vec<Expr>,
+    compiled: CompiledStateSpace,
+}
+
+/// The numeric side of a [`SymbolicStateSpace`]: a compiled tape of every entry of A, B, C,
+/// D and `phys` plus the validity checks. It holds no expressions, so it is `Send + Sync`
+/// and can be shared by the threads of a parallel sweep.
+#[derive(Clone, Debug)]
+pub struct CompiledStateSpace {
     tape: Tape,
+    shapes: [(usize, usize); 5],
     n_matrix: usize,
     check_layout: Vec<(usize, usize, bool)>,
+    check_labels: Vec<CheckLabel>,
+    names: SignalNames,
+    param_names: Vec<String>,
 }
 
 impl SymbolicStateSpace {
@@ -602,7 +614,9 @@ impl SymbolicStateSpace {
     pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, SymError> {
         let ss = &reduction.state_space;
         let mut roots: Vec<Expr> = Vec::new();
-        for m in [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys] {
+        let mut shapes = [(0, 0); 5];
+        for (k, m) in [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys].into_iter().enumerate() {
+            shapes[k] = (m.nrows(), m.ncols());
             roots.extend(m.iter().copied());
         }
         let n_matrix = roots.len();
@@ -623,7 +637,16 @@ impl SymbolicStateSpace {
             }
         }
         let tape = Tape::new(&roots, params)?;
-        Ok(SymbolicStateSpace { reduction, params: params.to_vec(), tape, n_matrix, check_layout: layout })
+        let compiled = CompiledStateSpace {
+            tape,
+            shapes,
+            n_matrix,
+            check_layout: layout,
+            check_labels: reduction.checks.iter().map(|c| c.label().clone()).collect(),
+            names: ss.names.clone(),
+            param_names: params.iter().map(|p| p.to_string()).collect(),
+        };
+        Ok(SymbolicStateSpace { reduction, params: params.to_vec(), compiled })
     }
 
     /// The expression state-space model.
@@ -631,27 +654,59 @@ impl SymbolicStateSpace {
         &self.reduction.state_space
     }
 
+    /// The compiled numeric side (shareable across threads).
+    pub fn compiled(&self) -> &CompiledStateSpace {
+        &self.compiled
+    }
+
     /// The compiled tape (matrix entries of A, B, C, D, phys column-major, then the checks).
     pub fn tape(&self) -> &Tape {
-        &self.tape
+        &self.compiled.tape
     }
 
     /// Evaluate at parameter values (in the order of [`SymbolicStateSpace::params`]). Returns
     /// [`SymError::PivotBreakdown`] naming the first check that fails instead of numbers when
     /// the point is outside the validity region.
     pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, SymError> {
-        let mut out = vec![0.0; self.tape.n_outputs()];
-        let mut ws = TapeWorkspace::default();
-        let mut work = vec![0.0; self.tape.work_len()];
-        let _ = &mut ws;
-        self.tape.eval_into(values, &mut out, &mut work)?;
-        for ((start, len, pivot), check) in self.check_layout.iter().zip(&self.reduction.checks) {
+        self.compiled.evaluate(values)
+    }
+}
+
+/// Reusable buffers for [`CompiledStateSpace::evaluate_with`].
+#[derive(Clone, Debug, Default)]
+pub struct EvalWorkspace {
+    out: Vec<f64>,
+    work: Vec<f64>,
+}
+
+impl CompiledStateSpace {
+    /// Parameter names in the order values are given.
+    pub fn param_names(&self) -> &[String] {
+        &self.param_names
+    }
+
+    /// Number of states.
+    pub fn states(&self) -> usize {
+        self.shapes[0].0
+    }
+
+    /// Evaluate at parameter values (see [`SymbolicStateSpace::evaluate`]).
+    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, SymError> {
+        self.evaluate_with(values, &mut EvalWorkspace::default())
+    }
+
+    /// [`CompiledStateSpace::evaluate`] reusing the buffers of `ws`.
+    pub fn evaluate_with(&self, values: &[f64], ws: &mut EvalWorkspace) -> Result<StateSpace<f64>, SymError> {
+        ws.out.resize(self.tape.n_outputs(), 0.0);
+        ws.work.resize(self.tape.work_len(), 0.0);
+        self.tape.eval_into(values, &mut ws.out, &mut ws.work)?;
+        let out = &ws.out;
+        for ((start, len, pivot), label) in self.check_layout.iter().zip(&self.check_labels) {
             let v = out[*start];
             let others = &out[start + 1..start + len];
             if !ValidityCheck::<f64>::holds(v, others, *pivot) {
                 return Err(SymError::PivotBreakdown(format!(
-                    "{} (value {v:.3e}, largest entry of its row {:.3e})",
-                    check.what(),
+                    "{label} (value {v:.3e}, largest entry of its row {:.3e})",
                     others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
                 )));
             }
@@ -659,18 +714,23 @@ impl SymbolicStateSpace {
         if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {
             return Err(SymError::EvalNonFinite { what: format!("state-space entry {k}"), value: out[k] });
         }
-        let ss = &self.reduction.state_space;
         let mut k = 0;
-        let mut take = |r: usize, c: usize| {
+        let mut take = |(r, c): (usize, usize)| {
             let m = DMatrix::from_column_slice(r, c, &out[k..k + r * c]);
             k += r * c;
             m
         };
-        let a = take(ss.a.nrows(), ss.a.ncols());
-        let b = take(ss.b.nrows(), ss.b.ncols());
-        let c = take(ss.c.nrows(), ss.c.ncols());
-        let d = take(ss.d.nrows(), ss.d.ncols());
-        let phys = take(ss.phys.nrows(), ss.phys.ncols());
-        Ok(StateSpace { a, b, c, d, phys, names: ss.names.clone() })
+        let a = take(self.shapes[0]);
+        let b = take(self.shapes[1]);
+        let c = take(self.shapes[2]);
+        let d = take(self.shapes[3]);
+        let phys = take(self.shapes[4]);
+        Ok(StateSpace { a, b, c, d, phys, names: self.names.clone() })
+    }
+
+    /// Only the state matrix A at a point, with the validity checks (the inner loop of a sweep).
+    pub fn evaluate_a(&self, values: &[f64], ws: &mut EvalWorkspace) -> Result<DMatrix<f64>, SymError> {
+        let ss = self.evaluate_with(values, ws)?;
+        Ok(ss.a)
     }
 }
