@@ -10,7 +10,6 @@
 mod analyze;
 mod analyze_text;
 mod codegen;
-mod compiled;
 mod error;
 mod format;
 mod list;

@@ -7,7 +7,6 @@
 //! region of the symbolic reduction (a recorded pivot breaks down) is evaluated by the robust
 //! (SVD) path instead, and every such value is reported.
 
-use crate::compiled::CompiledModel;
 use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
@@ -194,7 +193,7 @@ pub fn sweep(
         .position(|n| n == &spec.name)
         .ok_or_else(|| CliError::Inconsistent(format!("`{}` not in the model", spec.name)))?;
     let (compiled, unavailable) = match Linearizer::new(&model).symbolic() {
-        Ok(sym) => (Some(CompiledModel::new(&sym, &base)?), None),
+        Ok(sym) => (Some(sym.compiled().clone()), None),
         Err(e) => (None, Some(e.to_string())),
     };
 
@@ -213,8 +212,8 @@ pub fn sweep(
             };
             let mut v = base.clone();
             v[k] = x;
-            match c.state_matrix(&v) {
-                Ok(a) => Ok(a),
+            match c.evaluate(&v) {
+                Ok(ss) => Ok(ss.a),
                 Err(SymError::PivotBreakdown(why)) => {
                     record(x, why);
                     recipe.robust_state_matrix(&spec.name, x)

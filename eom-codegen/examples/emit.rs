@@ -13,7 +13,9 @@ fn main() {
             "--f32" => opts.f32(),
             "--std" => opts.std_math(),
             "--simplify" => opts.simplify(true),
-            "--chunk" => opts.max_temporaries(args.next().and_then(|n| n.parse().ok()).expect("--chunk N")),
+            "--chunk" => {
+                opts.max_temporaries(args.next().and_then(|n| n.parse().ok()).expect("--chunk N"))
+            }
             other => panic!("unknown option {other}"),
         };
     }
@@ -39,5 +41,10 @@ fn main() {
             f.chunks
         );
     }
-    eprintln!("  DAG of A..D: {} nodes, {} operations {:?}", e.stats.dag_nodes_abcd, e.stats.dag_ops_abcd.total(), e.stats.dag_ops_abcd);
+    eprintln!(
+        "  DAG of A..D: {} nodes, {} operations {:?}",
+        e.stats.dag_nodes_abcd,
+        e.stats.dag_ops_abcd.total(),
+        e.stats.dag_ops_abcd
+    );
 }

@@ -32,12 +32,12 @@ libm = "0.2"
 TOML
 printf '#![no_std]\ninclude!("../generated.rs");\n' > "$dir/src/lib.rs"
 cd "$dir"
-cargo build --release --offline -q
-cargo build --offline -q
+cargo build --release --offline -q --target-dir "$dir/target"
+cargo build --offline -q --target-dir "$dir/target"
 for profile in release dev; do
     touch src/lib.rs
     start=$(date +%s.%N)
-    if [ "$profile" = release ]; then cargo build --release --offline -q; else cargo build --offline -q; fi
+    if [ "$profile" = release ]; then cargo build --release --offline -q --target-dir "$dir/target"; else cargo build --offline -q --target-dir "$dir/target"; fi
     end=$(date +%s.%N)
     echo "$model: cargo build ($profile) of the generated crate: $(echo "$end - $start" | bc) s"
 done

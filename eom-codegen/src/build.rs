@@ -1,14 +1,12 @@
 //! The `build.rs` helper: generate a model's module into `OUT_DIR`.
 //!
 //! ```no_run
-//! // build.rs of a controller crate
-//! fn main() {
-//!     println!("cargo:rerun-if-changed=build.rs");
-//!     eom_codegen::build::Generate::model("bicycle")
-//!         .f32()
-//!         .write_to_out_dir("bicycle.rs")
-//!         .expect("code generation");
-//! }
+//! // build.rs of a controller crate, in `fn main()`:
+//! println!("cargo:rerun-if-changed=build.rs");
+//! eom_codegen::build::Generate::model("bicycle")
+//!     .f32()
+//!     .write_to_out_dir("bicycle.rs")
+//!     .expect("code generation");
 //! // src/lib.rs:
 //! // include!(concat!(env!("OUT_DIR"), "/bicycle.rs"));   // `pub mod bicycle { … }`
 //! ```
@@ -38,11 +36,17 @@ pub struct Generate {
 impl Generate {
     /// A built-in model by name (`"bicycle"`, `"chain50"`, …; see `models::catalogue`).
     pub fn model(name: &str) -> Self {
-        Generate { source: Source::Named(name.to_string(), Vec::new()), opts: EmitOptions::default() }
+        Generate {
+            source: Source::Named(name.to_string(), Vec::new()),
+            opts: EmitOptions::default(),
+        }
     }
     /// A model built by the caller.
     pub fn from_model(model: Model<Expr>) -> Self {
-        Generate { source: Source::Model(Box::new(model)), opts: EmitOptions::default() }
+        Generate {
+            source: Source::Model(Box::new(model)),
+            opts: EmitOptions::default(),
+        }
     }
     /// Nominal value of a parameter of a built-in model (where the pivots are chosen and the
     /// default of `Params::NOMINAL`); ignored for [`Generate::from_model`].
@@ -132,7 +136,13 @@ pub fn write_if_changed(path: &Path, text: &str) -> Result<(), CodegenError> {
         return Ok(());
     }
     if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir).map_err(|e| CodegenError::Io { path: dir.display().to_string(), source: e })?;
+        std::fs::create_dir_all(dir).map_err(|e| CodegenError::Io {
+            path: dir.display().to_string(),
+            source: e,
+        })?;
     }
-    std::fs::write(path, text).map_err(|e| CodegenError::Io { path: path.display().to_string(), source: e })
+    std::fs::write(path, text).map_err(|e| CodegenError::Io {
+        path: path.display().to_string(),
+        source: e,
+    })
 }

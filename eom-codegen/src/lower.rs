@@ -71,7 +71,11 @@ pub(crate) enum Rhs {
     /// `c0 + Σ c·x`.
     Sum { c0: f64, terms: Vec<(Operand, f64)> },
     /// `coef · Π num / Π den`.
-    Prod { coef: f64, num: Vec<Operand>, den: Vec<Operand> },
+    Prod {
+        coef: f64,
+        num: Vec<Operand>,
+        den: Vec<Operand>,
+    },
     /// `f(x)`.
     Call1(Fn1, Operand),
     /// `f(x, y)`.
@@ -255,7 +259,12 @@ pub(crate) fn lower(dag: &Dag, roots: &[Expr], pivots: &[Expr]) -> Result<Lowere
             analysis.class.insert(*e, v.op.key());
         }
     }
-    analysis.shared_denominators = first.den_count.iter().filter(|(_, n)| **n >= 2).map(|(k, _)| *k).collect();
+    analysis.shared_denominators = first
+        .den_count
+        .iter()
+        .filter(|(_, n)| **n >= 2)
+        .map(|(k, _)| *k)
+        .collect();
     for p in pivots {
         let Some(v) = first.memo.get(p) else { continue };
         if matches!(v.op, Operand::Lit(_)) {
@@ -277,16 +286,22 @@ pub(crate) fn lower(dag: &Dag, roots: &[Expr], pivots: &[Expr]) -> Result<Lowere
     let mut out = Vec::with_capacity(roots.len());
     for r in roots {
         let v = l.memo[r];
-        out.push(if v.scale == 1.0 || v.scale == -1.0 || matches!(v.op, Operand::Lit(_)) {
-            match v.op {
-                Operand::Lit(x) => (Operand::Lit(x * v.scale), false),
-                op => (op, v.scale == -1.0),
-            }
-        } else {
-            (l.materialize(v), false)
-        });
+        out.push(
+            if v.scale == 1.0 || v.scale == -1.0 || matches!(v.op, Operand::Lit(_)) {
+                match v.op {
+                    Operand::Lit(x) => (Operand::Lit(x * v.scale), false),
+                    op => (op, v.scale == -1.0),
+                }
+            } else {
+                (l.materialize(v), false)
+            },
+        );
     }
-    let mut lowered = Lowered { insts: l.insts, n_temps: l.n_temps, roots: out };
+    let mut lowered = Lowered {
+        insts: l.insts,
+        n_temps: l.n_temps,
+        roots: out,
+    };
     common_pairs(&mut lowered);
     renumber(&mut lowered);
     Ok(lowered)
@@ -312,7 +327,11 @@ fn pairs_of(rhs: &Rhs, out: &mut Vec<Pair>) {
             for i in 0..num.len() {
                 for j in i + 1..num.len() {
                     let (x, y) = (num[i].key(), num[j].key());
-                    out.push(if x <= y { Pair::Mul(x, y) } else { Pair::Mul(y, x) });
+                    out.push(if x <= y {
+                        Pair::Mul(x, y)
+                    } else {
+                        Pair::Mul(y, x)
+                    });
                 }
             }
         }
@@ -320,7 +339,11 @@ fn pairs_of(rhs: &Rhs, out: &mut Vec<Pair>) {
             for i in 0..terms.len() {
                 for j in i + 1..terms.len() {
                     let ((x, cx), (y, cy)) = (terms[i], terms[j]);
-                    let ((a, ca), (b, cb)) = if x.key() <= y.key() { ((x, cx), (y, cy)) } else { ((y, cy), (x, cx)) };
+                    let ((a, ca), (b, cb)) = if x.key() <= y.key() {
+                        ((x, cx), (y, cy))
+                    } else {
+                        ((y, cy), (x, cx))
+                    };
                     let ratio = cb / ca;
                     // Only exact ratios: `ca·(a + ratio·b)` must be `ca·a + cb·b` term by term.
                     if ratio * ca == cb && ratio.is_finite() {
@@ -358,7 +381,11 @@ fn common_pairs(l: &mut Lowered) {
         if budget == 0 {
             return;
         }
-        let Some((&pair, _)) = counts.iter().filter(|(_, n)| **n >= 2).max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0))) else {
+        let Some((&pair, _)) = counts
+            .iter()
+            .filter(|(_, n)| **n >= 2)
+            .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+        else {
             return;
         };
         let users: Vec<usize> = (0..l.insts.len())
@@ -369,26 +396,42 @@ fn common_pairs(l: &mut Lowered) {
             .collect();
         // An instruction that is exactly the pair (coefficient 1, nothing else) and comes
         // before every other user can be reused.
-        let exact = users.iter().copied().find(|&i| match (&l.insts[i].rhs, pair) {
-            (Rhs::Prod { coef, num, den }, Pair::Mul(..)) => *coef == 1.0 && num.len() == 2 && den.is_empty(),
-            // `a + ratio·b` exactly: the coefficient of the lower-keyed term is 1 (then the other
-            // one is `ratio`, since the instruction contains the pair).
-            (Rhs::Sum { c0, terms }, Pair::Add(..)) => {
-                *c0 == 0.0 && terms.len() == 2 && {
-                    let low = if terms[0].0.key() <= terms[1].0.key() { terms[0] } else { terms[1] };
-                    low.1 == 1.0
+        let exact = users
+            .iter()
+            .copied()
+            .find(|&i| match (&l.insts[i].rhs, pair) {
+                (Rhs::Prod { coef, num, den }, Pair::Mul(..)) => {
+                    *coef == 1.0 && num.len() == 2 && den.is_empty()
                 }
-            }
-            _ => false,
-        });
+                // `a + ratio·b` exactly: the coefficient of the lower-keyed term is 1 (then the other
+                // one is `ratio`, since the instruction contains the pair).
+                (Rhs::Sum { c0, terms }, Pair::Add(..)) => {
+                    *c0 == 0.0 && terms.len() == 2 && {
+                        let low = if terms[0].0.key() <= terms[1].0.key() {
+                            terms[0]
+                        } else {
+                            terms[1]
+                        };
+                        low.1 == 1.0
+                    }
+                }
+                _ => false,
+            });
         let (target, first_user) = match exact {
             Some(i) if i == users[0] => (Operand::Temp(l.insts[i].def), 1),
             _ => {
                 let def = l.n_temps;
                 l.n_temps += 1;
                 let rhs = match pair {
-                    Pair::Mul(a, b) => Rhs::Prod { coef: 1.0, num: vec![operand_of(a), operand_of(b)], den: vec![] },
-                    Pair::Add(a, b, r) => Rhs::Sum { c0: 0.0, terms: vec![(operand_of(a), 1.0), (operand_of(b), f64::from_bits(r))] },
+                    Pair::Mul(a, b) => Rhs::Prod {
+                        coef: 1.0,
+                        num: vec![operand_of(a), operand_of(b)],
+                        den: vec![],
+                    },
+                    Pair::Add(a, b, r) => Rhs::Sum {
+                        c0: 0.0,
+                        terms: vec![(operand_of(a), 1.0), (operand_of(b), f64::from_bits(r))],
+                    },
                 };
                 l.insts.insert(users[0], Inst { def, rhs });
                 (Operand::Temp(def), 0)
@@ -409,9 +452,15 @@ fn common_pairs(l: &mut Lowered) {
                     num.push(target);
                 }
                 (Rhs::Sum { terms, .. }, Pair::Add(a, b, _)) => {
-                    let ia = terms.iter().position(|t| t.0.key() == a).expect("pair member");
+                    let ia = terms
+                        .iter()
+                        .position(|t| t.0.key() == a)
+                        .expect("pair member");
                     let ca = terms.remove(ia).1;
-                    let ib = terms.iter().position(|t| t.0.key() == b).expect("pair member");
+                    let ib = terms
+                        .iter()
+                        .position(|t| t.0.key() == b)
+                        .expect("pair member");
                     terms.remove(ib);
                     terms.push((target, ca));
                     // Keep a positive term first (no leading negation).
@@ -442,7 +491,10 @@ fn renumber(l: &mut Lowered) {
     for mut inst in std::mem::take(&mut l.insts) {
         match &mut inst.rhs {
             Rhs::Sum { terms, .. } => terms.iter_mut().for_each(|t| resolve(&mut t.0, &alias)),
-            Rhs::Prod { num, den, .. } => num.iter_mut().chain(den.iter_mut()).for_each(|o| resolve(o, &alias)),
+            Rhs::Prod { num, den, .. } => num
+                .iter_mut()
+                .chain(den.iter_mut())
+                .for_each(|o| resolve(o, &alias)),
             Rhs::Call1(_, x) | Rhs::SinCos(x) => resolve(x, &alias),
             Rhs::Call2(_, x, y) => {
                 resolve(x, &alias);
@@ -450,8 +502,12 @@ fn renumber(l: &mut Lowered) {
             }
         }
         let copy = match &inst.rhs {
-            Rhs::Prod { coef, num, den } if *coef == 1.0 && num.len() == 1 && den.is_empty() => Some(num[0]),
-            Rhs::Sum { c0, terms } if *c0 == 0.0 && terms.len() == 1 && terms[0].1 == 1.0 => Some(terms[0].0),
+            Rhs::Prod { coef, num, den } if *coef == 1.0 && num.len() == 1 && den.is_empty() => {
+                Some(num[0])
+            }
+            Rhs::Sum { c0, terms } if *c0 == 0.0 && terms.len() == 1 && terms[0].1 == 1.0 => {
+                Some(terms[0].0)
+            }
             _ => None,
         };
         match copy {
@@ -496,7 +552,11 @@ fn renumber(l: &mut Lowered) {
     l.n_temps = next;
 }
 
-fn run(dag: &Dag, sincos_args: HashSet<Expr>, analysis: Analysis) -> Result<Lowerer<'_>, CodegenError> {
+fn run(
+    dag: &Dag,
+    sincos_args: HashSet<Expr>,
+    analysis: Analysis,
+) -> Result<Lowerer<'_>, CodegenError> {
     let mut l = Lowerer {
         dag,
         insts: Vec::new(),
@@ -546,7 +606,11 @@ impl Lowerer<'_> {
         if let Some(o) = self.scaled_memo.get(&key) {
             return *o;
         }
-        let o = self.push(Rhs::Prod { coef: v.scale, num: vec![v.op], den: vec![] });
+        let o = self.push(Rhs::Prod {
+            coef: v.scale,
+            num: vec![v.op],
+            den: vec![],
+        });
         self.scaled_memo.insert(key, o);
         o
     }
@@ -593,16 +657,20 @@ impl Lowerer<'_> {
                 // Odd and even functions absorb a sign; abs absorbs any scale.
                 let (x, outer) = match (f, v.scale) {
                     (Func::Abs, s) => (v.op, s.abs()),
-                    (Func::Sin | Func::Tan, s) if s == -1.0 => (v.op, -1.0),
-                    (Func::Cos, s) if s == -1.0 => (v.op, 1.0),
+                    (Func::Sin | Func::Tan, -1.0) => (v.op, -1.0),
+                    (Func::Cos, -1.0) => (v.op, 1.0),
                     _ => (self.materialize(v), 1.0),
                 };
                 let op = match f {
-                    Func::Sin | Func::Cos if self.sincos_args.contains(&a) && !matches!(x, Operand::Lit(_)) => {
+                    Func::Sin | Func::Cos
+                        if self.sincos_args.contains(&a) && !matches!(x, Operand::Lit(_)) =>
+                    {
                         let (s, c) = match self.sincos_memo.get(&x.key()) {
                             Some(sc) => *sc,
                             None => {
-                                let Operand::Temp(t) = self.push(Rhs::SinCos(x)) else { unreachable!("not a literal") };
+                                let Operand::Temp(t) = self.push(Rhs::SinCos(x)) else {
+                                    unreachable!("not a literal")
+                                };
                                 let sc = (Operand::Temp(t), Operand::Temp(t + 1));
                                 self.sincos_memo.insert(x.key(), sc);
                                 sc
@@ -651,7 +719,10 @@ impl Lowerer<'_> {
             return Val::of(Operand::Lit(c0));
         }
         if merged.len() == 1 && c0 == 0.0 {
-            return Val { op: merged[0].0, scale: merged[0].1 };
+            return Val {
+                op: merged[0].0,
+                scale: merged[0].1,
+            };
         }
         // Canonical sign: the first term positive (so `a − b` and `b − a` share).
         let sign = if merged[0].1 < 0.0 { -1.0 } else { 1.0 };
@@ -665,9 +736,18 @@ impl Lowerer<'_> {
         if c0 == 0.0 {
             c0 = 0.0;
         }
-        let key = (c0.to_bits(), merged.iter().map(|t| (t.0.key(), t.1.to_bits())).collect::<Vec<_>>());
+        let key = (
+            c0.to_bits(),
+            merged
+                .iter()
+                .map(|t| (t.0.key(), t.1.to_bits()))
+                .collect::<Vec<_>>(),
+        );
         if let Some(o) = self.sum_memo.get(&key) {
-            return Val { op: *o, scale: sign };
+            return Val {
+                op: *o,
+                scale: sign,
+            };
         }
         let o = self.push(Rhs::Sum { c0, terms: merged });
         self.sum_memo.insert(key, o);
@@ -709,17 +789,17 @@ impl Lowerer<'_> {
         items.sort_by(|a, b| a.0.key().cmp(&b.0.key()).then(a.1.cmp(&b.1)));
         let mut merged: Vec<(Operand, Rational, Option<OpKey>)> = Vec::with_capacity(items.len());
         for it in items {
-            if let Some(last) = merged.last_mut() {
-                if last.0 == it.0 {
-                    let same_sign = last.1.is_negative() == it.1.is_negative();
-                    let nonzero = it.2.is_some_and(|c| self.analysis.nonzero.contains(&c))
-                        || last.2.is_some_and(|c| self.analysis.nonzero.contains(&c));
-                    if same_sign || nonzero {
-                        if let Ok(s) = last.1.add(&it.1) {
-                            last.1 = s;
-                            continue;
-                        }
-                    }
+            if let Some(last) = merged.last_mut()
+                && last.0 == it.0
+            {
+                let same_sign = last.1.is_negative() == it.1.is_negative();
+                let nonzero = it.2.is_some_and(|c| self.analysis.nonzero.contains(&c))
+                    || last.2.is_some_and(|c| self.analysis.nonzero.contains(&c));
+                if (same_sign || nonzero)
+                    && let Ok(s) = last.1.add(&it.1)
+                {
+                    last.1 = s;
+                    continue;
                 }
             }
             merged.push(it);
@@ -729,11 +809,17 @@ impl Lowerer<'_> {
             return Val::of(Operand::Lit(coef));
         }
         if merged.len() == 1 && merged[0].1.is_one() {
-            return Val { op: merged[0].0, scale: coef };
+            return Val {
+                op: merged[0].0,
+                scale: coef,
+            };
         }
         let key: Vec<(OpKey, Rational)> = merged.iter().map(|m| (m.0.key(), m.1.clone())).collect();
         if let Some(o) = self.mono_memo.get(&key) {
-            return Val { op: *o, scale: coef };
+            return Val {
+                op: *o,
+                scale: coef,
+            };
         }
         let o = self.monomial(&merged);
         self.mono_memo.insert(key.clone(), o);
@@ -749,7 +835,9 @@ impl Lowerer<'_> {
         let mut den = Vec::new();
         for (x, r, class) in items {
             let x = *x;
-            let shared = |half: bool, l: &Self| class.is_some_and(|c| l.analysis.shared_denominators.contains(&(c, half)));
+            let shared = |half: bool, l: &Self| {
+                class.is_some_and(|c| l.analysis.shared_denominators.contains(&(c, half)))
+            };
             match classify(r) {
                 Exponent::Int(k) if k > 0 => num.push(self.pow(x, k)),
                 Exponent::Int(k) => {
@@ -781,7 +869,11 @@ impl Lowerer<'_> {
         if num.len() == 1 && den.is_empty() {
             return num[0];
         }
-        self.push(Rhs::Prod { coef: 1.0, num, den })
+        self.push(Rhs::Prod {
+            coef: 1.0,
+            num,
+            den,
+        })
     }
 
     /// `x^k`, `k ≥ 1`, by a shared square-and-multiply chain.
@@ -797,10 +889,18 @@ impl Lowerer<'_> {
         }
         let o = if k % 2 == 0 {
             let h = self.pow(x, k / 2);
-            self.push(Rhs::Prod { coef: 1.0, num: vec![h, h], den: vec![] })
+            self.push(Rhs::Prod {
+                coef: 1.0,
+                num: vec![h, h],
+                den: vec![],
+            })
         } else {
             let h = self.pow(x, k - 1);
-            self.push(Rhs::Prod { coef: 1.0, num: vec![h, x], den: vec![] })
+            self.push(Rhs::Prod {
+                coef: 1.0,
+                num: vec![h, x],
+                den: vec![],
+            })
         };
         self.pow_memo.insert((x.key(), k), o);
         o
@@ -819,7 +919,11 @@ impl Lowerer<'_> {
         if let Some(o) = self.recip_memo.get(&x.key()) {
             return *o;
         }
-        let o = self.push(Rhs::Prod { coef: 1.0, num: vec![], den: vec![x] });
+        let o = self.push(Rhs::Prod {
+            coef: 1.0,
+            num: vec![],
+            den: vec![x],
+        });
         self.recip_memo.insert(x.key(), o);
         o
     }

@@ -51,7 +51,12 @@ pub struct Functions {
 
 impl Default for Functions {
     fn default() -> Self {
-        Functions { abcd: true, ab: true, cd: true, phys: true }
+        Functions {
+            abcd: true,
+            ab: true,
+            cd: true,
+            phys: true,
+        }
     }
 }
 

@@ -22,7 +22,10 @@ pub(crate) enum Node {
     /// `c0 + Σ coef·term`.
     Sum { c0: f64, terms: Vec<(Expr, f64)> },
     /// `coef · Π base^exponent`.
-    Product { coef: f64, factors: Vec<(Expr, Rational)> },
+    Product {
+        coef: f64,
+        factors: Vec<(Expr, Rational)>,
+    },
     /// `base ^ exponent` (non-rational exponent).
     Pow(Expr, Expr),
     /// A function of one argument.
@@ -41,7 +44,10 @@ pub(crate) struct Dag {
 
 /// A 64-bit mixing step (SplitMix64 finaliser): stable across platforms and Rust versions.
 fn mix(h: u64, x: u64) -> u64 {
-    let mut z = h ^ x.wrapping_add(0x9e37_79b9_7f4a_7c15).wrapping_add(h << 6).wrapping_add(h >> 2);
+    let mut z = h ^ x
+        .wrapping_add(0x9e37_79b9_7f4a_7c15)
+        .wrapping_add(h << 6)
+        .wrapping_add(h >> 2);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
@@ -90,7 +96,9 @@ pub(crate) fn build(roots: &[Expr], param_pos: &HashMap<u32, u32>) -> Result<Dag
                 (Node::Number(x), mix(1, x.to_bits()))
             }
             ExprView::Param(i, info) => {
-                let k = *param_pos.get(i).ok_or_else(|| SymError::MissingParameter { name: info.name.clone() })?;
+                let k = *param_pos.get(i).ok_or_else(|| SymError::MissingParameter {
+                    name: info.name.clone(),
+                })?;
                 let mut h = mix(2, u64::from(k));
                 for b in info.name.bytes() {
                     h = mix(h, u64::from(b));
@@ -99,24 +107,41 @@ pub(crate) fn build(roots: &[Expr], param_pos: &HashMap<u32, u32>) -> Result<Dag
             }
             ExprView::Sum { constant, terms } => {
                 let c0 = number_of(*constant).unwrap_or(0.0);
-                let mut t: Vec<(u64, Expr, f64)> =
-                    terms.iter().map(|(x, c)| (hash[x], *x, number_of(*c).unwrap_or(f64::NAN))).collect();
+                let mut t: Vec<(u64, Expr, f64)> = terms
+                    .iter()
+                    .map(|(x, c)| (hash[x], *x, number_of(*c).unwrap_or(f64::NAN)))
+                    .collect();
                 t.sort_by(|a, b| a.0.cmp(&b.0).then(a.2.total_cmp(&b.2)));
                 let mut h = mix(3, c0.to_bits());
                 for (hx, _, c) in &t {
                     h = mix(mix(h, *hx), c.to_bits());
                 }
-                (Node::Sum { c0, terms: t.into_iter().map(|(_, x, c)| (x, c)).collect() }, h)
+                (
+                    Node::Sum {
+                        c0,
+                        terms: t.into_iter().map(|(_, x, c)| (x, c)).collect(),
+                    },
+                    h,
+                )
             }
             ExprView::Product { coef, factors } => {
                 let c = number_of(*coef).unwrap_or(f64::NAN);
-                let mut f: Vec<(u64, Expr, Rational)> = factors.iter().map(|(b, r)| (hash[b], *b, r.clone())).collect();
+                let mut f: Vec<(u64, Expr, Rational)> = factors
+                    .iter()
+                    .map(|(b, r)| (hash[b], *b, r.clone()))
+                    .collect();
                 f.sort_by(|a, b| a.0.cmp(&b.0).then(a.2.cmp(&b.2)));
                 let mut h = mix(4, c.to_bits());
                 for (hb, _, r) in &f {
                     h = mix(mix(h, *hb), r.to_f64().to_bits());
                 }
-                (Node::Product { coef: c, factors: f.into_iter().map(|(_, b, r)| (b, r)).collect() }, h)
+                (
+                    Node::Product {
+                        coef: c,
+                        factors: f.into_iter().map(|(_, b, r)| (b, r)).collect(),
+                    },
+                    h,
+                )
             }
             ExprView::Pow(a, b) => (Node::Pow(*a, *b), mix(mix(5, hash[a]), hash[b])),
             ExprView::Func(f, a) => (Node::Func(*f, *a), mix(mix(6, *f as u64), hash[a])),

@@ -2,8 +2,8 @@
 //! metadata, the structural non-zeros of each matrix, and the validity checks — after the
 //! optional partial evaluation and simplification.
 
-use crate::options::EmitOptions;
 use crate::CodegenError;
+use crate::options::EmitOptions;
 use eom_num::SignalNames;
 use eom_sym::model::{SymbolicStateSpace, ValidityCheck};
 use eom_sym::simplify::Simplifier;
@@ -96,10 +96,57 @@ pub(crate) struct Problem {
 }
 
 const KEYWORDS: [&str; 51] = [
-    "as", "break", "const", "continue", "else", "enum", "extern", "false", "fn", "for", "if", "impl", "in", "let",
-    "loop", "match", "mod", "move", "mut", "pub", "ref", "return", "static", "struct", "trait", "true", "type",
-    "unsafe", "use", "where", "while", "async", "await", "dyn", "abstract", "become", "box", "do", "final", "macro",
-    "override", "priv", "typeof", "unsized", "virtual", "yield", "try", "gen", "union", "macro_rules", "raw",
+    "as",
+    "break",
+    "const",
+    "continue",
+    "else",
+    "enum",
+    "extern",
+    "false",
+    "fn",
+    "for",
+    "if",
+    "impl",
+    "in",
+    "let",
+    "loop",
+    "match",
+    "mod",
+    "move",
+    "mut",
+    "pub",
+    "ref",
+    "return",
+    "static",
+    "struct",
+    "trait",
+    "true",
+    "type",
+    "unsafe",
+    "use",
+    "where",
+    "while",
+    "async",
+    "await",
+    "dyn",
+    "abstract",
+    "become",
+    "box",
+    "do",
+    "final",
+    "macro",
+    "override",
+    "priv",
+    "typeof",
+    "unsized",
+    "virtual",
+    "yield",
+    "try",
+    "gen",
+    "union",
+    "macro_rules",
+    "raw",
 ];
 
 /// A field name for a parameter name (already an identifier by construction of parameters).
@@ -107,7 +154,9 @@ pub(crate) fn field_ident(name: &str) -> String {
     match name {
         "self" | "Self" | "super" | "crate" => format!("{name}_"),
         "_" => "_p".to_string(),
-        n if KEYWORDS.contains(&n) && !matches!(n, "union" | "macro_rules" | "raw") => format!("r#{n}"),
+        n if KEYWORDS.contains(&n) && !matches!(n, "union" | "macro_rules" | "raw") => {
+            format!("r#{n}")
+        }
         n => n.to_string(),
     }
 }
@@ -116,7 +165,13 @@ pub(crate) fn field_ident(name: &str) -> String {
 pub(crate) fn module_ident(name: &str) -> String {
     let mut s: String = name
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
         .collect();
     while s.contains("__") {
         s = s.replace("__", "_");
@@ -125,7 +180,12 @@ pub(crate) fn module_ident(name: &str) -> String {
     if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
         return format!("model_{s}");
     }
-    if KEYWORDS.contains(&s.as_str()) || matches!(s.as_str(), "self" | "super" | "crate" | "core" | "std" | "libm") {
+    if KEYWORDS.contains(&s.as_str())
+        || matches!(
+            s.as_str(),
+            "self" | "super" | "crate" | "core" | "std" | "libm"
+        )
+    {
         return format!("{s}_model");
     }
     s
@@ -141,35 +201,61 @@ fn matrix_spec(m: &DMatrix<Expr>) -> MatrixSpec {
             }
         }
     }
-    MatrixSpec { rows: m.nrows(), cols: m.ncols(), entries }
+    MatrixSpec {
+        rows: m.nrows(),
+        cols: m.ncols(),
+        entries,
+    }
 }
 
 fn ratio(value: f64, others: &[f64]) -> f64 {
     let m = others.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    if m == 0.0 { f64::INFINITY } else { value.abs() / m }
+    if m == 0.0 {
+        f64::INFINITY
+    } else {
+        value.abs() / m
+    }
 }
 
 impl Problem {
-    pub(crate) fn new(sym: &SymbolicStateSpace, name: Option<&str>, opts: &EmitOptions) -> Result<Problem, CodegenError> {
+    pub(crate) fn new(
+        sym: &SymbolicStateSpace,
+        name: Option<&str>,
+        opts: &EmitOptions,
+    ) -> Result<Problem, CodegenError> {
         let ss = sym.state_space();
-        let mut mats: Vec<MatrixSpec> = [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys].iter().map(|m| matrix_spec(m)).collect();
+        let mut mats: Vec<MatrixSpec> = [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys]
+            .iter()
+            .map(|m| matrix_spec(m))
+            .collect();
         let mut checks: Vec<Check> = sym
             .reduction
             .checks
             .iter()
             .map(|c| match c {
-                ValidityCheck::Pivot { what, value, row } => {
-                    Check { what: what.to_string(), pivot: true, value: *value, others: row.clone(), nominal_ratio: 0.0 }
-                }
-                ValidityCheck::Negligible { what, value, scale } => {
-                    Check { what: what.to_string(), pivot: false, value: *value, others: scale.clone(), nominal_ratio: 0.0 }
-                }
+                ValidityCheck::Pivot { what, value, row } => Check {
+                    what: what.to_string(),
+                    pivot: true,
+                    value: *value,
+                    others: row.clone(),
+                    nominal_ratio: 0.0,
+                },
+                ValidityCheck::Negligible { what, value, scale } => Check {
+                    what: what.to_string(),
+                    pivot: false,
+                    value: *value,
+                    others: scale.clone(),
+                    nominal_ratio: 0.0,
+                },
             })
             .collect();
 
         // Every expression, in a fixed order, for substitution and simplification.
         let gather = |mats: &[MatrixSpec], checks: &[Check]| -> Vec<Expr> {
-            let mut v: Vec<Expr> = mats.iter().flat_map(|m| m.entries.iter().map(|e| e.2)).collect();
+            let mut v: Vec<Expr> = mats
+                .iter()
+                .flat_map(|m| m.entries.iter().map(|e| e.2))
+                .collect();
             for c in checks {
                 v.push(c.value);
                 v.extend(&c.others);
@@ -201,17 +287,27 @@ impl Problem {
         if !opts.fixed.is_empty() {
             let mut map = Vec::new();
             for (n, v) in &opts.fixed {
-                let p = params.iter().copied().find(|p| p.param_info().is_some_and(|i| &i.name == n)).ok_or_else(|| {
-                    CodegenError::BadOption {
+                let p = params
+                    .iter()
+                    .copied()
+                    .find(|p| p.param_info().is_some_and(|i| &i.name == n))
+                    .ok_or_else(|| CodegenError::BadOption {
                         option: "fix",
                         problem: format!(
                             "no parameter `{n}`; parameters are: {}",
-                            sym.params.iter().filter_map(|p| p.param_info()).map(|i| i.name).collect::<Vec<_>>().join(", ")
+                            sym.params
+                                .iter()
+                                .filter_map(|p| p.param_info())
+                                .map(|i| i.name)
+                                .collect::<Vec<_>>()
+                                .join(", ")
                         ),
-                    }
-                })?;
+                    })?;
                 if !v.is_finite() {
-                    return Err(CodegenError::BadOption { option: "fix", problem: format!("`{n}` = {v} is not finite") });
+                    return Err(CodegenError::BadOption {
+                        option: "fix",
+                        problem: format!("`{n}` = {v} is not finite"),
+                    });
                 }
                 map.push((p, Expr::float(*v)?));
                 fixed.push((n.clone(), *v));
@@ -253,7 +349,10 @@ impl Problem {
                 }
                 return Err(CodegenError::BadOption {
                     option: "fix",
-                    problem: format!("the fixed values leave the validity region: {} fails", c.what),
+                    problem: format!(
+                        "the fixed values leave the validity region: {} fails",
+                        c.what
+                    ),
                 });
             }
             kept.push(c);
@@ -292,5 +391,22 @@ impl Problem {
             fixed,
             simplified,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identifiers() {
+        assert_eq!(field_ident("m"), "m");
+        assert_eq!(field_ident("type"), "r#type");
+        assert_eq!(field_ident("self"), "self_");
+        assert_eq!(field_ident("_"), "_p");
+        assert_eq!(module_ident("quarter_car"), "quarter_car");
+        assert_eq!(module_ident("Mass on a spring"), "mass_on_a_spring");
+        assert_eq!(module_ident("2dof"), "model_2dof");
+        assert_eq!(module_ident("fn"), "fn_model");
     }
 }

@@ -1,10 +1,10 @@
 //! From lowered instructions to Rust tokens: function bodies, chunking through the work
 //! buffer, the validity checks, the finiteness check and the sparse stores.
 
+use crate::CodegenError;
 use crate::lower::{CodeOps, Fn1, Fn2, Inst, Lowered, Operand, Rhs};
 use crate::options::{MathLib, Precision};
 use crate::problem::{Check, Mat, Problem};
-use crate::CodegenError;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::HashMap;
@@ -63,8 +63,13 @@ impl Num {
             Precision::F64 => format!("{:?}", v.abs()),
             Precision::F32 => format!("{:?}", (v as f32).abs()),
         };
-        let l = Literal::from_str(&text).map_err(|e| CodegenError::Syntax(format!("literal {text}: {e}")))?;
-        Ok(if v < 0.0 || (v == 0.0 && v.is_sign_negative()) { quote!(-#l) } else { quote!(#l) })
+        let l = Literal::from_str(&text)
+            .map_err(|e| CodegenError::Syntax(format!("literal {text}: {e}")))?;
+        Ok(if v < 0.0 || (v == 0.0 && v.is_sign_negative()) {
+            quote!(-#l)
+        } else {
+            quote!(#l)
+        })
     }
 
     /// The largest `M` with `tol · M ≤ av` in this precision (rounded products), capped at the
@@ -115,7 +120,11 @@ impl Ctx<'_> {
     /// An operand in receiver position (`x.abs()`): literals need parentheses.
     fn receiver(&self, o: Operand) -> Result<TokenStream, CodegenError> {
         let t = self.operand(o)?;
-        Ok(if matches!(o, Operand::Lit(_)) { quote!((#t)) } else { t })
+        Ok(if matches!(o, Operand::Lit(_)) {
+            quote!((#t))
+        } else {
+            t
+        })
     }
 
     pub(crate) fn param_local(&self, k: u32) -> Ident {
@@ -151,7 +160,11 @@ impl Ctx<'_> {
                         let l = self.num.lit(mag, "coefficient")?;
                         quote!(#l * #xv)
                     };
-                    if *c > 0.0 { pos.push(term) } else { neg.push(term) }
+                    if *c > 0.0 {
+                        pos.push(term)
+                    } else {
+                        neg.push(term)
+                    }
                 }
                 match (pos.is_empty(), neg.is_empty()) {
                     (true, true) => quote!(0.0),
@@ -175,9 +188,16 @@ impl Ctx<'_> {
                 for x in num {
                     factors.push(self.operand(*x)?);
                 }
-                let mut e = if factors.is_empty() { quote!(1.0) } else { balanced(&factors, quote!(*), false) };
+                let mut e = if factors.is_empty() {
+                    quote!(1.0)
+                } else {
+                    balanced(&factors, quote!(*), false)
+                };
                 if !den.is_empty() {
-                    let d: Vec<TokenStream> = den.iter().map(|x| self.operand(*x)).collect::<Result<_, _>>()?;
+                    let d: Vec<TokenStream> = den
+                        .iter()
+                        .map(|x| self.operand(*x))
+                        .collect::<Result<_, _>>()?;
                     let d = balanced(&d, quote!(*), true);
                     if factors.len() > 1 {
                         e = quote!((#e));
@@ -252,7 +272,10 @@ impl Ctx<'_> {
         let ty = &self.ty;
         let rhs = self.rhs(&inst.rhs)?;
         Ok(if inst.rhs.defs() == 2 {
-            let (s, c) = (format_ident!("t{}", inst.def), format_ident!("t{}", inst.def + 1));
+            let (s, c) = (
+                format_ident!("t{}", inst.def),
+                format_ident!("t{}", inst.def + 1),
+            );
             quote!(let (#s, #c): (#ty, #ty) = #rhs;)
         } else {
             let t = format_ident!("t{}", inst.def);
@@ -313,21 +336,44 @@ pub(crate) fn plan(spec: &FnSpec, problem: &Problem) -> Result<FnPlan, CodegenEr
         roots.push(c.value);
         roots.extend(&c.others);
     }
-    let pos: HashMap<u32, u32> = problem.param_index.iter().enumerate().map(|(k, &i)| (i, k as u32)).collect();
+    let pos: HashMap<u32, u32> = problem
+        .param_index
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| (i, k as u32))
+        .collect();
     let dag = crate::order::build(&roots, &pos)?;
-    let pivots: Vec<eom_sym::Expr> = problem.checks.iter().filter(|c| c.pivot).map(|c| c.value).collect();
+    let pivots: Vec<eom_sym::Expr> = problem
+        .checks
+        .iter()
+        .filter(|c| c.pivot)
+        .map(|c| c.value)
+        .collect();
     let lowered = crate::lower::lower(&dag, &roots, &pivots)?;
-    let outputs = where_.iter().zip(&lowered.roots[..n_out]).map(|(&(m, i, j), &(o, neg))| (m, i, j, o, neg)).collect();
+    let outputs = where_
+        .iter()
+        .zip(&lowered.roots[..n_out])
+        .map(|(&(m, i, j), &(o, neg))| (m, i, j, o, neg))
+        .collect();
     let mut k = n_out;
     let mut checks = Vec::new();
     for c in &problem.checks {
         // The checks use magnitudes (and `v == 0`), so a sign does not matter.
         let v = lowered.roots[k].0;
-        let o = lowered.roots[k + 1..k + 1 + c.others.len()].iter().map(|r| r.0).collect();
+        let o = lowered.roots[k + 1..k + 1 + c.others.len()]
+            .iter()
+            .map(|r| r.0)
+            .collect();
         k += 1 + c.others.len();
         checks.push((v, o));
     }
-    Ok(FnPlan { name: spec.name, mats: spec.mats.clone(), lowered, outputs, checks })
+    Ok(FnPlan {
+        name: spec.name,
+        mats: spec.mats.clone(),
+        lowered,
+        outputs,
+        checks,
+    })
 }
 
 /// Split the instructions into chunks of at most `max` temporaries.
@@ -359,10 +405,10 @@ pub(crate) struct Rendered {
 
 fn collect_params(ops: impl IntoIterator<Item = Operand>, used: &mut Vec<u32>) {
     for o in ops {
-        if let Operand::Param(k) = o {
-            if !used.contains(&k) {
-                used.push(k);
-            }
+        if let Operand::Param(k) = o
+            && !used.contains(&k)
+        {
+            used.push(k);
         }
     }
 }
@@ -378,7 +424,11 @@ fn param_lets(ctx: &Ctx, mut used: Vec<u32>) -> TokenStream {
     quote!(#(#lets)*)
 }
 
-pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Rendered, CodegenError> {
+pub(crate) fn render_fn(
+    ctx: &Ctx,
+    plan: &FnPlan,
+    max_temps: usize,
+) -> Result<Rendered, CodegenError> {
     let ty = &ctx.ty;
     let insts = &plan.lowered.insts;
     let ranges = chunks(insts, max_temps);
@@ -456,7 +506,10 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
             let mut ld = loads[c].clone();
             ld.sort_unstable();
             let lds = ld.iter().map(|&t| load(t));
-            let lets: Vec<TokenStream> = insts[r.clone()].iter().map(|i| ctx.inst(i)).collect::<Result<_, _>>()?;
+            let lets: Vec<TokenStream> = insts[r.clone()]
+                .iter()
+                .map(|i| ctx.inst(i))
+                .collect::<Result<_, _>>()?;
             let mut stores = Vec::new();
             for inst in &insts[r.clone()] {
                 for d in 0..inst.rhs.defs() {
@@ -508,9 +561,20 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
     body.extend(checks.lets);
     let (oks, mags) = (&checks.ok, &checks.mag);
     if distinct_checks > 0 {
-        let all: Vec<Ident> = (0..distinct_checks).map(|k| format_ident!("ok{}", k)).collect();
+        let all: Vec<TokenStream> = (0..distinct_checks)
+            .map(|k| {
+                let i = format_ident!("ok{}", k);
+                quote!(#i)
+            })
+            .collect();
+        let all = join(&all, quote!(&));
+        let all = if distinct_checks > 1 {
+            quote!((#all))
+        } else {
+            all
+        };
         body.extend(quote! {
-            if !(#(#all)&*) {
+            if !#all {
                 if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[], &[]) {
                     return Err(e);
                 }
@@ -534,17 +598,27 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
             }
         };
         let mv = Ident::new(m.variant(), Span::call_site());
-        let (i, j, k) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j), Literal::usize_unsuffixed(k));
+        let (i, j, k) = (
+            Literal::usize_unsuffixed(i),
+            Literal::usize_unsuffixed(j),
+            Literal::usize_unsuffixed(k),
+        );
         table.push(quote!((Matrix::#mv, #i, #j, #k)));
     }
     if !values.is_empty() || !checks.mags.is_empty() {
-        let vals: Vec<TokenStream> = values.iter().map(|v| ctx.operand(*v)).collect::<Result<_, _>>()?;
+        let vals: Vec<TokenStream> = values
+            .iter()
+            .map(|v| ctx.operand(*v))
+            .collect::<Result<_, _>>()?;
         let mut summands = vals.clone();
         summands.extend(checks.mags.iter().map(|m| quote!(#m)));
         let sum = balanced_sum(&summands);
         let tname = format_ident!("{}_ENTRIES", plan.name.to_uppercase());
         let n = Literal::usize_unsuffixed(table.len());
-        let doc = format!(" Computed entries of [`{}`]: matrix, row, column, index of the value.", plan.name);
+        let doc = format!(
+            " Computed entries of [`{}`]: matrix, row, column, index of the value.",
+            plan.name
+        );
         items.extend(quote! {
             #[doc = #doc]
             const #tname: [(Matrix, usize, usize, usize); #n] = [#(#table),*];
@@ -566,7 +640,11 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
         let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
         let v = ctx.operand(o)?;
         // A negation does not change finiteness, so the check above used the plain value.
-        body.extend(if neg { quote!(#arr[#idx] = -#v;) } else { quote!(#arr[#idx] = #v;) });
+        body.extend(if neg {
+            quote!(#arr[#idx] = -#v;)
+        } else {
+            quote!(#arr[#idx] = #v;)
+        });
         if neg {
             ops.neg += 1;
         }
@@ -581,7 +659,11 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
         let len = format_ident!("{}_LEN", m.lower().to_uppercase());
         quote!(#arr: &mut [#ty; #len])
     });
-    let which: Vec<String> = plan.mats.iter().map(|m| format!("`{}`", m.variant())).collect();
+    let which: Vec<String> = plan
+        .mats
+        .iter()
+        .map(|m| format!("`{}`", m.variant()))
+        .collect();
     let doc = fn_doc(ctx.problem, plan, &which.join(", "), n_chunks, work_len);
     let docs = doc.iter().map(|l| quote!(#[doc = #l]));
     items.extend(quote! {
@@ -606,8 +688,17 @@ pub(crate) fn render_fn(ctx: &Ctx, plan: &FnPlan, max_temps: usize) -> Result<Re
     })
 }
 
-fn fn_doc(problem: &Problem, plan: &FnPlan, which: &str, n_chunks: usize, work_len: usize) -> Vec<String> {
-    let mut d = vec![format!(" Evaluate {which} of `{}` at the parameter values `p` (order of [`PARAM_NAMES`]; see [`Params`] for names, nominal values and units).", problem.model)];
+fn fn_doc(
+    problem: &Problem,
+    plan: &FnPlan,
+    which: &str,
+    n_chunks: usize,
+    work_len: usize,
+) -> Vec<String> {
+    let mut d = vec![format!(
+        " Evaluate {which} of `{}` at the parameter values `p` (order of [`PARAM_NAMES`]; see [`Params`] for names, nominal values and units).",
+        problem.model
+    )];
     d.push(String::new());
     d.push(" Matrices are column-major: entry `(i, j)` of a matrix with `r` rows is at `i + j·r`. Only the".into());
     d.push(" structural non-zeros are written (see the `*_NONZEROS` constants); the other entries are never".into());
@@ -624,8 +715,13 @@ fn fn_doc(problem: &Problem, plan: &FnPlan, which: &str, n_chunks: usize, work_l
     d.push(String::new());
     d.push(" # Errors".into());
     d.push(String::new());
-    d.push(" * [`Error::Validity`] (naming the first failing check) outside the validity region;".into());
-    d.push(" * [`Error::NonFinite`] (naming the entry) if an entry is a NaN or an infinity.".into());
+    d.push(
+        " * [`Error::Validity`] (naming the first failing check) outside the validity region;"
+            .into(),
+    );
+    d.push(
+        " * [`Error::NonFinite`] (naming the entry) if an entry is a NaN or an infinity.".into(),
+    );
     d.push(String::new());
     d.push(" On error the output arrays are left untouched.".into());
     if n_chunks > 1 {
@@ -656,7 +752,11 @@ fn balanced(v: &[TokenStream], op: TokenStream, wrap: bool) -> TokenStream {
                 let (l, r) = v.split_at(n.div_ceil(2));
                 let (l, r) = (go(l, op), go(r, op));
                 // Left-associative: only the right operand needs parentheses when compound.
-                let r = if v.len() - n.div_ceil(2) > 1 { quote!((#r)) } else { r };
+                let r = if v.len() - n.div_ceil(2) > 1 {
+                    quote!((#r))
+                } else {
+                    r
+                };
                 quote!(#l #op #r)
             }
         }
@@ -683,6 +783,30 @@ fn balanced_sum(v: &[TokenStream]) -> TokenStream {
     }
 }
 
+/// `c0 op c1 op …` for boolean conditions with a non-short-circuit `&` or `|`, parenthesising
+/// the comparisons (which bind less tightly than `&` and `|`).
+fn join(conds: &[TokenStream], op: TokenStream) -> TokenStream {
+    if conds.len() == 1 {
+        return conds[0].clone();
+    }
+    let wrapped = conds.iter().map(|c| {
+        let text = c.to_string();
+        if text.starts_with('!') || !text.contains(['<', '>', '=', '&', '|']) {
+            c.clone()
+        } else {
+            quote!((#c))
+        }
+    });
+    let mut out = TokenStream::new();
+    for (k, c) in wrapped.enumerate() {
+        if k > 0 {
+            out.extend(op.clone());
+        }
+        out.extend(c);
+    }
+    out
+}
+
 /// The rendered validity checks.
 struct Checks {
     /// `let` statements of the distinct checks.
@@ -699,12 +823,17 @@ struct Checks {
 }
 
 /// The boolean of each distinct check (identical checks are evaluated once).
-fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check]) -> Result<Checks, CodegenError> {
+fn render_checks(
+    ctx: &Ctx,
+    checks: &[(Operand, Vec<Operand>)],
+    specs: &[Check],
+) -> Result<Checks, CodegenError> {
     let num = ctx.num;
     let pivot_tol = num.round(eom_sym::model::reduce::PIVOT_TOLERANCE);
     let rank_tol = num.round(eom_sym::model::reduce::RANK_TOLERANCE);
     let mut ts = TokenStream::new();
-    let mut seen: HashMap<(bool, Vec<crate::lower::OpKey>), (TokenStream, TokenStream)> = HashMap::new();
+    let mut seen: HashMap<(bool, Vec<crate::lower::OpKey>), (TokenStream, TokenStream)> =
+        HashMap::new();
     let mut per_check: Vec<TokenStream> = Vec::new();
     let mut per_mag: Vec<TokenStream> = Vec::new();
     let mut mags: Vec<Ident> = Vec::new();
@@ -764,7 +893,9 @@ fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check])
                         }
                         seen_r.push(r.key());
                         match r {
-                            Operand::Lit(y) => lit_max = lit_max.max(num.mul(pivot_tol, num.round(*y).abs())),
+                            Operand::Lit(y) => {
+                                lit_max = lit_max.max(num.mul(pivot_tol, num.round(*y).abs()))
+                            }
                             _ => {
                                 let rv = ctx.receiver(*r)?;
                                 conds.push(quote!(!(#tl * #rv.abs() > #av)));
@@ -774,9 +905,9 @@ fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check])
                     // `av > 0` (the maximum is positive), implied by `av ≥ bound` when the bound is.
                     if lit_max > 0.0 {
                         let l = num.lit(lit_max, "pivot bound")?;
-                        conds.insert(0, quote!((#av >= #l)));
+                        conds.insert(0, quote!(#av >= #l));
                     } else {
-                        conds.insert(0, quote!((#av > 0.0)));
+                        conds.insert(0, quote!(#av > 0.0));
                     }
                 }
             }
@@ -798,7 +929,7 @@ fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check])
                             }
                             _ => {
                                 let sv = ctx.receiver(*s)?;
-                                alts.push(quote!((#al <= #tl * #sv.abs())));
+                                alts.push(quote!(#al <= #tl * #sv.abs()));
                             }
                         }
                     }
@@ -806,20 +937,22 @@ fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check])
                 _ => {
                     let vv = ctx.receiver(*v)?;
                     let vo = ctx.operand(*v)?;
-                    alts.push(quote!((#vo == 0.0)));
+                    alts.push(quote!(#vo == 0.0));
                     let mut lit_max: f64 = 0.0;
                     for s in others {
                         match s {
-                            Operand::Lit(y) => lit_max = lit_max.max(num.mul(rank_tol, num.round(*y).abs())),
+                            Operand::Lit(y) => {
+                                lit_max = lit_max.max(num.mul(rank_tol, num.round(*y).abs()))
+                            }
                             _ => {
                                 let sv = ctx.receiver(*s)?;
-                                alts.push(quote!((#vv.abs() <= #tl * #sv.abs())));
+                                alts.push(quote!(#vv.abs() <= #tl * #sv.abs()));
                             }
                         }
                     }
                     if lit_max > 0.0 {
                         let l = num.lit(lit_max, "negligible bound")?;
-                        alts.push(quote!((#vv.abs() <= #l)));
+                        alts.push(quote!(#vv.abs() <= #l));
                     }
                 }
             }
@@ -827,7 +960,7 @@ fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check])
                 if alts.is_empty() {
                     conds.push(quote!(false));
                 } else {
-                    conds.push(quote!((#(#alts)|*)));
+                    conds.push(join(&alts, quote!(|)));
                 }
             }
         }
@@ -840,10 +973,64 @@ fn render_checks(ctx: &Ctx, checks: &[(Operand, Vec<Operand>)], specs: &[Check])
         comparisons += conds.len();
         let ok = format_ident!("ok{}", distinct);
         distinct += 1;
-        ts.extend(quote!(let #ok: bool = #(#conds)&*;));
+        let all = join(&conds, quote!(&));
+        ts.extend(quote!(let #ok: bool = #all;));
         seen.insert(key, (quote!(#ok), mag.clone()));
         per_check.push(quote!(#ok));
         per_mag.push(mag);
     }
-    Ok(Checks { lets: ts, ok: per_check, mag: per_mag, mags, comparisons, distinct })
+    Ok(Checks {
+        lets: ts,
+        ok: per_check,
+        mag: per_mag,
+        mags,
+        comparisons,
+        distinct,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `tol·|r| ≤ av ⇔ |r| ≤ bound`, exactly, around the bound and far from it.
+    #[test]
+    fn pivot_bound_is_exact() {
+        for prec in [Precision::F64, Precision::F32] {
+            let num = Num { prec };
+            let tol = num.round(1e-4);
+            for av in [1.0, 0.3, 7.77e-3, 123456.789, 1e-300, 3.5e300] {
+                let av = num.round(av);
+                let b = num.bound(tol, av);
+                assert!(num.mul(tol, b) <= av, "{prec:?} {av}");
+                let up = num.next_up(b);
+                assert!(!up.is_finite() || up > num.max_finite() || num.mul(tol, up) > av, "{prec:?} {av}");
+                let mut r = b;
+                for _ in 0..50 {
+                    r = num.next_down(r);
+                    assert!(num.mul(tol, r) <= av);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn balanced_trees_keep_precedence() {
+        let v: Vec<TokenStream> = ["a", "b", "c", "d", "e"].iter().map(|s| s.parse().expect("ident")).collect();
+        assert_eq!(balanced(&v, quote!(+), false).to_string(), "a + b + c + (d + e)");
+        assert_eq!(balanced(&v[..2], quote!(*), true).to_string(), "(a * b)");
+        assert_eq!(balanced(&v[..1], quote!(*), true).to_string(), "a");
+    }
+
+    #[test]
+    fn literals_are_unsuffixed_with_full_precision() {
+        let num = Num { prec: Precision::F64 };
+        assert_eq!(num.lit(0.1, "x").expect("finite").to_string(), "0.1");
+        assert_eq!(num.lit(-2.5e-300, "x").expect("finite").to_string(), "- 2.5e-300");
+        assert_eq!(num.lit(1.0 / 3.0, "x").expect("finite").to_string(), "0.3333333333333333");
+        assert!(num.lit(f64::INFINITY, "x").is_err());
+        let f32n = Num { prec: Precision::F32 };
+        assert_eq!(f32n.lit(0.1, "x").expect("finite").to_string(), "0.1");
+        assert!(f32n.lit(1e300, "x").is_err());
+    }
 }

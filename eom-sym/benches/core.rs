@@ -20,11 +20,13 @@
 //!   values overflow (repeated squaring) and about two thirds of its instructions compute
 //!   inf/NaN, which libm handles on fast paths. `eval_bounded` uses the same operation mix but
 //!   keeps only nodes whose nominal value lies in [1e-6, 1e6], so every instruction computes a
-//!   finite number — the representative case.
+//!   finite number — the representative case. `eval_bounded/tape_eval_batch64` evaluates 64
+//!   points per call (throughput in instructions × points: time per node per point); the
+//!   overflowing DAG has no batch bench, since `eval_batch` reports its non-finite outputs.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_sym::testing::{SplitMix, params, random_dag};
-use eom_sym::{Dd, Expr, ExprPool, Tape, eval_generic};
+use eom_sym::{Dd, Expr, ExprPool, Tape, TapeWorkspace, eval_generic};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -233,6 +235,20 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
     g.bench_function("tape_eval_into", |b| {
         b.iter(|| tape.eval_into(black_box(&values), &mut out, &mut work).unwrap())
     });
+    if non_finite == 0 {
+        const POINTS: usize = 64;
+        let batch: Vec<f64> = (0..POINTS)
+            .flat_map(|k| values.iter().map(move |v| v * (1.0 + 1e-3 * k as f64)))
+            .collect();
+        let mut ws = TapeWorkspace::default();
+        let mut bout = vec![0.0; POINTS * tape.n_outputs()];
+        tape.eval_batch(&batch, &mut bout, &mut ws).expect("finite batch");
+        g.throughput(Throughput::Elements((tape.len() * POINTS) as u64));
+        g.bench_function("tape_eval_batch64", |b| {
+            b.iter(|| tape.eval_batch(black_box(&batch), &mut bout, &mut ws).unwrap())
+        });
+        g.throughput(Throughput::Elements(tape.len() as u64));
+    }
     g.bench_function("eval_generic_f64", |b| {
         b.iter(|| eval_generic::<f64>(black_box(roots), |i| Some(by_index[i as usize])).unwrap())
     });

@@ -2,15 +2,23 @@
 
 use crate::error::SymError;
 use crate::expr::Expr;
-use crate::pool::ParamInfo;
+use crate::pool::{ExprPool, ParamInfo};
 use hashbrown::HashMap;
 
 /// An ordered set of named parameters (declaration order is kept: it is the order of values
 /// in evaluations and of fields in generated code).
+///
+/// A scope stores parameter indices of the pool, not expressions, so it is plain data
+/// (`Send + Sync`): a numeric model that carries its scope can move between threads. The
+/// expressions it hands out belong to the thread whose pool declared the parameters.
 #[derive(Clone, Debug, Default)]
 pub struct Scope {
-    by_name: HashMap<String, Expr>,
-    order: Vec<Expr>,
+    by_name: HashMap<String, u32>,
+    order: Vec<u32>,
+}
+
+fn expr_of(index: u32) -> Expr {
+    Expr::from_param_index(index).expect("a scope refers to parameters of this thread's pool")
 }
 
 impl Scope {
@@ -40,8 +48,9 @@ impl Scope {
         }
         let name = info.name.clone();
         let e = Expr::new_param(info)?;
-        self.by_name.insert(name, e);
-        self.order.push(e);
+        let index = e.param_index().expect("a new parameter");
+        self.by_name.insert(name, index);
+        self.order.push(index);
         Ok(e)
     }
 
@@ -54,14 +63,15 @@ impl Scope {
         if self.by_name.contains_key(&info.name) {
             return Err(SymError::BadParameter { name: info.name, problem: "declared twice".into() });
         }
-        self.by_name.insert(info.name, p);
-        self.order.push(p);
+        let index = p.param_index().expect("checked above");
+        self.by_name.insert(info.name, index);
+        self.order.push(index);
         Ok(())
     }
 
     /// The parameter called `name`.
     pub fn get(&self, name: &str) -> Option<Expr> {
-        self.by_name.get(name).copied()
+        self.by_name.get(name).map(|&i| expr_of(i))
     }
 
     /// The parameter called `name`, or an error listing the known names.
@@ -73,18 +83,18 @@ impl Scope {
     }
 
     /// The parameters in declaration order.
-    pub fn params(&self) -> &[Expr] {
-        &self.order
+    pub fn params(&self) -> Vec<Expr> {
+        self.order.iter().map(|&i| expr_of(i)).collect()
     }
 
     /// The names in declaration order.
     pub fn names(&self) -> Vec<String> {
-        self.order.iter().filter_map(|p| p.param_info().map(|i| i.name)).collect()
+        self.order.iter().filter_map(|&i| ExprPool::param_info(i).map(|p| p.name)).collect()
     }
 
     /// Nominal values in declaration order.
     pub fn nominal_values(&self) -> Vec<f64> {
-        self.order.iter().map(|p| p.nominal()).collect()
+        self.order.iter().filter_map(|&i| ExprPool::param_info(i).map(|p| p.nominal)).collect()
     }
 
     /// Number of parameters.
@@ -102,8 +112,9 @@ impl Scope {
     pub fn values_with(&self, overrides: &[(&str, f64)]) -> Result<Vec<f64>, SymError> {
         let mut v = self.nominal_values();
         for &(name, x) in overrides {
-            let p = self.lookup(name)?;
-            let k = self.order.iter().position(|&q| q == p).expect("in scope");
+            self.lookup(name)?;
+            let index = self.by_name[name];
+            let k = self.order.iter().position(|&q| q == index).expect("in scope");
             if !x.is_finite() {
                 return Err(SymError::BadParameter {
                     name: name.to_string(),

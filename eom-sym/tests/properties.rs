@@ -418,6 +418,48 @@ fn tape_recursive_and_double_double_evaluation_agree() {
     st.assert_coverage("evaluation", 0.7, 0.5);
 }
 
+/// `eval_batch` (chunks of points in structure-of-arrays form) gives exactly the results of
+/// `eval_into` point by point (the same operations per lane), and on a non-finite output
+/// names the same first (point, output) pair. Batch sizes 0–19 cover partial chunks.
+#[test]
+fn batch_evaluation_equals_pointwise_evaluation() {
+    let p = params();
+    run((recipe(), prop::collection::vec(point(), 0..20)), |(r, pts)| {
+        let e = build(&r, &p);
+        if e.check().is_err() {
+            return Ok(());
+        }
+        let roots = [e, e + p[0]];
+        let tape = Tape::new(&roots, &p).expect("tape of a valid expression");
+        let mut want = Vec::new();
+        let mut first_bad = None;
+        let mut work = vec![0.0; tape.work_len()];
+        for (k, x) in pts.iter().enumerate() {
+            let mut o = [0.0; 2];
+            tape.eval_into(x, &mut o, &mut work).unwrap();
+            if first_bad.is_none() {
+                if let Some(j) = o.iter().position(|v| !v.is_finite()) {
+                    first_bad = Some(format!("output {j} at point {k}"));
+                }
+            }
+            want.extend_from_slice(&o);
+        }
+        let flat: Vec<f64> = pts.iter().flatten().copied().collect();
+        let mut got = vec![0.0; 2 * pts.len()];
+        let res = tape.eval_batch(&flat, &mut got, &mut eom_sym::TapeWorkspace::default());
+        match (res, first_bad) {
+            (Ok(()), None) => {
+                for (g, w) in got.iter().zip(&want) {
+                    prop_assert_eq!(g.to_bits(), w.to_bits(), "batch {} vs pointwise {} for {}", g, w, e);
+                }
+            }
+            (Err(SymError::EvalNonFinite { what, .. }), Some(bad)) => prop_assert_eq!(what, bad),
+            (res, bad) => prop_assert!(false, "batch {res:?}, pointwise first non-finite {bad:?}"),
+        }
+        Ok(())
+    });
+}
+
 // ================================================================== (b) derivatives
 
 /// `diff` evaluated in double-double agrees with a fourth-order central difference

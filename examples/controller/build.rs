@@ -6,13 +6,25 @@ use std::fmt::Write;
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
-    Generate::model("bicycle").f32().write_to_out_dir("bicycle.rs").expect("bicycle");
+    Generate::model("bicycle")
+        .f32()
+        .write_to_out_dir("bicycle.rs")
+        .expect("bicycle");
     let mut index = String::new();
     for info in models::catalogue() {
-        let name = if info.name == "chainN" { "chain10" } else { info.name };
-        for (ty, g) in [("f64", Generate::model(name)), ("f32", Generate::model(name).f32())] {
+        let name = if info.name == "chainN" {
+            "chain10"
+        } else {
+            info.name
+        };
+        for (ty, g) in [
+            ("f64", Generate::model(name)),
+            ("f32", Generate::model(name).f32()),
+        ] {
             let file = format!("check_{name}_{ty}.rs");
-            g.module(&format!("{name}_{ty}")).write_to_out_dir(&file).unwrap_or_else(|e| panic!("{name}: {e}"));
+            g.module(&format!("{name}_{ty}"))
+                .write_to_out_dir(&file)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
             writeln!(index, "include!(concat!(env!(\"OUT_DIR\"), \"/{file}\"));").expect("write");
         }
     }

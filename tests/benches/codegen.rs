@@ -16,7 +16,14 @@ include!(concat!(env!("OUT_DIR"), "/generated.rs"));
 
 fn points(nominal: &[f64], n: usize) -> Vec<Vec<f64>> {
     let mut rng = rand::rngs::StdRng::seed_from_u64(7);
-    (0..n).map(|_| nominal.iter().map(|x| x * rng.random_range(0.95..1.05)).collect()).collect()
+    (0..n)
+        .map(|_| {
+            nominal
+                .iter()
+                .map(|x| x * rng.random_range(0.95..1.05))
+                .collect()
+        })
+        .collect()
 }
 
 /// The tape of what `eval_abcd` computes: the A..D entries and the check expressions.
@@ -40,7 +47,8 @@ fn abcd_tape(model: &str) -> Tape {
             }
         }
     }
-    Tape::new(&roots, m.scope.params()).expect("tape")
+    let params: Vec<eom_sym::Expr> = m.scope.params().to_vec();
+    Tape::new(&roots, &params).expect("tape")
 }
 
 /// Per call: 64 calls over distinct points per iteration (`Throughput::Elements(64)`), through a
@@ -105,10 +113,25 @@ fn bench_tape(c: &mut Criterion, label: &str, model: &str) {
 fn evaluation(c: &mut Criterion) {
     bench_abcd!(c, "bicycle/abcd/generated f64 libm", gen64::bicycle, f64);
     bench_abcd!(c, "bicycle/abcd/generated f64 std", gen64::bicycle_std, f64);
-    bench_abcd!(c, "bicycle/abcd/generated f64 simplified", gen64::bicycle_simplified, f64);
-    bench_abcd!(c, "bicycle/abcd/generated f64 chunks of 16", gen64::bicycle_chunked, f64);
+    bench_abcd!(
+        c,
+        "bicycle/abcd/generated f64 simplified",
+        gen64::bicycle_simplified,
+        f64
+    );
+    bench_abcd!(
+        c,
+        "bicycle/abcd/generated f64 chunks of 16",
+        gen64::bicycle_chunked,
+        f64
+    );
     bench_abcd!(c, "bicycle/abcd/generated f32 libm", gen32::bicycle, f32);
-    bench_abcd!(c, "bicycle/abcd/generated f64 v only", gen64::bicycle_speed, f64);
+    bench_abcd!(
+        c,
+        "bicycle/abcd/generated f64 v only",
+        gen64::bicycle_speed,
+        f64
+    );
     bench_tape(c, "bicycle/abcd/tape", "bicycle");
     bench_abcd!(c, "shimmy/abcd/generated f64", gen64::shimmy, f64);
     bench_abcd!(c, "shimmy/abcd/generated f32", gen32::shimmy, f32);

@@ -40,7 +40,9 @@ macro_rules! generated {
         fn conv(e: g::Error) -> GenErr {
             match e {
                 g::Error::Validity { check, what } => GenErr::Validity(check, what),
-                g::Error::NonFinite { matrix, row, col } => GenErr::NonFinite(format!("{matrix:?}"), row, col),
+                g::Error::NonFinite { matrix, row, col } => {
+                    GenErr::NonFinite(format!("{matrix:?}"), row, col)
+                }
             }
         }
         fn params(p: &[f64]) -> [$ty; g::N_PARAMS] {
@@ -52,8 +54,13 @@ macro_rules! generated {
         Gen {
             model: $model,
             abcd: |p| {
-                let (mut a, mut b, mut c, mut d, mut w) =
-                    ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::C_LEN], [0.0; g::D_LEN], [0.0; g::WORK_LEN]);
+                let (mut a, mut b, mut c, mut d, mut w) = (
+                    [0.0; g::A_LEN],
+                    [0.0; g::B_LEN],
+                    [0.0; g::C_LEN],
+                    [0.0; g::D_LEN],
+                    [0.0; g::WORK_LEN],
+                );
                 g::eval_abcd(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w).map_err(conv)?;
                 Ok(vec![back(&a), back(&b), back(&c), back(&d)])
             },
@@ -72,7 +79,13 @@ macro_rules! generated {
                 g::eval_phys(&params(p), &mut q, &mut w).map_err(conv)?;
                 Ok(vec![back(&q)])
             },
-            nonzeros: [&g::A_NONZEROS, &g::B_NONZEROS, &g::C_NONZEROS, &g::D_NONZEROS, &g::PHYS_NONZEROS],
+            nonzeros: [
+                &g::A_NONZEROS,
+                &g::B_NONZEROS,
+                &g::C_NONZEROS,
+                &g::D_NONZEROS,
+                &g::PHYS_NONZEROS,
+            ],
             checks: &g::CHECKS,
             param_names: &g::PARAM_NAMES,
         }
@@ -131,21 +144,33 @@ fn reference(name: &str) -> Reference {
 }
 
 fn to_vecs(ss: &StateSpace<f64>) -> Vec<Vec<f64>> {
-    [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys].iter().map(|m| m.as_slice().to_vec()).collect()
+    [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys]
+        .iter()
+        .map(|m| m.as_slice().to_vec())
+        .collect()
 }
 
 /// Largest entry difference relative to the largest entry of the reference matrix.
 fn rel_diff(got: &[f64], want: &[f64]) -> f64 {
     assert_eq!(got.len(), want.len());
-    let scale = want.iter().fold(0.0f64, |a, b| a.max(b.abs())).max(f64::MIN_POSITIVE);
-    got.iter().zip(want).fold(0.0f64, |a, (x, y)| a.max((x - y).abs())) / scale
+    let scale = want
+        .iter()
+        .fold(0.0f64, |a, b| a.max(b.abs()))
+        .max(f64::MIN_POSITIVE);
+    got.iter()
+        .zip(want)
+        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()))
+        / scale
 }
 
 /// The interpreter's error in the common form (`None` for other errors).
 fn sym_err(e: &SymError, g: &Gen) -> Option<GenErr> {
     match e {
         SymError::PivotBreakdown(msg) => {
-            let k = g.checks.iter().position(|c| msg.starts_with(&format!("{c} (value")))?;
+            let k = g
+                .checks
+                .iter()
+                .position(|c| msg.starts_with(&format!("{c} (value")))?;
             Some(GenErr::Validity(k, g.checks[k]))
         }
         SymError::EvalNonFinite { what, .. } => Some(GenErr::NonFinite(what.clone(), 0, 0)),
@@ -166,18 +191,31 @@ fn compare(g: &Gen, r: &Reference, values: &[f64], tol: f64) -> Result<bool, Tes
             let want = to_vecs(&want);
             for (k, name) in ["A", "B", "C", "D", "Phys"].iter().enumerate() {
                 let d = rel_diff(&got[k], &want[k]);
-                prop_assert!(d <= tol, "{}: {name} differs by {d:e} at {values:?}", g.model);
+                prop_assert!(
+                    d <= tol,
+                    "{}: {name} differs by {d:e} at {values:?}",
+                    g.model
+                );
             }
             // The kernels for parts agree with the whole.
             let ab = (g.ab)(values).expect("eval_ab after eval_abcd succeeded");
             let cd = (g.cd)(values).expect("eval_cd after eval_abcd succeeded");
             for (x, y) in ab.iter().chain(&cd).zip(&got[..4]) {
-                prop_assert!(rel_diff(x, y) <= 1e-14, "{}: partial kernels differ", g.model);
+                prop_assert!(
+                    rel_diff(x, y) <= 1e-14,
+                    "{}: partial kernels differ",
+                    g.model
+                );
             }
             Ok(true)
         }
         (Err(GenErr::Validity(k, what)), Err(e)) => {
-            prop_assert_eq!(sym_err(&e, g), Some(GenErr::Validity(k, what)), "{}: different failing check", g.model);
+            prop_assert_eq!(
+                sym_err(&e, g),
+                Some(GenErr::Validity(k, what)),
+                "{}: different failing check",
+                g.model
+            );
             Ok(false)
         }
         (Err(GenErr::NonFinite(..)), Err(SymError::EvalNonFinite { .. })) => Ok(false),
@@ -191,21 +229,39 @@ fn compare(g: &Gen, r: &Reference, values: &[f64], tol: f64) -> Result<bool, Tes
 }
 
 /// `G(s) = C (sI − A)⁻¹ B + D`.
-fn transfer(a: &DMatrix<f64>, b: &DMatrix<f64>, c: &DMatrix<f64>, d: &DMatrix<f64>, s: Complex64) -> DMatrix<Complex64> {
+fn transfer(
+    a: &DMatrix<f64>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    s: Complex64,
+) -> DMatrix<Complex64> {
     let z = |m: &DMatrix<f64>| m.map(|x| Complex64::new(x, 0.0));
     let n = a.nrows();
-    let x = (DMatrix::<Complex64>::identity(n, n) * s - z(a)).lu().solve(&z(b)).expect("s is not a pole");
+    let x = (DMatrix::<Complex64>::identity(n, n) * s - z(a))
+        .lu()
+        .solve(&z(b))
+        .expect("s is not a pole");
     z(c) * x + z(d)
 }
 
 fn near_nominal(nominal: Vec<f64>) -> impl Strategy<Value = Vec<f64>> {
     let n = nominal.len();
-    proptest::collection::vec(0.7f64..1.3, n)
-        .prop_map(move |f| nominal.iter().zip(&f).map(|(x, s)| if *x == 0.0 { s - 1.0 } else { x * s }).collect())
+    proptest::collection::vec(0.7f64..1.3, n).prop_map(move |f| {
+        nominal
+            .iter()
+            .zip(&f)
+            .map(|(x, s)| if *x == 0.0 { s - 1.0 } else { x * s })
+            .collect()
+    })
 }
 
 fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig {
+        cases,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 #[test]
@@ -214,7 +270,12 @@ fn compiled_equals_interpreter_and_robust_path() {
         let r = reference(g.model);
         assert_eq!(
             g.param_names.to_vec(),
-            r.model.scope.names().iter().map(String::as_str).collect::<Vec<_>>(),
+            r.model
+                .scope
+                .names()
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
             "{}: parameter order",
             g.model
         );
@@ -241,7 +302,11 @@ fn compiled_equals_interpreter_and_robust_path() {
                 }
             }
         });
-        assert!(ok.get() > 0, "{}: no random point inside the validity region", g.model);
+        assert!(
+            ok.get() > 0,
+            "{}: no random point inside the validity region",
+            g.model
+        );
     }
 }
 
@@ -257,9 +322,20 @@ fn variants_equal_interpreter() {
 
 #[test]
 fn chunked_code_computes_the_same_bits() {
-    let (whole, chunked) = (generated!("bicycle", gen64::bicycle, f64), generated!("bicycle", gen64::bicycle_chunked, f64));
-    let (cw, cc) = (generated!("chain50", gen64::chain50, f64), generated!("chain50", gen64::chain50_chunked, f64));
-    assert!(gen64::bicycle_chunked::WORK_LEN > 0 && gen64::chain50_chunked::WORK_LEN > 0, "chunking not exercised");
+    let (whole, chunked) = (
+        generated!("bicycle", gen64::bicycle, f64),
+        generated!("bicycle", gen64::bicycle_chunked, f64),
+    );
+    let (cw, cc) = (
+        generated!("chain50", gen64::chain50, f64),
+        generated!("chain50", gen64::chain50_chunked, f64),
+    );
+    const {
+        assert!(
+            gen64::bicycle_chunked::WORK_LEN > 0 && gen64::chain50_chunked::WORK_LEN > 0,
+            "chunking not exercised"
+        )
+    };
     for (x, y) in [(&whole, &chunked), (&cw, &cc)] {
         let r = reference(x.model);
         proptest!(config(16), |(values in near_nominal(r.model.scope.nominal_values()))| {
@@ -293,14 +369,23 @@ fn partial_evaluation_keeps_only_the_speed() {
     assert_eq!(g::PARAM_NAMES, ["v"]);
     let r = reference("bicycle");
     let nominal = r.model.scope.nominal_values();
-    let iv = r.model.scope.names().iter().position(|n| n == "v").expect("v");
+    let iv = r
+        .model
+        .scope
+        .names()
+        .iter()
+        .position(|n| n == "v")
+        .expect("v");
     for v in [0.5, 2.0, 4.3, 6.0, 10.0] {
         let mut values = nominal.clone();
         values[iv] = v;
         let want = r.sym.evaluate(&values).expect("valid");
         let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
         g::eval_ab(&[v], &mut a, &mut b, &mut w).expect("valid");
-        assert!(rel_diff(&a, want.a.as_slice()) <= 1e-12 && rel_diff(&b, want.b.as_slice()) <= 1e-12, "v = {v}");
+        assert!(
+            rel_diff(&a, want.a.as_slice()) <= 1e-12 && rel_diff(&b, want.b.as_slice()) <= 1e-12,
+            "v = {v}"
+        );
     }
 }
 
@@ -311,8 +396,13 @@ fn outside_the_validity_region_both_refuse_with_the_same_check() {
     // Bicycle: a vertical steer axis (λ = π/2) breaks the pivot on cos λ.
     // Shimmy: I + m l² x² = 0 breaks the reduced-mass pivot.
     // Chain: zero mass breaks the reduced-mass pivots.
-    let cases: [(&str, &[(&str, f64)], &str); 4] = [
-        ("bicycle", &[("lambda", std::f64::consts::FRAC_PI_2)], "steer hinge"),
+    type Case<'a> = (&'a str, &'a [(&'a str, f64)], &'a str);
+    let cases: [Case; 4] = [
+        (
+            "bicycle",
+            &[("lambda", std::f64::consts::FRAC_PI_2)],
+            "steer hinge",
+        ),
         ("shimmy", &[("I", -5.0 * 0.25)], "reduced mass pivot"),
         ("chain3", &[("m", 0.0)], "reduced mass pivot"),
         ("smd", &[("m", 1e-300 * 1e-300)], "reduced mass pivot"),
@@ -321,7 +411,10 @@ fn outside_the_validity_region_both_refuse_with_the_same_check() {
         let g = find(model);
         let r = reference(model);
         let values = r.model.scope.values_with(at).expect("values");
-        let e = r.sym.evaluate(&values).expect_err("the interpreter refuses");
+        let e = r
+            .sym
+            .evaluate(&values)
+            .expect_err("the interpreter refuses");
         assert!(matches!(e, SymError::PivotBreakdown(_)), "{model}: {e}");
         // The generated code refuses with the same check, and leaves the outputs untouched.
         let got = (g.abcd)(&values).expect_err("the generated code refuses");
@@ -338,8 +431,15 @@ fn outside_the_validity_region_both_refuse_with_the_same_check() {
     use gen64::bicycle as b;
     let mut p = b::Params::NOMINAL;
     p.lambda = std::f64::consts::FRAC_PI_2;
-    let (mut a, mut bb, mut c, mut d, mut w) = ([7.25; b::A_LEN], [7.25; b::B_LEN], [7.25; b::C_LEN], [7.25; b::D_LEN], [0.0; b::WORK_LEN]);
-    let e = b::eval_abcd(&p.to_array(), &mut a, &mut bb, &mut c, &mut d, &mut w).expect_err("outside");
+    let (mut a, mut bb, mut c, mut d, mut w) = (
+        [7.25; b::A_LEN],
+        [7.25; b::B_LEN],
+        [7.25; b::C_LEN],
+        [7.25; b::D_LEN],
+        [0.0; b::WORK_LEN],
+    );
+    let e =
+        b::eval_abcd(&p.to_array(), &mut a, &mut bb, &mut c, &mut d, &mut w).expect_err("outside");
     assert!(e.to_string().contains("outside the validity region"), "{e}");
     assert!(a.iter().chain(&bb).chain(&c).chain(&d).all(|&x| x == 7.25));
 }
@@ -350,11 +450,24 @@ fn non_finite_entries_are_errors_but_overflowing_sums_are_not() {
     let r = reference("smd");
     // k = ∞: A(1, 0) = −k/m is infinite; the interpreter refuses too.
     let p = [1.0, f64::INFINITY, 0.1];
-    assert!(matches!(r.sym.evaluate(&p), Err(SymError::EvalNonFinite { .. })));
-    let (mut a, mut b, mut c, mut d, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::C_LEN], [0.0; g::D_LEN], [0.0; g::WORK_LEN]);
+    assert!(matches!(
+        r.sym.evaluate(&p),
+        Err(SymError::EvalNonFinite { .. })
+    ));
+    let (mut a, mut b, mut c, mut d, mut w) = (
+        [0.0; g::A_LEN],
+        [0.0; g::B_LEN],
+        [0.0; g::C_LEN],
+        [0.0; g::D_LEN],
+        [0.0; g::WORK_LEN],
+    );
     assert_eq!(
         g::eval_abcd(&p, &mut a, &mut b, &mut c, &mut d, &mut w),
-        Err(g::Error::NonFinite { matrix: g::Matrix::A, row: 1, col: 0 })
+        Err(g::Error::NonFinite {
+            matrix: g::Matrix::A,
+            row: 1,
+            col: 0
+        })
     );
     // NaN stiffness, same.
     assert!(g::eval_ab(&[1.0, f64::NAN, 0.1], &mut a, &mut b, &mut w).is_err());
@@ -378,7 +491,12 @@ fn only_structural_nonzeros_are_written() {
                 .flat_map(|j| (0..m.nrows()).map(move |i| (i, j)))
                 .filter(|&(i, j)| !m[(i, j)].is_zero())
                 .collect();
-            assert_eq!(g.nonzeros[k], want.as_slice(), "{}: pattern of matrix {k}", g.model);
+            assert_eq!(
+                g.nonzeros[k],
+                want.as_slice(),
+                "{}: pattern of matrix {k}",
+                g.model
+            );
         }
         // A kernel writing into arrays full of a sentinel leaves the other entries alone.
         let got = (g.abcd)(&nominal).expect("nominal is valid");
@@ -388,9 +506,20 @@ fn only_structural_nonzeros_are_written() {
         }
     }
     use gen64::shimmy as s;
-    let (mut a, mut b, mut c, mut d, mut w) = ([-3.5; s::A_LEN], [-3.5; s::B_LEN], [-3.5; s::C_LEN], [-3.5; s::D_LEN], [0.0; s::WORK_LEN]);
+    let (mut a, mut b, mut c, mut d, mut w) = (
+        [-3.5; s::A_LEN],
+        [-3.5; s::B_LEN],
+        [-3.5; s::C_LEN],
+        [-3.5; s::D_LEN],
+        [0.0; s::WORK_LEN],
+    );
     s::eval_abcd(&s::NOMINAL, &mut a, &mut b, &mut c, &mut d, &mut w).expect("nominal");
-    for (arr, nz, rows) in [(&a[..], &s::A_NONZEROS[..], s::N_STATES), (&b[..], &s::B_NONZEROS[..], s::N_STATES), (&c[..], &s::C_NONZEROS[..], s::N_OUTPUTS), (&d[..], &s::D_NONZEROS[..], s::N_OUTPUTS)] {
+    for (arr, nz, rows) in [
+        (&a[..], &s::A_NONZEROS[..], s::N_STATES),
+        (&b[..], &s::B_NONZEROS[..], s::N_STATES),
+        (&c[..], &s::C_NONZEROS[..], s::N_OUTPUTS),
+        (&d[..], &s::D_NONZEROS[..], s::N_OUTPUTS),
+    ] {
         for (idx, x) in arr.iter().enumerate() {
             let structural = nz.contains(&(idx % rows, idx / rows));
             assert_eq!(*x == -3.5, !structural, "entry {idx}");
@@ -413,7 +542,10 @@ fn params_struct_and_state_space_value() {
     let want = r.sym.evaluate(&q.to_array()).expect("valid");
     assert!(rel_diff(ss.a(), want.a.as_slice()) <= 1e-12);
     assert!(rel_diff(ss.b(), want.b.as_slice()) <= 1e-12);
-    assert_eq!(b::PARAM_UNITS[b::PARAM_NAMES.iter().position(|n| *n == "v").expect("v")], "m/s");
+    assert_eq!(
+        b::PARAM_UNITS[b::PARAM_NAMES.iter().position(|n| *n == "v").expect("v")],
+        "m/s"
+    );
 }
 
 #[test]
@@ -421,12 +553,18 @@ fn generation_is_deterministic() {
     let dir = env!("OUT_DIR");
     let first = std::fs::read_to_string(format!("{dir}/smd_first.rs")).expect("file");
     let again = std::fs::read_to_string(format!("{dir}/smd_again.rs")).expect("file");
-    assert_eq!(first, again, "smd generated in a fresh pool and after other models differ");
+    assert_eq!(
+        first, again,
+        "smd generated in a fresh pool and after other models differ"
+    );
     let m = models::build("bicycle", &[]).expect("bicycle");
     let opts = eom_codegen::EmitOptions::default();
     let x = eom_codegen::emit_model(&m, &opts).expect("emit").source;
-    let _other = eom_codegen::emit_model(&models::build("chain3", &[]).expect("chain"), &opts).expect("emit");
-    let y = eom_codegen::emit_model(&models::build("bicycle", &[]).expect("bicycle"), &opts).expect("emit").source;
+    let _other = eom_codegen::emit_model(&models::build("chain3", &[]).expect("chain"), &opts)
+        .expect("emit");
+    let y = eom_codegen::emit_model(&models::build("bicycle", &[]).expect("bicycle"), &opts)
+        .expect("emit")
+        .source;
     assert_eq!(x, y);
 }
 
@@ -435,12 +573,19 @@ fn generated_libm_code_uses_core_only() {
     let dir = env!("OUT_DIR");
     for entry in std::fs::read_dir(dir).expect("OUT_DIR") {
         let path = entry.expect("entry").path();
-        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default().to_string();
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or_default()
+            .to_string();
         if !name.ends_with(".rs") || name.contains("_std") || name == "generated.rs" {
             continue;
         }
         let text = std::fs::read_to_string(&path).expect("read");
-        assert!(!text.contains("std::") && !text.contains(".sin(") && !text.contains(".sqrt("), "{name} needs std");
+        assert!(
+            !text.contains("std::") && !text.contains(".sin(") && !text.contains(".sqrt("),
+            "{name} needs std"
+        );
     }
 }
 
@@ -449,17 +594,52 @@ fn bad_options_are_typed_errors_naming_the_option() {
     use eom_codegen::{CodegenError, EmitOptions, emit_model};
     let m = models::build("smd", &[]).expect("smd");
     let e = emit_model(&m, &EmitOptions::default().module("Not A Module")).expect_err("bad module");
-    assert!(matches!(e, CodegenError::BadOption { option: "module", .. }), "{e}");
-    let e = emit_model(&m, &EmitOptions::default().fix("mass", 2.0)).expect_err("unknown parameter");
-    assert!(e.to_string().contains("mass") && e.to_string().contains("m, k, c"), "{e}");
+    assert!(
+        matches!(
+            e,
+            CodegenError::BadOption {
+                option: "module",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let e =
+        emit_model(&m, &EmitOptions::default().fix("mass", 2.0)).expect_err("unknown parameter");
+    assert!(
+        e.to_string().contains("mass") && e.to_string().contains("m, k, c"),
+        "{e}"
+    );
     let e = emit_model(&m, &EmitOptions::default().fix("m", 0.0)).expect_err("division by zero");
-    assert!(matches!(e, CodegenError::BadOption { option: "fix", .. }), "{e}");
+    assert!(
+        matches!(e, CodegenError::BadOption { option: "fix", .. }),
+        "{e}"
+    );
     let bike = models::build("bicycle", &[]).expect("bicycle");
-    let e = emit_model(&bike, &EmitOptions::default().fix("lambda", std::f64::consts::FRAC_PI_2)).expect_err("outside");
-    assert!(matches!(e, CodegenError::BadOption { option: "fix", .. }) && e.to_string().contains("steer hinge"), "{e}");
+    let e = emit_model(
+        &bike,
+        &EmitOptions::default().fix("lambda", std::f64::consts::FRAC_PI_2),
+    )
+    .expect_err("outside");
+    assert!(
+        matches!(e, CodegenError::BadOption { option: "fix", .. })
+            && e.to_string().contains("steer hinge"),
+        "{e}"
+    );
     let e = emit_model(&m, &EmitOptions::default().max_temporaries(0)).expect_err("zero chunk");
-    assert!(matches!(e, CodegenError::BadOption { option: "max_temporaries", .. }), "{e}");
-    let e = eom_codegen::build::Generate::model("bicycel").emit().expect_err("unknown model");
+    assert!(
+        matches!(
+            e,
+            CodegenError::BadOption {
+                option: "max_temporaries",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let e = eom_codegen::build::Generate::model("bicycel")
+        .emit()
+        .expect_err("unknown model");
     assert!(e.to_string().contains("bicycle"), "{e}");
 }
 
@@ -467,11 +647,18 @@ fn bad_options_are_typed_errors_naming_the_option() {
 #[test]
 fn smd_eval_ab_formatting_snapshot() {
     let m = models::build("smd", &[]).expect("smd");
-    let src = eom_codegen::emit_model(&m, &eom_codegen::EmitOptions::default()).expect("emit").source;
+    let src = eom_codegen::emit_model(&m, &eom_codegen::EmitOptions::default())
+        .expect("emit")
+        .source;
     let start = src.find("    pub fn eval_ab(").expect("eval_ab");
     let end = start + src[start..].find("\n    }\n").expect("end") + 7;
     let expected = SMD_EVAL_AB;
-    assert_eq!(&src[start..end], expected, "formatting of smd's eval_ab changed:\n{}", &src[start..end]);
+    assert_eq!(
+        &src[start..end],
+        expected,
+        "formatting of smd's eval_ab changed:\n{}",
+        &src[start..end]
+    );
 }
 
 const SMD_EVAL_AB: &str = r#"    pub fn eval_ab(
@@ -488,13 +675,15 @@ const SMD_EVAL_AB: &str = r#"    pub fn eval_ab(
         let t1: f64 = t0 * p_k;
         let t2: f64 = t0 * p_c;
         let av0 = p_m.abs();
-        let ok0: bool = (av0 > 0.0) & (av0 < f64::INFINITY);
-        if !(ok0) {
-            return Err(validity_error(&[ok0]));
+        let ok0: bool = av0 > 0.0;
+        if !ok0 {
+            if let Some(e) = failure(&[ok0], &[av0], &[], &[]) {
+                return Err(e);
+            }
         }
-        let sum: f64 = t1 + (t2 + t0);
+        let sum: f64 = (t1 + t2) + (t0 + av0);
         if !sum.is_finite() {
-            if let Some(e) = non_finite(&[t1, t2, t0], &EVAL_AB_ENTRIES) {
+            if let Some(e) = failure(&[ok0], &[av0], &[t1, t2, t0], &EVAL_AB_ENTRIES) {
                 return Err(e);
             }
         }

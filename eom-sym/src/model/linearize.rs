@@ -94,7 +94,7 @@ impl<'a> Linearizer<'a> {
     pub fn symbolic(&self) -> Result<SymbolicStateSpace, SymError> {
         let a = assemble(self.model)?;
         let r = reduce(&a, None)?;
-        SymbolicStateSpace::new(r, self.model.scope.params())
+        SymbolicStateSpace::new(r, &self.model.scope.params())
     }
 
     /// Run the chosen method at the chosen point.

@@ -18,7 +18,7 @@ pub use assemble::{Assembled, RowLabel, assemble};
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
-pub use reduce::{CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
+pub use reduce::{CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, MatrixSize, Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
 
 use crate::error::SymError;
 use crate::expr::Expr;
@@ -649,7 +649,7 @@ impl Model<Expr> {
                 problem: x.to_string(),
             })?;
         }
-        let tape = Tape::new(&fields, self.scope.params())?;
+        let tape = Tape::new(&fields, &self.scope.params())?;
         let mut vals = vec![0.0; fields.len()];
         let mut work = vec![0.0; tape.work_len()];
         tape.eval_into(values, &mut vals, &mut work)?;

@@ -594,6 +594,19 @@ pub struct SymbolicStateSpace {
     compiled: CompiledStateSpace,
 }
 
+/// Size of one symbolic matrix (see [`SymbolicStateSpace::sizes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MatrixSize {
+    /// "A", "B", "C", "D" or "A..D".
+    pub name: &'static str,
+    /// Structural non-zeros.
+    pub nonzeros: usize,
+    /// Unique DAG nodes.
+    pub nodes: usize,
+    /// Operations of straight-line code evaluating every unique node once.
+    pub operations: usize,
+}
+
 /// The numeric side of a [`SymbolicStateSpace`]: a compiled tape of every entry of A, B, C,
 /// D and `phys` plus the validity checks. It holds no expressions, so it is `Send + Sync`
 /// and can be shared by the threads of a parallel sweep.
@@ -652,6 +665,21 @@ impl SymbolicStateSpace {
     /// The expression state-space model.
     pub fn state_space(&self) -> &StateSpace<Expr> {
         &self.reduction.state_space
+    }
+
+    /// Size of the symbolic result per matrix: `(name, structural non-zeros, unique nodes,
+    /// operations)` for A, B, C, D, and the totals with sharing across matrices (`"A..D"`).
+    pub fn sizes(&self) -> Vec<MatrixSize> {
+        let ss = &self.reduction.state_space;
+        let mut out = Vec::new();
+        let mut all = Vec::new();
+        for (name, m) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d)] {
+            let roots: Vec<Expr> = m.iter().copied().filter(|e| !e.is_zero()).collect();
+            all.extend(roots.iter().copied());
+            out.push(MatrixSize { name, nonzeros: roots.len(), nodes: Expr::dag_size(&roots), operations: Expr::op_count(&roots).total() });
+        }
+        out.push(MatrixSize { name: "A..D", nonzeros: all.len(), nodes: Expr::dag_size(&all), operations: Expr::op_count(&all).total() });
+        out
     }
 
     /// The compiled numeric side (shareable across threads).

@@ -82,9 +82,19 @@ impl Controller {
     /// previous matrices stay as they were.
     pub fn tick(&mut self, speed: f32, x: &[f32; N_STATES]) -> Result<Command, bicycle::Error> {
         self.params[V] = speed;
-        bicycle::eval_abcd(&self.params, &mut self.a, &mut self.b, &mut self.c, &mut self.d, &mut self.work)?;
+        bicycle::eval_abcd(
+            &self.params,
+            &mut self.a,
+            &mut self.b,
+            &mut self.c,
+            &mut self.d,
+            &mut self.work,
+        )?;
         let residual = match &self.predicted {
-            Some(p) => p.iter().zip(x).fold(0.0f32, |m, (p, x)| m.max(libm::fabsf(p - x))),
+            Some(p) => p
+                .iter()
+                .zip(x)
+                .fold(0.0f32, |m, (p, x)| m.max(libm::fabsf(p - x))),
             None => 0.0,
         };
         let torque = -self.gain.iter().zip(x).map(|(g, x)| g * x).sum::<f32>();
@@ -98,12 +108,19 @@ impl Controller {
             *n += self.dt * dx;
         }
         self.predicted = Some(next);
-        let lean_row = bicycle::OUTPUT_NAMES.iter().position(|n| *n == "phi").unwrap_or(0);
+        let lean_row = bicycle::OUTPUT_NAMES
+            .iter()
+            .position(|n| *n == "phi")
+            .unwrap_or(0);
         let mut lean = self.d[lean_row] * torque;
         for (j, xj) in x.iter().enumerate() {
             lean += self.c[lean_row + j * N_OUTPUTS] * xj;
         }
-        Ok(Command { torque, residual, lean })
+        Ok(Command {
+            torque,
+            residual,
+            lean,
+        })
     }
 
     /// A of the last successful tick (column-major).

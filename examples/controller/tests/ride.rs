@@ -8,9 +8,19 @@ use controller::{Controller, bicycle};
 #[test]
 fn steer_into_the_lean_settles_over_a_speed_ramp() {
     let mut params = plant::Params::NOMINAL.to_array();
-    let iv = plant::PARAM_NAMES.iter().position(|n| *n == "v").expect("v");
-    let lean = plant::STATE_NAMES.iter().position(|n| *n == "front frame.rx").expect("lean");
-    let (mut a, mut b, mut w) = ([0.0; plant::A_LEN], [0.0; plant::B_LEN], [0.0; plant::WORK_LEN]);
+    let iv = plant::PARAM_NAMES
+        .iter()
+        .position(|n| *n == "v")
+        .expect("v");
+    let lean = plant::STATE_NAMES
+        .iter()
+        .position(|n| *n == "front frame.rx")
+        .expect("lean");
+    let (mut a, mut b, mut w) = (
+        [0.0; plant::A_LEN],
+        [0.0; plant::B_LEN],
+        [0.0; plant::WORK_LEN],
+    );
     let mut x = [0.0f64; plant::N_STATES];
     x[lean] = 0.05;
     let mut gain = [0.0f32; bicycle::N_STATES];
@@ -30,7 +40,12 @@ fn steer_into_the_lean_settles_over_a_speed_ramp() {
         plant::eval_ab(&params, &mut a, &mut b, &mut w).expect("plant");
         for _ in 0..10 {
             let dx: Vec<f64> = (0..plant::N_STATES)
-                .map(|i| b[i] * f64::from(cmd.torque) + (0..plant::N_STATES).map(|j| a[i + j * plant::N_STATES] * x[j]).sum::<f64>())
+                .map(|i| {
+                    b[i] * f64::from(cmd.torque)
+                        + (0..plant::N_STATES)
+                            .map(|j| a[i + j * plant::N_STATES] * x[j])
+                            .sum::<f64>()
+                })
                 .collect();
             for (xi, d) in x.iter_mut().zip(dx) {
                 *xi += 0.001 * d;
@@ -39,7 +54,10 @@ fn steer_into_the_lean_settles_over_a_speed_ramp() {
     }
     let first = first_lean.expect("ticked");
     assert!(first.abs() > 0.01, "initial lean {first}");
-    assert!(last_lean.abs() < 0.02 * first.abs(), "lean {first} → {last_lean}");
+    assert!(
+        last_lean.abs() < 0.02 * first.abs(),
+        "lean {first} → {last_lean}"
+    );
     // One controller step against ten plant steps: the Euler prediction is close, not exact.
     assert!(worst_residual < 1e-3, "residual {worst_residual}");
 }
@@ -53,9 +71,14 @@ fn outside_the_validity_region_a_tick_is_an_error() {
     p.lambda = core::f32::consts::FRAC_PI_2;
     let mut bad = Controller::new(p, [0.0; bicycle::N_STATES], 0.01);
     match bad.tick(5.0, &[0.0; bicycle::N_STATES]) {
-        Err(bicycle::Error::Validity { what, .. }) => assert!(what.contains("steer hinge"), "{what}"),
+        Err(bicycle::Error::Validity { what, .. }) => {
+            assert!(what.contains("steer hinge"), "{what}")
+        }
         other => panic!("{other:?}"),
     }
-    assert!(bad.a().iter().all(|&x| x == 0.0), "matrices written on error");
+    assert!(
+        bad.a().iter().all(|&x| x == 0.0),
+        "matrices written on error"
+    );
     assert_eq!(*ctl.a(), a);
 }

@@ -18,9 +18,19 @@ fn main() {
 fn ride(speed: impl Fn(f64) -> f64, print: bool) -> f32 {
     let mut last = f32::NAN;
     let mut params = plant::Params::NOMINAL.to_array();
-    let iv = plant::PARAM_NAMES.iter().position(|n| *n == "v").expect("speed parameter");
-    let lean_state = plant::STATE_NAMES.iter().position(|n| *n == "front frame.rx").expect("lean state");
-    let (mut a, mut b, mut w) = ([0.0; plant::A_LEN], [0.0; plant::B_LEN], [0.0; plant::WORK_LEN]);
+    let iv = plant::PARAM_NAMES
+        .iter()
+        .position(|n| *n == "v")
+        .expect("speed parameter");
+    let lean_state = plant::STATE_NAMES
+        .iter()
+        .position(|n| *n == "front frame.rx")
+        .expect("lean state");
+    let (mut a, mut b, mut w) = (
+        [0.0; plant::A_LEN],
+        [0.0; plant::B_LEN],
+        [0.0; plant::WORK_LEN],
+    );
     let mut x = [0.0f64; plant::N_STATES];
     x[lean_state] = 0.05;
     // Steer into the lean: torque = 2 N m/rad · lean.
@@ -35,7 +45,11 @@ fn ride(speed: impl Fn(f64) -> f64, print: bool) -> f32 {
             Ok(c) => c,
             Err(e) => {
                 eprintln!("t = {t:.2}: {e}; no torque");
-                controller::Command { torque: 0.0, residual: f32::NAN, lean: f32::NAN }
+                controller::Command {
+                    torque: 0.0,
+                    residual: f32::NAN,
+                    lean: f32::NAN,
+                }
             }
         };
         last = cmd.lean;
@@ -50,7 +64,10 @@ fn ride(speed: impl Fn(f64) -> f64, print: bool) -> f32 {
         for _ in 0..10 {
             let mut dx = [0.0; plant::N_STATES];
             for (i, d) in dx.iter_mut().enumerate() {
-                *d = b[i] * f64::from(cmd.torque) + (0..plant::N_STATES).map(|j| a[i + j * plant::N_STATES] * x[j]).sum::<f64>();
+                *d = b[i] * f64::from(cmd.torque)
+                    + (0..plant::N_STATES)
+                        .map(|j| a[i + j * plant::N_STATES] * x[j])
+                        .sum::<f64>();
             }
             for (xi, d) in x.iter_mut().zip(dx) {
                 *xi += 0.001 * d;
