@@ -295,7 +295,7 @@ fn module_doc(p: &Problem, opts: &EmitOptions, stats: &EmitStats) -> Vec<String>
             .iter()
             .enumerate()
             .map(|(k, s)| match units.get(k).filter(|u| !u.is_empty()) {
-                Some(u) => format!("`{s}` [{u}]"),
+                Some(u) => format!("`{s}` ({u})"),
                 None => format!("`{s}`"),
             })
             .collect::<Vec<_>>()
@@ -398,7 +398,7 @@ fn validity_doc(p: &Problem) -> Vec<String> {
     }
     let mut d = vec![
         format!(
-            " The formulas come from an elimination whose pivots were chosen at the nominal point. They hold where these {} checks hold (`PIVOT_TOLERANCE` = {:e}, `RANK_TOLERANCE` = {:e}); every evaluation function tests them and returns [`Error::Validity`] naming the first that fails. The margin is the ratio at the nominal point.",
+            " The formulas come from an elimination whose pivots were chosen at the nominal point. They hold where these {} checks hold (`PIVOT_TOLERANCE` = {:e}, `RANK_TOLERANCE` = {:e}); every evaluation function tests them and returns `Error::Validity` naming the first that fails. The margin is the ratio at the nominal point.",
             p.checks.len(),
             eom_sym::model::reduce::PIVOT_TOLERANCE,
             eom_sym::model::reduce::RANK_TOLERANCE
@@ -582,7 +582,7 @@ fn module_items(
         let unit = if q.unit.is_empty() {
             String::new()
         } else {
-            format!(" [{}]", q.unit)
+            format!(" ({})", q.unit)
         };
         let doc = format!(
             " `{}`{unit}: {} (nominal {:?}).",

@@ -1004,7 +1004,10 @@ mod tests {
                 let b = num.bound(tol, av);
                 assert!(num.mul(tol, b) <= av, "{prec:?} {av}");
                 let up = num.next_up(b);
-                assert!(!up.is_finite() || up > num.max_finite() || num.mul(tol, up) > av, "{prec:?} {av}");
+                assert!(
+                    !up.is_finite() || up > num.max_finite() || num.mul(tol, up) > av,
+                    "{prec:?} {av}"
+                );
                 let mut r = b;
                 for _ in 0..50 {
                     r = num.next_down(r);
@@ -1016,20 +1019,36 @@ mod tests {
 
     #[test]
     fn balanced_trees_keep_precedence() {
-        let v: Vec<TokenStream> = ["a", "b", "c", "d", "e"].iter().map(|s| s.parse().expect("ident")).collect();
-        assert_eq!(balanced(&v, quote!(+), false).to_string(), "a + b + c + (d + e)");
+        let v: Vec<TokenStream> = ["a", "b", "c", "d", "e"]
+            .iter()
+            .map(|s| s.parse().expect("ident"))
+            .collect();
+        assert_eq!(
+            balanced(&v, quote!(+), false).to_string(),
+            "a + b + c + (d + e)"
+        );
         assert_eq!(balanced(&v[..2], quote!(*), true).to_string(), "(a * b)");
         assert_eq!(balanced(&v[..1], quote!(*), true).to_string(), "a");
     }
 
     #[test]
     fn literals_are_unsuffixed_with_full_precision() {
-        let num = Num { prec: Precision::F64 };
+        let num = Num {
+            prec: Precision::F64,
+        };
         assert_eq!(num.lit(0.1, "x").expect("finite").to_string(), "0.1");
-        assert_eq!(num.lit(-2.5e-300, "x").expect("finite").to_string(), "- 2.5e-300");
-        assert_eq!(num.lit(1.0 / 3.0, "x").expect("finite").to_string(), "0.3333333333333333");
+        assert_eq!(
+            num.lit(-2.5e-300, "x").expect("finite").to_string(),
+            "- 2.5e-300"
+        );
+        assert_eq!(
+            num.lit(1.0 / 3.0, "x").expect("finite").to_string(),
+            "0.3333333333333333"
+        );
         assert!(num.lit(f64::INFINITY, "x").is_err());
-        let f32n = Num { prec: Precision::F32 };
+        let f32n = Num {
+            prec: Precision::F32,
+        };
         assert_eq!(f32n.lit(0.1, "x").expect("finite").to_string(), "0.1");
         assert!(f32n.lit(1e300, "x").is_err());
     }

@@ -21,7 +21,7 @@
 //!   inf/NaN, which libm handles on fast paths. `eval_bounded` uses the same operation mix but
 //!   keeps only nodes whose nominal value lies in [1e-6, 1e6], so every instruction computes a
 //!   finite number — the representative case. `eval_bounded/tape_eval_batch64` evaluates 64
-//!   points per call (throughput in instructions × points: time per node per point); the
+//!   points per call (in chunks of 16) (throughput in instructions × points: time per node per point); the
 //!   overflowing DAG has no batch bench, since `eval_batch` reports its non-finite outputs.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};

@@ -45,13 +45,13 @@ impl Dd {
     /// One.
     pub const ONE: Dd = Dd { hi: 1.0, lo: 0.0 };
     /// π.
-    pub const PI: Dd = Dd { hi: 3.141592653589793116e+00, lo: 1.224646799147353207e-16 };
+    pub const PI: Dd = Dd { hi: std::f64::consts::PI, lo: 1.2246467991473532e-16 };
     /// π/2.
-    pub const FRAC_PI_2: Dd = Dd { hi: 1.570796326794896558e+00, lo: 6.123233995736766036e-17 };
+    pub const FRAC_PI_2: Dd = Dd { hi: std::f64::consts::FRAC_PI_2, lo: 6.123233995736766e-17 };
     /// ln 2.
-    pub const LN_2: Dd = Dd { hi: 6.931471805599452862e-01, lo: 2.319046813846299558e-17 };
+    pub const LN_2: Dd = Dd { hi: std::f64::consts::LN_2, lo: 2.3190468138462996e-17 };
     /// e.
-    pub const E: Dd = Dd { hi: 2.718281828459045091e+00, lo: 1.445646891729250158e-16 };
+    pub const E: Dd = Dd { hi: std::f64::consts::E, lo: 1.4456468917292502e-16 };
 
     /// From an `f64` (exact).
     pub const fn from_f64(x: f64) -> Dd {
@@ -118,7 +118,7 @@ impl Dd {
         let mut acc = Dd::ONE;
         while k > 0 {
             if k & 1 == 1 {
-                acc = acc * base;
+                acc *= base;
             }
             base = base * base;
             k >>= 1;
@@ -130,7 +130,7 @@ impl Dd {
     fn reduce_half_pi(self) -> (i64, Dd) {
         let k = (self.to_f64() / std::f64::consts::FRAC_PI_2).round();
         // Subtract k·π/2 with a triple-length π/2 so that moderate k lose no accuracy.
-        const PIO2_3: f64 = -1.497384904859169833e-33; // third part of π/2
+        const PIO2_3: f64 = -1.4973849048591698e-33; // third part of π/2
         let r = self - Dd::FRAC_PI_2.mul_f64(k) - Dd::from_f64(PIO2_3 * k);
         ((k as i64).rem_euclid(4), r)
     }
@@ -230,7 +230,7 @@ impl Dd {
         let mut y = Dd::from_f64(self.hi.ln());
         for _ in 0..2 {
             let ey = y.exp();
-            y = y + Dd::from_f64(2.0) * (self - ey) / (self + ey);
+            y += Dd::from_f64(2.0) * (self - ey) / (self + ey);
         }
         y
     }
@@ -249,7 +249,7 @@ impl Dd {
             if den.hi == 0.0 {
                 break;
             }
-            t = t + num / den;
+            t += num / den;
         }
         t
     }
@@ -343,12 +343,12 @@ impl fmt::Display for Dd {
         let neg = self.hi < 0.0;
         let mut x = self.abs();
         let mut exp10 = x.hi.log10().floor() as i32;
-        x = x * Dd::from_f64(10.0).powi(-exp10 as i64);
+        x *= Dd::from_f64(10.0).powi(-exp10 as i64);
         if x.hi >= 10.0 {
             x = x / Dd::from_f64(10.0);
             exp10 += 1;
         } else if x.hi < 1.0 {
-            x = x * Dd::from_f64(10.0);
+            x *= Dd::from_f64(10.0);
             exp10 -= 1;
         }
         let mut digits = String::new();
@@ -469,9 +469,9 @@ pub fn refine_eigenvalue(a: &[Vec<Dd>], approx: (f64, f64)) -> Option<(Dd, Dd)> 
             for i in k + 1..n {
                 let f = m[i][k].div(m[k][k]);
                 m[i][k] = f;
-                for j in k + 1..n {
-                    let t = f.mul(m[k][j]);
-                    m[i][j] = m[i][j].sub(t);
+                let (upper, lower) = m.split_at_mut(i);
+                for (a, b) in lower[0][k + 1..n].iter_mut().zip(&upper[k][k + 1..n]) {
+                    *a = a.sub(f.mul(*b));
                 }
             }
         }

@@ -682,17 +682,17 @@ impl ExprPool {
     // ---------------------------------------------------------------- leaves
 
     pub(crate) fn rational(&mut self, r: Rational) -> Id {
-        if let Rational::Small(n, d @ (1 | 2)) = r {
-            if n.abs() <= SMALL {
-                let slot = &mut self.small[(d - 1) as usize][(n + SMALL) as usize];
-                if *slot != NONE {
-                    self.interns += 1;
-                    return *slot;
-                }
-                let id = self.intern(Key::Num(&r));
-                self.small[(d - 1) as usize][(n + SMALL) as usize] = id;
-                return id;
+        if let Rational::Small(n, d @ (1 | 2)) = r
+            && n.abs() <= SMALL
+        {
+            let slot = &mut self.small[(d - 1) as usize][(n + SMALL) as usize];
+            if *slot != NONE {
+                self.interns += 1;
+                return *slot;
             }
+            let id = self.intern(Key::Num(&r));
+            self.small[(d - 1) as usize][(n + SMALL) as usize] = id;
+            return id;
         }
         self.intern(Key::Num(&r))
     }
@@ -1342,10 +1342,10 @@ impl ExprPool {
             return self.invalid(SymError::NotReal { what: format!("{}({x})", f.name()) });
         }
         // Multiples of π.
-        if let Some(k) = self.pi_multiple(a) {
-            if let Some(v) = exact_trig(f, &k) {
-                return self.rational(v);
-            }
+        if let Some(k) = self.pi_multiple(a)
+            && let Some(v) = exact_trig(f, &k)
+        {
+            return self.rational(v);
         }
         // Odd and even functions of a negated argument.
         if let Some(pos) = self.negated(a) {

@@ -57,10 +57,10 @@ impl Rational {
             d = -d;
         }
         // Integers need no reduction (the gcd is the costly part of small arithmetic).
-        if d == 1 {
-            if let Ok(n) = i64::try_from(n) {
-                return Rational::Small(n, 1);
-            }
+        if d == 1
+            && let Ok(n) = i64::try_from(n)
+        {
+            return Rational::Small(n, 1);
         }
         let g = n.gcd(&d);
         if g > 1 {
@@ -231,10 +231,11 @@ impl Rational {
     pub fn add(&self, o: &Rational) -> Result<Rational, RationalOverflow> {
         if let (Rational::Small(a, b), Rational::Small(c, d)) = (self, o) {
             // Fast paths (exact): integers, and adding zero.
-            if *b == 1 && *d == 1 {
-                if let Some(n) = a.checked_add(*c) {
-                    return Ok(Rational::Small(n, 1));
-                }
+            if *b == 1
+                && *d == 1
+                && let Some(n) = a.checked_add(*c)
+            {
+                return Ok(Rational::Small(n, 1));
             }
             if *a == 0 {
                 return Ok(o.clone());
@@ -243,10 +244,10 @@ impl Rational {
                 return Ok(self.clone());
             }
             let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
-            if let (Some(x), Some(y)) = (a.checked_mul(d), c.checked_mul(b)) {
-                if let (Some(n), Some(den)) = (x.checked_add(y), b.checked_mul(d)) {
-                    return Ok(Rational::from_i128(n, den));
-                }
+            if let (Some(x), Some(y)) = (a.checked_mul(d), c.checked_mul(b))
+                && let (Some(n), Some(den)) = (x.checked_add(y), b.checked_mul(d))
+            {
+                return Ok(Rational::from_i128(n, den));
             }
         }
         Self::from_big(self.to_big() + o.to_big())
@@ -261,10 +262,11 @@ impl Rational {
     pub fn mul(&self, o: &Rational) -> Result<Rational, RationalOverflow> {
         if let (Rational::Small(a, b), Rational::Small(c, d)) = (self, o) {
             // Fast paths (exact): integers, and multiplying by one.
-            if *b == 1 && *d == 1 {
-                if let Some(n) = a.checked_mul(*c) {
-                    return Ok(Rational::Small(n, 1));
-                }
+            if *b == 1
+                && *d == 1
+                && let Some(n) = a.checked_mul(*c)
+            {
+                return Ok(Rational::Small(n, 1));
             }
             if *a == 1 && *b == 1 {
                 return Ok(o.clone());
@@ -320,7 +322,7 @@ impl Rational {
     /// Exact `q`-th root for small values (`self^(1/q)`) when the result is rational.
     pub fn exact_root(&self, q: u32) -> Option<Rational> {
         let (n, d) = self.as_small()?;
-        if n < 0 && q % 2 == 0 {
+        if n < 0 && q.is_multiple_of(2) {
             return None;
         }
         let rn = int_root(n.unsigned_abs(), q)?;
@@ -335,12 +337,7 @@ fn int_root(x: u64, q: u32) -> Option<u64> {
         return Some(x);
     }
     let guess = (x as f64).powf(1.0 / q as f64).round() as u64;
-    for c in guess.saturating_sub(1)..=guess + 1 {
-        if c.checked_pow(q) == Some(x) {
-            return Some(c);
-        }
-    }
-    None
+    (guess.saturating_sub(1)..=guess + 1).find(|&c| c.checked_pow(q) == Some(x))
 }
 
 impl PartialOrd for Rational {

@@ -75,10 +75,10 @@ fn rational_dd(r: &Rational) -> Dd {
 
 /// Evaluate node `id` at probe `k` in double-double (memoised), returning (value, Σ|terms|).
 fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
-    if let Some(v) = p.values.get(&id) {
-        if !v[k].0.hi.is_nan() {
-            return v[k];
-        }
+    if let Some(v) = p.values.get(&id)
+        && !v[k].0.hi.is_nan()
+    {
+        return v[k];
     }
     // Iterative post-order over the children (deep DAGs must not overflow the stack).
     let mut stack = vec![(id, false)];
@@ -94,7 +94,7 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
         if !ready {
             stack.push((n, true));
             for c in children {
-                if !p.values.get(&c).is_some_and(|v| !v[k].0.hi.is_nan()) {
+                if p.values.get(&c).is_none_or(|v| v[k].0.hi.is_nan()) {
                     stack.push((c, false));
                 }
             }

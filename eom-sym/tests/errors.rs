@@ -346,10 +346,24 @@ fn tape_non_finite_output_names_the_output() {
     let t2 = Tape::new(&[x + 1, x.recip()], &[x]).unwrap();
     let e = t2.eval_vec(&[0.0]).unwrap_err();
     assert_eq!(e, SymError::EvalNonFinite { what: "output 1".into(), value: f64::INFINITY });
-    // In a batch, the point is named too.
+    // In a batch, the point is named too: a small batch (point by point) and a large one
+    // (evaluated in chunks), where the first bad point is 13 although 17 is bad too.
     let mut out = [0.0; 6];
     let e = t.eval_batch(&[2.0, -3.0], &mut out, &mut ws).unwrap_err();
     assert!(e.to_string().contains("output 1 at point 1"), "{e}");
+    let pts: Vec<f64> = (0..40).map(|k| if k == 13 || k == 17 { -1.0 } else { 1.0 + k as f64 }).collect();
+    let mut out = vec![0.0; 3 * pts.len()];
+    let e = t.eval_batch(&pts, &mut out, &mut ws).unwrap_err();
+    match e {
+        SymError::EvalNonFinite { what, value } => {
+            assert_eq!(what, "output 1 at point 13");
+            assert!(value.is_nan());
+        }
+        other => panic!("{other:?}"),
+    }
+    let pts: Vec<f64> = (0..40).map(|k| 1.0 + k as f64).collect();
+    t.eval_batch(&pts, &mut out, &mut ws).unwrap();
+    assert_eq!(out[3 * 39..], [41.0, 40f64.ln(), 1.0 / 40.0]);
     // The kernel itself does not check (documented), but does not panic either.
     let mut work = vec![0.0; t.work_len()];
     let mut out = [0.0; 3];

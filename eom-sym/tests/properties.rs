@@ -164,7 +164,7 @@ fn walk(roots: &[Expr], param: &dyn Fn(u32) -> Val) -> Walk {
                 for &(t, c) in &terms {
                     let (t, c) = (get(t, &vals), get(c, &vals));
                     let p = c.v * t.v;
-                    v = v + p;
+                    v += p;
                     mag += p.to_f64().abs();
                     let (cv, tv) = (c.v.to_f64().abs(), t.v.to_f64().abs());
                     err += cv * t.err + tv * c.err + c.err * t.err;
@@ -181,7 +181,7 @@ fn walk(roots: &[Expr], param: &dyn Fn(u32) -> Val) -> Walk {
                     if ex.is_negative() || !ex.is_integer() {
                         signature.push(sign(b.v));
                     }
-                    v = v * pow_dd(b.v, ex);
+                    v *= pow_dd(b.v, ex);
                     let bv = b.v.to_f64().abs();
                     let delta = if b.err == 0.0 { 0.0 } else { b.err / bv };
                     let prop = if delta < 1.0 {
@@ -420,11 +420,12 @@ fn tape_recursive_and_double_double_evaluation_agree() {
 
 /// `eval_batch` (chunks of points in structure-of-arrays form) gives exactly the results of
 /// `eval_into` point by point (the same operations per lane), and on a non-finite output
-/// names the same first (point, output) pair. Batch sizes 0–19 cover partial chunks.
+/// names the same first (point, output) pair. Batch sizes 0–39 cover full and partial chunks
+/// and the point-by-point remainder.
 #[test]
 fn batch_evaluation_equals_pointwise_evaluation() {
     let p = params();
-    run((recipe(), prop::collection::vec(point(), 0..20)), |(r, pts)| {
+    run((recipe(), prop::collection::vec(point(), 0..40)), |(r, pts)| {
         let e = build(&r, &p);
         if e.check().is_err() {
             return Ok(());
@@ -437,10 +438,8 @@ fn batch_evaluation_equals_pointwise_evaluation() {
         for (k, x) in pts.iter().enumerate() {
             let mut o = [0.0; 2];
             tape.eval_into(x, &mut o, &mut work).unwrap();
-            if first_bad.is_none() {
-                if let Some(j) = o.iter().position(|v| !v.is_finite()) {
-                    first_bad = Some(format!("output {j} at point {k}"));
-                }
+            if let (None, Some(j)) = (&first_bad, o.iter().position(|v| !v.is_finite())) {
+                first_bad = Some(format!("output {j} at point {k}"));
             }
             want.extend_from_slice(&o);
         }
@@ -456,6 +455,33 @@ fn batch_evaluation_equals_pointwise_evaluation() {
             (Err(SymError::EvalNonFinite { what, .. }), Some(bad)) => prop_assert_eq!(what, bad),
             (res, bad) => prop_assert!(false, "batch {res:?}, pointwise first non-finite {bad:?}"),
         }
+        Ok(())
+    });
+}
+
+/// The double-double reference itself (every tolerance above relies on it): exact identities
+/// hold to ~10⁻³⁰ — `exp(x)·exp(−x) = 1`, `ln(exp x) = x`, `sin²x + cos²x = 1`,
+/// `atan2(sin x, cos x) = x − 2πk`, `(√y)² = y`, `(1/y)·y = 1` — for |x| < 30.
+#[test]
+fn double_double_functions_satisfy_identities() {
+    run(-30.0f64..30.0, |x| {
+        let d = Dd::from_f64(x);
+        let tol = 1e-30;
+        let check = |what: &str, err: Dd, scale: f64| -> Result<(), TestCaseError> {
+            let e = err.to_f64().abs();
+            prop_assert!(e <= tol * scale, "{what} at x = {x}: error {e:e}");
+            Ok(())
+        };
+        check("exp(x)·exp(−x) − 1", d.exp() * (-d).exp() - Dd::ONE, 1.0)?;
+        check("ln(exp x) − x", d.exp().ln() - d, x.abs().max(1.0))?;
+        let (sn, cs) = (d.sin(), d.cos());
+        check("sin² + cos² − 1", sn * sn + cs * cs - Dd::ONE, 1.0)?;
+        let k = (x / (2.0 * std::f64::consts::PI)).round();
+        let reduced = d - Dd::PI * Dd::from_f64(2.0 * k);
+        check("atan2(sin x, cos x) − (x − 2πk)", sn.atan2(cs) - reduced, x.abs().max(1.0))?;
+        let y = d.abs() + Dd::from_f64(0.5);
+        check("(√y)² − y", y.sqrt() * y.sqrt() - y, y.to_f64())?;
+        check("(1/y)·y − 1", Dd::ONE / y * y - Dd::ONE, 1.0)?;
         Ok(())
     });
 }

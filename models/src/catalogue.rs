@@ -57,8 +57,8 @@ impl ModelInfo {
         for spec in &self.params {
             let value = overrides.iter().rev().find(|(k, _)| *k == spec.name).map_or(spec.default, |x| x.1);
             let bad = match spec.assume {
-                Assumption::Positive => !(value > 0.0),
-                Assumption::Nonnegative => !(value >= 0.0),
+                Assumption::Positive => value.is_nan() || value <= 0.0 || !value.is_finite(),
+                Assumption::Nonnegative => value.is_nan() || value < 0.0 || !value.is_finite(),
                 Assumption::Nonzero => value == 0.0 || !value.is_finite(),
                 Assumption::Real => !value.is_finite(),
             };
@@ -179,13 +179,12 @@ pub const MAX_CHAIN: usize = 5000;
 /// The catalogue entry and size for a model name (`chain50` → the chain entry, 50).
 pub fn find(name: &str) -> Result<(ModelInfo, usize), ModelError> {
     let cat = catalogue();
-    if let Some(n) = name.strip_prefix("chain") {
-        if let Ok(k) = n.parse::<usize>() {
-            if (1..=MAX_CHAIN).contains(&k) {
-                let info = cat.into_iter().find(|m| m.name == "chainN").expect("chain entry");
-                return Ok((info, k));
-            }
-        }
+    if let Some(n) = name.strip_prefix("chain")
+        && let Ok(k) = n.parse::<usize>()
+        && (1..=MAX_CHAIN).contains(&k)
+    {
+        let info = cat.into_iter().find(|m| m.name == "chainN").expect("chain entry");
+        return Ok((info, k));
     }
     match cat.iter().position(|m| m.name == name) {
         Some(i) if name != "chainN" => Ok((cat[i].clone(), 0)),

@@ -2,6 +2,9 @@
 //! exact stable interval, the bicycle's weave and capsize speeds, frequency responses against
 //! closed-form transfer functions, and a rotor at zero spin through the minimal realization.
 
+// Reference values are transcribed digit for digit from their sources.
+#![allow(clippy::excessive_precision)]
+
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_num::sweep::Sweep;

@@ -1,6 +1,9 @@
 //! Built-in models against closed-form results (eom-method §11–12, reference-cases §D, §E2),
 //! at the defaults and at other parameter values, by the symbolic, numeric and robust paths.
 
+// Reference values are transcribed digit for digit from their sources.
+#![allow(clippy::excessive_precision)]
+
 use eom_num::StateSpace;
 use eom_sym::model::{Linearizer, Method};
 use num_complex::Complex64;

@@ -2,6 +2,9 @@
 //! (reference data: `data/shimmy_eigs_u10.csv`, `data/shimmy_eigs_u1.csv`, see data/README.md),
 //! by all three reduction paths, to 1e-12 relative.
 
+// Reference values are transcribed digit for digit from their sources.
+#![allow(clippy::excessive_precision)]
+
 use eom_sym::model::{Linearizer, Method};
 use num_complex::Complex64;
 use tests::{max_relative_error, read_csv};

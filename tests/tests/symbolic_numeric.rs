@@ -5,6 +5,9 @@
 //! the recorded pivots stay valid. Outside that region the symbolic evaluation reports the
 //! failing pivot instead of returning numbers.
 
+// Reference values are transcribed digit for digit from their sources.
+#![allow(clippy::excessive_precision)]
+
 use eom_num::StateSpace;
 use eom_sym::SymError;
 use eom_sym::model::{Linearizer, assemble, reduce, reduce_robust};

@@ -133,6 +133,11 @@ impl<S: Scalar> Assembled<S> {
     }
 }
 
+/// A point item's rows, its force and moment directions, bodies and radii.
+type PointParts<S> = (Rows<S>, Vec<Vec3<S>>, Vec<Vec3<S>>, [Option<usize>; 2], [Vec3<S>; 2]);
+/// A line item's row, unit vector, length, bodies and radii.
+type LineParts<S> = (Rows<S>, Vec3<S>, S, [Option<usize>; 2], [Vec3<S>; 2]);
+
 /// A point or line item's Jacobian rows on the bodies' coordinates.
 struct Rows<S> {
     rows: Vec<Row<S>>,
@@ -204,7 +209,7 @@ impl<S: Scalar> Ctx<'_, S> {
     fn cg(&self, k: Option<usize>) -> Vec3<S> {
         k.map_or(zero3(), |k| self.model.bodies[k].location)
     }
-    fn point(&self, p: &Point<S>, kind: &'static str, name: &Name) -> (Rows<S>, Vec<Vec3<S>>, Vec<Vec3<S>>, [Option<usize>; 2], [Vec3<S>; 2]) {
+    fn point(&self, p: &Point<S>, kind: &'static str, name: &Name) -> PointParts<S> {
         let b = [self.idx(&p.bodies[0]), self.idx(&p.bodies[1])];
         let r = [sub(&p.location, &self.cg(b[0])), sub(&p.location, &self.cg(b[1]))];
         let f = directions(p.forces, &p.axis);
@@ -220,7 +225,7 @@ impl<S: Scalar> Ctx<'_, S> {
         (Rows { rows, labels }, f, m, b, r)
     }
     /// Line item: rows (1), unit vector, length, bodies, radii.
-    fn line(&self, l: &Line<S>, kind: &'static str, name: &Name) -> (Rows<S>, Vec3<S>, S, [Option<usize>; 2], [Vec3<S>; 2]) {
+    fn line(&self, l: &Line<S>, kind: &'static str, name: &Name) -> LineParts<S> {
         let b = [self.idx(&l.bodies[0]), self.idx(&l.bodies[1])];
         let t = sub(&l.ends[1], &l.ends[0]);
         let len = geometry::norm(&t);
@@ -921,7 +926,7 @@ fn solve_statics<S: Scalar>(
             res += t;
             mag += t.abs();
         }
-        if !(res.abs() <= 1e-9 * mag + 1e-300) {
+        if res.is_nan() || res.abs() > 1e-9 * mag + 1e-300 {
             return Err(SymError::Equilibrium(format!(
                 "{}: residual {res:.6e} (of terms summing to {mag:.6e} in magnitude). The given geometry is not an equilibrium with these constraints (eom uses the given geometry as the loaded equilibrium: add a support, or give spring preloads that balance the loads)",
                 coord_label(i)

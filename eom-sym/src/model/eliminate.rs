@@ -236,7 +236,7 @@ pub fn rref<S: Scalar>(
                     row.iter().filter(|e| e.0 < eligible && !col_done[e.0]).map(|e| (e.0, e.1.nominal().abs()))
                 };
                 let rmax = eligible_entries().map(|e| e.1).fold(0.0, f64::max);
-                if !(rmax > NEGLIGIBLE * scale[r]) || !rmax.is_finite() {
+                if rmax.is_nan() || rmax <= NEGLIGIBLE * scale[r] || !rmax.is_finite() {
                     continue;
                 }
                 let rc = eligible_entries().filter(|e| e.1 > NEGLIGIBLE * scale[r]).count();

@@ -132,7 +132,11 @@ impl<S: Scalar> Model<S> {
 
     /// Visit every field in the order of [`Model::map`], without building anything.
     pub fn for_each_field(&self, f: &mut dyn FnMut(&S)) {
-        let v3 = |a: &Vec3<S>, f: &mut dyn FnMut(&S)| a.iter().for_each(|x| f(x));
+        let v3 = |a: &Vec3<S>, f: &mut dyn FnMut(&S)| {
+            for x in a {
+                f(x)
+            }
+        };
         let line = |l: &Line<S>, f: &mut dyn FnMut(&S)| {
             v3(&l.ends[0], f);
             v3(&l.ends[1], f);
@@ -185,7 +189,9 @@ impl<S: Scalar> Model<S> {
             f(&r.damping[0]);
             f(&r.damping[1]);
             for m in [&r.stiffness_matrix, &r.damping_matrix].into_iter().flatten() {
-                m.iter().flatten().for_each(|x| f(x));
+                for x in m.iter().flatten() {
+                    f(x);
+                }
             }
         }
         for r in &self.nh_points {
@@ -220,7 +226,7 @@ impl<S: Scalar> Model<S> {
             rolling_axis: v(&p.rolling_axis, f),
         };
         let mat = |m: &Option<Vec<Vec<S>>>, f: &mut dyn FnMut(&S) -> T| {
-            m.as_ref().map(|m| m.iter().map(|r| r.iter().map(|x| f(x)).collect()).collect())
+            m.as_ref().map(|m| m.iter().map(|r| r.iter().map(&mut *f).collect()).collect())
         };
         Model {
             name: self.name.clone(),
@@ -260,7 +266,7 @@ impl<S: Scalar> Model<S> {
                     stiffness: f(&s.stiffness),
                     damping: f(&s.damping),
                     inertance: f(&s.inertance),
-                    preload: s.preload.as_ref().map(|p| f(p)),
+                    preload: s.preload.as_ref().map(&mut *f),
                 })
                 .collect(),
             beams: self
@@ -577,19 +583,19 @@ impl<S: Scalar> Model<S> {
         for f in &self.flex_points {
             let n = (f.point.forces + f.point.moments) as usize;
             for (m, field) in [(&f.stiffness_matrix, "stiffness_matrix"), (&f.damping_matrix, "damping_matrix")] {
-                if let Some(m) = m {
-                    if m.len() != n || m.iter().any(|r| r.len() != n) {
-                        return Err(err(format!("flex point `{}`", f.name), field, format!("must be {n}×{n} (forces + moments)")));
-                    }
+                if let Some(m) = m
+                    && (m.len() != n || m.iter().any(|r| r.len() != n))
+                {
+                    return Err(err(format!("flex point `{}`", f.name), field, format!("must be {n}×{n} (forces + moments)")));
                 }
             }
         }
         for s in &self.sensors {
-            if let Some(a) = &s.actuator {
-                if !self.actuators.iter().any(|x| &x.name == a) {
-                    let names: Vec<&str> = self.actuators.iter().map(|x| &*x.name).collect();
-                    return Err(err(format!("sensor `{}`", s.name), "actuator", format!("unknown actuator `{a}`; actuators are: {}", names.join(", "))));
-                }
+            if let Some(a) = &s.actuator
+                && !self.actuators.iter().any(|x| &x.name == a)
+            {
+                let names: Vec<&str> = self.actuators.iter().map(|x| &*x.name).collect();
+                return Err(err(format!("sensor `{}`", s.name), "actuator", format!("unknown actuator `{a}`; actuators are: {}", names.join(", "))));
             }
         }
         // Bodies that nothing constrains or supports.

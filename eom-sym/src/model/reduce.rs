@@ -539,10 +539,10 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     };
     let dense = |m: &SparseMatrix<S>| -> DMatrix<S> { to_dense(m) };
     let ss = StateSpace { a: dense(&a_ss), b: dense(&b_ss), c: dense(&c_out), d: dense(&d_out), phys: dense(&phys), names };
-    if plan.is_none() {
-        if let Some(bad) = checks.iter().find(|c| !c.holds_nominal()) {
-            return Err(SymError::Singular(format!("at the nominal point: {}", bad.what())));
-        }
+    if plan.is_none()
+        && let Some(bad) = checks.iter().find(|c| !c.holds_nominal())
+    {
+        return Err(SymError::Singular(format!("at the nominal point: {}", bad.what())));
     }
     let plan = ReductionPlan {
         active,

@@ -38,12 +38,12 @@ const V: usize = {
 /// What one tick produces.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Command {
-    /// Steer torque `T_delta` [N m].
+    /// Steer torque `T_delta` (N m).
     pub torque: f32,
     /// Largest difference between the measured state and the one the model predicted at the
     /// previous tick (a fault indicator: large when the bicycle does not behave like the model).
     pub residual: f32,
-    /// Lean angle `phi` [rad] from the output equation `y = C x + D u`.
+    /// Lean angle `phi` (rad) from the output equation `y = C x + D u`.
     pub lean: f32,
 }
 
