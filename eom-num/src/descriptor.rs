@@ -254,7 +254,13 @@ pub fn descriptor_to_state_space(
             }
         }
     }
-    let d_clean = Descriptor { e: e_clean, a: d.a.clone(), b: d.b.clone(), c: d.c.clone(), d: d.d.clone() };
+    let d_clean = Descriptor {
+        e: e_clean,
+        a: d.a.clone(),
+        b: d.b.clone(),
+        c: d.c.clone(),
+        d: d.d.clone(),
+    };
     let d = &d_clean;
 
     // 1. Equilibrate: E' = R E S, A' = R A S, B' = R B, C' = C S, phys' = phys S.

@@ -336,10 +336,21 @@ fn noise_level_row_of_e_is_not_amplified() {
     let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, -3.0, -0.4, 1.0, 0.0, 0.0, -1.0]);
     let b = DMatrix::from_row_slice(3, 1, &[0.0, 0.0, 1.0]);
     let c = DMatrix::from_row_slice(1, 3, &[1.0, 0.0, 0.0]);
-    let d = eom_num::Descriptor { e, a, b, c, d: DMatrix::zeros(1, 1) };
-    let (ss, rep) = eom_num::descriptor::descriptor_to_state_space(&d, &Default::default()).unwrap();
+    let d = eom_num::Descriptor {
+        e,
+        a,
+        b,
+        c,
+        d: DMatrix::zeros(1, 1),
+    };
+    let (ss, rep) =
+        eom_num::descriptor::descriptor_to_state_space(&d, &Default::default()).unwrap();
     assert_eq!((rep.dynamic, rep.algebraic), (2, 1));
-    assert!(rep.warnings.iter().any(|w| w.contains("rounding noise")), "{:?}", rep.warnings);
+    assert!(
+        rep.warnings.iter().any(|w| w.contains("rounding noise")),
+        "{:?}",
+        rep.warnings
+    );
     for s in [Complex64::new(0.3, 1.7), Complex64::new(-0.2, 0.4)] {
         // Exact: 1 / (2 s² + 0.4 s + 3).
         let exact = Complex64::new(1.0, 0.0) / (s * s * 2.0 + s * 0.4 + 3.0);

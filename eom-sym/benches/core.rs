@@ -75,7 +75,11 @@ fn program(n_steps: usize, seed: u64) -> Program {
             _ => Op::Powi(2 + rng.below(2) as i64),
         };
         let pick = |rng: &mut SplitMix| {
-            if rng.below(3) == 0 { usize::MAX - rng.below(1 << 20) } else { rng.below(32) }
+            if rng.below(3) == 0 {
+                usize::MAX - rng.below(1 << 20)
+            } else {
+                rng.below(32)
+            }
         };
         let (a, b) = (pick(&mut rng), pick(&mut rng));
         calls += op.calls();
@@ -91,7 +95,13 @@ fn run(prog: &Program, params: &[Expr]) -> Vec<Expr> {
     for &(op, a, b) in &prog.steps {
         let n = vals.len();
         // Offsets: small ones count back from the end, huge ones pick anywhere (uniformly).
-        let at = |k: usize| if k < 32 { vals[n - 1 - k % n] } else { vals[(usize::MAX - k) % n] };
+        let at = |k: usize| {
+            if k < 32 {
+                vals[n - 1 - k % n]
+            } else {
+                vals[(usize::MAX - k) % n]
+            }
+        };
         let (x, y) = (at(a), at(b));
         let e = match op {
             Op::Add => x + y,
@@ -131,7 +141,11 @@ fn intern(c: &mut Criterion) {
                 let dt = t.elapsed();
                 black_box(v);
                 let after = ExprPool::stats();
-                (dt, after.nodes - before.nodes, after.interns - before.interns)
+                (
+                    dt,
+                    after.nodes - before.nodes,
+                    after.interns - before.interns,
+                )
             })
             .join()
             .expect("bench thread")
@@ -155,9 +169,18 @@ fn intern(c: &mut Criterion) {
     let again = run(&prog, &ps);
     let after = ExprPool::stats();
     assert_eq!(first, again, "the program is deterministic");
-    assert_eq!(after.nodes, before.nodes, "a second run only finds existing nodes");
-    assert_eq!(after.interns - before.interns, interns, "same insertions as in a fresh pool");
-    g.bench_function("lookup", |b| b.iter(|| black_box(run(&prog, black_box(&ps)))));
+    assert_eq!(
+        after.nodes, before.nodes,
+        "a second run only finds existing nodes"
+    );
+    assert_eq!(
+        after.interns - before.interns,
+        interns,
+        "same insertions as in a fresh pool"
+    );
+    g.bench_function("lookup", |b| {
+        b.iter(|| black_box(run(&prog, black_box(&ps))))
+    });
     g.finish();
 }
 
@@ -172,7 +195,11 @@ fn bounded_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) -> Ve
         guard += 1;
         let pick = |rng: &mut SplitMix, pool: &Vec<Expr>| {
             let n = pool.len();
-            if rng.below(3) == 0 { pool[rng.below(n)] } else { pool[n - 1 - rng.below(n.min(32))] }
+            if rng.below(3) == 0 {
+                pool[rng.below(n)]
+            } else {
+                pool[n - 1 - rng.below(n.min(32))]
+            }
         };
         let a = pick(&mut rng, &pool);
         let b = pick(&mut rng, &pool);
@@ -191,7 +218,9 @@ fn bounded_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) -> Ve
         }
     }
     let n = pool.len();
-    (0..n_roots).map(|k| pool[n - 1 - (k * 7) % n.min(200)]).collect()
+    (0..n_roots)
+        .map(|k| pool[n - 1 - (k * 7) % n.min(200)])
+        .collect()
 }
 
 fn eval(c: &mut Criterion) {
@@ -227,13 +256,19 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
     // general, with error bounds).
     let g64 = eval_generic::<f64>(roots, |i| Some(by_index[i as usize])).unwrap();
     for (a, b) in out.iter().zip(&g64) {
-        assert!(!b.is_finite() || (a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b}");
+        assert!(
+            !b.is_finite() || (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+            "{a} vs {b}"
+        );
     }
 
     let mut g = c.benchmark_group(name);
     g.throughput(Throughput::Elements(tape.len() as u64));
     g.bench_function("tape_eval_into", |b| {
-        b.iter(|| tape.eval_into(black_box(&values), &mut out, &mut work).unwrap())
+        b.iter(|| {
+            tape.eval_into(black_box(&values), &mut out, &mut work)
+                .unwrap()
+        })
     });
     if non_finite == 0 {
         const POINTS: usize = 64;
@@ -242,10 +277,14 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
             .collect();
         let mut ws = TapeWorkspace::default();
         let mut bout = vec![0.0; POINTS * tape.n_outputs()];
-        tape.eval_batch(&batch, &mut bout, &mut ws).expect("finite batch");
+        tape.eval_batch(&batch, &mut bout, &mut ws)
+            .expect("finite batch");
         g.throughput(Throughput::Elements((tape.len() * POINTS) as u64));
         g.bench_function("tape_eval_batch64", |b| {
-            b.iter(|| tape.eval_batch(black_box(&batch), &mut bout, &mut ws).unwrap())
+            b.iter(|| {
+                tape.eval_batch(black_box(&batch), &mut bout, &mut ws)
+                    .unwrap()
+            })
         });
         g.throughput(Throughput::Elements(tape.len() as u64));
     }
@@ -254,8 +293,10 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
     });
     g.bench_function("eval_generic_dd", |b| {
         b.iter(|| {
-            eval_generic::<Dd>(black_box(roots), |i| Some(Dd::from_f64(by_index[i as usize])))
-                .unwrap()
+            eval_generic::<Dd>(black_box(roots), |i| {
+                Some(Dd::from_f64(by_index[i as usize]))
+            })
+            .unwrap()
         })
     });
     g.finish();

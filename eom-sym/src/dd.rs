@@ -45,13 +45,25 @@ impl Dd {
     /// One.
     pub const ONE: Dd = Dd { hi: 1.0, lo: 0.0 };
     /// π.
-    pub const PI: Dd = Dd { hi: std::f64::consts::PI, lo: 1.2246467991473532e-16 };
+    pub const PI: Dd = Dd {
+        hi: std::f64::consts::PI,
+        lo: 1.2246467991473532e-16,
+    };
     /// π/2.
-    pub const FRAC_PI_2: Dd = Dd { hi: std::f64::consts::FRAC_PI_2, lo: 6.123233995736766e-17 };
+    pub const FRAC_PI_2: Dd = Dd {
+        hi: std::f64::consts::FRAC_PI_2,
+        lo: 6.123233995736766e-17,
+    };
     /// ln 2.
-    pub const LN_2: Dd = Dd { hi: std::f64::consts::LN_2, lo: 2.3190468138462996e-17 };
+    pub const LN_2: Dd = Dd {
+        hi: std::f64::consts::LN_2,
+        lo: 2.3190468138462996e-17,
+    };
     /// e.
-    pub const E: Dd = Dd { hi: std::f64::consts::E, lo: 1.4456468917292502e-16 };
+    pub const E: Dd = Dd {
+        hi: std::f64::consts::E,
+        lo: 1.4456468917292502e-16,
+    };
 
     /// From an `f64` (exact).
     pub const fn from_f64(x: f64) -> Dd {
@@ -79,13 +91,20 @@ impl Dd {
 
     /// Absolute value.
     pub fn abs(self) -> Dd {
-        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) { -self } else { self }
+        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) {
+            -self
+        } else {
+            self
+        }
     }
 
     /// Multiply by a power of two (exact).
     fn ldexp(self, k: i32) -> Dd {
         let f = 2f64.powi(k);
-        Dd { hi: self.hi * f, lo: self.lo * f }
+        Dd {
+            hi: self.hi * f,
+            lo: self.lo * f,
+        }
     }
 
     /// `self * x` for a double `x`.
@@ -99,7 +118,11 @@ impl Dd {
     /// Square root (Newton correction of the double result).
     pub fn sqrt(self) -> Dd {
         if self.hi <= 0.0 {
-            return if self.hi == 0.0 { Dd::ZERO } else { Dd::from_f64(f64::NAN) };
+            return if self.hi == 0.0 {
+                Dd::ZERO
+            } else {
+                Dd::from_f64(f64::NAN)
+            };
         }
         let y = self.hi.sqrt();
         let yy = Dd::from_f64(y) * Dd::from_f64(y);
@@ -225,7 +248,11 @@ impl Dd {
     /// Natural logarithm (Newton on `exp`).
     pub fn ln(self) -> Dd {
         if self.hi <= 0.0 {
-            return Dd::from_f64(if self.hi == 0.0 { f64::NEG_INFINITY } else { f64::NAN });
+            return Dd::from_f64(if self.hi == 0.0 {
+                f64::NEG_INFINITY
+            } else {
+                f64::NAN
+            });
         }
         let mut y = Dd::from_f64(self.hi.ln());
         for _ in 0..2 {
@@ -282,7 +309,10 @@ impl Neg for Dd {
     type Output = Dd;
     #[inline]
     fn neg(self) -> Dd {
-        Dd { hi: -self.hi, lo: -self.lo }
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
     }
 }
 impl Mul for Dd {
@@ -404,8 +434,16 @@ mod tests {
         assert!(close(Dd::E.ln(), Dd::ONE, 1e-31));
         let y = Dd::from_f64(0.3);
         assert!(close(y.exp().ln(), y, 1e-30));
-        assert!(close(Dd::ONE.atan2(Dd::ONE) * Dd::from_f64(4.0), Dd::PI, 1e-31));
-        assert!(close(Dd::from_f64(2.0).powf(Dd::from_f64(0.5)), Dd::from_f64(2.0).sqrt(), 1e-30));
+        assert!(close(
+            Dd::ONE.atan2(Dd::ONE) * Dd::from_f64(4.0),
+            Dd::PI,
+            1e-31
+        ));
+        assert!(close(
+            Dd::from_f64(2.0).powf(Dd::from_f64(0.5)),
+            Dd::from_f64(2.0).sqrt(),
+            1e-30
+        ));
     }
 
     #[test]
@@ -431,7 +469,10 @@ impl Cdd {
     }
     fn div(self, o: Cdd) -> Cdd {
         let d = o.0 * o.0 + o.1 * o.1;
-        Cdd((self.0 * o.0 + self.1 * o.1) / d, (self.1 * o.0 - self.0 * o.1) / d)
+        Cdd(
+            (self.0 * o.0 + self.1 * o.1) / d,
+            (self.1 * o.0 - self.0 * o.1) / d,
+        )
     }
     fn abs2(self) -> f64 {
         (self.0 * self.0 + self.1 * self.1).to_f64()
@@ -460,7 +501,12 @@ pub fn refine_eigenvalue(a: &[Vec<Dd>], approx: (f64, f64)) -> Option<(Dd, Dd)> 
             .collect();
         let mut perm: Vec<usize> = (0..n).collect();
         for k in 0..n {
-            let p = (k..n).max_by(|&x, &y| m[x][k].abs2().partial_cmp(&m[y][k].abs2()).unwrap_or(Ordering::Equal))?;
+            let p = (k..n).max_by(|&x, &y| {
+                m[x][k]
+                    .abs2()
+                    .partial_cmp(&m[y][k].abs2())
+                    .unwrap_or(Ordering::Equal)
+            })?;
             if m[p][k].abs2() == 0.0 {
                 return Some((lam.0, lam.1)); // exactly singular: λ is an eigenvalue
             }
@@ -478,7 +524,16 @@ pub fn refine_eigenvalue(a: &[Vec<Dd>], approx: (f64, f64)) -> Option<(Dd, Dd)> 
         // tr(M⁻¹) = Σ_j (M⁻¹ e_j)_j.
         let mut tr = Cdd(Dd::ZERO, Dd::ZERO);
         for j in 0..n {
-            let mut x: Vec<Cdd> = perm.iter().map(|&p| if p == j { Cdd(Dd::ONE, Dd::ZERO) } else { Cdd(Dd::ZERO, Dd::ZERO) }).collect();
+            let mut x: Vec<Cdd> = perm
+                .iter()
+                .map(|&p| {
+                    if p == j {
+                        Cdd(Dd::ONE, Dd::ZERO)
+                    } else {
+                        Cdd(Dd::ZERO, Dd::ZERO)
+                    }
+                })
+                .collect();
             for i in 0..n {
                 for k in 0..i {
                     let t = m[i][k].mul(x[k]);

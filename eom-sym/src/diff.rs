@@ -46,9 +46,12 @@ pub fn diff_many(roots: &[Expr], p: Expr) -> Vec<Expr> {
                     zero
                 }
             }
-            ExprView::Sum { terms, .. } => {
-                Expr::sum(terms.iter().map(|&(t, c)| c * get(t, &d)).filter(|x| !x.is_zero()))
-            }
+            ExprView::Sum { terms, .. } => Expr::sum(
+                terms
+                    .iter()
+                    .map(|&(t, c)| c * get(t, &d))
+                    .filter(|x| !x.is_zero()),
+            ),
             ExprView::Product { coef, factors } => {
                 let mut parts = Vec::new();
                 for (i, (b, ex)) in factors.iter().enumerate() {
@@ -106,5 +109,8 @@ pub fn diff_many(roots: &[Expr], p: Expr) -> Vec<Expr> {
             d.insert(id, de);
         }
     }
-    roots.iter().map(|r| d.get(&r.id()).copied().unwrap_or(zero)).collect()
+    roots
+        .iter()
+        .map(|r| d.get(&r.id()).copied().unwrap_or(zero))
+        .collect()
 }

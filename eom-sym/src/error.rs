@@ -5,7 +5,9 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SymError {
     /// A parse error: where, what was expected, what was found.
-    #[error("parse error at column {column}: expected {expected}, found {found}\n  {input}\n  {caret}")]
+    #[error(
+        "parse error at column {column}: expected {expected}, found {found}\n  {input}\n  {caret}"
+    )]
     Parse {
         /// 1-based column (in characters) of the offending token.
         column: usize,
@@ -25,7 +27,10 @@ pub enum SymError {
         context: String,
     },
     /// An exact rational result would be wider than the supported limit.
-    #[error("rational overflow: an exact constant would exceed {} bits", crate::rational::MAX_BITS)]
+    #[error(
+        "rational overflow: an exact constant would exceed {} bits",
+        crate::rational::MAX_BITS
+    )]
     RationalOverflow,
     /// An operation without a real value, e.g. `ln(-1)` or `(-2)^(1/2)`.
     #[error("not a real number: {what}")]

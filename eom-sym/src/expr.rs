@@ -70,7 +70,10 @@ pub enum ExprView {
 
 impl Expr {
     pub(crate) fn from_id(id: Id) -> Expr {
-        Expr { id, _thread_bound: PhantomData }
+        Expr {
+            id,
+            _thread_bound: PhantomData,
+        }
     }
     /// The node id in the pool (ids are a topological order: children before parents).
     pub fn id(self) -> u32 {
@@ -95,7 +98,9 @@ impl Expr {
     pub fn rational(num: i64, den: i64) -> Result<Expr, SymError> {
         Rational::new(num, den)
             .map(Expr::from_rational)
-            .ok_or_else(|| SymError::DivisionByZero { context: format!("the rational {num}/{den}") })
+            .ok_or_else(|| SymError::DivisionByZero {
+                context: format!("the rational {num}/{den}"),
+            })
     }
     /// An exact rational constant.
     pub fn from_rational(r: Rational) -> Expr {
@@ -106,7 +111,9 @@ impl Expr {
     /// error.
     pub fn float(x: f64) -> Result<Expr, SymError> {
         if !x.is_finite() {
-            return Err(SymError::NonFinite { what: format!("the constant {x}") });
+            return Err(SymError::NonFinite {
+                what: format!("the constant {x}"),
+            });
         }
         Ok(Expr::from_id(with_pool(|p| match crate::pool::dyadic(x) {
             Some(r) => p.rational(r),
@@ -144,7 +151,10 @@ impl Expr {
                     .into(),
             });
         }
-        if matches!(info.name.as_str(), "pi" | "e" | "sin" | "cos" | "tan" | "exp" | "ln" | "abs" | "sqrt" | "atan2") {
+        if matches!(
+            info.name.as_str(),
+            "pi" | "e" | "sin" | "cos" | "tan" | "exp" | "ln" | "abs" | "sqrt" | "atan2"
+        ) {
             return Err(SymError::BadParameter {
                 name: info.name,
                 problem: "the name is reserved for a constant or function".into(),
@@ -494,7 +504,6 @@ pub(crate) fn reachable_in(p: &ExprPool, roots: impl Iterator<Item = Id>) -> Vec
     out
 }
 
-
 pub(crate) fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();
     match chars.next() {
@@ -657,4 +666,3 @@ impl std::iter::Product for Expr {
         Expr::product(iter)
     }
 }
-

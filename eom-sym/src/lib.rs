@@ -77,6 +77,7 @@ pub mod display;
 pub mod error;
 pub mod expr;
 pub mod matrix;
+pub mod model;
 pub mod parse;
 pub mod pool;
 pub mod rational;
@@ -84,11 +85,10 @@ pub mod scalar;
 pub mod scope;
 pub mod simplify;
 pub mod subs;
-pub mod model;
 pub mod tape;
-pub mod zero;
 #[doc(hidden)]
 pub mod testing;
+pub mod zero;
 
 pub use dd::Dd;
 pub use diff::diff_many;

@@ -33,11 +33,18 @@ pub struct Triplets<S> {
 impl<S: Scalar> Triplets<S> {
     /// An empty builder for an `nrows × ncols` matrix.
     pub fn new(nrows: usize, ncols: usize) -> Self {
-        Triplets { nrows, ncols, items: Vec::new() }
+        Triplets {
+            nrows,
+            ncols,
+            items: Vec::new(),
+        }
     }
     /// Add `v` at `(i, j)` (structural zeros are skipped).
     pub fn push(&mut self, i: usize, j: usize, v: S) {
-        assert!(i < self.nrows && j < self.ncols, "index ({i}, {j}) out of bounds");
+        assert!(
+            i < self.nrows && j < self.ncols,
+            "index ({i}, {j}) out of bounds"
+        );
         if !v.is_zero() {
             self.items.push((i, j, v));
         }
@@ -45,7 +52,12 @@ impl<S: Scalar> Triplets<S> {
     /// Build the matrix.
     pub fn build(mut self) -> SparseMatrix<S> {
         self.items.sort_by_key(|e| (e.0, e.1));
-        let mut m = SparseMatrix { nrows: self.nrows, ncols: self.ncols, row_ptr: Vec::with_capacity(self.nrows + 1), entries: Vec::with_capacity(self.items.len()) };
+        let mut m = SparseMatrix {
+            nrows: self.nrows,
+            ncols: self.ncols,
+            row_ptr: Vec::with_capacity(self.nrows + 1),
+            entries: Vec::with_capacity(self.items.len()),
+        };
         m.row_ptr.push(0);
         let mut terms: Vec<S> = Vec::new();
         let mut p = 0;
@@ -57,7 +69,11 @@ impl<S: Scalar> Triplets<S> {
                     terms.push(self.items[p].2);
                     p += 1;
                 }
-                let v = if terms.len() == 1 { terms[0] } else { S::sum(&terms).recognise_zero() };
+                let v = if terms.len() == 1 {
+                    terms[0]
+                } else {
+                    S::sum(&terms).recognise_zero()
+                };
                 if !v.is_zero() {
                     m.entries.push((j, v));
                 }
@@ -71,7 +87,12 @@ impl<S: Scalar> Triplets<S> {
 impl<S: Scalar> SparseMatrix<S> {
     /// The `nrows × ncols` zero matrix.
     pub fn zeros(nrows: usize, ncols: usize) -> Self {
-        SparseMatrix { nrows, ncols, row_ptr: vec![0; nrows + 1], entries: Vec::new() }
+        SparseMatrix {
+            nrows,
+            ncols,
+            row_ptr: vec![0; nrows + 1],
+            entries: Vec::new(),
+        }
     }
 
     /// Build row by row: `f(i, out)` pushes the non-zeros of row `i`, sorted by column.
@@ -80,8 +101,18 @@ impl<S: Scalar> SparseMatrix<S> {
     }
 
     /// [`Self::from_row_fn`] with a capacity hint for the number of non-zeros.
-    fn from_row_fn_with(nrows: usize, ncols: usize, nnz_hint: usize, mut f: impl FnMut(usize, &mut Vec<(usize, S)>)) -> Self {
-        let mut m = SparseMatrix { nrows, ncols, row_ptr: Vec::with_capacity(nrows + 1), entries: Vec::with_capacity(nnz_hint) };
+    fn from_row_fn_with(
+        nrows: usize,
+        ncols: usize,
+        nnz_hint: usize,
+        mut f: impl FnMut(usize, &mut Vec<(usize, S)>),
+    ) -> Self {
+        let mut m = SparseMatrix {
+            nrows,
+            ncols,
+            row_ptr: Vec::with_capacity(nrows + 1),
+            entries: Vec::with_capacity(nnz_hint),
+        };
         m.row_ptr.push(0);
         for i in 0..nrows {
             f(i, &mut m.entries);
@@ -114,7 +145,10 @@ impl<S: Scalar> SparseMatrix<S> {
     pub fn from_rows(rows: &[Vec<S>]) -> Result<Self, SymError> {
         let ncols = rows.first().map_or(0, |r| r.len());
         if let Some((i, r)) = rows.iter().enumerate().find(|(_, r)| r.len() != ncols) {
-            return Err(SymError::Dimension(format!("row {i} has {} entries, row 0 has {ncols}", r.len())));
+            return Err(SymError::Dimension(format!(
+                "row {i} has {} entries, row 0 has {ncols}",
+                r.len()
+            )));
         }
         Ok(Self::from_row_fn(rows.len(), ncols, |i, out| {
             for (j, &v) in rows[i].iter().enumerate() {
@@ -127,7 +161,9 @@ impl<S: Scalar> SparseMatrix<S> {
 
     /// From sparse rows (each sorted by column).
     pub fn from_sparse_rows(rows: &[Vec<(usize, S)>], ncols: usize) -> Self {
-        Self::from_row_fn(rows.len(), ncols, |i, out| out.extend(rows[i].iter().copied().filter(|e| !e.1.is_zero())))
+        Self::from_row_fn(rows.len(), ncols, |i, out| {
+            out.extend(rows[i].iter().copied().filter(|e| !e.1.is_zero()))
+        })
     }
 
     /// Number of rows.
@@ -160,7 +196,10 @@ impl<S: Scalar> SparseMatrix<S> {
     /// Set entry `(i, j)`; storing a structural zero removes the entry. (Linear in the number
     /// of non-zeros: build with [`Triplets`] when setting many entries.)
     pub fn set(&mut self, i: usize, j: usize, v: S) {
-        assert!(i < self.nrows && j < self.ncols, "index ({i}, {j}) out of bounds");
+        assert!(
+            i < self.nrows && j < self.ncols,
+            "index ({i}, {j}) out of bounds"
+        );
         let (a, b) = (self.row_ptr[i], self.row_ptr[i + 1]);
         match self.entries[a..b].binary_search_by_key(&j, |e| e.0) {
             Ok(k) => {
@@ -186,7 +225,15 @@ impl<S: Scalar> SparseMatrix<S> {
             return;
         }
         let cur = self.get(i, j);
-        self.set(i, j, if cur.is_zero() { v } else { (cur + v).recognise_zero() });
+        self.set(
+            i,
+            j,
+            if cur.is_zero() {
+                v
+            } else {
+                (cur + v).recognise_zero()
+            },
+        );
     }
 
     /// All non-zeros as `(row, col, value)`, row-major.
@@ -219,7 +266,12 @@ impl<S: Scalar> SparseMatrix<S> {
             next[j] += 1;
         }
         entries.extend(slots.into_iter().map(|e| e.expect("every slot filled")));
-        SparseMatrix { nrows: self.ncols, ncols: self.nrows, row_ptr, entries }
+        SparseMatrix {
+            nrows: self.ncols,
+            ncols: self.nrows,
+            row_ptr,
+            entries,
+        }
     }
 
     /// Apply `f` to every non-zero (results that are structural zeros are dropped).
@@ -243,31 +295,53 @@ impl<S: Scalar> SparseMatrix<S> {
             )));
         }
         // Flat accumulator: (column, product) pairs of one row, grouped by column.
-        let products: usize = self.entries.iter().map(|&(k, _)| other.row_ptr[k + 1] - other.row_ptr[k]).sum();
+        let products: usize = self
+            .entries
+            .iter()
+            .map(|&(k, _)| other.row_ptr[k + 1] - other.row_ptr[k])
+            .sum();
         let mut acc: Vec<(usize, S)> = Vec::with_capacity(other.ncols.min(products));
         let mut terms: Vec<S> = Vec::with_capacity(8);
-        Ok(Self::from_row_fn_with(self.nrows, other.ncols, products.min(self.nrows * other.ncols), |i, out| {
-            acc.clear();
-            for &(k, a) in self.row(i) {
-                for &(j, b) in other.row(k) {
-                    acc.push((j, if a.is_one() { b } else if b.is_one() { a } else { a * b }));
+        Ok(Self::from_row_fn_with(
+            self.nrows,
+            other.ncols,
+            products.min(self.nrows * other.ncols),
+            |i, out| {
+                acc.clear();
+                for &(k, a) in self.row(i) {
+                    for &(j, b) in other.row(k) {
+                        acc.push((
+                            j,
+                            if a.is_one() {
+                                b
+                            } else if b.is_one() {
+                                a
+                            } else {
+                                a * b
+                            },
+                        ));
+                    }
                 }
-            }
-            acc.sort_by_key(|e| e.0);
-            let mut p = 0;
-            while p < acc.len() {
-                let j = acc[p].0;
-                terms.clear();
-                while p < acc.len() && acc[p].0 == j {
-                    terms.push(acc[p].1);
-                    p += 1;
+                acc.sort_by_key(|e| e.0);
+                let mut p = 0;
+                while p < acc.len() {
+                    let j = acc[p].0;
+                    terms.clear();
+                    while p < acc.len() && acc[p].0 == j {
+                        terms.push(acc[p].1);
+                        p += 1;
+                    }
+                    let v = if terms.len() == 1 {
+                        terms[0]
+                    } else {
+                        S::sum(&terms).recognise_zero()
+                    };
+                    if !v.is_zero() {
+                        out.push((j, v));
+                    }
                 }
-                let v = if terms.len() == 1 { terms[0] } else { S::sum(&terms).recognise_zero() };
-                if !v.is_zero() {
-                    out.push((j, v));
-                }
-            }
-        }))
+            },
+        ))
     }
 
     /// `self + other`.
@@ -286,29 +360,34 @@ impl<S: Scalar> SparseMatrix<S> {
                 self.nrows, self.ncols, other.nrows, other.ncols
             )));
         }
-        Ok(Self::from_row_fn_with(self.nrows, self.ncols, self.nnz() + other.nnz(), |i, out| {
-            let (a, b) = (self.row(i), other.row(i));
-            let (mut p, mut q) = (0, 0);
-            while p < a.len() || q < b.len() {
-                let ja = a.get(p).map_or(usize::MAX, |e| e.0);
-                let jb = b.get(q).map_or(usize::MAX, |e| e.0);
-                let (j, v) = if ja < jb {
-                    p += 1;
-                    (ja, a[p - 1].1)
-                } else if jb < ja {
-                    q += 1;
-                    (jb, if negate { -b[q - 1].1 } else { b[q - 1].1 })
-                } else {
-                    p += 1;
-                    q += 1;
-                    let (x, y) = (a[p - 1].1, b[q - 1].1);
-                    (ja, (if negate { x - y } else { x + y }).recognise_zero())
-                };
-                if !v.is_zero() {
-                    out.push((j, v));
+        Ok(Self::from_row_fn_with(
+            self.nrows,
+            self.ncols,
+            self.nnz() + other.nnz(),
+            |i, out| {
+                let (a, b) = (self.row(i), other.row(i));
+                let (mut p, mut q) = (0, 0);
+                while p < a.len() || q < b.len() {
+                    let ja = a.get(p).map_or(usize::MAX, |e| e.0);
+                    let jb = b.get(q).map_or(usize::MAX, |e| e.0);
+                    let (j, v) = if ja < jb {
+                        p += 1;
+                        (ja, a[p - 1].1)
+                    } else if jb < ja {
+                        q += 1;
+                        (jb, if negate { -b[q - 1].1 } else { b[q - 1].1 })
+                    } else {
+                        p += 1;
+                        q += 1;
+                        let (x, y) = (a[p - 1].1, b[q - 1].1);
+                        (ja, (if negate { x - y } else { x + y }).recognise_zero())
+                    };
+                    if !v.is_zero() {
+                        out.push((j, v));
+                    }
                 }
-            }
-        }))
+            },
+        ))
     }
 
     /// `c · self`.
@@ -331,17 +410,22 @@ impl<S: Scalar> SparseMatrix<S> {
             colmap[c] = k;
         }
         let monotone = cols.windows(2).all(|w| w[0] < w[1]);
-        Self::from_row_fn_with(rows.len(), cols.len(), self.nnz().min(rows.len() * cols.len()), |k, out| {
-            let start = out.len();
-            for &(j, v) in self.row(rows[k]) {
-                if colmap[j] != usize::MAX {
-                    out.push((colmap[j], v));
+        Self::from_row_fn_with(
+            rows.len(),
+            cols.len(),
+            self.nnz().min(rows.len() * cols.len()),
+            |k, out| {
+                let start = out.len();
+                for &(j, v) in self.row(rows[k]) {
+                    if colmap[j] != usize::MAX {
+                        out.push((colmap[j], v));
+                    }
                 }
-            }
-            if !monotone {
-                out[start..].sort_by_key(|e| e.0);
-            }
-        })
+                if !monotone {
+                    out[start..].sort_by_key(|e| e.0);
+                }
+            },
+        )
     }
 
     /// Assemble a block matrix from a grid of optional blocks (`None` = zero block). Every
@@ -353,11 +437,17 @@ impl<S: Scalar> SparseMatrix<S> {
         let mut widths = vec![None; nbc];
         for (bi, row) in grid.iter().enumerate() {
             if row.len() != nbc {
-                return Err(SymError::Dimension(format!("block row {bi} has {} blocks, expected {nbc}", row.len())));
+                return Err(SymError::Dimension(format!(
+                    "block row {bi} has {} blocks, expected {nbc}",
+                    row.len()
+                )));
             }
             for (bj, b) in row.iter().enumerate() {
                 if let Some(b) = b {
-                    for (slot, v, what) in [(&mut heights[bi], b.nrows, "height"), (&mut widths[bj], b.ncols, "width")] {
+                    for (slot, v, what) in [
+                        (&mut heights[bi], b.nrows, "height"),
+                        (&mut widths[bj], b.ncols, "width"),
+                    ] {
                         match *slot {
                             None => *slot = Some(v),
                             Some(h) if h != v => {
@@ -384,14 +474,19 @@ impl<S: Scalar> SparseMatrix<S> {
             }
         }
         let nnz: usize = grid.iter().flatten().flatten().map(|b| b.nnz()).sum();
-        Ok(Self::from_row_fn_with(rowmap.len(), widths.iter().sum(), nnz, |r, out| {
-            let (bi, i) = rowmap[r];
-            for (bj, b) in grid[bi].iter().enumerate() {
-                if let Some(b) = b {
-                    out.extend(b.row(i).iter().map(|&(j, v)| (col0[bj] + j, v)));
+        Ok(Self::from_row_fn_with(
+            rowmap.len(),
+            widths.iter().sum(),
+            nnz,
+            |r, out| {
+                let (bi, i) = rowmap[r];
+                for (bj, b) in grid[bi].iter().enumerate() {
+                    if let Some(b) = b {
+                        out.extend(b.row(i).iter().map(|&(j, v)| (col0[bj] + j, v)));
+                    }
                 }
-            }
-        }))
+            },
+        ))
     }
 
     /// Dense copy.

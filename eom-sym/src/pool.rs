@@ -122,7 +122,9 @@ impl Constant {
 
 /// What is known about a parameter's sign. Declaring it lets the smart constructors apply
 /// identities such as `m/m → 1` that are unsafe for a parameter that may vanish.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, PartialEq, Eq, Hash, Debug, Default, serde::Serialize, serde::Deserialize,
+)]
 pub enum Assumption {
     /// Any real value (the default).
     #[default]
@@ -279,17 +281,19 @@ impl Number {
     }
     fn add(&self, o: &Number) -> Result<Number, SymError> {
         match (self, o) {
-            (Number::Rat(a), Number::Rat(b)) => {
-                a.add(b).map(Number::Rat).map_err(|_| SymError::RationalOverflow)
-            }
+            (Number::Rat(a), Number::Rat(b)) => a
+                .add(b)
+                .map(Number::Rat)
+                .map_err(|_| SymError::RationalOverflow),
             _ => finite(self.to_f64() + o.to_f64()),
         }
     }
     fn mul(&self, o: &Number) -> Result<Number, SymError> {
         match (self, o) {
-            (Number::Rat(a), Number::Rat(b)) => {
-                a.mul(b).map(Number::Rat).map_err(|_| SymError::RationalOverflow)
-            }
+            (Number::Rat(a), Number::Rat(b)) => a
+                .mul(b)
+                .map(Number::Rat)
+                .map_err(|_| SymError::RationalOverflow),
             _ => finite(self.to_f64() * o.to_f64()),
         }
     }
@@ -299,7 +303,9 @@ fn finite(x: f64) -> Result<Number, SymError> {
     if x.is_finite() {
         Ok(Number::Float(x))
     } else {
-        Err(SymError::NonFinite { what: "a floating-point constant".into() })
+        Err(SymError::NonFinite {
+            what: "a floating-point constant".into(),
+        })
     }
 }
 
@@ -583,9 +589,9 @@ impl ExprPool {
         self.interns += 1;
         let h = Self::hash_key(&key);
         let (nodes, args, hashes) = (&self.nodes, &self.args, &self.hashes);
-        let found = self
-            .table
-            .find(h, |&id| hashes[id as usize] == h && key_at(nodes, args, id) == key);
+        let found = self.table.find(h, |&id| {
+            hashes[id as usize] == h && key_at(nodes, args, id) == key
+        });
         if let Some(&id) = found {
             return id;
         }
@@ -653,7 +659,9 @@ impl ExprPool {
                 let mut v = self.nominal(a[0]);
                 let mut sg = self.sign(a[0]);
                 for p in a[1..].chunks_exact(2) {
-                    let e = self.rational_of(p[1]).expect("product exponents are rational");
+                    let e = self
+                        .rational_of(p[1])
+                        .expect("product exponents are rational");
                     v *= pow_f64(self.nominal(p[0]), e);
                     sg = sg.mul(pow_sign(self.sign(p[0]), e));
                 }
@@ -661,7 +669,11 @@ impl ExprPool {
             }
             Node::Pow(a, b) => {
                 let v = self.nominal(*a).powf(self.nominal(*b));
-                let s = if self.sign(*a).is_positive() { Sign::POSITIVE } else { Sign::ANY };
+                let s = if self.sign(*a).is_positive() {
+                    Sign::POSITIVE
+                } else {
+                    Sign::ANY
+                };
                 (v, s)
             }
             Node::Func(f, a) => {
@@ -699,7 +711,9 @@ impl ExprPool {
 
     pub(crate) fn float(&mut self, x: f64) -> Id {
         if !x.is_finite() {
-            return self.invalid(SymError::NonFinite { what: format!("the constant {x}") });
+            return self.invalid(SymError::NonFinite {
+                what: format!("the constant {x}"),
+            });
         }
         // Integers and short dyadic fractions are exact: store them as rationals, so that
         // float arithmetic that lands on such a value (0.1·10 = 1) folds like exact input.
@@ -743,7 +757,9 @@ impl ExprPool {
     }
 
     fn first_invalid(&self, ids: &[Id]) -> Option<Id> {
-        ids.iter().copied().find(|&i| matches!(self.nodes[i as usize], Node::Invalid(_)))
+        ids.iter()
+            .copied()
+            .find(|&i| matches!(self.nodes[i as usize], Node::Invalid(_)))
     }
 
     // ---------------------------------------------------------------- sums
@@ -796,7 +812,9 @@ impl ExprPool {
                 *c0 = c0.add(&v.mul(scale)?)?;
                 for k in 0..(l as usize - 1) / 2 {
                     let t = self.args[s as usize + 1 + 2 * k];
-                    let c = self.number(self.args[s as usize + 2 + 2 * k]).expect("coefficient");
+                    let c = self
+                        .number(self.args[s as usize + 2 + 2 * k])
+                        .expect("coefficient");
                     terms.push((t, c.mul(scale)?));
                 }
             }
@@ -814,6 +832,30 @@ impl ExprPool {
             _ => terms.push((item, scale.clone())),
         }
         Ok(())
+    }
+
+    /// `(q, s)` with `b = q·s` and the first coefficient of the sum `s` one, when `b` is an
+    /// exact sum (no float coefficients: dividing those would round) whose first coefficient
+    /// is not already one.
+    fn primitive_sum(&mut self, b: Id) -> Option<(Rational, Id)> {
+        let (c0, pairs) = self.add_parts(b)?;
+        let q = match &self.nodes[pairs[1] as usize] {
+            Node::Num(q) if !q.is_one() => q.clone(),
+            _ => return None,
+        };
+        let exact = matches!(self.nodes[c0 as usize], Node::Num(_))
+            && pairs
+                .chunks_exact(2)
+                .all(|p| matches!(self.nodes[p[1] as usize], Node::Num(_)));
+        if !exact {
+            return None;
+        }
+        let inv = Number::Rat(q.recip()?);
+        let mut c = Number::Rat(Rational::ZERO);
+        let mut terms = Vec::with_capacity(pairs.len() / 2);
+        self.collect_add(b, &inv, &mut c, &mut terms).ok()?;
+        let s = self.finish_add(c, &mut terms);
+        matches!(self.nodes[s as usize], Node::Add(..)).then_some((q, s))
     }
 
     /// The product with its numeric coefficient replaced by one.
@@ -875,7 +917,11 @@ impl ExprPool {
     }
 
     /// `c·sin²x + c·cos²x → c` (always safe). Terms are `(sin x)²` / `(cos x)²` products.
-    fn pythagoras(&mut self, terms: &mut Vec<(Id, Number)>, mut c0: Number) -> Result<Number, SymError> {
+    fn pythagoras(
+        &mut self,
+        terms: &mut Vec<(Id, Number)>,
+        mut c0: Number,
+    ) -> Result<Number, SymError> {
         let square_of = |p: &Self, t: Id, f: Func| -> Option<Id> {
             let (c, pairs) = p.mul_parts(t)?;
             if c != ONE || pairs.len() != 2 || p.rational_of(pairs[1])?.to_i64() != Some(2) {
@@ -945,7 +991,11 @@ impl ExprPool {
         factors.clear();
         let id = self.mul_items(items, &mut coef, &mut factors);
         let id = id.unwrap_or_else(|| {
-            if coef.is_zero() { ZERO } else { self.finish_mul(coef, &mut factors) }
+            if coef.is_zero() {
+                ZERO
+            } else {
+                self.finish_mul(coef, &mut factors)
+            }
         });
         factors.clear();
         self.factors_buf = factors;
@@ -977,7 +1027,10 @@ impl ExprPool {
                     }
                     for k in 0..(l - 1) / 2 {
                         let b = self.args[s + 1 + 2 * k];
-                        let e = self.rational_of(self.args[s + 2 + 2 * k]).expect("exp").clone();
+                        let e = self
+                            .rational_of(self.args[s + 2 + 2 * k])
+                            .expect("exp")
+                            .clone();
                         factors.push((b, e));
                     }
                 }
@@ -990,6 +1043,28 @@ impl ExprPool {
     /// The canonical product `coef·Π factors`. `factors` is consumed (left in an unspecified
     /// state).
     fn finish_mul(&mut self, mut coef: Number, factors: &mut Vec<(Id, Rational)>) -> Id {
+        // Sum bases with integer exponents are made primitive (first coefficient one), the
+        // content going into the coefficient: `(2a + 2b)·x` and `2·((a + b)·x)` must be the
+        // same node although `2·(a + b)` alone is distributed. A lone sum to the first power
+        // is left alone: it is distributed below anyway.
+        if !(factors.len() == 1 && factors[0].1.is_one()) {
+            for f in factors.iter_mut() {
+                let Some(k) = f.1.to_i64().filter(|_| f.1.is_integer()) else {
+                    continue;
+                };
+                let Some((q, s)) = self.primitive_sum(f.0) else {
+                    continue;
+                };
+                match q.powi(k) {
+                    Some(Ok(qk)) => match coef.mul(&Number::Rat(qk)) {
+                        Ok(c) => coef = c,
+                        Err(err) => return self.invalid(err),
+                    },
+                    _ => return self.invalid(SymError::RationalOverflow),
+                }
+                f.0 = s;
+            }
+        }
         // Sort by base, positive exponents before negative ones.
         factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
         // Merge equal bases in place.
@@ -1118,13 +1193,17 @@ impl ExprPool {
         let k = e.to_i64().ok_or(SymError::RationalOverflow)?;
         match self.number(b).expect("number") {
             Number::Rat(r) => match r.powi(k) {
-                None => Err(SymError::DivisionByZero { context: "0 to a negative power".into() }),
+                None => Err(SymError::DivisionByZero {
+                    context: "0 to a negative power".into(),
+                }),
                 Some(Err(_)) => Err(SymError::RationalOverflow),
                 Some(Ok(v)) => Ok(Number::Rat(v)),
             },
             Number::Float(f) => {
                 if f == 0.0 && k < 0 {
-                    return Err(SymError::DivisionByZero { context: "0 to a negative power".into() });
+                    return Err(SymError::DivisionByZero {
+                        context: "0 to a negative power".into(),
+                    });
                 }
                 finite(f.powi(k.clamp(i32::MIN as i64, i32::MAX as i64) as i32))
             }
@@ -1204,7 +1283,9 @@ impl ExprPool {
                     if v.is_finite() {
                         self.float(v)
                     } else {
-                        self.invalid(SymError::NotReal { what: format!("{f} ^ {r}") })
+                        self.invalid(SymError::NotReal {
+                            what: format!("{f} ^ {r}"),
+                        })
                     }
                 }
                 Number::Rat(b) => {
@@ -1228,7 +1309,11 @@ impl ExprPool {
                         // agree with it; a negative base would evaluate to NaN.
                         let pos = self.rational(b.neg());
                         let m = self.pow_rational(pos, r);
-                        return if p % 2 == 0 { m } else { self.mul_n(&[MINUS_ONE, m]) };
+                        return if p % 2 == 0 {
+                            m
+                        } else {
+                            self.mul_n(&[MINUS_ONE, m])
+                        };
                     }
                     let e = self.rational(r);
                     self.intern(Key::Mul(&[ONE, base, e]))
@@ -1307,6 +1392,17 @@ impl ExprPool {
                 return self.pow_rational(b, e);
             }
         }
+        if e.is_integer() {
+            // Same canonical form as `finish_mul`: `(2a − 2b)^n = 2ⁿ·(a − b)^n`.
+            if let Some((q, s)) = self.primitive_sum(b) {
+                let qk = match e.to_i64().and_then(|k| q.powi(k)) {
+                    Some(Ok(v)) => v,
+                    _ => return self.invalid(SymError::RationalOverflow),
+                };
+                let mut f = vec![(s, e)];
+                return self.finish_mul(Number::Rat(qk), &mut f);
+            }
+        }
         let eid = self.rational(e);
         self.intern(Key::Mul(&[ONE, b, eid]))
     }
@@ -1326,10 +1422,14 @@ impl ExprPool {
                 (Func::Ln, _, true) => return ZERO,
                 (Func::Abs, _, _) => return self.rational(r.abs()),
                 (Func::Ln, true, _) => {
-                    return self.invalid(SymError::NotReal { what: "ln(0)".into() });
+                    return self.invalid(SymError::NotReal {
+                        what: "ln(0)".into(),
+                    });
                 }
                 (Func::Ln, _, _) if r.is_negative() => {
-                    return self.invalid(SymError::NotReal { what: format!("ln({r})") });
+                    return self.invalid(SymError::NotReal {
+                        what: format!("ln({r})"),
+                    });
                 }
                 _ => {}
             }
@@ -1339,7 +1439,9 @@ impl ExprPool {
             if v.is_finite() {
                 return self.float(v);
             }
-            return self.invalid(SymError::NotReal { what: format!("{}({x})", f.name()) });
+            return self.invalid(SymError::NotReal {
+                what: format!("{}({x})", f.name()),
+            });
         }
         // Multiples of π.
         if let Some(k) = self.pi_multiple(a)
@@ -1436,8 +1538,16 @@ fn exact_trig(f: Func, k: &Rational) -> Option<Rational> {
     let (n, d) = k.as_small()?;
     match (f, d) {
         (Func::Sin, 1) | (Func::Tan, 1) => Some(Rational::ZERO),
-        (Func::Cos, 1) => Some(if n.rem_euclid(2) == 0 { Rational::ONE } else { Rational::MINUS_ONE }),
-        (Func::Sin, 2) => Some(if n.rem_euclid(4) == 1 { Rational::ONE } else { Rational::MINUS_ONE }),
+        (Func::Cos, 1) => Some(if n.rem_euclid(2) == 0 {
+            Rational::ONE
+        } else {
+            Rational::MINUS_ONE
+        }),
+        (Func::Sin, 2) => Some(if n.rem_euclid(4) == 1 {
+            Rational::ONE
+        } else {
+            Rational::MINUS_ONE
+        }),
         (Func::Cos, 2) => Some(Rational::ZERO),
         _ => None,
     }

@@ -119,7 +119,11 @@ impl Rational {
         if int_part.is_empty() && frac_part.is_empty() {
             return None;
         }
-        if !int_part.bytes().chain(frac_part.bytes()).all(|b| b.is_ascii_digit()) {
+        if !int_part
+            .bytes()
+            .chain(frac_part.bytes())
+            .all(|b| b.is_ascii_digit())
+        {
             return None;
         }
         let digits = format!("{int_part}{frac_part}");
@@ -224,7 +228,11 @@ impl Rational {
 
     /// `|self|`.
     pub fn abs(&self) -> Rational {
-        if self.is_negative() { self.neg() } else { self.clone() }
+        if self.is_negative() {
+            self.neg()
+        } else {
+            self.clone()
+        }
     }
 
     /// `self + o`.
@@ -301,7 +309,11 @@ impl Rational {
             return Some(Ok(Rational::ONE));
         }
         if self.is_zero() {
-            return if e > 0 { Some(Ok(Rational::ZERO)) } else { None };
+            return if e > 0 {
+                Some(Ok(Rational::ZERO))
+            } else {
+                None
+            };
         }
         let base = if e < 0 { self.recip()? } else { self.clone() };
         let k = e.unsigned_abs();
@@ -315,7 +327,10 @@ impl Rational {
         if !trivial && k.saturating_mul(bits.saturating_sub(1)) >= MAX_BITS {
             return Some(Err(RationalOverflow));
         }
-        let r = BigRational::new(num_traits::pow(n, k as usize), num_traits::pow(d, k as usize));
+        let r = BigRational::new(
+            num_traits::pow(n, k as usize),
+            num_traits::pow(d, k as usize),
+        );
         Some(Self::from_big(r))
     }
 
@@ -400,8 +415,14 @@ mod tests {
 
     #[test]
     fn overflow_is_refused_not_wrapped() {
-        assert_eq!(Rational::int(3).powi(1_000_000_000), Some(Err(RationalOverflow)));
-        assert_eq!(Rational::int(-1).powi(1_000_000_001), Some(Ok(Rational::int(-1))));
+        assert_eq!(
+            Rational::int(3).powi(1_000_000_000),
+            Some(Err(RationalOverflow))
+        );
+        assert_eq!(
+            Rational::int(-1).powi(1_000_000_001),
+            Some(Ok(Rational::int(-1)))
+        );
         assert!(Rational::ZERO.powi(-1).is_none());
         assert_eq!(r(2, 3).powi(-2), Some(Ok(r(9, 4))));
     }

@@ -61,7 +61,10 @@ impl Scope {
             problem: "is not a parameter".into(),
         })?;
         if self.by_name.contains_key(&info.name) {
-            return Err(SymError::BadParameter { name: info.name, problem: "declared twice".into() });
+            return Err(SymError::BadParameter {
+                name: info.name,
+                problem: "declared twice".into(),
+            });
         }
         let index = p.param_index().expect("checked above");
         self.by_name.insert(info.name, index);
@@ -89,12 +92,18 @@ impl Scope {
 
     /// The names in declaration order.
     pub fn names(&self) -> Vec<String> {
-        self.order.iter().filter_map(|&i| ExprPool::param_info(i).map(|p| p.name)).collect()
+        self.order
+            .iter()
+            .filter_map(|&i| ExprPool::param_info(i).map(|p| p.name))
+            .collect()
     }
 
     /// Nominal values in declaration order.
     pub fn nominal_values(&self) -> Vec<f64> {
-        self.order.iter().filter_map(|&i| ExprPool::param_info(i).map(|p| p.nominal)).collect()
+        self.order
+            .iter()
+            .filter_map(|&i| ExprPool::param_info(i).map(|p| p.nominal))
+            .collect()
     }
 
     /// Number of parameters.
@@ -114,7 +123,11 @@ impl Scope {
         for &(name, x) in overrides {
             self.lookup(name)?;
             let index = self.by_name[name];
-            let k = self.order.iter().position(|&q| q == index).expect("in scope");
+            let k = self
+                .order
+                .iter()
+                .position(|&q| q == index)
+                .expect("in scope");
             if !x.is_finite() {
                 return Err(SymError::BadParameter {
                     name: name.to_string(),

@@ -16,8 +16,10 @@ impl Expr {
     /// Replace parameters by numeric values (exact when the value is an integer or a short
     /// dyadic fraction, a float constant otherwise).
     pub fn subs_values(self, map: &[(Expr, f64)]) -> Result<Expr, SymError> {
-        let m: Vec<(Expr, Expr)> =
-            map.iter().map(|&(p, v)| Ok((p, Expr::float(v)?))).collect::<Result<_, SymError>>()?;
+        let m: Vec<(Expr, Expr)> = map
+            .iter()
+            .map(|&(p, v)| Ok((p, Expr::float(v)?)))
+            .collect::<Result<_, SymError>>()?;
         self.subs(&m)
     }
 }
@@ -33,6 +35,11 @@ pub fn subs_many(roots: &[Expr], map: &[(Expr, Expr)]) -> Result<Vec<Expr>, SymE
         by_index.insert(idx, r);
     }
     eval_generic::<Expr>(roots, |i| {
-        Some(by_index.get(&i).copied().unwrap_or_else(|| Expr::from_param_index(i).expect("param")))
+        Some(
+            by_index
+                .get(&i)
+                .copied()
+                .unwrap_or_else(|| Expr::from_param_index(i).expect("param")),
+        )
     })
 }

@@ -199,7 +199,9 @@ impl Tape {
                     Node::Pow(a, b) => Op::Pow(slot[a], slot[b]),
                     Node::Func(f, a) => Op::Func(*f, slot[a]),
                     Node::Atan2(a, b) => Op::Atan2(slot[a], slot[b]),
-                    Node::Invalid(e) => return Err(SymError::Invalid(Box::new(p.error(*e).clone()))),
+                    Node::Invalid(e) => {
+                        return Err(SymError::Invalid(Box::new(p.error(*e).clone())));
+                    }
                 };
                 slot.insert(id, tape.ops.len() as u32);
                 tape.ops.push(op);
@@ -239,7 +241,12 @@ impl Tape {
     /// The kernel: evaluate with a caller-provided work buffer, no allocation, no checks on the
     /// result. `values.len() == n_params()`, `out.len() == n_outputs()`,
     /// `work.len() >= work_len()`; otherwise an error.
-    pub fn eval_into(&self, values: &[f64], out: &mut [f64], work: &mut [f64]) -> Result<(), SymError> {
+    pub fn eval_into(
+        &self,
+        values: &[f64],
+        out: &mut [f64],
+        work: &mut [f64],
+    ) -> Result<(), SymError> {
         if values.len() != self.params.len() {
             return Err(SymError::Dimension(format!(
                 "{} parameter values given, the tape expects {} ({})",
@@ -333,13 +340,21 @@ impl Tape {
 
     /// Evaluate, checking that every output is finite (an error names the first output that is
     /// not). The workspace grows on first use and is reused afterwards.
-    pub fn eval(&self, values: &[f64], out: &mut [f64], ws: &mut TapeWorkspace) -> Result<(), SymError> {
+    pub fn eval(
+        &self,
+        values: &[f64],
+        out: &mut [f64],
+        ws: &mut TapeWorkspace,
+    ) -> Result<(), SymError> {
         if ws.work.len() < self.ops.len() {
             ws.work.resize(self.ops.len(), 0.0);
         }
         self.eval_into(values, out, &mut ws.work)?;
         if let Some((k, &v)) = out.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(SymError::EvalNonFinite { what: format!("output {k}"), value: v });
+            return Err(SymError::EvalNonFinite {
+                what: format!("output {k}"),
+                value: v,
+            });
         }
         Ok(())
     }
@@ -356,10 +371,19 @@ impl Tape {
     /// the point and the output (the first in point order). Points are evaluated in chunks of
     /// 16, each instruction applied to the whole chunk; the results are identical to
     /// [`Tape::eval_into`] point by point, at a fraction of the cost per point.
-    pub fn eval_batch(&self, points: &[f64], out: &mut [f64], ws: &mut TapeWorkspace) -> Result<(), SymError> {
+    pub fn eval_batch(
+        &self,
+        points: &[f64],
+        out: &mut [f64],
+        ws: &mut TapeWorkspace,
+    ) -> Result<(), SymError> {
         let np = self.params.len().max(1);
         let no = self.outputs.len();
-        let count = if self.params.is_empty() { out.len() / no.max(1) } else { points.len() / np };
+        let count = if self.params.is_empty() {
+            out.len() / no.max(1)
+        } else {
+            points.len() / np
+        };
         if (!self.params.is_empty() && points.len() != count * np) || out.len() != count * no {
             return Err(SymError::Dimension(format!(
                 "batch of {} values / {} outputs does not match {} parameters and {} outputs per point",
@@ -376,7 +400,11 @@ impl Tape {
         ws.lane_values.resize(n_params, [0.0; LANES]);
         // Chunks of LANES points; a final remainder of fewer than LANES/4 points is cheaper
         // point by point than padded to a full chunk.
-        let chunked = if count % LANES < LANES / 4 { count - count % LANES } else { count };
+        let chunked = if count % LANES < LANES / 4 {
+            count - count % LANES
+        } else {
+            count
+        };
         for first in (0..chunked).step_by(LANES) {
             let n = LANES.min(count - first);
             // Transpose the chunk; a partial chunk repeats its last point in the unused lanes.
@@ -404,12 +432,19 @@ impl Tape {
             ws.work.resize(self.ops.len(), 0.0);
         }
         for k in chunked..count {
-            let vals = if self.params.is_empty() { &[][..] } else { &points[k * np..(k + 1) * np] };
+            let vals = if self.params.is_empty() {
+                &[][..]
+            } else {
+                &points[k * np..(k + 1) * np]
+            };
             self.run(vals, &mut ws.work);
             for (j, &s) in self.outputs.iter().enumerate() {
                 let v = ws.work[s as usize];
                 if !v.is_finite() {
-                    return Err(SymError::EvalNonFinite { what: format!("output {j} at point {k}"), value: v });
+                    return Err(SymError::EvalNonFinite {
+                        what: format!("output {j} at point {k}"),
+                        value: v,
+                    });
                 }
                 out[k * no + j] = v;
             }
@@ -453,7 +488,11 @@ pub fn eval_generic<S: Elementary>(
                 Node::Add(..) => {
                     let (c0, pairs) = p.add_parts(id).expect("sum");
                     let c0r = p.rational_of(c0).cloned();
-                    let c0f = if c0r.is_none() { Some(p.nominal(c0)) } else { None };
+                    let c0f = if c0r.is_none() {
+                        Some(p.nominal(c0))
+                    } else {
+                        None
+                    };
                     G::Add(
                         c0r.unwrap_or(Rational::ZERO),
                         pairs
@@ -493,8 +532,9 @@ pub fn eval_generic<S: Elementary>(
             G::Float(f) => S::from_f64(*f),
             G::Const(Constant::Pi) => S::pi(),
             G::Const(Constant::E) => S::e(),
-            G::Param(i, name) => value_of(*i)
-                .ok_or_else(|| SymError::MissingParameter { name: name.clone() })?,
+            G::Param(i, name) => {
+                value_of(*i).ok_or_else(|| SymError::MissingParameter { name: name.clone() })?
+            }
             G::Add(c0, terms, c0f) => {
                 let mut items: Vec<S> = Vec::with_capacity(terms.len() + 1);
                 match c0f {
@@ -545,5 +585,7 @@ pub fn eval_generic<S: Elementary>(
 /// Evaluate `roots` at the nominal values of their parameters, in any [`Elementary`] scalar
 /// (parameter nominal values are converted from `f64`).
 pub fn eval_nominal<S: Elementary>(roots: &[Expr]) -> Result<Vec<S>, SymError> {
-    eval_generic(roots, |i| crate::pool::ExprPool::param_info(i).map(|p| S::from_f64(p.nominal)))
+    eval_generic(roots, |i| {
+        crate::pool::ExprPool::param_info(i).map(|p| S::from_f64(p.nominal))
+    })
 }

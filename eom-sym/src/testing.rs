@@ -38,7 +38,11 @@ pub fn params(n: usize, seed: u64, positive: bool) -> Vec<Expr> {
                 nominal: rng.uniform(0.5, 2.0),
                 unit: None,
                 description: None,
-                assume: if positive { Assumption::Positive } else { Assumption::Real },
+                assume: if positive {
+                    Assumption::Positive
+                } else {
+                    Assumption::Real
+                },
             })
             .expect("valid parameter")
         })
@@ -62,7 +66,11 @@ pub fn random_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) ->
         let pick = |rng: &mut SplitMix, pool: &Vec<Expr>| {
             // Prefer recent nodes so depth grows, but keep reusing old ones (sharing).
             let n = pool.len();
-            if rng.below(3) == 0 { pool[rng.below(n)] } else { pool[n - 1 - rng.below(n.min(32))] }
+            if rng.below(3) == 0 {
+                pool[rng.below(n)]
+            } else {
+                pool[n - 1 - rng.below(n.min(32))]
+            }
         };
         let a = pick(&mut rng, &pool);
         let b = pick(&mut rng, &pool);
@@ -80,5 +88,7 @@ pub fn random_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) ->
         }
     }
     let n = pool.len();
-    (0..n_roots).map(|k| pool[n - 1 - (k * 7) % n.min(200)]).collect()
+    (0..n_roots)
+        .map(|k| pool[n - 1 - (k * 7) % n.min(200)])
+        .collect()
 }

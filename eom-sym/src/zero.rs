@@ -113,7 +113,10 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
             Node::Param(i) => {
                 let (nominal, positive) = with_pool(|pool| {
                     let info = pool.param(i);
-                    (info.nominal, matches!(info.assume, crate::pool::Assumption::Positive))
+                    (
+                        info.nominal,
+                        matches!(info.assume, crate::pool::Assumption::Positive),
+                    )
                 });
                 let v = p.param_value(i, nominal, positive, k);
                 (v, v.abs().to_f64())
@@ -176,7 +179,10 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
             }
             Node::Invalid(_) => (Dd::from_f64(f64::NAN), f64::NAN),
         };
-        let entry = p.values.entry(n).or_insert([(Dd::from_f64(f64::NAN), f64::NAN); PROBES]);
+        let entry = p
+            .values
+            .entry(n)
+            .or_insert([(Dd::from_f64(f64::NAN), f64::NAN); PROBES]);
         entry[k] = res;
     }
     p.values[&id][k]
@@ -190,10 +196,15 @@ pub fn is_identically_zero(e: Expr) -> bool {
     }
     let id = e.id();
     let candidate = with_pool(|pool| {
-        let Some((c0, pairs)) = pool.add_parts(id) else { return false };
+        let Some((c0, pairs)) = pool.add_parts(id) else {
+            return false;
+        };
         let v = pool.nominal(id);
         let mag = pool.nominal(c0).abs()
-            + pairs.chunks_exact(2).map(|t| (pool.nominal(t[0]) * pool.nominal(t[1])).abs()).sum::<f64>();
+            + pairs
+                .chunks_exact(2)
+                .map(|t| (pool.nominal(t[0]) * pool.nominal(t[1])).abs())
+                .sum::<f64>();
         v.is_finite() && mag.is_finite() && v.abs() <= CANDIDATE * mag
     });
     if !candidate {
@@ -210,7 +221,11 @@ pub fn is_identically_zero(e: Expr) -> bool {
 
 /// `e`, or the constant 0 when `e` is identically zero.
 pub fn zero_if_identically_zero(e: Expr) -> Expr {
-    if is_identically_zero(e) { Expr::zero() } else { e }
+    if is_identically_zero(e) {
+        Expr::zero()
+    } else {
+        e
+    }
 }
 
 #[cfg(test)]

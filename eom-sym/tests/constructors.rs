@@ -66,7 +66,10 @@ fn zero_plus_x_is_x() {
     assert_eq!(x + Expr::zero(), x);
     assert_eq!(Expr::sum([Expr::zero(), x, Expr::zero()]), x);
     // A sum with a zero constant is not a sum node at all.
-    assert_eq!(x.view(), ExprView::Param(x.param_index().unwrap(), x.param_info().unwrap()));
+    assert_eq!(
+        x.view(),
+        ExprView::Param(x.param_index().unwrap(), x.param_info().unwrap())
+    );
 }
 
 #[test]
@@ -139,7 +142,10 @@ fn zero_times_anything_is_zero() {
     assert_eq!(x.sin() * Expr::zero(), Expr::zero());
     // Documented convention: even a factor that is undefined at some point (x⁻¹ at x = 0).
     assert_eq!(Expr::zero() * x.recip(), Expr::zero());
-    assert_eq!(Expr::product([x, Expr::int(2), Expr::zero(), x.exp()]), Expr::zero());
+    assert_eq!(
+        Expr::product([x, Expr::int(2), Expr::zero(), x.exp()]),
+        Expr::zero()
+    );
     // (x − x)·y: the zero is structural.
     let y = real("y");
     assert_eq!((x - x) * y, Expr::zero());
@@ -163,11 +169,14 @@ fn pythagoras_with_equal_coefficients() {
     assert_eq!((f * s2 + f * c2).view(), ExprView::Float(0.1));
     // Not applied: different coefficients, different arguments, or not squares.
     let e = 2 * s2 + 3 * c2;
-    assert_eq!(sum(e), (Expr::zero(), {
-        let mut t = vec![(s2, Expr::int(2)), (c2, Expr::int(3))];
-        t.sort_by_key(|(t, _)| t.id());
-        t
-    }));
+    assert_eq!(
+        sum(e),
+        (Expr::zero(), {
+            let mut t = vec![(s2, Expr::int(2)), (c2, Expr::int(3))];
+            t.sort_by_key(|(t, _)| t.id());
+            t
+        })
+    );
     assert_eq!(sum(s2 - c2).1.len(), 2);
     assert_eq!(sum(s2 + y.cos().powi(2)).1.len(), 2);
     assert_eq!(sum(x.sin() + x.cos()).1.len(), 2);
@@ -211,7 +220,11 @@ fn opposite_exponents_do_not_cancel_for_a_base_that_may_vanish() {
     let y = real("y");
     assert_eq!(
         sorted(product(x * y / x).1),
-        sorted(vec![(x, Rational::ONE), (x, Rational::MINUS_ONE), (y, Rational::ONE)])
+        sorted(vec![
+            (x, Rational::ONE),
+            (x, Rational::MINUS_ONE),
+            (y, Rational::ONE)
+        ])
     );
 }
 
@@ -246,7 +259,10 @@ fn integer_power_of_a_product_distributes() {
     let y = real("y");
     let e = (x * y).powi(2);
     assert_eq!(e, x.powi(2) * y.powi(2));
-    assert_eq!(sorted(product(e).1), sorted(vec![(x, r(2, 1)), (y, r(2, 1))]));
+    assert_eq!(
+        sorted(product(e).1),
+        sorted(vec![(x, r(2, 1)), (y, r(2, 1))])
+    );
     assert_eq!((Expr::int(2) * x).powi(3), 8 * x.powi(3));
     assert_eq!((x / y).powi(-2), y.powi(2) / x.powi(2));
     assert_eq!((q(2, 3) * x).powi(-2), q(9, 4) * x.powi(-2));
@@ -312,7 +328,10 @@ fn fractional_power_of_a_product_splits_only_for_nonnegative_factors() {
     // Both factors non-negative: split.
     let e = (p * s).sqrt();
     assert_eq!(e, p.sqrt() * s.sqrt());
-    assert_eq!(sorted(product(e).1), sorted(vec![(p, r(1, 2)), (s, r(1, 2))]));
+    assert_eq!(
+        sorted(product(e).1),
+        sorted(vec![(p, r(1, 2)), (s, r(1, 2))])
+    );
     assert_eq!((p * n).sqrt(), p.sqrt() * n.sqrt());
     // With a positive numeric coefficient: √(4ps) = 2√p√s.
     assert_eq!((Expr::int(4) * p * s).sqrt(), 2 * p.sqrt() * s.sqrt());
@@ -379,7 +398,11 @@ fn odd_root_of_a_negative_constant_is_real() {
     let c = Expr::int(-2).pow_rational(r(1, 3));
     assert!(c.check().is_ok());
     let want = -(2f64.powf(1.0 / 3.0));
-    assert!((c.nominal() - want).abs() <= 4.0 * f64::EPSILON, "{}", c.nominal());
+    assert!(
+        (c.nominal() - want).abs() <= 4.0 * f64::EPSILON,
+        "{}",
+        c.nominal()
+    );
     let v = eom_sym::eval_nominal::<f64>(&[c]).unwrap()[0];
     assert!((v - want).abs() <= 4.0 * f64::EPSILON, "{v}");
     assert!(c.sign().is_nonpos());
@@ -397,8 +420,14 @@ fn functions_of_exact_constants_fold() {
     assert_eq!(Expr::one().ln(), Expr::zero());
     assert_eq!(q(-3, 4).abs(), q(3, 4));
     // Values that are not rational stay symbolic.
-    assert_eq!(Expr::one().sin().view(), ExprView::Func(Func::Sin, Expr::one()));
-    assert_eq!(Expr::int(2).ln().view(), ExprView::Func(Func::Ln, Expr::int(2)));
+    assert_eq!(
+        Expr::one().sin().view(),
+        ExprView::Func(Func::Sin, Expr::one())
+    );
+    assert_eq!(
+        Expr::int(2).ln().view(),
+        ExprView::Func(Func::Ln, Expr::int(2))
+    );
     assert_ne!(Expr::one().exp(), Expr::e());
 }
 
@@ -419,7 +448,10 @@ fn trig_of_multiples_of_pi_folds() {
     assert_eq!((Expr::int(5) * pi / Expr::int(2)).sin(), Expr::one());
     // π/3 has an irrational sine: not folded.
     let third = pi / 3;
-    assert_eq!((pi / Expr::int(3)).sin().view(), ExprView::Func(Func::Sin, third));
+    assert_eq!(
+        (pi / Expr::int(3)).sin().view(),
+        ExprView::Func(Func::Sin, third)
+    );
 }
 
 #[test]
@@ -464,7 +496,10 @@ fn odd_and_even_functions_of_a_negated_argument() {
     assert_eq!((Expr::int(-2) * xy).sin(), -(Expr::int(2) * xy).sin());
     assert_eq!((x * q(-1, 3)).cos(), (x / Expr::int(3)).cos());
     // The result is written with the positive argument.
-    assert_eq!(product(-x.sin()), (Expr::int(-1), vec![(x.sin(), Rational::ONE)]));
+    assert_eq!(
+        product(-x.sin()),
+        (Expr::int(-1), vec![(x.sin(), Rational::ONE)])
+    );
     // A sum has no numeric coefficient: sin(y − x) is not rewritten as −sin(x − y).
     let d = y - x;
     assert_eq!(d.sin().view(), ExprView::Func(Func::Sin, d));
@@ -582,7 +617,10 @@ fn fractional_powers_of_a_product_that_merge_to_an_integer_are_flattened() {
     assert_eq!(a * a, Expr::int(2) * x.powi(4));
     // Three halves merge to 3/2: still a fractional power of the product, kept.
     let (_, f) = product(r2 * r2 * r2 / r2.powi(2) * r2.powi(2));
-    assert!(f.iter().all(|(b, e)| !matches!(b.view(), ExprView::Product { .. }) || !e.is_integer()));
+    assert!(
+        f.iter()
+            .all(|(b, e)| !matches!(b.view(), ExprView::Product { .. }) || !e.is_integer())
+    );
 }
 
 #[test]
@@ -601,7 +639,10 @@ fn numeric_coefficient_distributes_over_a_sum_only() {
     assert!(terms.iter().all(|(_, k)| *k == Expr::int(2)));
     // A symbolic factor is not distributed: x·(a + b) stays a product.
     let e = x * s;
-    assert_eq!(sorted(product(e).1), sorted(vec![(x, Rational::ONE), (s, Rational::ONE)]));
+    assert_eq!(
+        sorted(product(e).1),
+        sorted(vec![(x, Rational::ONE), (s, Rational::ONE)])
+    );
     assert_ne!(e, x * a + x * b);
     // Nor is a coefficient when the product has other factors.
     let (k, f) = product(2 * (s * x));

@@ -31,9 +31,19 @@ fn bicycle(c: &mut Criterion) {
     g.finish();
     let r = reduce(&assemble(&model).unwrap(), None).unwrap();
     let ss = &r.state_space;
-    let roots: Vec<Expr> = ss.a.iter().chain(ss.b.iter()).chain(ss.c.iter()).chain(ss.d.iter()).copied().collect();
+    let roots: Vec<Expr> =
+        ss.a.iter()
+            .chain(ss.b.iter())
+            .chain(ss.c.iter())
+            .chain(ss.d.iter())
+            .copied()
+            .collect();
     let ops = Expr::op_count(&roots);
-    println!("bicycle A..D: {} unique operations ({ops:?}), {} unique nodes; PyDy after CSE: 734", ops.total(), Expr::dag_size(&roots));
+    println!(
+        "bicycle A..D: {} unique operations ({ops:?}), {} unique nodes; PyDy after CSE: 734",
+        ops.total(),
+        Expr::dag_size(&roots)
+    );
 }
 
 fn chains(c: &mut Criterion) {
@@ -42,7 +52,9 @@ fn chains(c: &mut Criterion) {
     let mut points = Vec::new();
     for n in [10usize, 50, 200] {
         let model = models::build(&format!("chain{n}"), &[]).unwrap();
-        g.bench_function(format!("chain{n}"), |b| b.iter(|| reduce(&assemble(black_box(&model)).unwrap(), None).unwrap()));
+        g.bench_function(format!("chain{n}"), |b| {
+            b.iter(|| reduce(&assemble(black_box(&model)).unwrap(), None).unwrap())
+        });
         // Size of the result and a direct timing for the growth fit.
         let t = Instant::now();
         let reps = 5;
@@ -52,15 +64,30 @@ fn chains(c: &mut Criterion) {
         }
         let secs = t.elapsed().as_secs_f64() / reps as f64;
         let ss = &r.expect("ran").state_space;
-        let roots: Vec<Expr> = ss.a.iter().chain(ss.b.iter()).chain(ss.c.iter()).chain(ss.d.iter()).copied().filter(|e| !e.is_zero()).collect();
-        println!("chain{n}: {secs:.3e} s, {} structural non-zeros in A..D, {} unique operations", roots.len(), Expr::op_count(&roots).total());
+        let roots: Vec<Expr> =
+            ss.a.iter()
+                .chain(ss.b.iter())
+                .chain(ss.c.iter())
+                .chain(ss.d.iter())
+                .copied()
+                .filter(|e| !e.is_zero())
+                .collect();
+        println!(
+            "chain{n}: {secs:.3e} s, {} structural non-zeros in A..D, {} unique operations",
+            roots.len(),
+            Expr::op_count(&roots).total()
+        );
         points.push((n as f64, secs));
     }
     g.finish();
     // Least-squares slope of log(time) against log(n).
     let k = points.len() as f64;
-    let (sx, sy) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0.ln(), a.1 + p.1.ln()));
-    let (sxx, sxy) = points.iter().fold((0.0, 0.0), |a, p| (a.0 + p.0.ln().powi(2), a.1 + p.0.ln() * p.1.ln()));
+    let (sx, sy) = points
+        .iter()
+        .fold((0.0, 0.0), |a, p| (a.0 + p.0.ln(), a.1 + p.1.ln()));
+    let (sxx, sxy) = points.iter().fold((0.0, 0.0), |a, p| {
+        (a.0 + p.0.ln().powi(2), a.1 + p.0.ln() * p.1.ln())
+    });
     let slope = (k * sxy - sx * sy) / (k * sxx - sx * sx);
     println!("chain symbolic time grows as n^{slope:.2} (target ≤ n^1.5)");
 }

@@ -22,16 +22,26 @@ fn sweeps(c: &mut Criterion) {
         let f = |x: f64| -> Result<nalgebra::DMatrix<f64>, String> {
             let mut v = base.clone();
             v[k] = x;
-            let ss = compiled.evaluate_with(&v, &mut EvalWorkspace::default()).map_err(|e| e.to_string())?;
+            let ss = compiled
+                .evaluate_with(&v, &mut EvalWorkspace::default())
+                .map_err(|e| e.to_string())?;
             if minimal {
-                Ok(minimal_realization(&ss, &MinrealOptions::default()).map_err(|e| e.to_string())?.0.a)
+                Ok(minimal_realization(&ss, &MinrealOptions::default())
+                    .map_err(|e| e.to_string())?
+                    .0
+                    .a)
             } else {
                 Ok(ss.a)
             }
         };
         for points in [101usize, 1001] {
             g.bench_function(format!("{name}: {points} points, grid only"), |b| {
-                b.iter(|| Sweep::linspace(0.0, hi, points).with_boundaries(false).run(f).unwrap())
+                b.iter(|| {
+                    Sweep::linspace(0.0, hi, points)
+                        .with_boundaries(false)
+                        .run(f)
+                        .unwrap()
+                })
             });
         }
         g.bench_function(format!("{name}: 101 points + boundaries to 1e-10"), |b| {

@@ -19,11 +19,33 @@ pub struct ParamSpec {
     pub assume: Assumption,
 }
 
-const fn p(name: &'static str, default: f64, unit: &'static str, description: &'static str) -> ParamSpec {
-    ParamSpec { name, default, unit, description, assume: Assumption::Positive }
+const fn p(
+    name: &'static str,
+    default: f64,
+    unit: &'static str,
+    description: &'static str,
+) -> ParamSpec {
+    ParamSpec {
+        name,
+        default,
+        unit,
+        description,
+        assume: Assumption::Positive,
+    }
 }
-const fn real(name: &'static str, default: f64, unit: &'static str, description: &'static str) -> ParamSpec {
-    ParamSpec { name, default, unit, description, assume: Assumption::Real }
+const fn real(
+    name: &'static str,
+    default: f64,
+    unit: &'static str,
+    description: &'static str,
+) -> ParamSpec {
+    ParamSpec {
+        name,
+        default,
+        unit,
+        description,
+        assume: Assumption::Real,
+    }
 }
 
 type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), ModelError>;
@@ -42,7 +64,12 @@ pub struct ModelInfo {
 
 impl ModelInfo {
     /// Build the model with `overrides` replacing defaults (by name).
-    pub fn build(&self, overrides: &[(&str, f64)], size: usize, name: &str) -> Result<Model<Expr>, ModelError> {
+    pub fn build(
+        &self,
+        overrides: &[(&str, f64)],
+        size: usize,
+        name: &str,
+    ) -> Result<Model<Expr>, ModelError> {
         for (k, _) in overrides {
             if !self.params.iter().any(|p| p.name == *k) {
                 return Err(ModelError::UnknownParameter {
@@ -55,7 +82,11 @@ impl ModelInfo {
         let mut m = Model::new(name);
         let mut ps = Vec::new();
         for spec in &self.params {
-            let value = overrides.iter().rev().find(|(k, _)| *k == spec.name).map_or(spec.default, |x| x.1);
+            let value = overrides
+                .iter()
+                .rev()
+                .find(|(k, _)| *k == spec.name)
+                .map_or(spec.default, |x| x.1);
             let bad = match spec.assume {
                 Assumption::Positive => value.is_nan() || value <= 0.0 || !value.is_finite(),
                 Assumption::Nonnegative => value.is_nan() || value < 0.0 || !value.is_finite(),
@@ -94,7 +125,11 @@ pub fn catalogue() -> Vec<ModelInfo> {
         ModelInfo {
             name: "smd",
             description: "spring-mass-damper on a vertical slider",
-            params: vec![p("m", 1.0, "kg", "mass"), p("k", 10.0, "N/m", "stiffness"), p("c", 0.1, "N s/m", "damping")],
+            params: vec![
+                p("m", 1.0, "kg", "mass"),
+                p("k", 10.0, "N/m", "stiffness"),
+                p("c", 0.1, "N s/m", "damping"),
+            ],
             builder: smd,
         },
         ModelInfo {
@@ -103,7 +138,12 @@ pub fn catalogue() -> Vec<ModelInfo> {
             params: vec![
                 p("m", 10.0, "kg", "mass"),
                 p("r", 1.0, "m", "distance from the pin to the mass centre"),
-                real("Ix", 1.0, "kg m^2", "moment of inertia about the mass centre"),
+                real(
+                    "Ix",
+                    1.0,
+                    "kg m^2",
+                    "moment of inertia about the mass centre",
+                ),
                 p("g", 9.807, "m/s^2", "gravity"),
             ],
             builder: pendulum,
@@ -115,8 +155,18 @@ pub fn catalogue() -> Vec<ModelInfo> {
                 p("m", 5.0, "kg", "mass"),
                 p("I", 1.05, "kg m^2", "yaw inertia about the mass centre"),
                 p("k", 1.5, "N/m", "lateral spring stiffness"),
-                p("l", 1.0, "m", "distance from the tyre to the spring (a + b)"),
-                real("x", 0.5, "", "mass-centre position a/l behind the spring (a = x l, b = (1 - x) l)"),
+                p(
+                    "l",
+                    1.0,
+                    "m",
+                    "distance from the tyre to the spring (a + b)",
+                ),
+                real(
+                    "x",
+                    0.5,
+                    "",
+                    "mass-centre position a/l behind the spring (a = x l, b = (1 - x) l)",
+                ),
                 real("u", 10.0, "m/s", "forward speed"),
             ],
             builder: shimmy,
@@ -136,7 +186,10 @@ pub fn catalogue() -> Vec<ModelInfo> {
                 p("ks", 18000.0, "N/m", "suspension stiffness"),
                 p("kt", 180000.0, "N/m", "tyre stiffness"),
                 p("cs", 1500.0, "N s/m", "suspension damping"),
-                ParamSpec { assume: Assumption::Nonnegative, ..p("ct", 500.0, "N s/m", "tyre damping") },
+                ParamSpec {
+                    assume: Assumption::Nonnegative,
+                    ..p("ct", 500.0, "N s/m", "tyre damping")
+                },
             ],
             builder: quarter_car,
         },
@@ -147,7 +200,12 @@ pub fn catalogue() -> Vec<ModelInfo> {
                 real("r", 1.0, "rad/s", "spin rate"),
                 p("m", 0.01, "kg", "mass"),
                 p("h", 0.04, "m", "height of the mass centre above the point"),
-                p("It", 3e-4, "kg m^2", "transverse moment of inertia about the mass centre"),
+                p(
+                    "It",
+                    3e-4,
+                    "kg m^2",
+                    "transverse moment of inertia about the mass centre",
+                ),
                 p("Ia", 4e-4, "kg m^2", "axial moment of inertia"),
                 p("g", 9.81, "m/s^2", "gravity"),
             ],
@@ -167,7 +225,11 @@ pub fn catalogue() -> Vec<ModelInfo> {
         ModelInfo {
             name: "chainN",
             description: "N equal masses in series on sliders, the first tied to ground, spring and damper in each link (chain10, chain50, ...)",
-            params: vec![p("m", 1.0, "kg", "mass of each body"), p("k", 1.0, "N/m", "stiffness of each link"), p("c", 0.1, "N s/m", "damping of each link")],
+            params: vec![
+                p("m", 1.0, "kg", "mass of each body"),
+                p("k", 1.0, "N/m", "stiffness of each link"),
+                p("c", 0.1, "N s/m", "damping of each link"),
+            ],
             builder: chain,
         },
     ]
@@ -183,14 +245,26 @@ pub fn find(name: &str) -> Result<(ModelInfo, usize), ModelError> {
         && let Ok(k) = n.parse::<usize>()
         && (1..=MAX_CHAIN).contains(&k)
     {
-        let info = cat.into_iter().find(|m| m.name == "chainN").expect("chain entry");
+        let info = cat
+            .into_iter()
+            .find(|m| m.name == "chainN")
+            .expect("chain entry");
         return Ok((info, k));
     }
     match cat.iter().position(|m| m.name == name) {
         Some(i) if name != "chainN" => Ok((cat[i].clone(), 0)),
         _ => Err(ModelError::UnknownModel {
             name: name.to_string(),
-            known: cat.iter().map(|m| if m.name == "chainN" { format!("chainN (N = 1..{MAX_CHAIN})") } else { m.name.to_string() }).collect(),
+            known: cat
+                .iter()
+                .map(|m| {
+                    if m.name == "chainN" {
+                        format!("chainN (N = 1..{MAX_CHAIN})")
+                    } else {
+                        m.name.to_string()
+                    }
+                })
+                .collect(),
         }),
     }
 }
@@ -204,25 +278,91 @@ pub fn build(name: &str, overrides: &[(&str, f64)]) -> Result<Model<Expr>, Model
 fn smd(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     let [m, k, c] = [p[0], p[1], p[2]];
     md.add(Body::new("block").mass(m).at(vec3(0, 0, 1)));
-    md.add(RigidPoint::new("slider").between("block", "ground").at(vec3(0, 0, 1)).forces(2).moments(3).axis(z_axis()));
-    md.add(FlexPoint::new("spring").between("block", "ground").at(vec3(0, 0, 0.5)).forces(1).axis(z_axis()).stiffness(k, 0).damping(c, 0));
-    md.add(Actuator::new("f").between("block", "ground").ends(vec3(0, 0, 1), zero3()));
-    md.add(Sensor::new("z").between("block", "ground").ends(vec3(0, 0, 1), zero3()));
-    md.add(Sensor::new("z dot").between("block", "ground").ends(vec3(0, 0, 1), zero3()).velocity().units("m/s"));
-    md.add(Sensor::new("kz").between("block", "ground").ends(vec3(0, 0, 1), zero3()).gain(k).units("N"));
+    md.add(
+        RigidPoint::new("slider")
+            .between("block", "ground")
+            .at(vec3(0, 0, 1))
+            .forces(2)
+            .moments(3)
+            .axis(z_axis()),
+    );
+    md.add(
+        FlexPoint::new("spring")
+            .between("block", "ground")
+            .at(vec3(0, 0, 0.5))
+            .forces(1)
+            .axis(z_axis())
+            .stiffness(k, 0)
+            .damping(c, 0),
+    );
+    md.add(
+        Actuator::new("f")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), zero3()),
+    );
+    md.add(
+        Sensor::new("z")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), zero3()),
+    );
+    md.add(
+        Sensor::new("z dot")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), zero3())
+            .velocity()
+            .units("m/s"),
+    );
+    md.add(
+        Sensor::new("kz")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), zero3())
+            .gain(k)
+            .units("N"),
+    );
     Ok(())
 }
 
 fn pendulum(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     let [m, r, ix, g] = [p[0], p[1], p[2], p[3]];
-    let body = Body::new("block").mass(m).at(vec3(0, 0, 1)).moments(vec3(ix, ix, ix));
+    let body = Body::new("block")
+        .mass(m)
+        .at(vec3(0, 0, 1))
+        .moments(vec3(ix, ix, ix));
     md.add(Load::weight(&body, g));
     md.add(body);
-    md.add(RigidPoint::new("pin").between("block", "ground").at(vec3(0, 0, Expr::one() + r)).forces(3).moments(2).axis(x_axis()));
-    md.add(Actuator::new("Y").between("block", "ground").ends(vec3(0, 0, 1), vec3(0, -1, 1)));
-    md.add(Actuator::new("L").between("block", "ground").ends(vec3(0, 0, 1), vec3(-1, 0, 1)).twist().units("N m"));
-    md.add(Sensor::new("y").between("block", "ground").ends(vec3(0, 0, 1), vec3(0, -1, 1)));
-    md.add(Sensor::new("mgr phi").between("block", "ground").ends(vec3(0, 0, 1), vec3(-1, 0, 1)).twist().gain(m * g * r).units("N m"));
+    md.add(
+        RigidPoint::new("pin")
+            .between("block", "ground")
+            .at(vec3(0, 0, Expr::one() + r))
+            .forces(3)
+            .moments(2)
+            .axis(x_axis()),
+    );
+    md.add(
+        Actuator::new("Y")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), vec3(0, -1, 1)),
+    );
+    md.add(
+        Actuator::new("L")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), vec3(-1, 0, 1))
+            .twist()
+            .units("N m"),
+    );
+    md.add(
+        Sensor::new("y")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), vec3(0, -1, 1)),
+    );
+    md.add(
+        Sensor::new("mgr phi")
+            .between("block", "ground")
+            .ends(vec3(0, 0, 1), vec3(-1, 0, 1))
+            .twist()
+            .gain(m * g * r)
+            .units("N m"),
+    );
     Ok(())
 }
 
@@ -230,14 +370,57 @@ fn shimmy(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> 
     let [m, i, k, l, x, u] = [p[0], p[1], p[2], p[3], p[4], p[5]];
     let a = x * l;
     let b = l - a;
-    md.add(Body::new("chassis").mass(m).moments(vec3(0, 0, i)).velocity(vec3(u, 0, 0)));
-    md.add(FlexPoint::new("spring").between("chassis", "ground").at(vec3(b, 0, 0)).forces(1).axis(y_axis()).stiffness(k, 0));
-    md.add(NhPoint::new("tyre").between("chassis", "ground").at(vec3(-a, 0, 0)).forces(1).axis(y_axis()));
-    md.add(RigidPoint::new("road").between("chassis", "ground").forces(1).moments(2).axis(z_axis()));
-    md.add(RigidPoint::new("speed").between("chassis", "ground").forces(1).axis(x_axis()));
-    md.add(Actuator::new("applied force").between("chassis", "ground").ends(zero3(), vec3(0, 0.1, 0)));
-    md.add(Sensor::new("spring force").between("chassis", "ground").ends(vec3(b, 0, 0), vec3(b, 0.1, 0)).gain(k).units("N"));
-    md.add(Sensor::new("mass motion").between("chassis", "ground").ends(zero3(), vec3(0, 0.1, 0)));
+    md.add(
+        Body::new("chassis")
+            .mass(m)
+            .moments(vec3(0, 0, i))
+            .velocity(vec3(u, 0, 0)),
+    );
+    md.add(
+        FlexPoint::new("spring")
+            .between("chassis", "ground")
+            .at(vec3(b, 0, 0))
+            .forces(1)
+            .axis(y_axis())
+            .stiffness(k, 0),
+    );
+    md.add(
+        NhPoint::new("tyre")
+            .between("chassis", "ground")
+            .at(vec3(-a, 0, 0))
+            .forces(1)
+            .axis(y_axis()),
+    );
+    md.add(
+        RigidPoint::new("road")
+            .between("chassis", "ground")
+            .forces(1)
+            .moments(2)
+            .axis(z_axis()),
+    );
+    md.add(
+        RigidPoint::new("speed")
+            .between("chassis", "ground")
+            .forces(1)
+            .axis(x_axis()),
+    );
+    md.add(
+        Actuator::new("applied force")
+            .between("chassis", "ground")
+            .ends(zero3(), vec3(0, 0.1, 0)),
+    );
+    md.add(
+        Sensor::new("spring force")
+            .between("chassis", "ground")
+            .ends(vec3(b, 0, 0), vec3(b, 0.1, 0))
+            .gain(k)
+            .units("N"),
+    );
+    md.add(
+        Sensor::new("mass motion")
+            .between("chassis", "ground")
+            .ends(zero3(), vec3(0, 0.1, 0)),
+    );
     Ok(())
 }
 
@@ -249,27 +432,105 @@ fn quarter_car(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelEr
     md.add(Load::weight(&unsprung, g));
     md.add(Load::weight(&sprung, g));
     md.add(unsprung).add(sprung);
-    md.add(FlexPoint::new("tyre").between("unsprung", "ground").at(vec3(0, 0, 0.15)).forces(1).axis(z_axis()).stiffness(kt, 0).damping(ct, 0));
-    md.add(FlexPoint::new("suspension").between("sprung", "unsprung").at(vec3(0, 0, 0.45)).forces(1).axis(z_axis()).stiffness(ks, 0).damping(cs, 0));
-    md.add(RigidPoint::new("unsprung slider").between("unsprung", "ground").at(vec3(0, 0, 0.3)).forces(2).moments(3).axis(z_axis()));
-    md.add(RigidPoint::new("sprung slider").between("sprung", "ground").at(vec3(0, 0, 0.6)).forces(2).moments(3).axis(z_axis()));
-    md.add(Actuator::new("z_g").between("unsprung", "ground").ends(vec3(0.05, 0, 0.3), vec3(0.05, 0, 0)).gain(kt).rate_gain(ct).units("m"));
-    md.add(Sensor::new("z_s").between("sprung", "ground").ends(vec3(0, 0.05, 0.6), vec3(0, 0.05, 0)));
-    md.add(Sensor::new("z_s-z_u").between("unsprung", "sprung").ends(vec3(0.1, 0, 0.3), vec3(0.1, 0, 0.6)));
-    md.add(Sensor::new("z_u-z_g").between("unsprung", "ground").ends(vec3(0.1, 0, 0.3), vec3(0.1, 0, 0)).feedthrough("z_g", -1));
+    md.add(
+        FlexPoint::new("tyre")
+            .between("unsprung", "ground")
+            .at(vec3(0, 0, 0.15))
+            .forces(1)
+            .axis(z_axis())
+            .stiffness(kt, 0)
+            .damping(ct, 0),
+    );
+    md.add(
+        FlexPoint::new("suspension")
+            .between("sprung", "unsprung")
+            .at(vec3(0, 0, 0.45))
+            .forces(1)
+            .axis(z_axis())
+            .stiffness(ks, 0)
+            .damping(cs, 0),
+    );
+    md.add(
+        RigidPoint::new("unsprung slider")
+            .between("unsprung", "ground")
+            .at(vec3(0, 0, 0.3))
+            .forces(2)
+            .moments(3)
+            .axis(z_axis()),
+    );
+    md.add(
+        RigidPoint::new("sprung slider")
+            .between("sprung", "ground")
+            .at(vec3(0, 0, 0.6))
+            .forces(2)
+            .moments(3)
+            .axis(z_axis()),
+    );
+    md.add(
+        Actuator::new("z_g")
+            .between("unsprung", "ground")
+            .ends(vec3(0.05, 0, 0.3), vec3(0.05, 0, 0))
+            .gain(kt)
+            .rate_gain(ct)
+            .units("m"),
+    );
+    md.add(
+        Sensor::new("z_s")
+            .between("sprung", "ground")
+            .ends(vec3(0, 0.05, 0.6), vec3(0, 0.05, 0)),
+    );
+    md.add(
+        Sensor::new("z_s-z_u")
+            .between("unsprung", "sprung")
+            .ends(vec3(0.1, 0, 0.3), vec3(0.1, 0, 0.6)),
+    );
+    md.add(
+        Sensor::new("z_u-z_g")
+            .between("unsprung", "ground")
+            .ends(vec3(0.1, 0, 0.3), vec3(0.1, 0, 0))
+            .feedthrough("z_g", -1),
+    );
     Ok(())
 }
 
 fn top(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     let [r, m, h, it, ia, g] = [p[0], p[1], p[2], p[3], p[4], p[5]];
-    let body = Body::new("top").mass(m).at(vec3(0, 0, h)).moments(vec3(it, it, ia)).angular_velocity(vec3(0, 0, r));
+    let body = Body::new("top")
+        .mass(m)
+        .at(vec3(0, 0, h))
+        .moments(vec3(it, it, ia))
+        .angular_velocity(vec3(0, 0, r));
     md.add(Load::weight(&body, g));
     md.add(body);
-    md.add(RigidPoint::new("contact").between("top", "ground").forces(3));
+    md.add(
+        RigidPoint::new("contact")
+            .between("top", "ground")
+            .forces(3),
+    );
     let mgh = m * g * h;
-    md.add(Actuator::new("L").between("top", "ground").ends(vec3(0, 0, h), vec3(-1, 0, h)).twist().units("N m"));
-    md.add(Sensor::new("mgh phi").between("top", "ground").ends(vec3(0, 0, h), vec3(-1, 0, h)).twist().gain(mgh).units("N m"));
-    md.add(Sensor::new("mgh theta").between("top", "ground").ends(vec3(0, 0, h), vec3(0, -1, h)).twist().gain(mgh).units("N m"));
+    md.add(
+        Actuator::new("L")
+            .between("top", "ground")
+            .ends(vec3(0, 0, h), vec3(-1, 0, h))
+            .twist()
+            .units("N m"),
+    );
+    md.add(
+        Sensor::new("mgh phi")
+            .between("top", "ground")
+            .ends(vec3(0, 0, h), vec3(-1, 0, h))
+            .twist()
+            .gain(mgh)
+            .units("N m"),
+    );
+    md.add(
+        Sensor::new("mgh theta")
+            .between("top", "ground")
+            .ends(vec3(0, 0, h), vec3(0, -1, h))
+            .twist()
+            .gain(mgh)
+            .units("N m"),
+    );
     Ok(())
 }
 
@@ -277,15 +538,58 @@ fn disk(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     let [u, m, r, g] = [p[0], p[1], p[2], p[3]];
     let a = m * r * r / 4;
     let c = m * r * r / 2;
-    let body = Body::new("wheel").mass(m).at(vec3(0, 0, r)).moments(vec3(a, c, a)).velocity(vec3(u, 0, 0)).angular_velocity(vec3(0, u / r, 0));
+    let body = Body::new("wheel")
+        .mass(m)
+        .at(vec3(0, 0, r))
+        .moments(vec3(a, c, a))
+        .velocity(vec3(u, 0, 0))
+        .angular_velocity(vec3(0, u / r, 0));
     md.add(Load::weight(&body, g));
     md.add(body);
-    md.add(RigidPoint::new("contact").between("wheel", "ground").forces(2).axis(y_axis()).rolling_axis(y_axis()));
-    md.add(NhPoint::new("rolling").between("wheel", "ground").forces(1).axis(y_axis()));
-    md.add(NhPoint::new("constant speed").between("wheel", "ground").at(vec3(0, 0, r)).forces(1).axis(x_axis()));
-    md.add(Actuator::new("L").between("wheel", "ground").ends(vec3(0, 0, r), vec3(-1, 0, r)).twist().units("N m"));
-    md.add(Sensor::new("mgr phi").between("wheel", "ground").ends(vec3(0, 0, r), vec3(-1, 0, r)).twist().gain(m * g * r).units("N m"));
-    md.add(Sensor::new("mgr r psi dot").between("wheel", "ground").ends(vec3(0, 0, r), vec3(0, 0, r - 1)).twist().velocity().gain(m * g * r * r).units("N m^2/s"));
+    md.add(
+        RigidPoint::new("contact")
+            .between("wheel", "ground")
+            .forces(2)
+            .axis(y_axis())
+            .rolling_axis(y_axis()),
+    );
+    md.add(
+        NhPoint::new("rolling")
+            .between("wheel", "ground")
+            .forces(1)
+            .axis(y_axis()),
+    );
+    md.add(
+        NhPoint::new("constant speed")
+            .between("wheel", "ground")
+            .at(vec3(0, 0, r))
+            .forces(1)
+            .axis(x_axis()),
+    );
+    md.add(
+        Actuator::new("L")
+            .between("wheel", "ground")
+            .ends(vec3(0, 0, r), vec3(-1, 0, r))
+            .twist()
+            .units("N m"),
+    );
+    md.add(
+        Sensor::new("mgr phi")
+            .between("wheel", "ground")
+            .ends(vec3(0, 0, r), vec3(-1, 0, r))
+            .twist()
+            .gain(m * g * r)
+            .units("N m"),
+    );
+    md.add(
+        Sensor::new("mgr r psi dot")
+            .between("wheel", "ground")
+            .ends(vec3(0, 0, r), vec3(0, 0, r - 1))
+            .twist()
+            .velocity()
+            .gain(m * g * r * r)
+            .units("N m^2/s"),
+    );
     Ok(())
 }
 
@@ -295,13 +599,38 @@ fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), ModelError> {
         let name = format!("mass{}", i + 1);
         let x = (i + 1) as i64;
         md.add(Body::new(&name).mass(m).at(vec3(x, 0, 0)));
-        md.add(RigidPoint::new(&format!("slider{}", i + 1)).between(&name, "ground").at(vec3(x, 0, 0)).forces(2).moments(3).axis(x_axis()));
-        let prev = if i == 0 { "ground".to_string() } else { format!("mass{i}") };
-        md.add(Spring::new(&format!("link{}", i + 1)).between(&name, &prev).ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)).stiffness(k).damping(c));
+        md.add(
+            RigidPoint::new(&format!("slider{}", i + 1))
+                .between(&name, "ground")
+                .at(vec3(x, 0, 0))
+                .forces(2)
+                .moments(3)
+                .axis(x_axis()),
+        );
+        let prev = if i == 0 {
+            "ground".to_string()
+        } else {
+            format!("mass{i}")
+        };
+        md.add(
+            Spring::new(&format!("link{}", i + 1))
+                .between(&name, &prev)
+                .ends(vec3(x, 0, 0), vec3(x - 1, 0, 0))
+                .stiffness(k)
+                .damping(c),
+        );
     }
     let last = format!("mass{n}");
     let x = n as i64;
-    md.add(Actuator::new("f").between(&last, "ground").ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)));
-    md.add(Sensor::new("x").between(&last, "ground").ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)));
+    md.add(
+        Actuator::new("f")
+            .between(&last, "ground")
+            .ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)),
+    );
+    md.add(
+        Sensor::new("x")
+            .between(&last, "ground")
+            .ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)),
+    );
     Ok(())
 }

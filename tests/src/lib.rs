@@ -7,7 +7,11 @@ pub fn read_csv(text: &str) -> Vec<Vec<f64>> {
     text.lines()
         .skip(1)
         .filter(|l| !l.trim().is_empty())
-        .map(|l| l.split(',').map(|x| x.trim().parse::<f64>().expect("number")).collect())
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.trim().parse::<f64>().expect("number"))
+                .collect()
+        })
         .collect()
 }
 
@@ -15,13 +19,21 @@ pub fn read_csv(text: &str) -> Vec<Vec<f64>> {
 /// is minimal (exhaustive for up to 8 values, greedy beyond), and return the pairs
 /// `(computed, expected)`. Panics if the counts differ.
 pub fn match_eigenvalues(got: &[Complex64], expected: &[Complex64]) -> Vec<(Complex64, Complex64)> {
-    assert_eq!(got.len(), expected.len(), "eigenvalue counts differ: got {got:?}, expected {expected:?}");
+    assert_eq!(
+        got.len(),
+        expected.len(),
+        "eigenvalue counts differ: got {got:?}, expected {expected:?}"
+    );
     let n = got.len();
     if n <= 8 {
         let mut best: Option<(f64, Vec<usize>)> = None;
         let mut perm: Vec<usize> = (0..n).collect();
         permute(&mut perm, 0, &mut |p| {
-            let cost = p.iter().enumerate().map(|(i, &j)| (got[j] - expected[i]).norm()).fold(0.0, f64::max);
+            let cost = p
+                .iter()
+                .enumerate()
+                .map(|(i, &j)| (got[j] - expected[i]).norm())
+                .fold(0.0, f64::max);
             if best.as_ref().is_none_or(|b| cost < b.0) {
                 best = Some((cost, p.to_vec()));
             }
@@ -35,7 +47,12 @@ pub fn match_eigenvalues(got: &[Complex64], expected: &[Complex64]) -> Vec<(Comp
         .map(|e| {
             let j = (0..n)
                 .filter(|&j| !used[j])
-                .min_by(|&a, &b| (got[a] - e).norm().partial_cmp(&(got[b] - e).norm()).expect("finite"))
+                .min_by(|&a, &b| {
+                    (got[a] - e)
+                        .norm()
+                        .partial_cmp(&(got[b] - e).norm())
+                        .expect("finite")
+                })
                 .expect("one left");
             used[j] = true;
             (got[j], *e)
@@ -65,7 +82,10 @@ pub fn max_relative_error(got: &[Complex64], expected: &[Complex64], floor: f64)
 
 /// Largest `|computed − expected|` over matched eigenvalues.
 pub fn max_abs_error(got: &[Complex64], expected: &[Complex64]) -> f64 {
-    match_eigenvalues(got, expected).iter().map(|(g, e)| (g - e).norm()).fold(0.0, f64::max)
+    match_eigenvalues(got, expected)
+        .iter()
+        .map(|(g, e)| (g - e).norm())
+        .fold(0.0, f64::max)
 }
 
 /// Drop the eigenvalues whose magnitude is below `tol` (structural zeros), keeping the rest.

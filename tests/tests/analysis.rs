@@ -31,13 +31,24 @@ fn shimmy_stable_interval_is_exact() {
                 compiled.evaluate(&v).map(|ss| ss.a)
             })
             .unwrap();
-        assert_eq!(result.stable_intervals.len(), 1, "{:?}", result.stable_intervals);
+        assert_eq!(
+            result.stable_intervals.len(),
+            1,
+            "{:?}",
+            result.stable_intervals
+        );
         let iv = &result.stable_intervals[0];
-        assert!((iv.lo - 0.3).abs() < 1e-9 && (iv.hi - 0.7).abs() < 1e-9, "u = {u}: {iv:?}");
+        assert!(
+            (iv.lo - 0.3).abs() < 1e-9 && (iv.hi - 0.7).abs() < 1e-9,
+            "u = {u}: {iv:?}"
+        );
         assert_eq!(result.boundaries.len(), 2);
         // At the boundaries the critical pair is ±1i (x = 0.3) and ±√(3/7) i (x = 0.7).
         for (b, w) in result.boundaries.iter().zip([1.0, (3.0f64 / 7.0).sqrt()]) {
-            assert!((b.eigenvalue.im.abs() - w).abs() < 1e-8 && b.eigenvalue.re.abs() < 1e-8, "{b:?}");
+            assert!(
+                (b.eigenvalue.im.abs() - w).abs() < 1e-8 && b.eigenvalue.re.abs() < 1e-8,
+                "{b:?}"
+            );
         }
     }
 }
@@ -60,20 +71,44 @@ fn bicycle_weave_and_capsize_speeds() {
             let mut p = base.clone();
             p[vi] = v;
             let ss = compiled.evaluate(&p).map_err(|e| e.to_string())?;
-            let (m, _) = minimal_realization(&ss, &MinrealOptions::default()).map_err(|e| e.to_string())?;
+            let (m, _) =
+                minimal_realization(&ss, &MinrealOptions::default()).map_err(|e| e.to_string())?;
             Ok(m.a)
         })
         .unwrap();
-    let iv: Vec<(f64, f64)> = result.stable_intervals.iter().map(|i| (i.lo, i.hi)).collect();
+    let iv: Vec<(f64, f64)> = result
+        .stable_intervals
+        .iter()
+        .map(|i| (i.lo, i.hi))
+        .collect();
     assert_eq!(iv.len(), 1, "{iv:?}");
     let (weave, capsize) = iv[0];
-    assert!((weave - 4.2923825363411040).abs() < 1e-9, "weave speed {weave}");
-    assert!((capsize - 6.0242620153883589).abs() < 1e-9, "capsize speed {capsize}");
-    eprintln!("bicycle: weave speed {weave:.14}, capsize speed {capsize:.14} (exact 4.29238253634110, 6.02426201538836)");
+    assert!(
+        (weave - 4.2923825363411040).abs() < 1e-9,
+        "weave speed {weave}"
+    );
+    assert!(
+        (capsize - 6.0242620153883589).abs() < 1e-9,
+        "capsize speed {capsize}"
+    );
+    eprintln!(
+        "bicycle: weave speed {weave:.14}, capsize speed {capsize:.14} (exact 4.29238253634110, 6.02426201538836)"
+    );
 }
 
-fn closed_form_check(ss: &eom_num::StateSpace<f64>, tf: &dyn Fn(Complex64) -> Vec<Complex64>, what: &str) {
-    let opts = FreqOptions { range: FreqRange::Range { low: 0.01, high: 100.0, unit: FreqUnit::Hz }, ..Default::default() };
+fn closed_form_check(
+    ss: &eom_num::StateSpace<f64>,
+    tf: &dyn Fn(Complex64) -> Vec<Complex64>,
+    what: &str,
+) {
+    let opts = FreqOptions {
+        range: FreqRange::Range {
+            low: 0.01,
+            high: 100.0,
+            unit: FreqUnit::Hz,
+        },
+        ..Default::default()
+    };
     let fr = FrequencyResponse::compute(ss, &opts).unwrap();
     let mut worst = 0.0f64;
     for (k, &f) in fr.freq_hz.iter().enumerate() {
@@ -83,10 +118,16 @@ fn closed_form_check(ss: &eom_num::StateSpace<f64>, tf: &dyn Fn(Complex64) -> Ve
             let g = fr.series(o, 0)[k];
             let err = (g - e).norm() / e.norm();
             worst = worst.max(err);
-            assert!(err < 1e-10, "{what}, output {o} at {f} Hz: {g} vs {e} ({err:e})");
+            assert!(
+                err < 1e-10,
+                "{what}, output {o} at {f} Hz: {g} vs {e} ({err:e})"
+            );
         }
     }
-    eprintln!("{what}: worst relative error {worst:.1e} over {} frequencies", fr.freq_hz.len());
+    eprintln!(
+        "{what}: worst relative error {worst:.1e} over {} frequencies",
+        fr.freq_hz.len()
+    );
 }
 
 /// Spring–mass–damper: z/f = 1/(m s² + c s + k), ż/f = s z/f, kz/f = k z/f.
@@ -94,7 +135,11 @@ fn closed_form_check(ss: &eom_num::StateSpace<f64>, tf: &dyn Fn(Complex64) -> Ve
 fn smd_frequency_response_matches_transfer_function() {
     for &(m, k, c) in &[(1.0, 10.0, 0.1), (2.0, 50.0, 3.0)] {
         let model = models::build("smd", &[("m", m), ("k", k), ("c", c)]).unwrap();
-        let ss = Linearizer::new(&model).method(Method::Symbolic).run().unwrap().state_space;
+        let ss = Linearizer::new(&model)
+            .method(Method::Symbolic)
+            .run()
+            .unwrap()
+            .state_space;
         let tf = |s: Complex64| {
             let z = Complex64::new(1.0, 0.0) / (s * s * m + s * c + k);
             vec![z, s * z, z * k]
@@ -110,9 +155,27 @@ fn smd_frequency_response_matches_transfer_function() {
 #[test]
 fn quarter_car_frequency_response_matches_transfer_functions() {
     for method in [Method::Symbolic, Method::Robust] {
-        for &(ms, mu, ks, kt, cs, ct) in &[(500.0, 50.0, 18000.0, 180000.0, 1500.0, 500.0), (500.0, 65.0, 18000.0, 200000.0, 1500.0, 100.0)] {
-            let model = models::build("quarter_car", &[("ms", ms), ("mu", mu), ("ks", ks), ("kt", kt), ("cs", cs), ("ct", ct)]).unwrap();
-            let ss = Linearizer::new(&model).method(method).run().unwrap().state_space;
+        for &(ms, mu, ks, kt, cs, ct) in &[
+            (500.0, 50.0, 18000.0, 180000.0, 1500.0, 500.0),
+            (500.0, 65.0, 18000.0, 200000.0, 1500.0, 100.0),
+        ] {
+            let model = models::build(
+                "quarter_car",
+                &[
+                    ("ms", ms),
+                    ("mu", mu),
+                    ("ks", ks),
+                    ("kt", kt),
+                    ("cs", cs),
+                    ("ct", ct),
+                ],
+            )
+            .unwrap();
+            let ss = Linearizer::new(&model)
+                .method(method)
+                .run()
+                .unwrap()
+                .state_space;
             let tf = |s: Complex64| {
                 let a = s * s * ms + s * cs + ks;
                 let b = s * cs + ks;
@@ -138,27 +201,77 @@ fn rotor_at_zero_spin_has_no_spurious_poles() {
     for spin in [0.0, 1e-3, 1.0] {
         let mut md: Model<Expr> = Model::new("rotor");
         let r = md.param("r", spin).unwrap();
-        md.add(Body::new("rotor").mass(1300).at(vec3(0, 0, 0.75)).moments(vec3(500, 500, 1000)).angular_velocity(vec3(0, 0, r)));
+        md.add(
+            Body::new("rotor")
+                .mass(1300)
+                .at(vec3(0, 0, 0.75))
+                .moments(vec3(500, 500, 1000))
+                .angular_velocity(vec3(0, 0, r)),
+        );
         md.add(Body::new("stator").mass(200).moments(vec3(50, 50, 10)));
-        md.add(RigidPoint::new("bearing").between("rotor", "stator").forces(3).moments(2).axis(z_axis()));
-        md.add(FlexPoint::new("mount").between("stator", "ground").forces(3).moments(2).axis(z_axis()).stiffness(1000, 10000).damping(1, 10));
-        md.add(FlexPoint::new("torsion").between("stator", "ground").moments(1).axis(z_axis()).stiffness(0, 1e5).damping(0, 100));
-        md.add(Actuator::new("X").between("rotor", "ground").ends(vec3(0, 0, 0.75), vec3(-1, 0, 0.75)));
-        md.add(Sensor::new("kx").between("rotor", "ground").ends(vec3(0, 0, 0.75), vec3(-1, 0, 0.75)).gain(1000));
+        md.add(
+            RigidPoint::new("bearing")
+                .between("rotor", "stator")
+                .forces(3)
+                .moments(2)
+                .axis(z_axis()),
+        );
+        md.add(
+            FlexPoint::new("mount")
+                .between("stator", "ground")
+                .forces(3)
+                .moments(2)
+                .axis(z_axis())
+                .stiffness(1000, 10000)
+                .damping(1, 10),
+        );
+        md.add(
+            FlexPoint::new("torsion")
+                .between("stator", "ground")
+                .moments(1)
+                .axis(z_axis())
+                .stiffness(0, 1e5)
+                .damping(0, 100),
+        );
+        md.add(
+            Actuator::new("X")
+                .between("rotor", "ground")
+                .ends(vec3(0, 0, 0.75), vec3(-1, 0, 0.75)),
+        );
+        md.add(
+            Sensor::new("kx")
+                .between("rotor", "ground")
+                .ends(vec3(0, 0, 0.75), vec3(-1, 0, 0.75))
+                .gain(1000),
+        );
         let ss = Linearizer::new(&md).run().unwrap().state_space;
         let (min, rep) = minimal_realization(&ss, &MinrealOptions::default()).unwrap();
         // The minimal poles are a subset of the full model's poles …
         let full = eom_num::modes::eigenvalues(&ss.a).unwrap();
         for p in eom_num::modes::eigenvalues(&min.a).unwrap() {
-            let d = full.iter().map(|q| (q - p).norm()).fold(f64::INFINITY, f64::min);
-            assert!(d < 1e-8 * p.norm().max(1.0), "spin {spin}: pole {p} of the minimal realization is not a pole of the model");
+            let d = full
+                .iter()
+                .map(|q| (q - p).norm())
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                d < 1e-8 * p.norm().max(1.0),
+                "spin {spin}: pole {p} of the minimal realization is not a pole of the model"
+            );
         }
         // … and the transfer function is unchanged.
         for s in [Complex64::new(0.1, 2.0), Complex64::new(-0.5, 7.0)] {
             let g0 = eom_num::freq::evaluate_at(&ss, s).unwrap()[(0, 0)];
             let g1 = eom_num::freq::evaluate_at(&min, s).unwrap()[(0, 0)];
-            assert!((g0 - g1).norm() < 1e-10 * g0.norm(), "spin {spin}: {g0} vs {g1}");
+            assert!(
+                (g0 - g1).norm() < 1e-10 * g0.norm(),
+                "spin {spin}: {g0} vs {g1}"
+            );
         }
-        eprintln!("rotor spin {spin}: {} → {} states ({} removed)", ss.states(), min.states(), rep.removed.len());
+        eprintln!(
+            "rotor spin {spin}: {} → {} states ({} removed)",
+            ss.states(),
+            min.states(),
+            rep.removed.len()
+        );
     }
 }

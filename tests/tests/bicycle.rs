@@ -7,43 +7,163 @@
 // Reference values are transcribed digit for digit from their sources.
 #![allow(clippy::excessive_precision)]
 
+use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_sym::Dd;
-use eom_sym::model::{Linearizer, Method, assemble, reduce};
 use eom_sym::dd::refine_eigenvalue;
+use eom_sym::model::{Linearizer, Method, assemble, reduce};
 use eom_sym::rational::Rational;
 use eom_sym::scalar::Scalar;
 use num_complex::Complex64;
-use eom_num::minreal::{MinrealOptions, minimal_realization};
 use tests::{max_abs_error, read_csv};
 
 /// Published Table 2(b): v, Re weave, Im weave, capsize, castor (v = 0: all four roots real,
 /// given as ±3.13164324790656, ±5.53094371765393).
 const PUBLISHED: [[f64; 5]; 10] = [
-    [1.0, 3.52696170990070, 0.80774027519930, -3.13423125066578, -7.11008014637442],
-    [2.0, 2.68234517512745, 1.68066296590675, -3.07158645641514, -8.67387984831735],
-    [3.0, 1.70675605663975, 2.31582447384325, -2.63366137253667, -10.35101467245920],
-    [4.0, 0.41325331521125, 3.07910818603206, -1.42944427361326, -12.15861426576447],
-    [5.0, -0.77534188219585, 4.46486771378823, -0.32286642900409, -14.07838969279822],
-    [6.0, -1.52644486584142, 5.87673060598709, -0.00406690076970, -16.08537123098030],
-    [7.0, -2.13875644258362, 7.19525913329805, 0.10268170574766, -18.15788466125262],
-    [8.0, -2.69348683581097, 8.46037971396931, 0.14327879765713, -20.27940894394569],
-    [9.0, -3.21675402252485, 9.69377351531791, 0.15790184030917, -22.43788559040858],
-    [10.0, -3.72016840437287, 10.90681139476287, 0.16105338653172, -24.62459635017404],
+    [
+        1.0,
+        3.52696170990070,
+        0.80774027519930,
+        -3.13423125066578,
+        -7.11008014637442,
+    ],
+    [
+        2.0,
+        2.68234517512745,
+        1.68066296590675,
+        -3.07158645641514,
+        -8.67387984831735,
+    ],
+    [
+        3.0,
+        1.70675605663975,
+        2.31582447384325,
+        -2.63366137253667,
+        -10.35101467245920,
+    ],
+    [
+        4.0,
+        0.41325331521125,
+        3.07910818603206,
+        -1.42944427361326,
+        -12.15861426576447,
+    ],
+    [
+        5.0,
+        -0.77534188219585,
+        4.46486771378823,
+        -0.32286642900409,
+        -14.07838969279822,
+    ],
+    [
+        6.0,
+        -1.52644486584142,
+        5.87673060598709,
+        -0.00406690076970,
+        -16.08537123098030,
+    ],
+    [
+        7.0,
+        -2.13875644258362,
+        7.19525913329805,
+        0.10268170574766,
+        -18.15788466125262,
+    ],
+    [
+        8.0,
+        -2.69348683581097,
+        8.46037971396931,
+        0.14327879765713,
+        -20.27940894394569,
+    ],
+    [
+        9.0,
+        -3.21675402252485,
+        9.69377351531791,
+        0.15790184030917,
+        -22.43788559040858,
+    ],
+    [
+        10.0,
+        -3.72016840437287,
+        10.90681139476287,
+        0.16105338653172,
+        -24.62459635017404,
+    ],
 ];
 
 /// The same quantities computed exactly (mpmath, 60 digits) and printed to 17 digits
 /// (reference-cases.md §A.4, [OWN]).
 const EXACT: [[f64; 5]; 10] = [
-    [1.0, 3.5269617099006942, 0.80774027519931005, -3.1342312506657842, -7.1100801463744077],
-    [2.0, 2.6823451751274535, 1.6806629659067578, -3.0715864564151425, -8.6738798483173716],
-    [3.0, 1.7067560566397352, 2.3158244738432436, -2.633661372536653, -10.351014672459228],
-    [4.0, 0.41325331521124132, 3.0791081860320536, -1.4294442736132575, -12.15861426576444],
-    [5.0, -0.77534188219584193, 4.4648677137882251, -0.32286642900408708, -14.078389692798247],
-    [6.0, -1.5264448658414171, 5.876730605987084, -0.0040669007697033624, -16.085371230980284],
-    [7.0, -2.1387564425836343, 7.1952591332980426, 0.10268170574766416, -18.157884661252021],
-    [8.0, -2.6934868358109477, 8.4603797139693359, 0.1432787976571295, -20.279408943945663],
-    [9.0, -3.2167540225249075, 9.693773515317822, 0.15790184030917298, -22.437885590408591],
-    [10.0, -3.7201684043728757, 10.906811394762882, 0.16105338653171554, -24.624596350174],
+    [
+        1.0,
+        3.5269617099006942,
+        0.80774027519931005,
+        -3.1342312506657842,
+        -7.1100801463744077,
+    ],
+    [
+        2.0,
+        2.6823451751274535,
+        1.6806629659067578,
+        -3.0715864564151425,
+        -8.6738798483173716,
+    ],
+    [
+        3.0,
+        1.7067560566397352,
+        2.3158244738432436,
+        -2.633661372536653,
+        -10.351014672459228,
+    ],
+    [
+        4.0,
+        0.41325331521124132,
+        3.0791081860320536,
+        -1.4294442736132575,
+        -12.15861426576444,
+    ],
+    [
+        5.0,
+        -0.77534188219584193,
+        4.4648677137882251,
+        -0.32286642900408708,
+        -14.078389692798247,
+    ],
+    [
+        6.0,
+        -1.5264448658414171,
+        5.876730605987084,
+        -0.0040669007697033624,
+        -16.085371230980284,
+    ],
+    [
+        7.0,
+        -2.1387564425836343,
+        7.1952591332980426,
+        0.10268170574766416,
+        -18.157884661252021,
+    ],
+    [
+        8.0,
+        -2.6934868358109477,
+        8.4603797139693359,
+        0.1432787976571295,
+        -20.279408943945663,
+    ],
+    [
+        9.0,
+        -3.2167540225249075,
+        9.693773515317822,
+        0.15790184030917298,
+        -22.437885590408591,
+    ],
+    [
+        10.0,
+        -3.7201684043728757,
+        10.906811394762882,
+        0.16105338653171554,
+        -24.624596350174,
+    ],
 ];
 
 fn expected(row: &[f64; 5]) -> Vec<Complex64> {
@@ -56,10 +176,15 @@ fn expected(row: &[f64; 5]) -> Vec<Complex64> {
 }
 
 fn at_rest() -> Vec<Complex64> {
-    [-5.53094371765393, -3.13164324790656, 3.13164324790656, 5.53094371765393]
-        .iter()
-        .map(|&x| Complex64::new(x, 0.0))
-        .collect()
+    [
+        -5.53094371765393,
+        -3.13164324790656,
+        3.13164324790656,
+        5.53094371765393,
+    ]
+    .iter()
+    .map(|&x| Complex64::new(x, 0.0))
+    .collect()
 }
 
 /// The four lean/steer eigenvalues: the eigenvalues of the minimal realization from the steer
@@ -74,7 +199,11 @@ fn lean_steer(ss: &eom_num::StateSpace<f64>) -> Vec<Complex64> {
     assert_eq!(mr.states(), 4, "{rep:?}");
     assert_eq!(rep.removed.len(), 2);
     for m in &rep.removed {
-        assert!(m.eigenvalue.norm() < 1e-6, "removed mode {:?} is not a structural zero", m.eigenvalue);
+        assert!(
+            m.eigenvalue.norm() < 1e-6,
+            "removed mode {:?} is not a structural zero",
+            m.eigenvalue
+        );
     }
     eom_num::modes::eigenvalues(&mr.a).unwrap()
 }
@@ -84,14 +213,25 @@ fn published_table_by_three_paths() {
     let model = models::build("bicycle", &[]).unwrap();
     let sym = Linearizer::new(&model).symbolic().unwrap();
     let mut worst = [0.0f64; 3];
-    let cases: Vec<(f64, Vec<Complex64>)> =
-        std::iter::once((0.0, at_rest())).chain(PUBLISHED.iter().map(|r| (r[0], expected(r)))).collect();
+    let cases: Vec<(f64, Vec<Complex64>)> = std::iter::once((0.0, at_rest()))
+        .chain(PUBLISHED.iter().map(|r| (r[0], expected(r))))
+        .collect();
     for (v, exp) in &cases {
         let values = model.scope.values_with(&[("v", *v)]).unwrap();
         let paths = [
             sym.evaluate(&values).unwrap(),
-            Linearizer::new(&model).at(&[("v", *v)]).method(Method::Numeric).run().unwrap().state_space,
-            Linearizer::new(&model).at(&[("v", *v)]).method(Method::Robust).run().unwrap().state_space,
+            Linearizer::new(&model)
+                .at(&[("v", *v)])
+                .method(Method::Numeric)
+                .run()
+                .unwrap()
+                .state_space,
+            Linearizer::new(&model)
+                .at(&[("v", *v)])
+                .method(Method::Robust)
+                .run()
+                .unwrap()
+                .state_space,
         ];
         for (k, ss) in paths.iter().enumerate() {
             let err = max_abs_error(&lean_steer(ss), exp);
@@ -99,7 +239,10 @@ fn published_table_by_three_paths() {
             assert!(err <= 1e-12, "v = {v}, path {k}: abs error {err:e}");
         }
     }
-    eprintln!("bicycle vs published Table 2: worst abs error symbolic {:.1e}, numeric {:.1e}, robust {:.1e}", worst[0], worst[1], worst[2]);
+    eprintln!(
+        "bicycle vs published Table 2: worst abs error symbolic {:.1e}, numeric {:.1e}, robust {:.1e}",
+        worst[0], worst[1], worst[2]
+    );
 }
 
 #[test]
@@ -110,8 +253,12 @@ fn one_hundred_twenty_six_speeds() {
     assert_eq!(rows.len(), 126);
     let mut worst = 0.0f64;
     for r in rows {
-        let exp: Vec<Complex64> = (0..4).map(|k| Complex64::new(r[1 + 2 * k], r[2 + 2 * k])).collect();
-        let ss = sym.evaluate(&model.scope.values_with(&[("v", r[0])]).unwrap()).unwrap();
+        let exp: Vec<Complex64> = (0..4)
+            .map(|k| Complex64::new(r[1 + 2 * k], r[2 + 2 * k]))
+            .collect();
+        let ss = sym
+            .evaluate(&model.scope.values_with(&[("v", r[0])]).unwrap())
+            .unwrap();
         let got = lean_steer(&ss);
         // Near v_d = 0.684 m/s two real roots coalesce into the weave pair: there the
         // eigenvalues are ill-conditioned (a double root), so compare the symmetric functions
@@ -121,7 +268,11 @@ fn one_hundred_twenty_six_speeds() {
         if near_double_root {
             let (s, p) = pair_sum_product(&got);
             let (se, pe) = pair_sum_product(&exp);
-            assert!((s - se).abs() < 1e-11 && (p - pe).abs() < 1e-10, "v = {}: sum {s} vs {se}, product {p} vs {pe}", r[0]);
+            assert!(
+                (s - se).abs() < 1e-11 && (p - pe).abs() < 1e-10,
+                "v = {}: sum {s} vs {se}, product {p} vs {pe}",
+                r[0]
+            );
         } else {
             worst = worst.max(err);
             assert!(err <= 1e-12, "v = {}: abs error {err:e}", r[0]);
@@ -172,7 +323,9 @@ fn double_double_reproduces_exact_and_published_digits() {
         let m = model.evaluate_in::<Dd>(&values).unwrap();
         let red = reduce(&assemble(&m).unwrap(), None).unwrap();
         let a = &red.state_space.a;
-        let rows: Vec<Vec<Dd>> = (0..a.nrows()).map(|i| (0..a.ncols()).map(|j| a[(i, j)]).collect()).collect();
+        let rows: Vec<Vec<Dd>> = (0..a.nrows())
+            .map(|i| (0..a.ncols()).map(|j| a[(i, j)]).collect())
+            .collect();
         let approx = eom_num::modes::eigenvalues(&a.map(|x| x.nominal())).unwrap();
         let refined: Vec<(Dd, Dd)> = approx
             .iter()
@@ -180,17 +333,27 @@ fn double_double_reproduces_exact_and_published_digits() {
             .map(|z| refine_eigenvalue(&rows, (z.re, z.im)).expect("simple eigenvalue converges"))
             .collect();
         assert_eq!(refined.len(), 4);
-        let got: Vec<Complex64> = refined.iter().map(|(r, i)| Complex64::new(r.to_f64(), i.to_f64())).collect();
+        let got: Vec<Complex64> = refined
+            .iter()
+            .map(|(r, i)| Complex64::new(r.to_f64(), i.to_f64()))
+            .collect();
         let err = max_abs_error(&got, &expected(row));
         worst_exact = worst_exact.max(err);
-        assert!(err <= 1e-15 * 25.0, "v = {}: double-double vs exact {err:e}", row[0]);
+        assert!(
+            err <= 1e-15 * 25.0,
+            "v = {}: double-double vs exact {err:e}",
+            row[0]
+        );
         // Against the published digits: within their printed accuracy (~1e-13, §A.4) …
         for (g, e) in tests::match_eigenvalues(&got, &expected(publ)) {
             // Per component, as the table prints real and imaginary parts separately.
             let d = (g.re - e.re).abs().max((g.im - e.im).abs());
             if row[0] == 7.0 && (e.re + 18.15788466125262).abs() < 1e-12 {
                 // … except the castor root at 7 m/s, misprinted by 6.0e-13.
-                assert!((d - 6.0e-13).abs() < 0.1e-13, "v = 7 castor: |published − exact| = {d:e}");
+                assert!(
+                    (d - 6.0e-13).abs() < 0.1e-13,
+                    "v = 7 castor: |published − exact| = {d:e}"
+                );
             } else {
                 assert!(d < 1e-13, "v = {}: |{g} − published {e}| = {d:e}", row[0]);
             }
@@ -209,7 +372,13 @@ fn structure_is_reported() {
     assert_eq!((rep.position_states, rep.velocity_states), (4, 2));
     assert!(rep.redundant.is_empty(), "{:?}", rep.redundant);
     let ss = sym.state_space();
-    let roots: Vec<eom_sym::Expr> = ss.a.iter().chain(ss.b.iter()).chain(ss.c.iter()).chain(ss.d.iter()).copied().collect();
+    let roots: Vec<eom_sym::Expr> =
+        ss.a.iter()
+            .chain(ss.b.iter())
+            .chain(ss.c.iter())
+            .chain(ss.d.iter())
+            .copied()
+            .collect();
     let ops = eom_sym::Expr::op_count(&roots).total();
     // PyDy needs 734 operations after common-subexpression elimination (notes/peers.md).
     assert!(ops < 734, "{ops} operations");

@@ -13,7 +13,12 @@ const METHODS: [Method; 3] = [Method::Symbolic, Method::Numeric, Method::Robust]
 
 fn state_space(model: &str, at: &[(&str, f64)], method: Method) -> StateSpace<f64> {
     let m = models::build(model, &[]).unwrap();
-    Linearizer::new(&m).at(at).method(method).run().unwrap().state_space
+    Linearizer::new(&m)
+        .at(at)
+        .method(method)
+        .run()
+        .unwrap()
+        .state_space
 }
 
 fn eig(ss: &StateSpace<f64>) -> Vec<Complex64> {
@@ -27,7 +32,12 @@ fn c(re: f64, im: f64) -> Complex64 {
 /// m z'' + c z' + k z = f: s = −c/2m ± i√(k/m − c²/4m²) (eom-method §11, test/input_ex_smd).
 #[test]
 fn spring_mass_damper() {
-    for &(m, k, cc) in &[(1.0f64, 10.0, 0.1), (2.5, 40.0, 3.0), (0.3, 0.7, 0.05), (1.0, 50.0, 0.2)] {
+    for &(m, k, cc) in &[
+        (1.0f64, 10.0, 0.1),
+        (2.5, 40.0, 3.0),
+        (0.3, 0.7, 0.05),
+        (1.0, 50.0, 0.2),
+    ] {
         let wd = (k / m - cc * cc / (4.0 * m * m)).sqrt();
         let exp = [c(-cc / (2.0 * m), wd), c(-cc / (2.0 * m), -wd)];
         for method in METHODS {
@@ -39,7 +49,12 @@ fn spring_mass_damper() {
     }
     // The defaults reproduce eom-method §11: −0.05 ± 3.1618823507524754i.
     let e = eig(&state_space("smd", &[], Method::Symbolic));
-    assert!(max_abs_error(&e, &[c(-0.05, 3.1618823507524754), c(-0.05, -3.1618823507524754)]) < 1e-15);
+    assert!(
+        max_abs_error(
+            &e,
+            &[c(-0.05, 3.1618823507524754), c(-0.05, -3.1618823507524754)]
+        ) < 1e-15
+    );
 }
 
 /// (Ix + m r²) φ'' + m g r φ = … : s = ±i √(m g r/(Ix + m r²)) (reference-cases §E2). The
@@ -47,19 +62,39 @@ fn spring_mass_damper() {
 /// ±4.2226661117011242i, and are accepted with a warning.
 #[test]
 fn pendulum() {
-    for &(m, r, ix, g) in &[(10.0f64, 1.0, -4.5, 9.807), (10.0, 1.0, 1.0, 9.807), (2.0, 0.4, 0.05, 9.81), (7.0, 2.0, 3.0, 1.62)] {
+    for &(m, r, ix, g) in &[
+        (10.0f64, 1.0, -4.5, 9.807),
+        (10.0, 1.0, 1.0, 9.807),
+        (2.0, 0.4, 0.05, 9.81),
+        (7.0, 2.0, 3.0, 1.62),
+    ] {
         let w = (m * g * r / (ix + m * r * r)).sqrt();
         for method in METHODS {
-            let ss = state_space("pendulum", &[("m", m), ("r", r), ("Ix", ix), ("g", g)], method);
+            let ss = state_space(
+                "pendulum",
+                &[("m", m), ("r", r), ("Ix", ix), ("g", g)],
+                method,
+            );
             let err = max_relative_error(&eig(&ss), &[c(0.0, w), c(0.0, -w)], 1e-300);
             assert!(err < 1e-13, "{method:?} Ix {ix}: {err:e}");
         }
     }
     let e = eig(&state_space("pendulum", &[("Ix", -4.5)], Method::Symbolic));
-    assert!(max_abs_error(&e, &[c(0.0, 4.2226661117011242), c(0.0, -4.2226661117011242)]) < 1e-14);
+    assert!(
+        max_abs_error(
+            &e,
+            &[c(0.0, 4.2226661117011242), c(0.0, -4.2226661117011242)]
+        ) < 1e-14
+    );
     let model = models::build("pendulum", &[("Ix", -4.5)]).unwrap();
     let lin = Linearizer::new(&model).run().unwrap();
-    assert!(lin.warnings.iter().any(|w| w.contains("not those of a physical body")), "{:?}", lin.warnings);
+    assert!(
+        lin.warnings
+            .iter()
+            .any(|w| w.contains("not those of a physical body")),
+        "{:?}",
+        lin.warnings
+    );
 }
 
 /// Heavy symmetric top on a fixed point: (I_p s² − m g h)² + (I_a r s)² = 0 with
@@ -73,7 +108,12 @@ fn spinning_top() {
     for &r in &[1.0, 5.0, 8.0, 10.0] {
         let d = Complex64::new(4.0 * ip * mgh - ia * ia * r * r, 0.0).sqrt();
         let iar = c(0.0, ia * r);
-        let exp = [(d + iar) / (2.0 * ip), (-d + iar) / (2.0 * ip), (d - iar) / (2.0 * ip), (-d - iar) / (2.0 * ip)];
+        let exp = [
+            (d + iar) / (2.0 * ip),
+            (-d + iar) / (2.0 * ip),
+            (d - iar) / (2.0 * ip),
+            (-d - iar) / (2.0 * ip),
+        ];
         for method in METHODS {
             let ss = state_space("top", &[("r", r)], method);
             assert_eq!(ss.states(), 6);
@@ -86,7 +126,10 @@ fn spinning_top() {
     }
     // eom-method §12.3 at r = 1: ±3.46658 ± 0.632911i.
     let e = nonzero(&eig(&state_space("top", &[], Method::Symbolic)), 1e-6);
-    assert!(e.iter().all(|z| (z.re.abs() - 3.46658).abs() < 5e-6 && (z.im.abs() - 0.632911).abs() < 5e-7));
+    assert!(
+        e.iter()
+            .all(|z| (z.re.abs() - 3.46658).abs() < 5e-6 && (z.im.abs() - 0.632911).abs() < 5e-7)
+    );
 }
 
 /// Uniform disk rolling upright: eliminating the yaw rate from the linearized equations gives
@@ -124,14 +167,21 @@ fn chain_of_masses() {
         let (m, k, cc) = (1.3, 2.0, 0.07);
         let mut exp = Vec::new();
         for j in 1..=n {
-            let mu = 4.0 * ((2 * j - 1) as f64 * std::f64::consts::PI / (2.0 * (2 * n + 1) as f64)).sin().powi(2);
+            let mu = 4.0
+                * ((2 * j - 1) as f64 * std::f64::consts::PI / (2.0 * (2 * n + 1) as f64))
+                    .sin()
+                    .powi(2);
             let b = cc * mu / m;
             let disc = Complex64::new(b * b / 4.0 - k * mu / m, 0.0).sqrt();
             exp.push(-b / 2.0 + disc);
             exp.push(-b / 2.0 - disc);
         }
         for method in METHODS {
-            let ss = state_space(&format!("chain{n}"), &[("m", m), ("k", k), ("c", cc)], method);
+            let ss = state_space(
+                &format!("chain{n}"),
+                &[("m", m), ("k", k), ("c", cc)],
+                method,
+            );
             assert_eq!(ss.states(), 2 * n);
             let err = max_relative_error(&eig(&ss), &exp, 1e-300);
             assert!(err < 1e-11, "chain{n} {method:?}: {err:e}");
@@ -144,7 +194,11 @@ fn chain_of_masses() {
 /// are compared with the model's eigenvalues.
 #[test]
 fn quarter_car_eigenvalues() {
-    for &(ms, mu, ks, kt, cs, ct) in &[(500.0, 50.0, 18000.0, 180000.0, 1500.0, 500.0), (500.0, 65.0, 18000.0, 200000.0, 1500.0, 100.0), (320.0, 40.0, 25000.0, 150000.0, 900.0, 0.0)] {
+    for &(ms, mu, ks, kt, cs, ct) in &[
+        (500.0, 50.0, 18000.0, 180000.0, 1500.0, 500.0),
+        (500.0, 65.0, 18000.0, 200000.0, 1500.0, 100.0),
+        (320.0, 40.0, 25000.0, 150000.0, 900.0, 0.0),
+    ] {
         // (ms s² + cs s + ks)(mu s² + (cs+ct) s + ks + kt) − (cs s + ks)²
         let p1 = [ks, cs, ms];
         let p2 = [ks + kt, cs + ct, mu];
@@ -158,10 +212,29 @@ fn quarter_car_eigenvalues() {
         poly[1] -= 2.0 * cs * ks;
         poly[2] -= cs * cs;
         let lead = poly[4];
-        let comp = nalgebra::DMatrix::from_fn(4, 4, |i, j| if i == 0 { -poly[3 - j] / lead } else if i == j + 1 { 1.0 } else { 0.0 });
+        let comp = nalgebra::DMatrix::from_fn(4, 4, |i, j| {
+            if i == 0 {
+                -poly[3 - j] / lead
+            } else if i == j + 1 {
+                1.0
+            } else {
+                0.0
+            }
+        });
         let exp = eom_num::modes::eigenvalues(&comp).unwrap();
         for method in METHODS {
-            let ss = state_space("quarter_car", &[("ms", ms), ("mu", mu), ("ks", ks), ("kt", kt), ("cs", cs), ("ct", ct)], method);
+            let ss = state_space(
+                "quarter_car",
+                &[
+                    ("ms", ms),
+                    ("mu", mu),
+                    ("ks", ks),
+                    ("kt", kt),
+                    ("cs", cs),
+                    ("ct", ct),
+                ],
+                method,
+            );
             let err = max_relative_error(&eig(&ss), &exp, 1e-300);
             assert!(err < 1e-11, "{method:?}: {err:e}");
         }

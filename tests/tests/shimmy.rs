@@ -17,21 +17,39 @@ fn check(csv: &str, u: f64) {
     let mut worst = [0.0f64; 3];
     for row in &rows {
         let x = row[0];
-        let expected: Vec<Complex64> = (0..3).map(|k| Complex64::new(row[1 + 2 * k], row[2 + 2 * k])).collect();
+        let expected: Vec<Complex64> = (0..3)
+            .map(|k| Complex64::new(row[1 + 2 * k], row[2 + 2 * k]))
+            .collect();
         let values = model.scope.values_with(&[("x", x), ("u", u)]).unwrap();
         let paths = [
             sym.evaluate(&values).unwrap(),
-            Linearizer::new(&model).at(&[("x", x)]).method(Method::Numeric).run().unwrap().state_space,
-            Linearizer::new(&model).at(&[("x", x)]).method(Method::Robust).run().unwrap().state_space,
+            Linearizer::new(&model)
+                .at(&[("x", x)])
+                .method(Method::Numeric)
+                .run()
+                .unwrap()
+                .state_space,
+            Linearizer::new(&model)
+                .at(&[("x", x)])
+                .method(Method::Robust)
+                .run()
+                .unwrap()
+                .state_space,
         ];
         for (k, ss) in paths.iter().enumerate() {
             let got = eom_num::modes::eigenvalues(&ss.a).unwrap();
             let err = max_relative_error(&got, &expected, 1e-300);
             worst[k] = worst[k].max(err);
-            assert!(err <= 1e-12, "u = {u}, x = {x}, path {k}: relative error {err:e}\n got {got:?}\n expected {expected:?}");
+            assert!(
+                err <= 1e-12,
+                "u = {u}, x = {x}, path {k}: relative error {err:e}\n got {got:?}\n expected {expected:?}"
+            );
         }
     }
-    eprintln!("shimmy u = {u}: worst relative error symbolic {:.1e}, numeric {:.1e}, robust {:.1e}", worst[0], worst[1], worst[2]);
+    eprintln!(
+        "shimmy u = {u}: worst relative error symbolic {:.1e}, numeric {:.1e}, robust {:.1e}",
+        worst[0], worst[1], worst[2]
+    );
 }
 
 #[test]
@@ -49,9 +67,17 @@ fn shimmy_u1_matches_closed_form_cubic() {
 fn shimmy_stability_boundaries_are_exact() {
     let model = models::build("shimmy", &[]).unwrap();
     for (x, w) in [(0.3, 1.0), (0.7, (3.0f64 / 7.0).sqrt())] {
-        let ss = Linearizer::new(&model).at(&[("x", x)]).run().unwrap().state_space;
+        let ss = Linearizer::new(&model)
+            .at(&[("x", x)])
+            .run()
+            .unwrap()
+            .state_space;
         let got = eom_num::modes::eigenvalues(&ss.a).unwrap();
-        let expected = [Complex64::new(-10.0, 0.0), Complex64::new(0.0, w), Complex64::new(0.0, -w)];
+        let expected = [
+            Complex64::new(-10.0, 0.0),
+            Complex64::new(0.0, w),
+            Complex64::new(0.0, -w),
+        ];
         let err = tests::max_abs_error(&got, &expected);
         assert!(err < 1e-13, "x = {x}: {got:?}");
     }

@@ -15,7 +15,16 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
-const MODELS: [&str; 8] = ["smd", "pendulum", "shimmy", "bicycle", "quarter_car", "top", "disk", "chain8"];
+const MODELS: [&str; 8] = [
+    "smd",
+    "pendulum",
+    "shimmy",
+    "bicycle",
+    "quarter_car",
+    "top",
+    "disk",
+    "chain8",
+];
 
 fn rel_diff(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
     let scale = a.abs().max().max(b.abs().max()).max(f64::MIN_POSITIVE);
@@ -27,7 +36,10 @@ fn transfer(ss: &StateSpace<f64>, s: Complex64) -> DMatrix<Complex64> {
     let n = ss.states();
     let a = ss.a.map(|x| Complex64::new(x, 0.0));
     let m = DMatrix::<Complex64>::identity(n, n) * s - a;
-    let x = m.lu().solve(&ss.b.map(|x| Complex64::new(x, 0.0))).expect("s is not a pole");
+    let x = m
+        .lu()
+        .solve(&ss.b.map(|x| Complex64::new(x, 0.0)))
+        .expect("s is not a pole");
     ss.c.map(|x| Complex64::new(x, 0.0)) * x + ss.d.map(|x| Complex64::new(x, 0.0))
 }
 
@@ -43,16 +55,35 @@ fn symbolic_equals_numeric_at_random_points() {
         for k in 0..1000 {
             let values: Vec<f64> = nominal
                 .iter()
-                .map(|&x| if x == 0.0 { rng.random_range(-0.2..0.2) } else { x * rng.random_range(0.8..1.2) })
+                .map(|&x| {
+                    if x == 0.0 {
+                        rng.random_range(-0.2..0.2)
+                    } else {
+                        x * rng.random_range(0.8..1.2)
+                    }
+                })
                 .collect();
-            let s = sym.evaluate(&values).unwrap_or_else(|e| panic!("{name} at {values:?}: {e}"));
+            let s = sym
+                .evaluate(&values)
+                .unwrap_or_else(|e| panic!("{name} at {values:?}: {e}"));
             // The same plan replayed in f64.
             let m = model.evaluate(&values).unwrap();
-            let replay = reduce(&assemble(&m).unwrap(), Some(plan)).unwrap().state_space;
-            for (x, y, what) in [(&s.a, &replay.a, "A"), (&s.b, &replay.b, "B"), (&s.c, &replay.c, "C"), (&s.d, &replay.d, "D"), (&s.phys, &replay.phys, "phys")] {
+            let replay = reduce(&assemble(&m).unwrap(), Some(plan))
+                .unwrap()
+                .state_space;
+            for (x, y, what) in [
+                (&s.a, &replay.a, "A"),
+                (&s.b, &replay.b, "B"),
+                (&s.c, &replay.c, "C"),
+                (&s.d, &replay.d, "D"),
+                (&s.phys, &replay.phys, "phys"),
+            ] {
                 let d = rel_diff(x, y);
                 worst_plan = worst_plan.max(d);
-                assert!(d <= 1e-10, "{name} point {k}: {what} differs by {d:e} (relative)");
+                assert!(
+                    d <= 1e-10,
+                    "{name} point {k}: {what} differs by {d:e} (relative)"
+                );
             }
             // Invariants against the robust path, on a subset (it is the slow one).
             if k % 20 == 0 {
@@ -61,14 +92,24 @@ fn symbolic_equals_numeric_at_random_points() {
                     let g1 = transfer(&s, s_val);
                     let g2 = transfer(&robust, s_val);
                     let scale = g1.iter().map(|z| z.norm()).fold(0.0, f64::max).max(1e-300);
-                    let d = g1.iter().zip(g2.iter()).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max) / scale;
+                    let d = g1
+                        .iter()
+                        .zip(g2.iter())
+                        .map(|(a, b)| (a - b).norm())
+                        .fold(0.0, f64::max)
+                        / scale;
                     worst_tf = worst_tf.max(d);
                     compared_tf += 1;
-                    assert!(d <= 1e-8, "{name} point {k}: transfer functions differ by {d:e} (relative) at s = {s_val}");
+                    assert!(
+                        d <= 1e-8,
+                        "{name} point {k}: transfer functions differ by {d:e} (relative) at s = {s_val}"
+                    );
                 }
             }
         }
-        eprintln!("{name}: worst symbolic vs replayed numeric {worst_plan:.1e}; symbolic vs robust transfer function {worst_tf:.1e} ({compared_tf} comparisons)");
+        eprintln!(
+            "{name}: worst symbolic vs replayed numeric {worst_plan:.1e}; symbolic vs robust transfer function {worst_tf:.1e} ({compared_tf} comparisons)"
+        );
     }
 }
 

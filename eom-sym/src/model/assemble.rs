@@ -22,10 +22,10 @@
 //! * a rolling contact is recognised by a nonzero rolling axis, without exact floating-point
 //!   tests on its norm (§13.14).
 
+use super::Model;
 use super::eliminate::{Row, rref};
 use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit};
 use super::items::*;
-use super::Model;
 use crate::error::SymError;
 use crate::matrix::{SparseMatrix, Triplets};
 use crate::scalar::Scalar;
@@ -134,7 +134,13 @@ impl<S: Scalar> Assembled<S> {
 }
 
 /// A point item's rows, its force and moment directions, bodies and radii.
-type PointParts<S> = (Rows<S>, Vec<Vec3<S>>, Vec<Vec3<S>>, [Option<usize>; 2], [Vec3<S>; 2]);
+type PointParts<S> = (
+    Rows<S>,
+    Vec<Vec3<S>>,
+    Vec<Vec3<S>>,
+    [Option<usize>; 2],
+    [Vec3<S>; 2],
+);
 /// A line item's row, unit vector, length, bodies and radii.
 type LineParts<S> = (Rows<S>, Vec3<S>, S, [Option<usize>; 2], [Vec3<S>; 2]);
 
@@ -144,7 +150,13 @@ struct Rows<S> {
     labels: Vec<RowLabel>,
 }
 
-fn push_entries<S: Scalar>(row: &mut Vec<(usize, S)>, body: Option<usize>, trans: &Vec3<S>, rot: &Vec3<S>, sign: bool) {
+fn push_entries<S: Scalar>(
+    row: &mut Vec<(usize, S)>,
+    body: Option<usize>,
+    trans: &Vec3<S>,
+    rot: &Vec3<S>,
+    sign: bool,
+) {
     if let Some(k) = body {
         for (i, v) in trans.iter().chain(rot.iter()).enumerate() {
             if !v.is_zero() {
@@ -204,23 +216,40 @@ struct Ctx<'a, S> {
 
 impl<S: Scalar> Ctx<'_, S> {
     fn idx(&self, name: &str) -> Option<usize> {
-        if name == GROUND { None } else { self.model.body_index(name) }
+        if name == GROUND {
+            None
+        } else {
+            self.model.body_index(name)
+        }
     }
     fn cg(&self, k: Option<usize>) -> Vec3<S> {
         k.map_or(zero3(), |k| self.model.bodies[k].location)
     }
     fn point(&self, p: &Point<S>, kind: &'static str, name: &Name) -> PointParts<S> {
         let b = [self.idx(&p.bodies[0]), self.idx(&p.bodies[1])];
-        let r = [sub(&p.location, &self.cg(b[0])), sub(&p.location, &self.cg(b[1]))];
+        let r = [
+            sub(&p.location, &self.cg(b[0])),
+            sub(&p.location, &self.cg(b[1])),
+        ];
         let f = directions(p.forces, &p.axis);
         let m = directions(p.moments, &p.axis);
         let rows = point_rows(b, r, &f, &m);
         let mut labels = Vec::with_capacity(f.len() + m.len());
         for k in 0..f.len() {
-            labels.push(RowLabel { kind, item: name.clone(), part: "force", index: k + 1 });
+            labels.push(RowLabel {
+                kind,
+                item: name.clone(),
+                part: "force",
+                index: k + 1,
+            });
         }
         for k in 0..m.len() {
-            labels.push(RowLabel { kind, item: name.clone(), part: "moment", index: k + 1 });
+            labels.push(RowLabel {
+                kind,
+                item: name.clone(),
+                part: "moment",
+                index: k + 1,
+            });
         }
         (Rows { rows, labels }, f, m, b, r)
     }
@@ -229,14 +258,35 @@ impl<S: Scalar> Ctx<'_, S> {
         let b = [self.idx(&l.bodies[0]), self.idx(&l.bodies[1])];
         let t = sub(&l.ends[1], &l.ends[0]);
         let len = geometry::norm(&t);
-        let u = if len.is_one() { t } else { scale(len.recip(), &t) };
-        let r = [sub(&l.ends[0], &self.cg(b[0])), sub(&l.ends[1], &self.cg(b[1]))];
+        let u = if len.is_one() {
+            t
+        } else {
+            scale(len.recip(), &t)
+        };
+        let r = [
+            sub(&l.ends[0], &self.cg(b[0])),
+            sub(&l.ends[1], &self.cg(b[1])),
+        ];
         let rows = if l.twist {
             point_rows(b, r, &[], std::slice::from_ref(&u))
         } else {
             point_rows(b, r, std::slice::from_ref(&u), &[])
         };
-        (Rows { rows, labels: vec![RowLabel { kind, item: name.clone(), part: "", index: 0 }] }, u, len, b, r)
+        (
+            Rows {
+                rows,
+                labels: vec![RowLabel {
+                    kind,
+                    item: name.clone(),
+                    part: "",
+                    index: 0,
+                }],
+            },
+            u,
+            len,
+            b,
+            r,
+        )
     }
 }
 
@@ -245,18 +295,36 @@ fn rows_to_matrix<S: Scalar>(rows: &[Row<S>], ncols: usize) -> SparseMatrix<S> {
 }
 
 /// Add a 3×3 block at (row offset, col offset) of body blocks (ground dropped).
-fn add_block<S: Scalar>(m: &mut Triplets<S>, bi: Option<usize>, ri: usize, bj: Option<usize>, rj: usize, blk: &Mat3<S>, sign: f64) {
-    let (Some(bi), Some(bj)) = (bi, bj) else { return };
+fn add_block<S: Scalar>(
+    m: &mut Triplets<S>,
+    bi: Option<usize>,
+    ri: usize,
+    bj: Option<usize>,
+    rj: usize,
+    blk: &Mat3<S>,
+    sign: f64,
+) {
+    let (Some(bi), Some(bj)) = (bi, bj) else {
+        return;
+    };
     for (i, row) in blk.iter().enumerate() {
         for (j, &v) in row.iter().enumerate() {
             if !v.is_zero() {
-                m.push(6 * bi + ri + i, 6 * bj + rj + j, if sign > 0.0 { v } else { -v });
+                m.push(
+                    6 * bi + ri + i,
+                    6 * bj + rj + j,
+                    if sign > 0.0 { v } else { -v },
+                );
             }
         }
     }
 }
 
-fn add_rows_block<S: Scalar>(m: &mut Triplets<S>, rows: &[Row<S>], props: &[Vec<S>]) -> Result<(), SymError> {
+fn add_rows_block<S: Scalar>(
+    m: &mut Triplets<S>,
+    rows: &[Row<S>],
+    props: &[Vec<S>],
+) -> Result<(), SymError> {
     // m += Rᵀ P R for the item's rows R and property block P.
     let n = rows.len();
     for a in 0..n {
@@ -278,7 +346,13 @@ fn add_rows_block<S: Scalar>(m: &mut Triplets<S>, rows: &[Row<S>], props: &[Vec<
 
 fn diag<S: Scalar>(v: &[S]) -> Vec<Vec<S>> {
     let n = v.len();
-    (0..n).map(|i| (0..n).map(|j| if i == j { v[i] } else { S::zero() }).collect()).collect()
+    (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| if i == j { v[i] } else { S::zero() })
+                .collect()
+        })
+        .collect()
 }
 
 /// Assemble the linearized model.
@@ -317,7 +391,10 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     let mut k_load = Triplets::new(d, d);
     for l in &model.loads {
         let (Some(p1), p2) = (cx.idx(&l.body), cx.idx(&l.frame)) else {
-            warnings.push(format!("load `{}` acts on the ground and has no effect", l.name));
+            warnings.push(format!(
+                "load `{}` acts on the ground and has no effect",
+                l.name
+            ));
             continue;
         };
         let r = sub(&l.location, &cx.cg(Some(p1)));
@@ -365,8 +442,16 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     let mut flex_geo = Vec::new();
     for f in &model.flex_points {
         let (rows, fd, md, b, r) = cx.point(&f.point, "flex point", &f.name);
-        let kdiag: Vec<S> = fd.iter().map(|_| f.stiffness[0]).chain(md.iter().map(|_| f.stiffness[1])).collect();
-        let cdiag: Vec<S> = fd.iter().map(|_| f.damping[0]).chain(md.iter().map(|_| f.damping[1])).collect();
+        let kdiag: Vec<S> = fd
+            .iter()
+            .map(|_| f.stiffness[0])
+            .chain(md.iter().map(|_| f.stiffness[1]))
+            .collect();
+        let cdiag: Vec<S> = fd
+            .iter()
+            .map(|_| f.damping[0])
+            .chain(md.iter().map(|_| f.damping[1]))
+            .collect();
         let kb = f.stiffness_matrix.clone().unwrap_or_else(|| diag(&kdiag));
         let cb = f.damping_matrix.clone().unwrap_or_else(|| diag(&cdiag));
         let start = h_rows.len();
@@ -420,8 +505,17 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         .filter_map(|(i, s)| s.preload.map(|p| (i, p, s.stiffness)))
         .collect();
     let k_el = k_el.build();
-    let (lambda_c, lambda_e, statics) =
-        solve_statics(d, &j_rows, &h_rows, &applied, &known, &stiff_blocks, &k_el, &j_labels, &model.bodies)?;
+    let (lambda_c, lambda_e, statics) = solve_statics(
+        d,
+        &j_rows,
+        &h_rows,
+        &applied,
+        &known,
+        &stiff_blocks,
+        &k_el,
+        &j_labels,
+        &model.bodies,
+    )?;
 
     // ---------------------------------------------------------------- tangent stiffness (§4.6)
     let mut k_t = Triplets::new(d, d);
@@ -439,7 +533,12 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         jc += n;
         let (f, m) = point_force(lam, fd, md);
         point_tangent(&mut k_t, &p.point, &f, &m, *b, r);
-        preloads.push(Preload { item: format!("rigid point `{}`", p.name), force: f, moment: m, tension: None });
+        preloads.push(Preload {
+            item: format!("rigid point `{}`", p.name),
+            force: f,
+            moment: m,
+            tension: None,
+        });
     }
     let mut je = 0;
     for (s, (u, len, b, r, twist)) in model.springs.iter().zip(&spring_geo) {
@@ -454,14 +553,24 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         je += n;
         let (f, m) = point_force(lam, fd, md);
         point_tangent(&mut k_t, &p.point, &f, &m, *b, r);
-        preloads.push(Preload { item: format!("flex point `{}`", p.name), force: f, moment: m, tension: None });
+        preloads.push(Preload {
+            item: format!("flex point `{}`", p.name),
+            force: f,
+            moment: m,
+            tension: None,
+        });
     }
     for bm in &model.beams {
         // Beams carry end loads but contribute no geometric stiffness (eom-method §13.10).
         let lam = &lambda_e[je..je + 8];
         je += 8;
         let _ = lam;
-        preloads.push(Preload { item: format!("beam `{}`", bm.name), force: zero3(), moment: zero3(), tension: None });
+        preloads.push(Preload {
+            item: format!("beam `{}`", bm.name),
+            force: zero3(),
+            moment: zero3(),
+            tension: None,
+        });
     }
 
     // ---------------------------------------------------------------- inputs and outputs
@@ -488,7 +597,11 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         }
         kinds.push((sen.order, sen.frame));
         if let Some(a) = &sen.actuator {
-            let k = model.actuators.iter().position(|x| &x.name == a).expect("validated");
+            let k = model
+                .actuators
+                .iter()
+                .position(|x| &x.name == a)
+                .expect("validated");
             d_s.push(o, k, sen.actuator_gain);
         }
     }
@@ -511,8 +624,16 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         sensor_rows: c_s.build(),
         sensor_kinds: kinds,
         feedthrough: d_s.build(),
-        inputs: model.actuators.iter().map(|a| (a.name.to_string(), a.units.clone())).collect(),
-        outputs: model.sensors.iter().map(|s| (s.name.to_string(), s.units.clone())).collect(),
+        inputs: model
+            .actuators
+            .iter()
+            .map(|a| (a.name.to_string(), a.units.clone()))
+            .collect(),
+        outputs: model
+            .sensors
+            .iter()
+            .map(|s| (s.name.to_string(), s.units.clone()))
+            .collect(),
         applied,
         preloads,
         statics,
@@ -551,22 +672,40 @@ fn inertia_tensor<S: Scalar>(b: &Body<S>) -> Mat3<S> {
     let n = |x: S| if x.is_zero() { x } else { -x };
     let [ixx, iyy, izz] = b.moments;
     let [ixy, iyz, izx] = b.products;
-    [[ixx, n(ixy), n(izx)], [n(ixy), iyy, n(iyz)], [n(izx), n(iyz), izz]]
+    [
+        [ixx, n(ixy), n(izx)],
+        [n(ixy), iyy, n(iyz)],
+        [n(izx), n(iyz), izz],
+    ]
 }
 
 /// A spinning body must spin about an axis of symmetry (at the nominal point): the
 /// linearization in the non-spinning (Resal) frame has constant coefficients only then.
 fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), SymError> {
     let w: Vec<f64> = b.angular_velocity.iter().map(|x| x.nominal()).collect();
-    let i: Vec<Vec<f64>> = inertia.iter().map(|r| r.iter().map(|x| x.nominal()).collect()).collect();
+    let i: Vec<Vec<f64>> = inertia
+        .iter()
+        .map(|r| r.iter().map(|x| x.nominal()).collect())
+        .collect();
     let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
     if wn == 0.0 {
         return Ok(());
     }
     let a = [w[0] / wn, w[1] / wn, w[2] / wn];
-    let ia: Vec<f64> = (0..3).map(|r| (0..3).map(|c| i[r][c] * a[c]).sum()).collect();
-    let scale = i.iter().flatten().map(|x| x.abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-    let c = [a[1] * ia[2] - a[2] * ia[1], a[2] * ia[0] - a[0] * ia[2], a[0] * ia[1] - a[1] * ia[0]];
+    let ia: Vec<f64> = (0..3)
+        .map(|r| (0..3).map(|c| i[r][c] * a[c]).sum())
+        .collect();
+    let scale = i
+        .iter()
+        .flatten()
+        .map(|x| x.abs())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let c = [
+        a[1] * ia[2] - a[2] * ia[1],
+        a[2] * ia[0] - a[0] * ia[2],
+        a[0] * ia[1] - a[1] * ia[0],
+    ];
     let cn = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
     let item = format!("body `{}`", b.name);
     if cn > 1e-9 * scale {
@@ -581,13 +720,21 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), SymError>
     let tr = i[0][0] + i[1][1] + i[2][2] - axial;
     let half = tr / 2.0;
     // Check vᵀ I v = half for two perpendicular unit vectors.
-    let k = (0..3).min_by(|&x, &y| a[x].abs().partial_cmp(&a[y].abs()).expect("finite")).expect("3");
+    let k = (0..3)
+        .min_by(|&x, &y| a[x].abs().partial_cmp(&a[y].abs()).expect("finite"))
+        .expect("3");
     let mut e = [0.0; 3];
     e[k] = 1.0;
-    let mut v1 = [a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]];
+    let mut v1 = [
+        a[1] * e[2] - a[2] * e[1],
+        a[2] * e[0] - a[0] * e[2],
+        a[0] * e[1] - a[1] * e[0],
+    ];
     let n1 = (v1[0] * v1[0] + v1[1] * v1[1] + v1[2] * v1[2]).sqrt();
     v1.iter_mut().for_each(|x| *x /= n1);
-    let q: f64 = (0..3).map(|r| (0..3).map(|c| v1[r] * i[r][c] * v1[c]).sum::<f64>()).sum();
+    let q: f64 = (0..3)
+        .map(|r| (0..3).map(|c| v1[r] * i[r][c] * v1[c]).sum::<f64>())
+        .sum();
     if (q - half).abs() > 1e-9 * scale {
         return Err(SymError::Model {
             item,
@@ -607,7 +754,10 @@ fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, S
     let u = scale(l.recip(), &t);
     let e2 = unit(&cross(&u, &bm.perp));
     let e1 = scale(-S::one(), &cross(&u, &e2));
-    let r = [sub(&bm.ends[0], &cx.cg(b[0])), sub(&bm.ends[1], &cx.cg(b[1]))];
+    let r = [
+        sub(&bm.ends[0], &cx.cg(b[0])),
+        sub(&bm.ends[1], &cx.cg(b[1])),
+    ];
     let z = zero3::<S>();
     let mut rows = Vec::new();
     for (k, (body, rad)) in b.iter().zip(&r).enumerate() {
@@ -623,7 +773,14 @@ fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, S
         }
         let _ = k;
     }
-    let labels = (1..=8).map(|k| RowLabel { kind: "beam", item: bm.name.clone(), part: "end row", index: k }).collect();
+    let labels = (1..=8)
+        .map(|k| RowLabel {
+            kind: "beam",
+            item: bm.name.clone(),
+            part: "end row",
+            index: k,
+        })
+        .collect();
     // D and E of eom-method §4.3 on [e1·δx1, e2·δx1, e1·θ1, e2·θ1, e1·δx2, e2·δx2, e1·θ2, e2·θ2].
     let s = |x: i64| S::from_i64(x);
     let two_l = s(2) / l;
@@ -651,17 +808,27 @@ fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, S
                 (0..8)
                     .map(|j| {
                         let terms: Vec<S> = (0..4)
-                            .filter(|&k| !m[k][i].is_zero() && !m[k][j].is_zero() && !dg[k].is_zero())
+                            .filter(|&k| {
+                                !m[k][i].is_zero() && !m[k][j].is_zero() && !dg[k].is_zero()
+                            })
                             .map(|k| m[k][i] * dg[k] * m[k][j])
                             .collect();
                         let v = S::sum(&terms);
-                        if v.is_zero() || c.is_zero() { S::zero() } else { c * v }
+                        if v.is_zero() || c.is_zero() {
+                            S::zero()
+                        } else {
+                            c * v
+                        }
                     })
                     .collect()
             })
             .collect()
     };
-    Ok((Rows { rows, labels }, quad(&dmat, &kd, il), quad(&emat, &md, mscale)))
+    Ok((
+        Rows { rows, labels },
+        quad(&dmat, &kd, il),
+        quad(&emat, &md, mscale),
+    ))
 }
 
 /// Global force and moment on body 1 from the multipliers of a point item.
@@ -669,7 +836,12 @@ fn point_force<S: Scalar>(lam: &[S], fd: &[Vec3<S>], md: &[Vec3<S>]) -> (Vec3<S>
     let comb = |dirs: &[Vec3<S>], l: &[S]| -> Vec3<S> {
         let mut v = zero3::<S>();
         for i in 0..3 {
-            let terms: Vec<S> = dirs.iter().zip(l).filter(|(d, x)| !d[i].is_zero() && !x.is_zero()).map(|(d, x)| d[i] * *x).collect();
+            let terms: Vec<S> = dirs
+                .iter()
+                .zip(l)
+                .filter(|(d, x)| !d[i].is_zero() && !x.is_zero())
+                .map(|(d, x)| d[i] * *x)
+                .collect();
             v[i] = S::sum(&terms);
         }
         v
@@ -680,9 +852,19 @@ fn point_force<S: Scalar>(lam: &[S], fd: &[Vec3<S>], md: &[Vec3<S>]) -> (Vec3<S>
 fn line_preload<S: Scalar>(item: String, t: S, u: &Vec3<S>, twist: bool) -> Preload<S> {
     // λ > 0 is tension: the force on body 1 points from end 1 towards end 2.
     if twist {
-        Preload { item, force: zero3(), moment: scale(t, u), tension: Some(t) }
+        Preload {
+            item,
+            force: zero3(),
+            moment: scale(t, u),
+            tension: Some(t),
+        }
     } else {
-        Preload { item, force: scale(t, u), moment: zero3(), tension: Some(t) }
+        Preload {
+            item,
+            force: scale(t, u),
+            moment: zero3(),
+            tension: Some(t),
+        }
     }
 }
 
@@ -701,7 +883,10 @@ fn line_tangent<S: Scalar>(
     }
     if twist {
         // A preload torque about the line, carried by the mean frame of the two bodies.
-        let g = mat_scale(S::from_rational(&crate::rational::Rational::new(1, 2).expect("1/2")), &skew(&scale(t, u)));
+        let g = mat_scale(
+            S::from_rational(&crate::rational::Rational::new(1, 2).expect("1/2")),
+            &skew(&scale(t, u)),
+        );
         add_block(k, b[0], 3, b[0], 3, &g, -1.0);
         add_block(k, b[0], 3, b[1], 3, &g, 1.0);
         add_block(k, b[1], 3, b[1], 3, &g, 1.0);
@@ -727,17 +912,44 @@ fn line_tangent<S: Scalar>(
     }
     // −T tᵢᵀ into the rotation columns of body i (rotation of the force into body axes).
     for &(bi, ti) in &blocks {
-        add_block(k, bi, 0, bi, 3, &mat_scale(t, &geometry::transpose(&ti.0)), -1.0);
-        add_block(k, bi, 3, bi, 3, &mat_scale(t, &geometry::transpose(&ti.1)), -1.0);
+        add_block(
+            k,
+            bi,
+            0,
+            bi,
+            3,
+            &mat_scale(t, &geometry::transpose(&ti.0)),
+            -1.0,
+        );
+        add_block(
+            k,
+            bi,
+            3,
+            bi,
+            3,
+            &mat_scale(t, &geometry::transpose(&ti.1)),
+            -1.0,
+        );
     }
 }
 
 /// Geometric stiffness of a point item carrying force `f` and moment `mm` on body 1.
-fn point_tangent<S: Scalar>(k: &mut Triplets<S>, p: &Point<S>, f: &Vec3<S>, mm: &Vec3<S>, b: [Option<usize>; 2], r: &[Vec3<S>; 2]) {
+fn point_tangent<S: Scalar>(
+    k: &mut Triplets<S>,
+    p: &Point<S>,
+    f: &Vec3<S>,
+    mm: &Vec3<S>,
+    b: [Option<usize>; 2],
+    r: &[Vec3<S>; 2],
+) {
     let rolling = !geometry::is_zero(&p.rolling_axis);
     let p1 = b[0];
     let p2 = b[1];
-    let p3 = if p.moments < 2 && matches!(p.forces, 1 | 2) && !rolling { p2 } else { None };
+    let p3 = if p.moments < 2 && matches!(p.forces, 1 | 2) && !rolling {
+        p2
+    } else {
+        None
+    };
     if !geometry::is_zero(f) {
         let f0 = skew(f);
         let f1 = mat_mul(&skew(&r[0]), &f0);
@@ -757,7 +969,10 @@ fn point_tangent<S: Scalar>(k: &mut Triplets<S>, p: &Point<S>, f: &Vec3<S>, mm: 
         add_block(k, p2, 3, p2, 3, &geometry::transpose(&f2), -1.0);
         if rolling {
             let ra = unit(&p.rolling_axis);
-            let g = mat_scale(-S::one(), &mat_mul(&geometry::transpose(&f1), &outer(&ra, &ra)));
+            let g = mat_scale(
+                -S::one(),
+                &mat_mul(&geometry::transpose(&f1), &outer(&ra, &ra)),
+            );
             add_block(k, p1, 3, p1, 3, &g, -1.0);
             add_block(k, p1, 3, p2, 3, &g, 1.0);
             add_block(k, p2, 3, p2, 3, &g, -1.0);
@@ -776,7 +991,10 @@ fn point_tangent<S: Scalar>(k: &mut Triplets<S>, p: &Point<S>, f: &Vec3<S>, mm: 
         add_block(k, p1, 3, p1, 3, &g, -1.0);
         add_block(k, p2, 3, p2, 3, &g, 1.0);
     } else if p.moments == 1 {
-        let g = mat_scale(S::from_rational(&crate::rational::Rational::new(1, 2).expect("1/2")), &skew(mm));
+        let g = mat_scale(
+            S::from_rational(&crate::rational::Rational::new(1, 2).expect("1/2")),
+            &skew(mm),
+        );
         add_block(k, p1, 3, p1, 3, &g, -1.0);
         add_block(k, p1, 3, p2, 3, &g, 1.0);
         add_block(k, p2, 3, p2, 3, &g, 1.0);
@@ -829,7 +1047,9 @@ fn solve_statics<S: Scalar>(
     }
     let coord_label = |i: usize| -> String {
         if i < d {
-            let comp = ["x force", "y force", "z force", "x moment", "y moment", "z moment"][i % 6];
+            let comp = [
+                "x force", "y force", "z force", "x moment", "y moment", "z moment",
+            ][i % 6];
             format!("body `{}` {comp}", bodies[i / 6].name)
         } else {
             format!("known preload {}", i - d + 1)
@@ -840,7 +1060,10 @@ fn solve_statics<S: Scalar>(
     let (lc, le, kind) = if rank == nu {
         let mut sol = vec![S::zero(); nu];
         for &(r, c) in &red.plan.pivots {
-            sol[c] = red.rows[r].iter().find(|e| e.0 == nu).map_or(S::zero(), |e| e.1);
+            sol[c] = red.rows[r]
+                .iter()
+                .find(|e| e.0 == nu)
+                .map_or(S::zero(), |e| e.1);
         }
         (sol[..q].to_vec(), sol[q..].to_vec(), Statics::Determinate)
     } else {
@@ -893,21 +1116,36 @@ fn solve_statics<S: Scalar>(
         if tr.plan.pivots.len() < n {
             return Err(SymError::Singular(format!(
                 "the model is statically indeterminate (rank {rank} of {nu} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",
-                j_labels.iter().map(|l| l.to_string()).collect::<Vec<_>>().join(", ")
+                j_labels
+                    .iter()
+                    .map(|l| l.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             )));
         }
         let mut z = vec![S::zero(); n];
         for &(r, c) in &tr.plan.pivots {
-            z[c] = tr.rows[r].iter().find(|e| e.0 == n).map_or(S::zero(), |e| e.1);
+            z[c] = tr.rows[r]
+                .iter()
+                .find(|e| e.0 == n)
+                .map_or(S::zero(), |e| e.1);
         }
         let mu = z[..q].to_vec();
         let x = &z[q..q + d];
         // Elastic forces: stiff·H·x (+ k_s δ₀ for known-preload springs).
         let mut le = vec![S::zero(); s];
-        let hx: Vec<S> = h_rows.iter().map(|r| S::sum(&r.iter().map(|&(c, v)| v * x[c]).collect::<Vec<_>>())).collect();
+        let hx: Vec<S> = h_rows
+            .iter()
+            .map(|r| S::sum(&r.iter().map(|&(c, v)| v * x[c]).collect::<Vec<_>>()))
+            .collect();
         for (start, blk) in stiff_blocks {
             for (a, row) in blk.iter().enumerate() {
-                let terms: Vec<S> = row.iter().enumerate().filter(|(_, v)| !v.is_zero()).map(|(b, v)| *v * hx[start + b]).collect();
+                let terms: Vec<S> = row
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, v)| !v.is_zero())
+                    .map(|(b, v)| *v * hx[start + b])
+                    .collect();
                 le[start + a] = S::sum(&terms);
             }
         }

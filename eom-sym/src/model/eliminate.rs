@@ -98,7 +98,9 @@ impl<S: Scalar> Rref<S> {
 }
 
 fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
-    row.binary_search_by_key(&col, |e| e.0).ok().map(|k| row[k].1)
+    row.binary_search_by_key(&col, |e| e.0)
+        .ok()
+        .map(|k| row[k].1)
 }
 
 /// `target ← target − f · src` (the pivot column `skip_col` is dropped), skipping structural
@@ -123,7 +125,12 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
         } else {
             if ci != skip_col {
                 let s = src[j].1;
-                let v = (if s.is_one() { target[i].1 - f } else { target[i].1 - f * s }).recognise_zero();
+                let v = (if s.is_one() {
+                    target[i].1 - f
+                } else {
+                    target[i].1 - f * s
+                })
+                .recognise_zero();
                 if !v.is_zero() {
                     scratch.push((ci, v));
                 }
@@ -176,7 +183,15 @@ pub fn rref<S: Scalar>(
             row: r,
             col: c,
             value: p,
-            row_entries: if record { rows[r].iter().filter(|e| e.0 < eligible && e.0 != c).map(|e| e.1).collect() } else { Vec::new() },
+            row_entries: if record {
+                rows[r]
+                    .iter()
+                    .filter(|e| e.0 < eligible && e.0 != c)
+                    .map(|e| e.1)
+                    .collect()
+            } else {
+                Vec::new()
+            },
         };
         // Normalise the pivot row.
         if !p.is_one() {
@@ -196,9 +211,16 @@ pub fn rref<S: Scalar>(
         Ok(rec)
     };
 
-    let mut step = |rows: &mut Vec<Row<S>>, r: usize, c: usize, pivoted: &mut Vec<bool>, col_done: &mut Vec<bool>| -> Result<(), SymError> {
+    let mut step = |rows: &mut Vec<Row<S>>,
+                    r: usize,
+                    c: usize,
+                    pivoted: &mut Vec<bool>,
+                    col_done: &mut Vec<bool>|
+     -> Result<(), SymError> {
         if r >= nrows || c >= eligible || pivoted[r] || col_done[c] {
-            return Err(SymError::Singular(format!("invalid pivot ({r}, {c}) in an elimination plan")));
+            return Err(SymError::Singular(format!(
+                "invalid pivot ({r}, {c}) in an elimination plan"
+            )));
         }
         let rec = apply(rows, r, c)?;
         if record {
@@ -233,13 +255,17 @@ pub fn rref<S: Scalar>(
                     continue;
                 }
                 let eligible_entries = || {
-                    row.iter().filter(|e| e.0 < eligible && !col_done[e.0]).map(|e| (e.0, e.1.nominal().abs()))
+                    row.iter()
+                        .filter(|e| e.0 < eligible && !col_done[e.0])
+                        .map(|e| (e.0, e.1.nominal().abs()))
                 };
                 let rmax = eligible_entries().map(|e| e.1).fold(0.0, f64::max);
                 if rmax.is_nan() || rmax <= NEGLIGIBLE * scale[r] || !rmax.is_finite() {
                     continue;
                 }
-                let rc = eligible_entries().filter(|e| e.1 > NEGLIGIBLE * scale[r]).count();
+                let rc = eligible_entries()
+                    .filter(|e| e.1 > NEGLIGIBLE * scale[r])
+                    .count();
                 for (c, v) in eligible_entries() {
                     if v < THRESHOLD * rmax {
                         continue;
@@ -269,9 +295,19 @@ pub fn rref<S: Scalar>(
             rank_records.push(RankRecord {
                 row: r,
                 value: e.1,
-                scale_entries: orig[r].iter().filter(|e| e.0 < eligible).map(|e| e.1).collect(),
+                scale_entries: orig[r]
+                    .iter()
+                    .filter(|e| e.0 < eligible)
+                    .map(|e| e.1)
+                    .collect(),
             });
         }
     }
-    Ok(Rref { eligible, rows, plan: out_plan, pivot_records: records, rank_records })
+    Ok(Rref {
+        eligible,
+        rows,
+        plan: out_plan,
+        pivot_records: records,
+        rank_records,
+    })
 }

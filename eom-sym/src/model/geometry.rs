@@ -14,7 +14,13 @@ pub fn dot<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> S {
 
 /// `a × b`.
 pub fn cross<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> Vec3<S> {
-    let m = |x: S, y: S| if x.is_zero() || y.is_zero() { S::zero() } else { x * y };
+    let m = |x: S, y: S| {
+        if x.is_zero() || y.is_zero() {
+            S::zero()
+        } else {
+            x * y
+        }
+    };
     let d = |p: S, q: S| {
         if q.is_zero() {
             p
@@ -112,7 +118,13 @@ pub fn transpose<S: Scalar>(a: &Mat3<S>) -> Mat3<S> {
 
 /// `a bᵀ`.
 pub fn outer<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> Mat3<S> {
-    let m = |x: S, y: S| if x.is_zero() || y.is_zero() { S::zero() } else { x * y };
+    let m = |x: S, y: S| {
+        if x.is_zero() || y.is_zero() {
+            S::zero()
+        } else {
+            x * y
+        }
+    };
     let mut c = [[S::zero(); 3]; 3];
     for i in 0..3 {
         for j in 0..3 {

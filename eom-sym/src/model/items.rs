@@ -190,7 +190,11 @@ pub struct Line<S> {
 
 impl<S: Scalar> Line<S> {
     fn new() -> Self {
-        Line { bodies: [name(GROUND), name(GROUND)], ends: [zero3(), zero3()], twist: false }
+        Line {
+            bodies: [name(GROUND), name(GROUND)],
+            ends: [zero3(), zero3()],
+            twist: false,
+        }
     }
 }
 
@@ -227,7 +231,10 @@ pub struct Link<S> {
 impl<S: Scalar> Link<S> {
     /// A link between ground and ground (set bodies and ends).
     pub fn new(n: &str) -> Self {
-        Link { name: name(n), line: Line::new() }
+        Link {
+            name: name(n),
+            line: Line::new(),
+        }
     }
 }
 line_builders!(Link);
@@ -551,7 +558,10 @@ pub struct RigidPoint<S> {
 impl<S: Scalar> RigidPoint<S> {
     /// A joint between ground and ground (set bodies and directions).
     pub fn new(n: &str) -> Self {
-        RigidPoint { name: name(n), point: Point::new() }
+        RigidPoint {
+            name: name(n),
+            point: Point::new(),
+        }
     }
 }
 point_builders!(RigidPoint);
@@ -619,7 +629,10 @@ pub struct NhPoint<S> {
 impl<S: Scalar> NhPoint<S> {
     /// A constraint between ground and ground (set bodies and directions).
     pub fn new(n: &str) -> Self {
-        NhPoint { name: name(n), point: Point::new() }
+        NhPoint {
+            name: name(n),
+            point: Point::new(),
+        }
     }
 }
 point_builders!(NhPoint);

@@ -20,10 +20,10 @@
 //! assert!((eig[1].im - 3.0).abs() < 1e-12);
 //! ```
 
+use super::Model;
 use super::assemble::assemble;
 use super::reduce::{ReductionReport, SymbolicStateSpace, reduce};
 use super::robust::{RobustReport, reduce_robust};
-use super::Model;
 use crate::error::SymError;
 use crate::expr::Expr;
 use crate::scalar::Elementary;
@@ -68,12 +68,17 @@ pub struct Linearizer<'a> {
 impl<'a> Linearizer<'a> {
     /// Start from a symbolic model (nominal values, numeric path).
     pub fn new(model: &'a Model<Expr>) -> Self {
-        Linearizer { model, overrides: Vec::new(), method: Method::default() }
+        Linearizer {
+            model,
+            overrides: Vec::new(),
+            method: Method::default(),
+        }
     }
 
     /// Evaluate at these parameter values (by name; the rest nominal).
     pub fn at(mut self, values: &[(&str, f64)]) -> Self {
-        self.overrides.extend(values.iter().map(|(k, v)| (k.to_string(), *v)));
+        self.overrides
+            .extend(values.iter().map(|(k, v)| (k.to_string(), *v)));
         self
     }
 
@@ -85,7 +90,11 @@ impl<'a> Linearizer<'a> {
 
     /// Parameter values in scope order.
     pub fn values(&self) -> Result<Vec<f64>, SymError> {
-        let o: Vec<(&str, f64)> = self.overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        let o: Vec<(&str, f64)> = self
+            .overrides
+            .iter()
+            .map(|(k, v)| (k.as_str(), *v))
+            .collect();
         self.model.scope.values_with(&o)
     }
 
@@ -105,7 +114,13 @@ impl<'a> Linearizer<'a> {
                 let sym = self.symbolic()?;
                 let ss = sym.evaluate(&values)?;
                 let report = sym.reduction.report.clone();
-                Ok(Linearization { warnings: report.warnings.clone(), state_space: ss, method: self.method, report: Some(report), robust: None })
+                Ok(Linearization {
+                    warnings: report.warnings.clone(),
+                    state_space: ss,
+                    method: self.method,
+                    report: Some(report),
+                    robust: None,
+                })
             }
             Method::Numeric => {
                 let m = self.model.evaluate(&values)?;
@@ -123,7 +138,13 @@ impl<'a> Linearizer<'a> {
                 let m = self.model.evaluate(&values)?;
                 let a = assemble(&m)?;
                 let (ss, rep) = reduce_robust(&a)?;
-                Ok(Linearization { warnings: rep.warnings.clone(), state_space: ss, method: self.method, report: None, robust: Some(rep) })
+                Ok(Linearization {
+                    warnings: rep.warnings.clone(),
+                    state_space: ss,
+                    method: self.method,
+                    report: None,
+                    robust: Some(rep),
+                })
             }
         }
     }
@@ -143,8 +164,13 @@ impl Model<Expr> {
             )));
         }
         let fields: Vec<Expr> = self.fields().into_iter().map(|(_, e)| e).collect();
-        let index: Vec<u32> = params.iter().map(|p| p.param_index().expect("parameter")).collect();
-        let vals = eval_generic::<S>(&fields, |i| index.iter().position(|&k| k == i).map(|k| values[k]))?;
+        let index: Vec<u32> = params
+            .iter()
+            .map(|p| p.param_index().expect("parameter"))
+            .collect();
+        let vals = eval_generic::<S>(&fields, |i| {
+            index.iter().position(|&k| k == i).map(|k| values[k])
+        })?;
         let mut k = 0;
         Ok(self.map(&mut |_| {
             k += 1;

@@ -17,8 +17,11 @@ pub mod robust;
 pub use assemble::{Assembled, RowLabel, assemble};
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
+pub use reduce::{
+    CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, MatrixSize, Reduction, ReductionPlan,
+    ReductionReport, SymbolicStateSpace, ValidityCheck, reduce,
+};
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
-pub use reduce::{CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, MatrixSize, Reduction, ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce};
 
 use crate::error::SymError;
 use crate::expr::Expr;
@@ -53,7 +56,9 @@ macro_rules! item_from {
         }
     )*};
 }
-item_from!(Body, Load, Link, Spring, Beam, RigidPoint, FlexPoint, NhPoint, Actuator, Sensor);
+item_from!(
+    Body, Load, Link, Spring, Beam, RigidPoint, FlexPoint, NhPoint, Actuator, Sensor
+);
 
 /// A multibody model: parameters, bodies and items.
 #[derive(Clone, Debug)]
@@ -188,7 +193,10 @@ impl<S: Scalar> Model<S> {
             f(&r.stiffness[1]);
             f(&r.damping[0]);
             f(&r.damping[1]);
-            for m in [&r.stiffness_matrix, &r.damping_matrix].into_iter().flatten() {
+            for m in [&r.stiffness_matrix, &r.damping_matrix]
+                .into_iter()
+                .flatten()
+            {
                 for x in m.iter().flatten() {
                     f(x);
                 }
@@ -226,7 +234,8 @@ impl<S: Scalar> Model<S> {
             rolling_axis: v(&p.rolling_axis, f),
         };
         let mat = |m: &Option<Vec<Vec<S>>>, f: &mut dyn FnMut(&S) -> T| {
-            m.as_ref().map(|m| m.iter().map(|r| r.iter().map(&mut *f).collect()).collect())
+            m.as_ref()
+                .map(|m| m.iter().map(|r| r.iter().map(&mut *f).collect()).collect())
         };
         Model {
             name: self.name.clone(),
@@ -256,7 +265,14 @@ impl<S: Scalar> Model<S> {
                     frame: l.frame.clone(),
                 })
                 .collect(),
-            links: self.links.iter().map(|l| Link { name: l.name.clone(), line: line(&l.line, f) }).collect(),
+            links: self
+                .links
+                .iter()
+                .map(|l| Link {
+                    name: l.name.clone(),
+                    line: line(&l.line, f),
+                })
+                .collect(),
             springs: self
                 .springs
                 .iter()
@@ -284,7 +300,10 @@ impl<S: Scalar> Model<S> {
             rigid_points: self
                 .rigid_points
                 .iter()
-                .map(|r| RigidPoint { name: r.name.clone(), point: point(&r.point, f) })
+                .map(|r| RigidPoint {
+                    name: r.name.clone(),
+                    point: point(&r.point, f),
+                })
                 .collect(),
             flex_points: self
                 .flex_points
@@ -301,7 +320,10 @@ impl<S: Scalar> Model<S> {
             nh_points: self
                 .nh_points
                 .iter()
-                .map(|r| NhPoint { name: r.name.clone(), point: point(&r.point, f) })
+                .map(|r| NhPoint {
+                    name: r.name.clone(),
+                    point: point(&r.point, f),
+                })
                 .collect(),
             actuators: self
                 .actuators
@@ -404,7 +426,10 @@ impl<S: Scalar> Model<S> {
             l.push(format!("{n}.stiffness[2]"));
             l.push(format!("{n}.damping[1]"));
             l.push(format!("{n}.damping[2]"));
-            for (m, f) in [(&x.stiffness_matrix, "stiffness_matrix"), (&x.damping_matrix, "damping_matrix")] {
+            for (m, f) in [
+                (&x.stiffness_matrix, "stiffness_matrix"),
+                (&x.damping_matrix, "damping_matrix"),
+            ] {
                 if let Some(m) = m {
                     for (i, r) in m.iter().enumerate() {
                         for j in 0..r.len() {
@@ -453,7 +478,11 @@ impl<S: Scalar> Model<S> {
         if let Some((k, v)) = bad {
             let label = &self.field_labels()[k];
             let (item, field) = label.split_once('.').unwrap_or((label, ""));
-            return Err(err(item.to_string(), field, format!("value {v} is not finite")));
+            return Err(err(
+                item.to_string(),
+                field,
+                format!("value {v} is not finite"),
+            ));
         }
         // Names.
         let mut bodies = HashSet::new();
@@ -462,13 +491,25 @@ impl<S: Scalar> Model<S> {
                 return Err(err("body ``".into(), "name", "a body needs a name".into()));
             }
             if &*b.name == GROUND {
-                return Err(err(format!("body `{}`", b.name), "name", "`ground` is reserved for the fixed frame".into()));
+                return Err(err(
+                    format!("body `{}`", b.name),
+                    "name",
+                    "`ground` is reserved for the fixed frame".into(),
+                ));
             }
             if !bodies.insert(b.name.clone()) {
-                return Err(err(format!("body `{}`", b.name), "name", "duplicate body name".into()));
+                return Err(err(
+                    format!("body `{}`", b.name),
+                    "name",
+                    "duplicate body name".into(),
+                ));
             }
             if b.mass.nominal() < 0.0 {
-                return Err(err(format!("body `{}`", b.name), "mass", format!("negative mass {}", b.mass.nominal())));
+                return Err(err(
+                    format!("body `{}`", b.name),
+                    "mass",
+                    format!("negative mass {}", b.mass.nominal()),
+                ));
             }
             let i: Vec<f64> = b.moments.iter().map(|x| x.nominal()).collect();
             let triangle = i[0] + i[1] < i[2] || i[1] + i[2] < i[0] || i[0] + i[2] < i[1];
@@ -494,10 +535,18 @@ impl<S: Scalar> Model<S> {
             .chain(self.sensors.iter().map(|x| ("sensor", &x.name)));
         for (kind, n) in all_names {
             if n.is_empty() {
-                return Err(err(format!("{kind} ``"), "name", "an item needs a name".into()));
+                return Err(err(
+                    format!("{kind} ``"),
+                    "name",
+                    "an item needs a name".into(),
+                ));
             }
             if !items.insert(n.clone()) {
-                return Err(err(format!("{kind} `{n}`"), "name", "duplicate item name".into()));
+                return Err(err(
+                    format!("{kind} `{n}`"),
+                    "name",
+                    "duplicate item name".into(),
+                ));
             }
         }
         let known = |b: &str| b == GROUND || bodies.contains(b);
@@ -511,20 +560,34 @@ impl<S: Scalar> Model<S> {
                 if !known(b) {
                     return Err(err(
                         format!("{kind} `{n}`"),
-                        if bs.len() == 1 { "body" } else if k == 0 { "body[1]" } else { "body[2]" },
+                        if bs.len() == 1 {
+                            "body"
+                        } else if k == 0 {
+                            "body[1]"
+                        } else {
+                            "body[2]"
+                        },
                         format!("unknown body `{b}`; bodies are: {}", body_list()),
                     ));
                 }
             }
             if bs.len() == 2 && bs[0] == bs[1] {
-                return Err(err(format!("{kind} `{n}`"), "bodies", format!("connects `{}` to itself", bs[0])));
+                return Err(err(
+                    format!("{kind} `{n}`"),
+                    "bodies",
+                    format!("connects `{}` to itself", bs[0]),
+                ));
             }
             Ok(())
         };
         for l in &self.loads {
             check_bodies("load", &l.name, std::slice::from_ref(&l.body))?;
             if !known(&l.frame) {
-                return Err(err(format!("load `{}`", l.name), "frame", format!("unknown body `{}`; bodies are: {}", l.frame, body_list())));
+                return Err(err(
+                    format!("load `{}`", l.name),
+                    "frame",
+                    format!("unknown body `{}`; bodies are: {}", l.frame, body_list()),
+                ));
             }
         }
         let lines = self
@@ -532,14 +595,22 @@ impl<S: Scalar> Model<S> {
             .iter()
             .map(|x| ("link", &x.name, &x.line))
             .chain(self.springs.iter().map(|x| ("spring", &x.name, &x.line)))
-            .chain(self.actuators.iter().map(|x| ("actuator", &x.name, &x.line)))
+            .chain(
+                self.actuators
+                    .iter()
+                    .map(|x| ("actuator", &x.name, &x.line)),
+            )
             .chain(self.sensors.iter().map(|x| ("sensor", &x.name, &x.line)));
         for (kind, n, line) in lines {
             check_bodies(kind, n, &line.bodies)?;
             let t = geometry::sub(&line.ends[1], &line.ends[0]);
             let len2: f64 = t.iter().map(|x| x.nominal() * x.nominal()).sum();
             if len2 == 0.0 {
-                return Err(err(format!("{kind} `{n}`"), "ends", "the two ends coincide: zero length (the direction is undefined)".into()));
+                return Err(err(
+                    format!("{kind} `{n}`"),
+                    "ends",
+                    "the two ends coincide: zero length (the direction is undefined)".into(),
+                ));
             }
         }
         for b in &self.beams {
@@ -547,25 +618,53 @@ impl<S: Scalar> Model<S> {
             let t = geometry::sub(&b.ends[1], &b.ends[0]);
             let tn: Vec<f64> = t.iter().map(|x| x.nominal()).collect();
             if tn.iter().all(|&x| x == 0.0) {
-                return Err(err(format!("beam `{}`", b.name), "ends", "the two ends coincide: zero length".into()));
+                return Err(err(
+                    format!("beam `{}`", b.name),
+                    "ends",
+                    "the two ends coincide: zero length".into(),
+                ));
             }
             let p: Vec<f64> = b.perp.iter().map(|x| x.nominal()).collect();
-            let c = [tn[1] * p[2] - tn[2] * p[1], tn[2] * p[0] - tn[0] * p[2], tn[0] * p[1] - tn[1] * p[0]];
-            if c.iter().map(|x| x * x).sum::<f64>() <= 1e-24 * tn.iter().map(|x| x * x).sum::<f64>() * p.iter().map(|x| x * x).sum::<f64>().max(1e-300) {
-                return Err(err(format!("beam `{}`", b.name), "perp", "zero or parallel to the beam axis".into()));
+            let c = [
+                tn[1] * p[2] - tn[2] * p[1],
+                tn[2] * p[0] - tn[0] * p[2],
+                tn[0] * p[1] - tn[1] * p[0],
+            ];
+            if c.iter().map(|x| x * x).sum::<f64>()
+                <= 1e-24
+                    * tn.iter().map(|x| x * x).sum::<f64>()
+                    * p.iter().map(|x| x * x).sum::<f64>().max(1e-300)
+            {
+                return Err(err(
+                    format!("beam `{}`", b.name),
+                    "perp",
+                    "zero or parallel to the beam axis".into(),
+                ));
             }
         }
         let points = self
             .rigid_points
             .iter()
             .map(|x| ("rigid point", &x.name, &x.point))
-            .chain(self.flex_points.iter().map(|x| ("flex point", &x.name, &x.point)))
-            .chain(self.nh_points.iter().map(|x| ("nh point", &x.name, &x.point)));
+            .chain(
+                self.flex_points
+                    .iter()
+                    .map(|x| ("flex point", &x.name, &x.point)),
+            )
+            .chain(
+                self.nh_points
+                    .iter()
+                    .map(|x| ("nh point", &x.name, &x.point)),
+            );
         for (kind, n, p) in points {
             check_bodies(kind, n, &p.bodies)?;
             for (f, v) in [("forces", p.forces), ("moments", p.moments)] {
                 if v > 3 {
-                    return Err(err(format!("{kind} `{n}`"), f, format!("{v} is out of range 0..=3")));
+                    return Err(err(
+                        format!("{kind} `{n}`"),
+                        f,
+                        format!("{v} is out of range 0..=3"),
+                    ));
                 }
             }
             let axis_zero = p.axis.iter().all(|x| x.nominal() == 0.0);
@@ -573,20 +672,32 @@ impl<S: Scalar> Model<S> {
                 return Err(err(
                     format!("{kind} `{n}`"),
                     "axis",
-                    format!("is zero, but forces = {} / moments = {} need a direction", p.forces, p.moments),
+                    format!(
+                        "is zero, but forces = {} / moments = {} need a direction",
+                        p.forces, p.moments
+                    ),
                 ));
             }
             if p.forces + p.moments == 0 {
-                warnings.push(format!("{kind} `{n}` constrains nothing (forces = moments = 0)"));
+                warnings.push(format!(
+                    "{kind} `{n}` constrains nothing (forces = moments = 0)"
+                ));
             }
         }
         for f in &self.flex_points {
             let n = (f.point.forces + f.point.moments) as usize;
-            for (m, field) in [(&f.stiffness_matrix, "stiffness_matrix"), (&f.damping_matrix, "damping_matrix")] {
+            for (m, field) in [
+                (&f.stiffness_matrix, "stiffness_matrix"),
+                (&f.damping_matrix, "damping_matrix"),
+            ] {
                 if let Some(m) = m
                     && (m.len() != n || m.iter().any(|r| r.len() != n))
                 {
-                    return Err(err(format!("flex point `{}`", f.name), field, format!("must be {n}×{n} (forces + moments)")));
+                    return Err(err(
+                        format!("flex point `{}`", f.name),
+                        field,
+                        format!("must be {n}×{n} (forces + moments)"),
+                    ));
                 }
             }
         }
@@ -595,12 +706,24 @@ impl<S: Scalar> Model<S> {
                 && !self.actuators.iter().any(|x| &x.name == a)
             {
                 let names: Vec<&str> = self.actuators.iter().map(|x| &*x.name).collect();
-                return Err(err(format!("sensor `{}`", s.name), "actuator", format!("unknown actuator `{a}`; actuators are: {}", names.join(", "))));
+                return Err(err(
+                    format!("sensor `{}`", s.name),
+                    "actuator",
+                    format!(
+                        "unknown actuator `{a}`; actuators are: {}",
+                        names.join(", ")
+                    ),
+                ));
             }
         }
         // Bodies that nothing constrains or supports.
         let mut supported: HashSet<&str> = HashSet::new();
-        for l in self.links.iter().map(|x| &x.line).chain(self.springs.iter().map(|x| &x.line)) {
+        for l in self
+            .links
+            .iter()
+            .map(|x| &x.line)
+            .chain(self.springs.iter().map(|x| &x.line))
+        {
             supported.extend(l.bodies.iter().map(|b| &**b));
         }
         for b in &self.beams {
@@ -627,7 +750,11 @@ impl<S: Scalar> Model<S> {
             }
         }
         if self.bodies.is_empty() {
-            return Err(err(format!("model `{}`", self.name), "bodies", "the model has no bodies".into()));
+            return Err(err(
+                format!("model `{}`", self.name),
+                "bodies",
+                "the model has no bodies".into(),
+            ));
         }
         Ok(warnings)
     }

@@ -24,8 +24,8 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::items::Name;
 use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, rref};
+use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::SymError;
 use crate::expr::Expr;
@@ -71,7 +71,11 @@ pub struct Coord {
 
 impl std::fmt::Display for Coord {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let n = if self.velocity { VELO[self.dof] } else { COORD[self.dof] };
+        let n = if self.velocity {
+            VELO[self.dof]
+        } else {
+            COORD[self.dof]
+        };
         write!(f, "{}.{n}", self.body)
     }
 }
@@ -125,12 +129,25 @@ pub enum CheckLabel {
 impl std::fmt::Display for CheckLabel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            CheckLabel::PositionPivot { coord, row } => write!(f, "pivot on {coord} in position constraint {row}"),
-            CheckLabel::PositionRank { row } => write!(f, "redundancy of position constraint {row}"),
-            CheckLabel::VelocityPivot { coord, row } => write!(f, "pivot on the velocity of {coord} in velocity constraint {row}"),
-            CheckLabel::VelocityRank { row } => write!(f, "redundancy of velocity constraint {row}"),
-            CheckLabel::VelocityConsistency { row } => write!(f, "consistency of redundant velocity constraint {row}"),
-            CheckLabel::MassPivot { state, row } => write!(f, "reduced mass pivot of {state} (row {row})"),
+            CheckLabel::PositionPivot { coord, row } => {
+                write!(f, "pivot on {coord} in position constraint {row}")
+            }
+            CheckLabel::PositionRank { row } => {
+                write!(f, "redundancy of position constraint {row}")
+            }
+            CheckLabel::VelocityPivot { coord, row } => write!(
+                f,
+                "pivot on the velocity of {coord} in velocity constraint {row}"
+            ),
+            CheckLabel::VelocityRank { row } => {
+                write!(f, "redundancy of velocity constraint {row}")
+            }
+            CheckLabel::VelocityConsistency { row } => {
+                write!(f, "consistency of redundant velocity constraint {row}")
+            }
+            CheckLabel::MassPivot { state, row } => {
+                write!(f, "reduced mass pivot of {state} (row {row})")
+            }
             CheckLabel::MassRank { row } => write!(f, "redundancy of reduced mass row {row}"),
         }
     }
@@ -239,11 +256,17 @@ fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> Vec<Row<S>> {
     (0..m.nrows()).map(|i| m.row(i).to_vec()).collect()
 }
 
-fn hstack<S: Scalar>(a: &SparseMatrix<S>, b: &SparseMatrix<S>) -> Result<SparseMatrix<S>, SymError> {
+fn hstack<S: Scalar>(
+    a: &SparseMatrix<S>,
+    b: &SparseMatrix<S>,
+) -> Result<SparseMatrix<S>, SymError> {
     SparseMatrix::block(&[vec![Some(a), Some(b)]])
 }
 
-fn vstack<S: Scalar>(a: &SparseMatrix<S>, b: &SparseMatrix<S>) -> Result<SparseMatrix<S>, SymError> {
+fn vstack<S: Scalar>(
+    a: &SparseMatrix<S>,
+    b: &SparseMatrix<S>,
+) -> Result<SparseMatrix<S>, SymError> {
     if a.nrows() == 0 {
         return Ok(b.clone());
     }
@@ -259,14 +282,35 @@ fn record_checks<S: Scalar>(
     rank_label: &dyn Fn(usize) -> CheckLabel,
     out: &mut Vec<ValidityCheck<S>>,
 ) {
-    for PivotRecord { row, col, value, row_entries } in &r.pivot_records {
-        if value.is_one() || (row_entries.is_empty() && value.nominal() != 0.0 && is_constant(value)) {
+    for PivotRecord {
+        row,
+        col,
+        value,
+        row_entries,
+    } in &r.pivot_records
+    {
+        if value.is_one()
+            || (row_entries.is_empty() && value.nominal() != 0.0 && is_constant(value))
+        {
             continue;
         }
-        out.push(ValidityCheck::Pivot { what: pivot_label(*row, *col), value: *value, row: row_entries.clone() });
+        out.push(ValidityCheck::Pivot {
+            what: pivot_label(*row, *col),
+            value: *value,
+            row: row_entries.clone(),
+        });
     }
-    for RankRecord { row, value, scale_entries } in &r.rank_records {
-        out.push(ValidityCheck::Negligible { what: rank_label(*row), value: *value, scale: scale_entries.clone() });
+    for RankRecord {
+        row,
+        value,
+        scale_entries,
+    } in &r.rank_records
+    {
+        out.push(ValidityCheck::Negligible {
+            what: rank_label(*row),
+            value: *value,
+            scale: scale_entries.clone(),
+        });
     }
 }
 
@@ -281,12 +325,22 @@ fn is_constant<S: Scalar>(v: &S) -> bool {
 /// Reduce an assembled model to state space. With `plan = None` the pivots are chosen at the
 /// nominal point and recorded; with a plan they are replayed (the fast numeric path), and the
 /// returned checks tell whether the plan is still valid at this point.
-pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Result<Reduction<S>, SymError> {
+pub fn reduce<S: Scalar>(
+    a: &Assembled<S>,
+    plan: Option<&ReductionPlan>,
+) -> Result<Reduction<S>, SymError> {
     let d = a.dim();
-    let mut report = ReductionReport { coordinates: d, ..Default::default() };
+    let mut report = ReductionReport {
+        coordinates: d,
+        ..Default::default()
+    };
     report.warnings = a.warnings.clone();
     let body_names: Vec<Name> = a.bodies.iter().map(|b| Name::from(b.as_str())).collect();
-    let coord = |g: usize, velocity: bool| Coord { body: body_names[g / 6].clone(), dof: g % 6, velocity };
+    let coord = |g: usize, velocity: bool| Coord {
+        body: body_names[g / 6].clone(),
+        dof: g % 6,
+        velocity,
+    };
     let coord_name = |g: usize| coord(g, false).to_string();
 
     // ------------------------------------------------------------ 1. pinned coordinates
@@ -304,7 +358,9 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
             loop {
                 let mut changed = false;
                 for g in 0..d {
-                    if pin_row[g].is_some() && a.velocity.row(g).iter().any(|&(j, _)| pin_row[j].is_none()) {
+                    if pin_row[g].is_some()
+                        && a.velocity.row(g).iter().any(|&(j, _)| pin_row[j].is_none())
+                    {
                         pin_row[g] = None;
                         changed = true;
                     }
@@ -329,7 +385,9 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     report.pinned = (0..d).filter(|&g| !is_active[g]).map(coord_name).collect();
     let n = active.len();
     let jm = a.holonomic.select(&j_keep, &active);
-    let nm = a.nonholonomic.select(&(0..a.nonholonomic.nrows()).collect::<Vec<_>>(), &active);
+    let nm = a
+        .nonholonomic
+        .select(&(0..a.nonholonomic.nrows()).collect::<Vec<_>>(), &active);
     let all_active: Vec<usize> = active.clone();
     let msel = |m: &SparseMatrix<S>| m.select(&all_active, &all_active);
     let mass = msel(&a.mass);
@@ -338,7 +396,9 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let vel = msel(&a.velocity);
     let f_u = select_rows(&a.input_force, &active);
     let g_u = select_rows(&a.input_rate_force, &active);
-    let c_s = a.sensor_rows.select(&(0..a.sensor_rows.nrows()).collect::<Vec<_>>(), &active);
+    let c_s = a
+        .sensor_rows
+        .select(&(0..a.sensor_rows.nrows()).collect::<Vec<_>>(), &active);
     let jlabel = |r: usize| a.holonomic_rows[j_keep[r]].clone();
     let mut checks = Vec::new();
 
@@ -346,7 +406,10 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let rj = rref(to_rows(&jm), n, &[], plan.map(|p| &p.position))?;
     record_checks(
         &rj,
-        &|r, c| CheckLabel::PositionPivot { coord: coord(active[c], false), row: jlabel(r) },
+        &|r, c| CheckLabel::PositionPivot {
+            coord: coord(active[c], false),
+            row: jlabel(r),
+        },
         &|r| CheckLabel::PositionRank { row: jlabel(r) },
         &mut checks,
     );
@@ -380,7 +443,13 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let g_top = hstack(&jm, &rhs)?;
     let g_bot = hstack(&nm, &SparseMatrix::zeros(nn, np))?;
     let g = vstack(&g_top, &g_bot)?;
-    let g_label = |r: usize| if r < nq { jlabel(r) } else { a.nonholonomic_rows[r - nq].clone() };
+    let g_label = |r: usize| {
+        if r < nq {
+            jlabel(r)
+        } else {
+            a.nonholonomic_rows[r - nq].clone()
+        }
+    };
     let rg = rref(to_rows(&g), n, &rj.plan.pivots, plan.map(|p| &p.velocity))?;
     // The replayed position pivots are already checked; record the new ones.
     let mut rg = rg;
@@ -388,7 +457,10 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     rg.pivot_records = all_records.into_iter().skip(rj.plan.pivots.len()).collect();
     record_checks(
         &rg,
-        &|r, c| CheckLabel::VelocityPivot { coord: coord(active[c], true), row: g_label(r) },
+        &|r, c| CheckLabel::VelocityPivot {
+            coord: coord(active[c], true),
+            row: g_label(r),
+        },
         &|r| CheckLabel::VelocityRank { row: g_label(r) },
         &mut checks,
     );
@@ -443,7 +515,11 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let pfull = hstack(&rp, &SparseMatrix::zeros(n, nw))?; // p = Pfull x
     let kin = wfull.sub(&vel.mul(&pfull)?)?; // ṗ = (W − V P) x
     let a1 = kin.select(&indep_p, &(0..nx).collect::<Vec<_>>());
-    let a2 = rwt.mul(&stiff)?.mul(&pfull)?.add(&rwt.mul(&damp)?.mul(&wfull)?)?.neg();
+    let a2 = rwt
+        .mul(&stiff)?
+        .mul(&pfull)?
+        .add(&rwt.mul(&damp)?.mul(&wfull)?)?
+        .neg();
     let rhs_a = a2.sub(&e21.mul(&a1)?)?;
     let b2 = rwt.mul(&f_u)?;
     let g2 = rwt.mul(&g_u)?;
@@ -453,7 +529,10 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
     let vname = |t: usize| vcoord(t).to_string();
     record_checks(
         &rm,
-        &|r, c| CheckLabel::MassPivot { state: vcoord(c), row: vcoord(r) },
+        &|r, c| CheckLabel::MassPivot {
+            state: vcoord(c),
+            row: vcoord(r),
+        },
         &|r| CheckLabel::MassRank { row: vcoord(r) },
         &mut checks,
     );
@@ -465,10 +544,19 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
         )));
     }
     let mi = nm_rows_to_matrix(&rm, nw, nx + b2.ncols() + g2.ncols());
-    let xa = mi.select(&(0..nw).collect::<Vec<_>>(), &(nw..nw + nx).collect::<Vec<_>>());
+    let xa = mi.select(
+        &(0..nw).collect::<Vec<_>>(),
+        &(nw..nw + nx).collect::<Vec<_>>(),
+    );
     let m_in = f_u.ncols();
-    let xb = mi.select(&(0..nw).collect::<Vec<_>>(), &(nw + nx..nw + nx + m_in).collect::<Vec<_>>());
-    let xg = mi.select(&(0..nw).collect::<Vec<_>>(), &(nw + nx + m_in..nw + nx + 2 * m_in).collect::<Vec<_>>());
+    let xb = mi.select(
+        &(0..nw).collect::<Vec<_>>(),
+        &(nw + nx..nw + nx + m_in).collect::<Vec<_>>(),
+    );
+    let xg = mi.select(
+        &(0..nw).collect::<Vec<_>>(),
+        &(nw + nx + m_in..nw + nx + 2 * m_in).collect::<Vec<_>>(),
+    );
     let a_ss = vstack(&a1, &xa)?;
     let gamma = vstack(&SparseMatrix::zeros(np, m_in), &xg)?;
     let b_raw = vstack(&SparseMatrix::zeros(np, m_in), &xb)?;
@@ -538,11 +626,21 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
         bodies: a.bodies.clone(),
     };
     let dense = |m: &SparseMatrix<S>| -> DMatrix<S> { to_dense(m) };
-    let ss = StateSpace { a: dense(&a_ss), b: dense(&b_ss), c: dense(&c_out), d: dense(&d_out), phys: dense(&phys), names };
+    let ss = StateSpace {
+        a: dense(&a_ss),
+        b: dense(&b_ss),
+        c: dense(&c_out),
+        d: dense(&d_out),
+        phys: dense(&phys),
+        names,
+    };
     if plan.is_none()
         && let Some(bad) = checks.iter().find(|c| !c.holds_nominal())
     {
-        return Err(SymError::Singular(format!("at the nominal point: {}", bad.what())));
+        return Err(SymError::Singular(format!(
+            "at the nominal point: {}",
+            bad.what()
+        )));
     }
     let plan = ReductionPlan {
         active,
@@ -551,7 +649,12 @@ pub fn reduce<S: Scalar>(a: &Assembled<S>, plan: Option<&ReductionPlan>) -> Resu
         velocity: rg.plan.clone(),
         mass: rm.plan.clone(),
     };
-    Ok(Reduction { state_space: ss, checks, plan, report })
+    Ok(Reduction {
+        state_space: ss,
+        checks,
+        plan,
+        report,
+    })
 }
 
 fn to_dense<S: Scalar>(m: &SparseMatrix<S>) -> DMatrix<S> {
@@ -574,7 +677,11 @@ fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> Sparse
     m.build()
 }
 
-fn rate_check<S: Scalar>(cg: &SparseMatrix<S>, output: &str, inputs: &[(String, String)]) -> Result<(), SymError> {
+fn rate_check<S: Scalar>(
+    cg: &SparseMatrix<S>,
+    output: &str,
+    inputs: &[(String, String)],
+) -> Result<(), SymError> {
     if let Some((_, j, _)) = cg.iter().find(|(_, _, v)| v.nominal() != 0.0) {
         return Err(SymError::Unsupported(format!(
             "acceleration sensor `{output}` responds to the rate of input `{}` instantly (its velocity jumps with the input): its acceleration contains the input's second derivative, which a state-space model cannot represent; measure the velocity instead, or remove the rate gain",
@@ -628,7 +735,10 @@ impl SymbolicStateSpace {
         let ss = &reduction.state_space;
         let mut roots: Vec<Expr> = Vec::new();
         let mut shapes = [(0, 0); 5];
-        for (k, m) in [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys].into_iter().enumerate() {
+        for (k, m) in [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys]
+            .into_iter()
+            .enumerate()
+        {
             shapes[k] = (m.nrows(), m.ncols());
             roots.extend(m.iter().copied());
         }
@@ -659,7 +769,11 @@ impl SymbolicStateSpace {
             names: ss.names.clone(),
             param_names: params.iter().map(|p| p.to_string()).collect(),
         };
-        Ok(SymbolicStateSpace { reduction, params: params.to_vec(), compiled })
+        Ok(SymbolicStateSpace {
+            reduction,
+            params: params.to_vec(),
+            compiled,
+        })
     }
 
     /// The expression state-space model.
@@ -676,9 +790,19 @@ impl SymbolicStateSpace {
         for (name, m) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d)] {
             let roots: Vec<Expr> = m.iter().copied().filter(|e| !e.is_zero()).collect();
             all.extend(roots.iter().copied());
-            out.push(MatrixSize { name, nonzeros: roots.len(), nodes: Expr::dag_size(&roots), operations: Expr::op_count(&roots).total() });
+            out.push(MatrixSize {
+                name,
+                nonzeros: roots.len(),
+                nodes: Expr::dag_size(&roots),
+                operations: Expr::op_count(&roots).total(),
+            });
         }
-        out.push(MatrixSize { name: "A..D", nonzeros: all.len(), nodes: Expr::dag_size(&all), operations: Expr::op_count(&all).total() });
+        out.push(MatrixSize {
+            name: "A..D",
+            nonzeros: all.len(),
+            nodes: Expr::dag_size(&all),
+            operations: Expr::op_count(&all).total(),
+        });
         out
     }
 
@@ -724,7 +848,11 @@ impl CompiledStateSpace {
     }
 
     /// [`CompiledStateSpace::evaluate`] reusing the buffers of `ws`.
-    pub fn evaluate_with(&self, values: &[f64], ws: &mut EvalWorkspace) -> Result<StateSpace<f64>, SymError> {
+    pub fn evaluate_with(
+        &self,
+        values: &[f64],
+        ws: &mut EvalWorkspace,
+    ) -> Result<StateSpace<f64>, SymError> {
         ws.out.resize(self.tape.n_outputs(), 0.0);
         ws.work.resize(self.tape.work_len(), 0.0);
         self.tape.eval_into(values, &mut ws.out, &mut ws.work)?;
@@ -740,7 +868,10 @@ impl CompiledStateSpace {
             }
         }
         if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {
-            return Err(SymError::EvalNonFinite { what: format!("state-space entry {k}"), value: out[k] });
+            return Err(SymError::EvalNonFinite {
+                what: format!("state-space entry {k}"),
+                value: out[k],
+            });
         }
         let mut k = 0;
         let mut take = |(r, c): (usize, usize)| {
@@ -753,11 +884,22 @@ impl CompiledStateSpace {
         let c = take(self.shapes[2]);
         let d = take(self.shapes[3]);
         let phys = take(self.shapes[4]);
-        Ok(StateSpace { a, b, c, d, phys, names: self.names.clone() })
+        Ok(StateSpace {
+            a,
+            b,
+            c,
+            d,
+            phys,
+            names: self.names.clone(),
+        })
     }
 
     /// Only the state matrix A at a point, with the validity checks (the inner loop of a sweep).
-    pub fn evaluate_a(&self, values: &[f64], ws: &mut EvalWorkspace) -> Result<DMatrix<f64>, SymError> {
+    pub fn evaluate_a(
+        &self,
+        values: &[f64],
+        ws: &mut EvalWorkspace,
+    ) -> Result<DMatrix<f64>, SymError> {
         let ss = self.evaluate_with(values, ws)?;
         Ok(ss.a)
     }

@@ -123,7 +123,12 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
         }
         (nr.basis.clone(), nl.basis, nr.rank, nr.gap)
     } else {
-        (DMatrix::identity(nz, nz), DMatrix::identity(nz, nz), 0, f64::INFINITY)
+        (
+            DMatrix::identity(nz, nz),
+            DMatrix::identity(nz, nz),
+            0,
+            f64::INFINITY,
+        )
     };
     Ok(ConstrainedDescriptor {
         e: lc.transpose() * &mz * &r,
@@ -180,14 +185,20 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
             (SensorOrder::Acceleration, SensorFrame::Global) => {
                 put(&mut z, 0, 0, &(&row * &v), -1.0);
                 put(&mut z, 0, d, &row, 1.0);
-                post.push(Post::Acc { vel: push(z, &mut rows), minus: None });
+                post.push(Post::Acc {
+                    vel: push(z, &mut rows),
+                    minus: None,
+                });
             }
             (SensorOrder::Acceleration, SensorFrame::Local) => {
                 put(&mut z, 0, d, &row, 1.0);
                 let wv = push(z, &mut rows);
                 let mut z2 = DMatrix::<f64>::zeros(1, nz);
                 put(&mut z2, 0, d, &(&row * &v), 1.0);
-                post.push(Post::Acc { vel: wv, minus: Some(push(z2, &mut rows)) });
+                post.push(Post::Acc {
+                    vel: wv,
+                    minus: Some(push(z2, &mut rows)),
+                });
             }
         }
         let _ = o;
@@ -198,8 +209,17 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
     }
     let cm = &cz * &r;
     let phys = r.rows(0, d).into_owned();
-    let desc = Descriptor { e, a: am, b, c: cm, d: DMatrix::zeros(rows.len(), m) };
-    let opts = DescriptorOptions { phys: Some(&phys), ..Default::default() };
+    let desc = Descriptor {
+        e,
+        a: am,
+        b,
+        c: cm,
+        d: DMatrix::zeros(rows.len(), m),
+    };
+    let opts = DescriptorOptions {
+        phys: Some(&phys),
+        ..Default::default()
+    };
     let (ss, rep) = descriptor_to_state_space(&desc, &opts)?;
     warnings.extend(rep.warnings.iter().cloned());
 
@@ -246,6 +266,21 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
         output_units: a.outputs.iter().map(|x| x.1.clone()).collect(),
         bodies: a.bodies.clone(),
     };
-    let out = StateSpace { a: ss.a, b: ss.b, c: c_out, d: d_out, phys: ss.phys, names };
-    Ok((out, RobustReport { constraint_rank: rank, constraint_gap: gap, descriptor: rep, warnings }))
+    let out = StateSpace {
+        a: ss.a,
+        b: ss.b,
+        c: c_out,
+        d: d_out,
+        phys: ss.phys,
+        names,
+    };
+    Ok((
+        out,
+        RobustReport {
+            constraint_rank: rank,
+            constraint_gap: gap,
+            descriptor: rep,
+            warnings,
+        },
+    ))
 }
