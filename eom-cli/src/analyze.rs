@@ -275,7 +275,8 @@ fn signals(count: usize, names: &[String], units: &[String], what: &str) -> Vec<
         .collect()
 }
 
-fn ratio_unit(out: &str, inp: &str) -> String {
+/// The unit of a ratio `out/inp` (`inp` parenthesized when compound; empty when both are).
+pub(crate) fn ratio_unit(out: &str, inp: &str) -> String {
     let den = if inp.contains([' ', '/', '*']) {
         format!("({inp})")
     } else {

@@ -61,6 +61,20 @@ pub enum CliError {
     /// JSON serialization failed.
     #[error("writing JSON: {0}")]
     Json(#[from] serde_json::Error),
+    /// Drawing a plot failed (before anything was written).
+    #[error("drawing the plot: {0}")]
+    Plot(String),
+    /// A plot file cannot be written (its directory does not exist, it is a directory, no
+    /// permission, …).
+    #[error("cannot write the plot `{path}` ({option}): {source}")]
+    PlotFile {
+        /// The option that named the file (`--plot`, `--plot-poles`).
+        option: String,
+        /// The file.
+        path: String,
+        /// Why not.
+        source: std::io::Error,
+    },
     /// Reading or writing a file or a stream.
     #[error("{path}: {source}")]
     Io {

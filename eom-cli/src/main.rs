@@ -14,6 +14,7 @@ mod error;
 mod format;
 mod list;
 mod params;
+mod plot;
 mod sweep;
 
 use crate::analyze::{AnalyzeOptions, FreqRequest};
@@ -23,7 +24,7 @@ use crate::params::{ModelChoice, SweepSpec, parse_freq_range};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use eom_sym::model::Method;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser, Debug)]
@@ -41,7 +42,9 @@ use std::process::ExitCode;
         eom analyze shimmy --set u=1\n  \
         eom analyze bicycle --set v=5 --format json\n  \
         eom analyze quarter_car --freq --freq-range 0.1:100 --points 50\n  \
+        eom analyze quarter_car --freq-range 0.1:100 --plot bode.svg --plot-poles poles.svg\n  \
         eom sweep bicycle --param v=0:10:101\n  \
+        eom sweep bicycle --param v=0:10:201 --plot bicycle-v.svg\n  \
         eom codegen bicycle -o bicycle.rs --f32 --no-std\n\n\
         Exit codes: 0 success, 2 unknown model/parameter or malformed argument, 1 other failures."
 )]
@@ -65,7 +68,11 @@ enum Command {
         frequency, zero (rigid-body/integrator) modes are labelled; then the modes seen from \
         the inputs and outputs (minimal realization) with a note for every mode it removes \
         (uncontrollable or unobservable, and whether it is unstable); steady-state gains, with \
-        integrating pairs reported as such; transmission zeros; warnings of the linearization.")]
+        integrating pairs reported as such; transmission zeros; warnings of the linearization.\n\n\
+        --plot FILE.svg draws a Bode plot (magnitude in dB, unwrapped phase in degrees, one \
+        curve per output/input pair); --plot-poles FILE.svg draws the poles and zeros in the \
+        complex plane, the modes seen from the inputs and outputs marked apart from the hidden \
+        ones.")]
     Analyze(AnalyzeArgs),
     /// Sweep one parameter: eigenvalue branches, stability boundaries, stable intervals
     #[command(long_about = "Sweep one parameter over an equally spaced grid.\n\n\
@@ -74,7 +81,10 @@ enum Command {
         are evaluated by the robust (SVD) path instead, and reported. Eigenvalues are tracked \
         as continuous branches; identically zero branches (a vehicle's lateral position and \
         heading) are neutral and excluded from stability; stability boundaries are located to \
-        1e-10 in the parameter; stable intervals are listed.")]
+        1e-10 in the parameter; stable intervals are listed.\n\n\
+        --plot FILE.svg draws the real parts (top) and damped frequencies |Im λ|/2π (bottom) \
+        of the branches over the parameter, with the stable intervals shaded and the \
+        boundaries as dashed lines.")]
     Sweep(SweepArgs),
     /// Generate a Rust module that evaluates the model's state-space matrices
     #[command(
@@ -149,6 +159,12 @@ struct AnalyzeArgs {
     /// Number of logarithmically spaced frequencies (implies --freq; default: 200 per decade)
     #[arg(long, value_name = "N")]
     points: Option<usize>,
+    /// Draw a Bode plot of every output/input pair into an SVG file (implies --freq)
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// Draw the poles and transmission zeros in the complex plane into an SVG file
+    #[arg(long, value_name = "FILE.svg")]
+    plot_poles: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -165,6 +181,10 @@ struct SweepArgs {
     /// Output format
     #[arg(long, value_enum, default_value_t = SweepFormat::Text)]
     format: SweepFormat,
+    /// Draw the eigenvalue branches (real parts, damped frequencies), the stability
+    /// boundaries and the stable intervals into an SVG file (needs COUNT ≥ 2)
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -225,15 +245,27 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                     problem: "at least one frequency is needed".into(),
                 });
             }
-            let freq = (a.freq || range.is_some() || a.points.is_some()).then_some(FreqRequest {
-                range,
-                points: a.points,
-            });
+            let plots = analyze_plots(&a)?;
+            let bode = a.plot.is_some();
+            let freq =
+                (a.freq || range.is_some() || a.points.is_some() || bode).then_some(FreqRequest {
+                    range,
+                    points: a.points,
+                });
             let opts = AnalyzeOptions {
                 method: a.method.into(),
                 freq,
             };
             let r = analyze::analyze(&choice, &overrides, &opts)?;
+            for (option, path) in plots {
+                let plot = if option == "--plot" {
+                    plot::bode::bode_of(&r)?
+                } else {
+                    plot::poles::pole_map_of(&r)?
+                };
+                plot.write(option, path)?;
+                stderr.push_str(&plot.notes_text(path));
+            }
             match a.format {
                 Format::Text => r.to_text(),
                 Format::Json => json(&r)?,
@@ -244,13 +276,22 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             let spec = SweepSpec::parse(&s.param)?;
             choice.param(&spec.name)?;
             let overrides = choice.parse_sets(&s.set)?;
+            if let Some(path) = &s.plot {
+                check_sweep_plot(&s.param, &spec, path)?;
+            }
             let r = sweep::sweep(&choice, &spec, &overrides)?;
+            if let Some(path) = &s.plot {
+                let unit = choice.param(&spec.name)?.unit;
+                let plot = plot::sweep::sweep_plot(&r.model, &r.result, unit)?;
+                plot.write("--plot", path)?;
+                stderr.push_str(&plot.notes_text(path));
+            }
             match s.format {
                 SweepFormat::Text => r.to_text(),
                 SweepFormat::Json => json(&r)?,
                 SweepFormat::Csv => {
                     // Keep the CSV clean; the evaluation note goes to standard error.
-                    stderr = r.evaluation_note();
+                    stderr.push_str(&r.evaluation_note());
                     r.to_csv()
                 }
             }
@@ -268,6 +309,40 @@ fn run(cli: Cli) -> Result<Output, CliError> {
         }
     };
     Ok(Output { stdout, stderr })
+}
+
+/// The plot files asked of `eom analyze`, checked before the analysis runs.
+fn analyze_plots(a: &AnalyzeArgs) -> Result<Vec<(&'static str, &Path)>, CliError> {
+    let plots: Vec<(&'static str, &Path)> = [
+        ("--plot", a.plot.as_deref()),
+        ("--plot-poles", a.plot_poles.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(o, p)| p.map(|p| (o, p)))
+    .collect();
+    for (option, path) in &plots {
+        plot::check_target(option, path)?;
+    }
+    if let [first, second] = plots[..] {
+        plot::check_distinct(first, second)?;
+    }
+    Ok(plots)
+}
+
+/// Checks `eom sweep --plot` before the sweep runs: the file, and a parameter range of
+/// nonzero width (a single value has no axis to draw the branches along).
+fn check_sweep_plot(param: &str, spec: &SweepSpec, path: &Path) -> Result<(), CliError> {
+    plot::check_target("--plot", path)?;
+    let (lo, hi) = spec.bounds();
+    if spec.count < 2 || lo == hi {
+        return Err(CliError::BadArgument {
+            argument: format!("--param {param}"),
+            problem: "--plot needs a range of nonzero width: at least two values \
+                      (COUNT ≥ 2) with START ≠ STOP"
+                .into(),
+        });
+    }
+    Ok(())
 }
 
 fn write_all(mut w: impl Write, text: &str, what: &str) -> Result<(), CliError> {

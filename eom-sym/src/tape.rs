@@ -16,6 +16,20 @@ use crate::rational::Rational;
 use crate::scalar::Elementary;
 use hashbrown::HashMap;
 
+/// One factor of a product instruction: the slot it reads and how: `x`, `1/x` or a power
+/// from the tape's power table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Factor {
+    slot: u32,
+    kind: u32,
+}
+
+impl Factor {
+    const ONE: u32 = 0;
+    const RECIP: u32 = 1;
+    const FIRST_POWER: u32 = 2;
+}
+
 /// A power applied to one factor of a product.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Pw {
@@ -64,8 +78,17 @@ impl Pw {
 enum Op {
     Const(f64),
     Param(u32),
-    Lin { c0: f64, start: u32, len: u32 },
-    Prod { coef: f64, start: u32, len: u32 },
+    Lin {
+        c0: f64,
+        start: u32,
+        len: u32,
+    },
+    /// `coef · Π` factors in node order; see [`Factor`].
+    Prod {
+        coef: f64,
+        start: u32,
+        len: u32,
+    },
     Pow(u32, u32),
     Func(Func, u32),
     Atan2(u32, u32),
@@ -78,7 +101,9 @@ pub struct Tape {
     param_names: Vec<String>,
     ops: Vec<Op>,
     terms: Vec<(u32, f64)>,
-    factors: Vec<(u32, Pw)>,
+    factors: Vec<Factor>,
+    /// Powers other than 1 and −1, referenced by [`Factor::kind`].
+    powers: Vec<Pw>,
     outputs: Vec<u32>,
 }
 
@@ -155,6 +180,7 @@ impl Tape {
                 ops: Vec::with_capacity(ids.len()),
                 terms: Vec::new(),
                 factors: Vec::new(),
+                powers: Vec::new(),
                 outputs: Vec::with_capacity(roots.len()),
             };
             for &id in &ids {
@@ -188,7 +214,18 @@ impl Tape {
                         let start = tape.factors.len() as u32;
                         for t in pairs.chunks_exact(2) {
                             let e = p.rational_of(t[1]).expect("exponent");
-                            tape.factors.push((slot[&t[0]], Pw::of(e)));
+                            let kind = match Pw::of(e) {
+                                Pw::One => Factor::ONE,
+                                Pw::Recip => Factor::RECIP,
+                                pw => {
+                                    tape.powers.push(pw);
+                                    Factor::FIRST_POWER + tape.powers.len() as u32 - 1
+                                }
+                            };
+                            tape.factors.push(Factor {
+                                slot: slot[&t[0]],
+                                kind,
+                            });
                         }
                         Op::Prod {
                             coef: p.nominal(c),
@@ -286,8 +323,19 @@ impl Tape {
                 }
                 Op::Prod { coef, start, len } => {
                     let mut acc = coef;
-                    for &(s, pw) in &self.factors[start as usize..(start + len) as usize] {
-                        acc *= pw.apply(w[s as usize]);
+                    for f in &self.factors[start as usize..(start + len) as usize] {
+                        let x = w[f.slot as usize];
+                        // Conditional branches, not a jump table: almost every factor is a
+                        // plain one, so they predict well.
+                        if f.kind == Factor::ONE {
+                            acc *= x;
+                        } else if f.kind == Factor::RECIP {
+                            // `acc * (1/x)`, not `acc / x`: the rounding of the recursive
+                            // evaluator and of generated code.
+                            acc *= 1.0 / x;
+                        } else {
+                            acc *= self.powers[(f.kind - Factor::FIRST_POWER) as usize].apply(x);
+                        }
                     }
                     acc
                 }
@@ -314,9 +362,18 @@ impl Tape {
                     acc
                 }
                 Op::Prod { coef, start, len } => {
+                    // The same operations in the same order as the scalar path.
                     let mut acc = [coef; LANES];
-                    for &(s, pw) in &self.factors[start as usize..(start + len) as usize] {
-                        pw.apply_lanes(&mut acc, &w[s as usize]);
+                    for f in &self.factors[start as usize..(start + len) as usize] {
+                        let x = &w[f.slot as usize];
+                        if f.kind == Factor::ONE {
+                            (0..LANES).for_each(|l| acc[l] *= x[l]);
+                        } else if f.kind == Factor::RECIP {
+                            (0..LANES).for_each(|l| acc[l] *= 1.0 / x[l]);
+                        } else {
+                            self.powers[(f.kind - Factor::FIRST_POWER) as usize]
+                                .apply_lanes(&mut acc, x);
+                        }
                     }
                     acc
                 }

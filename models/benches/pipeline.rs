@@ -3,11 +3,15 @@
 //! all 27 parameters symbolic, and chains of n = 10, 50, 200 masses symbolic, whose sizes are
 //! printed with the fitted growth exponent.
 //!
+//! The `tape` group times the compiled tape of the symbolic models (A, B, C, D, the map to
+//! physical coordinates and the validity checks) per call and per unique node: the shape of a
+//! real model's DAG (wide and shallow), where eom-sym's random-DAG bench is deep.
+//!
 //! `cargo bench -p models --bench pipeline`
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use eom_sym::Expr;
-use eom_sym::model::{assemble, reduce, reduce_robust};
+use eom_sym::model::{Linearizer, assemble, reduce, reduce_robust};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -92,5 +96,37 @@ fn chains(c: &mut Criterion) {
     println!("chain symbolic time grows as n^{slope:.2} (target ≤ n^1.5)");
 }
 
-criterion_group!(benches, bicycle, chains);
+fn tape(c: &mut Criterion) {
+    let mut g = c.benchmark_group("tape");
+    for name in ["bicycle", "chain50", "chain200", "chain400"] {
+        let model = models::build(name, &[]).unwrap();
+        let sym = Linearizer::new(&model).symbolic().unwrap();
+        let tape = sym.tape();
+        let values: Vec<f64> = sym.params.iter().map(|p| p.nominal()).collect();
+        let mut work = vec![0.0; tape.work_len()];
+        let mut out = vec![0.0; tape.n_outputs()];
+        tape.eval_into(&values, &mut out, &mut work).unwrap();
+        let t = Instant::now();
+        let reps = 2000;
+        for _ in 0..reps {
+            tape.eval_into(black_box(&values), &mut out, &mut work)
+                .unwrap();
+        }
+        let per_call = t.elapsed().as_secs_f64() / reps as f64;
+        println!(
+            "tape {name}: {} instructions, {:.2} ns per instruction",
+            tape.len(),
+            per_call * 1e9 / tape.len() as f64
+        );
+        g.bench_function(format!("{name} ({} instructions)", tape.len()), |b| {
+            b.iter(|| {
+                tape.eval_into(black_box(&values), &mut out, &mut work)
+                    .unwrap()
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bicycle, chains, tape);
 criterion_main!(benches);

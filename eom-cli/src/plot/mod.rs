@@ -1,0 +1,544 @@
+//! SVG plots of the analyses (`--plot`, `--plot-poles`), drawn with `plotters`.
+//!
+//! * [`sweep::sweep_plot`]: eigenvalue branches over the swept parameter;
+//! * [`bode::bode_plot`]: magnitude and phase of every output/input pair;
+//! * [`poles::pole_map`]: poles and transmission zeros in the complex plane.
+//!
+//! Every plot is drawn into a string first and written in one go ([`Plot::write`]), so a
+//! drawing failure never leaves half a file behind, and values that cannot be drawn (NaN,
+//! infinite) are left out with a note in the plot and on standard error instead of breaking
+//! the axes. The helpers here are shared by the three plots: axis ranges that never have zero
+//! width, splitting a series at the values left out, colours, and the legend column.
+
+pub mod bode;
+pub mod poles;
+pub mod sweep;
+
+use crate::error::CliError;
+use crate::format::g;
+use plotters::coord::Shift;
+use plotters::coord::ranged1d::{Ranged, ValueFormatter};
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::path::Path;
+
+/// A drawing area of the SVG backend in pixel coordinates.
+pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// A series of `(x, y)` points, in drawing order.
+pub(crate) type Series = Vec<(f64, f64)>;
+
+/// A chart on an SVG drawing area with the axes `X` and `Y`.
+pub(crate) type Chart<'a, 'b, X, Y> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>;
+
+/// Width of the legend column on the right of every plot, in pixels.
+const LEGEND_WIDTH: u32 = 270;
+
+/// Stroke width of data curves. Grid and axis lines are 1 pixel wide, so the data curves
+/// can be told apart in the SVG (the tests count them by this width).
+pub const CURVE_WIDTH: u32 = 2;
+
+/// Font of every text.
+const FONT: &str = "sans-serif";
+
+/// Light green of the stable region (stable intervals, stable half-plane).
+const STABLE_FILL: RGBColor = RGBColor(214, 240, 214);
+
+/// Largest magnitude drawn. Larger values are left out like non-finite ones: the axis
+/// arithmetic (differences, padding, tick spacing) must stay finite.
+const LARGEST: f64 = 1e100;
+
+/// A drawn plot: the SVG text and the notes on what it leaves out.
+#[derive(Clone, Debug)]
+pub struct Plot {
+    /// The SVG document.
+    pub svg: String,
+    /// Notes (values not drawn, nothing to draw); also printed in the plot's legend.
+    pub notes: Vec<String>,
+}
+
+impl Plot {
+    /// Writes the SVG to `path`. Failures name the file and the option that asked for it.
+    pub fn write(&self, option: &str, path: &Path) -> Result<(), CliError> {
+        std::fs::write(path, &self.svg).map_err(|source| CliError::PlotFile {
+            option: option.to_string(),
+            path: path.display().to_string(),
+            source,
+        })
+    }
+
+    /// The notes as lines for standard error (`note: FILE: …`), empty without notes.
+    pub fn notes_text(&self, path: &Path) -> String {
+        self.notes
+            .iter()
+            .map(|n| format!("note: {}: {n}\n", path.display()))
+            .collect()
+    }
+}
+
+/// Checks a plot file name before the computation, so that a mistyped path does not cost a
+/// long sweep: the name must end in `.svg` (only SVG is written; exit code 2 as for any
+/// malformed argument), its directory must exist and the path must not be a directory (exit
+/// code 1, like the write failing later).
+pub fn check_target(option: &str, path: &Path) -> Result<(), CliError> {
+    let is_svg = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+    if !is_svg {
+        return Err(CliError::BadArgument {
+            argument: format!("{option} {}", path.display()),
+            problem: "plots are written as SVG: give a file name ending in .svg".into(),
+        });
+    }
+    let fail = |kind: std::io::ErrorKind, why: String| CliError::PlotFile {
+        option: option.to_string(),
+        path: path.display().to_string(),
+        source: std::io::Error::new(kind, why),
+    };
+    if path.is_dir() {
+        return Err(fail(
+            std::io::ErrorKind::IsADirectory,
+            "it is a directory".into(),
+        ));
+    }
+    // `Path::parent` of a bare file name is the empty path: the working directory.
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if dir.exists() && !dir.is_dir() {
+        return Err(fail(
+            std::io::ErrorKind::NotADirectory,
+            format!("`{}` is not a directory", dir.display()),
+        ));
+    }
+    if !dir.is_dir() {
+        return Err(fail(
+            std::io::ErrorKind::NotFound,
+            format!("the directory `{}` does not exist", dir.display()),
+        ));
+    }
+    Ok(())
+}
+
+/// Rejects two options naming the same file: the second plot would silently replace the
+/// first.
+pub fn check_distinct(a: (&str, &Path), b: (&str, &Path)) -> Result<(), CliError> {
+    if a.1 == b.1 {
+        return Err(CliError::BadArgument {
+            argument: format!("{} {}", b.0, b.1.display()),
+            problem: format!("the same file as {}; each plot needs its own file", a.0),
+        });
+    }
+    Ok(())
+}
+
+/// Turns a `plotters` error into a [`CliError`].
+pub(crate) fn drawing<E: std::fmt::Display>(e: E) -> CliError {
+    CliError::Plot(e.to_string())
+}
+
+/// Draws into an SVG string of `size` pixels: white background, then `draw`.
+pub(crate) fn render(
+    size: (u32, u32),
+    draw: impl FnOnce(&Area<'_>) -> Result<(), CliError>,
+) -> Result<String, CliError> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        draw(&root)?;
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+/// Splits the area below the title into the chart region and the legend column.
+pub(crate) fn with_title<'a>(
+    root: &Area<'a>,
+    title: &str,
+) -> Result<(Area<'a>, Area<'a>), CliError> {
+    let body = root.titled(title, (FONT, 26)).map_err(drawing)?;
+    let (w, _) = body.dim_in_pixel();
+    Ok(body.split_horizontally(w.saturating_sub(LEGEND_WIDTH)))
+}
+
+/// Whether a value can be drawn: finite and below [`LARGEST`] in magnitude.
+pub(crate) fn plottable(x: f64) -> bool {
+    x.is_finite() && x.abs() <= LARGEST
+}
+
+/// Smallest and largest plottable value (`None` if there is none).
+pub(crate) fn bounds(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    values
+        .into_iter()
+        .filter(|x| plottable(*x))
+        .fold(None, |acc, x| match acc {
+            None => Some((x, x)),
+            Some((lo, hi)) => Some((lo.min(x), hi.max(x))),
+        })
+}
+
+/// The smallest interval holding both `a` and `b` (either may be absent).
+pub(crate) fn union(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> Option<(f64, f64)> {
+    match (a, b) {
+        (Some((l1, h1)), Some((l2, h2))) => Some((l1.min(l2), h1.max(h2))),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// A linear axis range for data spanning `span`: widened by `pad` (a fraction of the width)
+/// on each side, and never of zero width — a single value, or values equal to within a
+/// millionth of their magnitude, get ±10 % of their magnitude (±1 around zero), because a
+/// zero-width axis has no scale at all. No data gives `[0, 1]`.
+pub(crate) fn axis_range(span: Option<(f64, f64)>, pad: f64) -> (f64, f64) {
+    let Some((lo, hi)) = span else {
+        return (0.0, 1.0);
+    };
+    let scale = lo.abs().max(hi.abs());
+    if hi - lo <= 1e-6 * scale || scale == 0.0 {
+        let mid = 0.5 * (lo + hi);
+        let half = if scale == 0.0 { 1.0 } else { 0.1 * scale };
+        return (mid - half, mid + half);
+    }
+    let d = pad * (hi - lo);
+    (lo - d, hi + d)
+}
+
+/// A logarithmic axis range for positive data spanning `span`. A range that holds no power
+/// of ten is widened to the surrounding whole decades, so that the axis has at least one
+/// labelled tick; a single value is widened to the decades around it. No data gives
+/// `[1, 10]`.
+pub(crate) fn log_axis_range(span: Option<(f64, f64)>) -> (f64, f64) {
+    let Some((lo, hi)) = span.filter(|(lo, _)| *lo > 0.0) else {
+        return (1.0, 10.0);
+    };
+    let (a, b) = (lo.log10(), hi.log10());
+    let (lo, hi) = if b.floor() >= a.ceil() && hi > lo {
+        (lo, hi)
+    } else {
+        let (mut da, mut db) = (a.floor(), b.ceil());
+        if db <= da {
+            // A single exact power of ten: one decade on either side.
+            da -= 1.0;
+            db += 1.0;
+        }
+        (10f64.powf(da), 10f64.powf(db))
+    };
+    // A hair wider: the tick search of `plotters` rounds log10(0.1) up to -0.99…, and would
+    // otherwise drop the tick at an end that is an exact power of ten.
+    (lo * (1.0 - 1e-9), hi * (1.0 + 1e-9))
+}
+
+/// Splits a series into runs of consecutive plottable points: a value that cannot be drawn
+/// breaks the curve there, instead of a line being drawn across the gap.
+pub(crate) fn runs(points: impl IntoIterator<Item = (f64, f64)>) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    let mut current = Vec::new();
+    for (x, y) in points {
+        if plottable(x) && plottable(y) {
+            current.push((x, y));
+        } else if !current.is_empty() {
+            out.push(std::mem::take(&mut current));
+        }
+    }
+    if !current.is_empty() {
+        out.push(current);
+    }
+    out
+}
+
+/// Number of points of a series that cannot be drawn.
+pub(crate) fn left_out(points: impl IntoIterator<Item = (f64, f64)>) -> usize {
+    points
+        .into_iter()
+        .filter(|(x, y)| !(plottable(*x) && plottable(*y)))
+        .count()
+}
+
+/// The `k`-th colour of the data curves: ten hues that stay apart on white, repeated.
+pub(crate) fn color(k: usize) -> RGBColor {
+    const PALETTE: [RGBColor; 10] = [
+        RGBColor(31, 100, 180),
+        RGBColor(230, 110, 0),
+        RGBColor(40, 150, 40),
+        RGBColor(200, 30, 40),
+        RGBColor(130, 80, 180),
+        RGBColor(130, 80, 60),
+        RGBColor(220, 90, 180),
+        RGBColor(90, 90, 90),
+        RGBColor(170, 170, 20),
+        RGBColor(20, 170, 190),
+    ];
+    PALETTE[k % PALETTE.len()]
+}
+
+/// Draws a curve given as runs: a polyline per run, a dot for a run of a single point (a
+/// lone value would otherwise be invisible).
+pub(crate) fn draw_runs<X, Y>(
+    chart: &mut Chart<'_, '_, X, Y>,
+    runs: &[Series],
+    color: RGBColor,
+) -> Result<(), CliError>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let style = color.stroke_width(CURVE_WIDTH);
+    for run in runs {
+        if let [p] = run[..] {
+            chart
+                .draw_series(std::iter::once(Circle::new(p, 3, color.filled())))
+                .map_err(drawing)?;
+        } else {
+            chart
+                .draw_series(std::iter::once(PathElement::new(run.clone(), style)))
+                .map_err(drawing)?;
+        }
+    }
+    Ok(())
+}
+
+/// The grid, tick labels (formatted like the text tables) and axis descriptions.
+pub(crate) fn draw_mesh<X, Y>(
+    chart: &mut Chart<'_, '_, X, Y>,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<(), CliError>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let fmt = |v: &f64| g(*v, 4);
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&fmt)
+        .y_label_formatter(&fmt)
+        // Few light lines: the data curves, not the grid, should catch the eye.
+        .max_light_lines(4)
+        .light_line_style(RGBColor(240, 240, 240))
+        .bold_line_style(RGBColor(205, 205, 205))
+        .label_style((FONT, 15))
+        .axis_desc_style((FONT, 17))
+        .draw()
+        .map_err(drawing)
+}
+
+/// How a legend row shows what it names.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Mark {
+    /// A filled colour square (a curve's colour).
+    Swatch(RGBColor),
+    /// A dashed line.
+    Dashed(RGBColor),
+    /// A cross (a pole).
+    Cross(RGBColor),
+    /// A filled triangle.
+    Triangle(RGBColor),
+    /// An open square.
+    Square(RGBColor),
+    /// An open circle (a zero).
+    Ring(RGBColor),
+    /// Text only.
+    Text,
+    /// A note about the data, in a darker colour.
+    Note,
+}
+
+/// Height of a legend row, in pixels.
+const ROW: i32 = 19;
+
+/// Characters per legend line at the legend font size (beyond: wrapped).
+const LEGEND_CHARS: usize = 38;
+
+/// Splits a legend text into lines of at most [`LEGEND_CHARS`] characters at spaces (a word
+/// longer than a line stays whole).
+pub(crate) fn wrap(text: &str) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > LEGEND_CHARS {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// Draws the legend rows top-down in the legend column; rows that do not fit are counted
+/// in a last line instead of being drawn outside the picture.
+pub(crate) fn draw_legend(area: &Area<'_>, rows: &[(Mark, String)]) -> Result<(), CliError> {
+    let (_, h) = area.dim_in_pixel();
+    let lines: Vec<(Option<Mark>, String)> = rows
+        .iter()
+        .flat_map(|(mark, text)| {
+            wrap(text)
+                .into_iter()
+                .enumerate()
+                .map(move |(k, l)| ((k == 0).then_some(*mark), l))
+        })
+        .collect();
+    let fit = ((h as i32 - 2 * ROW) / ROW).max(1) as usize;
+    let shown = if lines.len() > fit {
+        fit - 1
+    } else {
+        lines.len()
+    };
+    let mut y = ROW;
+    for (mark, text) in &lines[..shown] {
+        draw_legend_line(area, *mark, text, y)?;
+        y += ROW;
+    }
+    if shown < lines.len() {
+        let more = format!("… {} more legend lines", lines.len() - shown);
+        draw_legend_line(area, Some(Mark::Note), &more, y)?;
+    }
+    Ok(())
+}
+
+/// One legend line at height `y`: the mark (if any) at the left, the text after it.
+fn draw_legend_line(
+    area: &Area<'_>,
+    mark: Option<Mark>,
+    text: &str,
+    y: i32,
+) -> Result<(), CliError> {
+    let (x, cx) = (30, 13);
+    let style = match mark {
+        Some(Mark::Note) => (FONT, 15).into_font().color(&RGBColor(150, 40, 0)),
+        _ => (FONT, 15).into_font().color(&BLACK),
+    };
+    match mark {
+        Some(Mark::Swatch(c)) => area
+            .draw(&Rectangle::new(
+                [(cx - 6, y - 6), (cx + 6, y + 6)],
+                c.filled(),
+            ))
+            .map_err(drawing)?,
+        Some(Mark::Dashed(c)) => area
+            .draw(&DashedPathElement::new(
+                vec![(cx - 10, y), (cx + 10, y)],
+                4,
+                3,
+                c.stroke_width(1),
+            ))
+            .map_err(drawing)?,
+        Some(Mark::Cross(c)) => area
+            .draw(&Cross::new((cx, y), 5, c.stroke_width(2)))
+            .map_err(drawing)?,
+        Some(Mark::Triangle(c)) => area
+            .draw(&TriangleMarker::new((cx, y), 6, c.filled()))
+            .map_err(drawing)?,
+        Some(Mark::Square(c)) => area
+            .draw(&Rectangle::new(
+                [(cx - 5, y - 5), (cx + 5, y + 5)],
+                c.stroke_width(2),
+            ))
+            .map_err(drawing)?,
+        Some(Mark::Ring(c)) => area
+            .draw(&Circle::new((cx, y), 5, c.stroke_width(2)))
+            .map_err(drawing)?,
+        Some(Mark::Text | Mark::Note) | None => {}
+    }
+    area.draw(&Text::new(
+        text.to_string(),
+        (x, y),
+        style.pos(Pos::new(HPos::Left, VPos::Center)),
+    ))
+    .map_err(drawing)
+}
+
+/// `name [unit]`, or just `name` without a unit.
+pub(crate) fn with_unit(name: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        name.to_string()
+    } else {
+        format!("{name} [{unit}]")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_break_at_values_that_cannot_be_drawn() {
+        let pts = [
+            (0.0, 1.0),
+            (1.0, f64::NAN),
+            (2.0, 3.0),
+            (3.0, 4.0),
+            (f64::INFINITY, 0.0),
+            (5.0, 1e200),
+        ];
+        assert_eq!(
+            runs(pts),
+            vec![vec![(0.0, 1.0)], vec![(2.0, 3.0), (3.0, 4.0)]]
+        );
+        assert_eq!(left_out(pts), 3);
+        assert!(runs([(0.0, f64::NAN)]).is_empty());
+    }
+
+    #[test]
+    fn axis_ranges_never_have_zero_width() {
+        assert_eq!(axis_range(None, 0.05), (0.0, 1.0));
+        assert_eq!(axis_range(Some((0.0, 0.0)), 0.05), (-1.0, 1.0));
+        let (lo, hi) = axis_range(Some((5.0, 5.0)), 0.05);
+        assert!((lo - 4.5).abs() < 1e-12 && (hi - 5.5).abs() < 1e-12);
+        assert_eq!(axis_range(Some((0.0, 10.0)), 0.1), (-1.0, 11.0));
+        assert_eq!(
+            bounds([f64::NAN, 2.0, -1.0, f64::INFINITY]),
+            Some((-1.0, 2.0))
+        );
+        assert_eq!(bounds([f64::NAN]), None);
+    }
+
+    #[test]
+    fn log_ranges_hold_a_power_of_ten() {
+        let close = |(a, b): (f64, f64), (c, d): (f64, f64)| {
+            assert!(
+                (a / c - 1.0).abs() < 1e-8 && (b / d - 1.0).abs() < 1e-8,
+                "{a} {b}"
+            )
+        };
+        close(log_axis_range(Some((0.1, 100.0))), (0.1, 100.0));
+        close(log_axis_range(Some((0.3, 300.0))), (0.3, 300.0));
+        close(log_axis_range(Some((2.0, 5.0))), (1.0, 10.0));
+        close(log_axis_range(Some((10.0, 10.0))), (1.0, 100.0));
+        close(log_axis_range(Some((3.0, 3.0))), (1.0, 10.0));
+        assert_eq!(log_axis_range(None), (1.0, 10.0));
+    }
+
+    #[test]
+    fn legend_text_is_wrapped_at_spaces() {
+        let w = wrap("a fairly long note that certainly does not fit on one legend line");
+        assert!(w.len() >= 2 && w.iter().all(|l| l.chars().count() <= LEGEND_CHARS));
+        assert_eq!(wrap(""), vec![String::new()]);
+    }
+
+    #[test]
+    fn plot_targets_are_checked_before_the_computation() {
+        let e = check_target("--plot", Path::new("out.png")).unwrap_err();
+        assert!(matches!(e, CliError::BadArgument { .. }), "{e}");
+        assert!(e.to_string().contains("--plot out.png"), "{e}");
+        let e = check_target("--plot", Path::new("/no/such/dir/x.svg")).unwrap_err();
+        assert_eq!(e.exit_code(), crate::error::EXIT_FAILURE);
+        assert!(e.to_string().contains("/no/such/dir"), "{e}");
+        assert!(check_target("--plot", Path::new("x.SVG")).is_ok());
+        let e = check_distinct(
+            ("--plot", Path::new("a.svg")),
+            ("--plot-poles", Path::new("a.svg")),
+        );
+        assert!(e.is_err());
+    }
+}
