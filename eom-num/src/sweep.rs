@@ -15,6 +15,9 @@
 //! 3. **Neutral branches**: a branch with `|λ| ≤ neutral_rtol · ‖A(x)‖_F` at every point is
 //!    an identically-zero eigenvalue (a rigid-body or integrator mode, e.g. a vehicle's
 //!    lateral position and heading). It is reported but excluded from stability judgements.
+//!    Zero rows and columns of `A` are split off first (exact zeros), and the eigenvalues
+//!    of least modulus are pinned to the neutral branches before matching the rest: a real
+//!    root passing through zero would otherwise tie with a neutral zero in the matching.
 //!    The real part of every other branch is taken together with the real parts of the
 //!    neutral branches (their sum is ≈ 0, accurately, as a trace): where a real root crosses
 //!    zero next to a neutral zero, the two form a defective double eigenvalue whose members are
@@ -361,9 +364,21 @@ impl Sweep {
 
         // 2. Follow the branches.
         let xs = &self.values;
+        // The eigenvalues ≈ 0 at every grid point are the neutral zeros: pinned to the first
+        // branches (see `assign_pinned`).
+        let z = pts
+            .iter()
+            .map(|p| {
+                p.eig
+                    .iter()
+                    .filter(|l| l.norm() <= self.neutral_rtol * p.norm)
+                    .count()
+            })
+            .min()
+            .unwrap_or(0);
         let mut tracked: Vec<Vec<Complex64>> = Vec::with_capacity(pts.len());
-        let mut first = pts[0].eig.clone();
-        sort_complex(&mut first);
+        let mut first = assign_pinned(&pts[0].eig, &pts[0].eig, &pts[0].eig, z);
+        sort_complex(&mut first[z..]);
         tracked.push(first);
         for k in 1..pts.len() {
             let prev = &tracked[k - 1];
@@ -376,7 +391,7 @@ impl Sweep {
             } else {
                 prev.clone()
             };
-            let cur = assign(&pred, &pts[k].eig, prev);
+            let cur = assign_pinned(&pred, &pts[k].eig, prev, z);
             tracked.push(cur);
         }
 
@@ -459,8 +474,13 @@ impl Sweep {
                 .par_iter()
                 .map(|&(j, ka, kb)| {
                     let ends = ((xs[ka], tracked[ka].clone()), (xs[kb], tracked[kb].clone()));
-                    let mut b =
-                        ctx.locate(j, &neutral_idx, ends, self.tolerance, self.max_evaluations)?;
+                    let mut b = ctx.locate(
+                        j,
+                        &neutral_idx,
+                        ends,
+                        (self.tolerance, self.max_evaluations),
+                        z,
+                    )?;
                     let rising = sign(kb, j) > 0;
                     b.crossing = if rising == increasing {
                         Crossing::Destabilizing
@@ -531,7 +551,7 @@ impl Sweep {
                     false
                 } else {
                     let mid = 0.5 * (lo + hi);
-                    let (eig, norm) = ctx.eval_tracked(mid, xs, &tracked)?;
+                    let (eig, norm) = ctx.eval_tracked(mid, xs, &tracked, z)?;
                     classify(&eig, norm).1 == PointStability::Stable
                 }
             } else {
@@ -566,8 +586,68 @@ impl Sweep {
 }
 
 struct Eval {
+    /// The eigenvalues, the exact zeros of deflated zero rows and columns first.
     eig: Vec<Complex64>,
     norm: f64,
+}
+
+/// Removes zero columns of `a` (with their rows) and zero rows (with their columns) until
+/// none is left: each is an exact zero eigenvalue (`A e_j = 0`: with `j` first, `A` is block
+/// triangular `[0 r; 0 A']`; a zero row likewise with `j` last). Returns
+/// the remaining matrix and how many were removed. States that nothing depends on (the
+/// bicycle's yaw and lateral position) are such neutral zeros; computed by the eigensolver
+/// they form a defective pair known only to √ε, which blurs a nearby real root (the
+/// capsize mode near its crossing) and can swap branches with it.
+fn deflate_zero_columns(a: &DMatrix<f64>) -> (Option<DMatrix<f64>>, usize) {
+    let mut keep: Vec<usize> = (0..a.nrows()).collect();
+    loop {
+        let zero = keep.iter().position(|&j| {
+            keep.iter().all(|&i| a[(i, j)] == 0.0) || keep.iter().all(|&i| a[(j, i)] == 0.0)
+        });
+        match zero {
+            Some(p) => {
+                keep.remove(p);
+            }
+            None => break,
+        }
+    }
+    let removed = a.nrows() - keep.len();
+    if removed == 0 {
+        return (None, 0);
+    }
+    let m = keep.len();
+    (
+        Some(DMatrix::from_fn(m, m, |i, j| a[(keep[i], keep[j])])),
+        removed,
+    )
+}
+
+/// [`assign`] with the first `z` branches (the neutral zeros) pinned to the `z` eigenvalues
+/// of least modulus. Matching alone cannot tell a real root passing through zero from a
+/// neutral zero: near the crossing both are ≈ 0 and the costs tie (the bicycle's capsize
+/// root at 6 m/s and its heading mode swapped on a 0.25 m/s grid). Pinned, the neutral
+/// branch is always the eigenvalue nearest zero; where the two are closer than rounding,
+/// which is which does not matter, as real parts are taken together with the neutral ones.
+fn assign_pinned(
+    pred: &[Complex64],
+    eig: &[Complex64],
+    prev: &[Complex64],
+    z: usize,
+) -> Vec<Complex64> {
+    if z == 0 {
+        return assign(pred, eig, prev);
+    }
+    let mut order: Vec<usize> = (0..eig.len()).collect();
+    order.sort_by(|&a, &b| eig[a].norm().total_cmp(&eig[b].norm()));
+    let mut pinned = vec![false; eig.len()];
+    order[..z].iter().for_each(|&k| pinned[k] = true);
+    let mut out: Vec<Complex64> = order[..z].iter().map(|&k| eig[k]).collect();
+    let rest: Vec<Complex64> = (0..eig.len())
+        .filter(|&k| !pinned[k])
+        .map(|k| eig[k])
+        .collect();
+    out.extend(assign(&pred[z..], &rest, &prev[z..]));
+    out
 }
 
 struct Ctx<'a, F> {
@@ -614,12 +694,17 @@ where
                 NumError::Dimension(format!("A is {n}×{n} here but {e}×{e} on the sweep grid")),
             ));
         }
-        if ws.as_ref().is_none_or(|w| w.dim() != n) {
-            *ws = Some(EigenvaluesWorkspace::new(n));
-        }
+        let (reduced, zeros) = deflate_zero_columns(&a);
+        let core = reduced.as_ref().unwrap_or(&a);
+        let m = core.nrows();
         let mut eig = vec![Complex64::new(0.0, 0.0); n];
-        if let Some(w) = ws.as_mut() {
-            eigenvalues_in(&a, w, &mut eig).map_err(|e| self.numeric(x, e))?;
+        if m > 0 {
+            if ws.as_ref().is_none_or(|w| w.dim() != m) {
+                *ws = Some(EigenvaluesWorkspace::new(m));
+            }
+            if let Some(w) = ws.as_mut() {
+                eigenvalues_in(core, w, &mut eig[zeros..]).map_err(|e| self.numeric(x, e))?;
+            }
         }
         Ok(Eval {
             eig,
@@ -634,6 +719,7 @@ where
         x: f64,
         xs: &[f64],
         tracked: &[Vec<Complex64>],
+        z: usize,
     ) -> Result<(Vec<Complex64>, f64), SweepError<E>> {
         let n = tracked[0].len();
         let e = self.eval(x, &mut None, Some(n))?;
@@ -647,7 +733,7 @@ where
         } else {
             interpolate(xs[k], &tracked[k], xs[k + 1], &tracked[k + 1], x)
         };
-        Ok((assign(&pred, &e.eig, &pred), e.norm))
+        Ok((assign_pinned(&pred, &e.eig, &pred, z), e.norm))
     }
 
     /// Brent's method on g(x) = Re λ_j(x) inside a bracket with a sign change.
@@ -656,8 +742,8 @@ where
         j: usize,
         neutral: &[usize],
         ends: ((f64, Vec<Complex64>), (f64, Vec<Complex64>)),
-        tol: f64,
-        max_evaluations: usize,
+        (tol, max_evaluations): (f64, usize),
+        z: usize,
     ) -> Result<Boundary, SweepError<E>> {
         let n = ends.0.1.len();
         let mut ws = Some(EigenvaluesWorkspace::new(n));
@@ -735,7 +821,7 @@ where
             let pred = interpolate(xa, &va, xc, &vc, xb);
             let ev = self.eval(xb, &mut ws, Some(n))?;
             evaluations += 1;
-            vb = assign(&pred, &ev.eig, &pred);
+            vb = assign_pinned(&pred, &ev.eig, &pred, z);
             fb = effective_re(&vb, j, neutral);
         }
         Ok(Boundary {

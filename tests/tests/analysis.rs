@@ -275,3 +275,45 @@ fn rotor_at_zero_spin_has_no_spurious_poles() {
         );
     }
 }
+
+/// The same speeds from the full reduced model (6 states: the heading and lateral-position
+/// zeros included, as `eom sweep` evaluates it) on coarse and fine grids. On a 0.25 m/s grid
+/// the capsize root passes the neutral heading zero between two grid points; branch matching
+/// alone swapped the two there and put the capsize speed at 6.0000002 (and 0.3 m/s off on an
+/// 11-point grid) while reporting convergence.
+#[test]
+fn bicycle_speeds_from_the_full_model_on_any_grid() {
+    let model = models::build("bicycle", &[]).unwrap();
+    let sym = Linearizer::new(&model).symbolic().unwrap();
+    let compiled = sym.compiled().clone();
+    let vi = model.scope.names().iter().position(|n| n == "v").unwrap();
+    let base = model.scope.nominal_values();
+    for count in [11, 21, 41, 101] {
+        let result = Sweep::linspace(0.0, 10.0, count)
+            .with_param_name("v")
+            .run(|v| -> Result<DMatrix<f64>, String> {
+                let mut p = base.clone();
+                p[vi] = v;
+                Ok(compiled.evaluate(&p).map_err(|e| e.to_string())?.a)
+            })
+            .unwrap();
+        assert_eq!(result.points[0].eigenvalues.len(), 6);
+        let iv: Vec<(f64, f64)> = result
+            .stable_intervals
+            .iter()
+            .map(|i| (i.lo, i.hi))
+            .collect();
+        assert_eq!(iv.len(), 1, "{count} points: {iv:?}");
+        let (weave, capsize) = iv[0];
+        assert!(
+            (weave - 4.2923825363411040).abs() < 1e-9,
+            "{count} points: weave speed {weave}"
+        );
+        assert!(
+            (capsize - 6.0242620153883589).abs() < 1e-9,
+            "{count} points: capsize speed {capsize}"
+        );
+        assert_eq!(result.boundaries.len(), 2, "{:?}", result.boundaries);
+        assert!(result.boundaries.iter().all(|b| b.converged));
+    }
+}
