@@ -25,7 +25,7 @@
 //!   overflowing DAG has no batch bench, since `eval_batch` reports its non-finite outputs.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use eom_sym::testing::{SplitMix, params};
+use eom_sym::testing::{SplitMix, params, random_node};
 use eom_sym::{Dd, Expr, ExprPool, Tape, TapeWorkspace, eval_generic};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -202,25 +202,7 @@ fn bounded_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) -> Ve
             break;
         }
         guard += 1;
-        let pick = |rng: &mut SplitMix, pool: &Vec<Expr>| {
-            let n = pool.len();
-            if rng.below(3) == 0 {
-                pool[rng.below(n)]
-            } else {
-                pool[n - 1 - rng.below(n.min(32))]
-            }
-        };
-        let a = pick(&mut rng, &pool);
-        let b = pick(&mut rng, &pool);
-        let e = match rng.below(12) {
-            0..=3 => a + b,
-            4 => a - b,
-            5..=7 => a * b,
-            8 => a / (Expr::one() + b * b),
-            9 => a.sin(),
-            10 => (Expr::one() + a * a).sqrt(),
-            _ => a.powi(2 + rng.below(2) as i64),
-        };
+        let e = random_node(&mut rng, &pool);
         let v = e.nominal().abs();
         if e.check().is_ok() && !e.is_number() && (1e-6..=1e6).contains(&v) {
             pool.push(e);

@@ -49,6 +49,30 @@ pub fn params(n: usize, seed: u64, positive: bool) -> Vec<Expr> {
         .collect()
 }
 
+/// One step of [`random_dag`]: a new node combining entries of `pool`, preferring recent ones
+/// so that depth grows while old ones keep being reused (sharing).
+pub fn random_node(rng: &mut SplitMix, pool: &[Expr]) -> Expr {
+    let pick = |rng: &mut SplitMix| {
+        let n = pool.len();
+        if rng.below(3) == 0 {
+            pool[rng.below(n)]
+        } else {
+            pool[n - 1 - rng.below(n.min(32))]
+        }
+    };
+    let a = pick(rng);
+    let b = pick(rng);
+    match rng.below(12) {
+        0..=3 => a + b,
+        4 => a - b,
+        5..=7 => a * b,
+        8 => a / (Expr::one() + b * b),
+        9 => a.sin(),
+        10 => (Expr::one() + a * a).sqrt(),
+        _ => a.powi(2 + rng.below(2) as i64),
+    }
+}
+
 /// A random DAG of about `n_nodes` unique nodes over `params`, with heavy sharing (each new
 /// node combines earlier nodes). Returns `n_roots` roots drawn from the last nodes built.
 /// Values stay finite at positive parameter values (divisions are by `1 + x²`, roots and logs
@@ -63,26 +87,7 @@ pub fn random_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) ->
     let mut guard = 0;
     while crate::pool::ExprPool::stats().nodes < start + n_nodes && guard < 20 * n_nodes {
         guard += 1;
-        let pick = |rng: &mut SplitMix, pool: &Vec<Expr>| {
-            // Prefer recent nodes so depth grows, but keep reusing old ones (sharing).
-            let n = pool.len();
-            if rng.below(3) == 0 {
-                pool[rng.below(n)]
-            } else {
-                pool[n - 1 - rng.below(n.min(32))]
-            }
-        };
-        let a = pick(&mut rng, &pool);
-        let b = pick(&mut rng, &pool);
-        let e = match rng.below(12) {
-            0..=3 => a + b,
-            4 => a - b,
-            5..=7 => a * b,
-            8 => a / (Expr::one() + b * b),
-            9 => a.sin(),
-            10 => (Expr::one() + a * a).sqrt(),
-            _ => a.powi(2 + rng.below(2) as i64),
-        };
+        let e = random_node(&mut rng, &pool);
         if e.check().is_ok() && !e.is_number() {
             pool.push(e);
         }
