@@ -598,7 +598,7 @@ struct Eval {
 /// bicycle's yaw and lateral position) are such neutral zeros; computed by the eigensolver
 /// they form a defective pair known only to √ε, which blurs a nearby real root (the
 /// capsize mode near its crossing) and can swap branches with it.
-fn deflate_zero_columns(a: &DMatrix<f64>) -> (Option<DMatrix<f64>>, usize) {
+fn deflate_zero_lines(a: &DMatrix<f64>) -> (Option<DMatrix<f64>>, usize) {
     let mut keep: Vec<usize> = (0..a.nrows()).collect();
     loop {
         let zero = keep.iter().position(|&j| {
@@ -694,7 +694,7 @@ where
                 NumError::Dimension(format!("A is {n}×{n} here but {e}×{e} on the sweep grid")),
             ));
         }
-        let (reduced, zeros) = deflate_zero_columns(&a);
+        let (reduced, zeros) = deflate_zero_lines(&a);
         let core = reduced.as_ref().unwrap_or(&a);
         let m = core.nrows();
         let mut eig = vec![Complex64::new(0.0, 0.0); n];
