@@ -7,7 +7,7 @@ use crate::options::{MathLib, Precision};
 use crate::problem::{Check, Mat, Problem};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::str::FromStr;
 
 /// Number formatting and arithmetic in the generated precision.
@@ -140,72 +140,97 @@ impl Ctx<'_> {
         quote!(libm::#i)
     }
 
-    fn rhs(&self, rhs: &Rhs) -> Result<TokenStream, CodegenError> {
+    /// When an operand's value is ready (parameters and literals at once).
+    fn ready_of(&self, o: Operand, ready: &[u32]) -> u32 {
+        match o {
+            Operand::Temp(t) => ready.get(t as usize).copied().unwrap_or(0),
+            _ => 0,
+        }
+    }
+
+    /// The code of a right-hand side and when its value is ready, given the ready times of
+    /// the temporaries so far. Sums and products are combined by ready time ([`by_ready`]).
+    fn rhs(&self, rhs: &Rhs, ready: &[u32]) -> Result<(TokenStream, u32), CodegenError> {
         Ok(match rhs {
-            // Balanced trees: Rust keeps the written order of floating-point operations, so a
-            // chain `a + b + c + d` is three dependent additions; `(a + b) + (c + d)` is two.
             Rhs::Sum { c0, terms } => {
-                let mut pos: Vec<TokenStream> = Vec::new();
-                let mut neg: Vec<TokenStream> = Vec::new();
+                let mut parts: Vec<Part> = Vec::with_capacity(terms.len() + 1);
                 if *c0 != 0.0 {
-                    let l = self.num.lit(c0.abs(), "sum")?;
-                    if *c0 > 0.0 { pos.push(l) } else { neg.push(l) }
+                    let mut p = Part::leaf(self.num.lit(c0.abs(), "sum")?, 0);
+                    p.neg = *c0 < 0.0;
+                    parts.push(p);
                 }
                 for (x, c) in terms {
                     let xv = self.operand(*x)?;
                     let mag = c.abs();
-                    let term = if mag == 1.0 {
-                        xv
+                    let mut p = if mag == 1.0 {
+                        Part::leaf(xv, self.ready_of(*x, ready))
                     } else {
                         let l = self.num.lit(mag, "coefficient")?;
-                        quote!(#l * #xv)
+                        Part::leaf(quote!(#l * #xv), self.ready_of(*x, ready) + latency::ARITH)
                     };
-                    if *c > 0.0 {
-                        pos.push(term)
-                    } else {
-                        neg.push(term)
-                    }
+                    p.neg = *c < 0.0;
+                    parts.push(p);
                 }
-                match (pos.is_empty(), neg.is_empty()) {
-                    (true, true) => quote!(0.0),
-                    (false, true) => balanced(&pos, quote!(+), false),
-                    (true, false) => {
-                        let n = balanced(&neg, quote!(+), true);
-                        quote!(-#n)
-                    }
-                    (false, false) => {
-                        let p = balanced(&pos, quote!(+), false);
-                        let n = balanced(&neg, quote!(+), true);
-                        quote!(#p - #n)
-                    }
-                }
+                let p = by_ready(parts, true);
+                (p.code, p.ready)
             }
             Rhs::Prod { coef, num, den } => {
-                let mut factors: Vec<TokenStream> = Vec::new();
+                let mut parts: Vec<Part> = Vec::with_capacity(num.len() + 1);
                 if coef.abs() != 1.0 {
-                    factors.push(self.num.lit(coef.abs(), "coefficient")?);
+                    parts.push(Part::leaf(self.num.lit(coef.abs(), "coefficient")?, 0));
                 }
                 for x in num {
-                    factors.push(self.operand(*x)?);
+                    parts.push(Part::leaf(self.operand(*x)?, self.ready_of(*x, ready)));
                 }
-                let mut e = if factors.is_empty() {
-                    quote!(1.0)
-                } else {
-                    balanced(&factors, quote!(*), false)
-                };
+                let mut e = by_ready(parts, false);
                 if !den.is_empty() {
-                    let d: Vec<TokenStream> = den
+                    let d: Vec<Part> = den
                         .iter()
-                        .map(|x| self.operand(*x))
-                        .collect::<Result<_, _>>()?;
-                    let d = balanced(&d, quote!(*), true);
-                    if factors.len() > 1 {
-                        e = quote!((#e));
-                    }
-                    e = quote!(#e / #d);
+                        .map(|x| Ok(Part::leaf(self.operand(*x)?, self.ready_of(*x, ready))))
+                        .collect::<Result<_, CodegenError>>()?;
+                    let d = by_ready(d, false);
+                    // `a * b / c` is `(a * b) / c`: only a compound divisor needs parentheses.
+                    let (n, dc) = (&e.code, &d.code);
+                    let code = if d.compound {
+                        quote!(#n / (#dc))
+                    } else {
+                        quote!(#n / #dc)
+                    };
+                    e = Part {
+                        code,
+                        ready: e.ready.max(d.ready) + latency::DIV,
+                        compound: true,
+                        neg: false,
+                    };
                 }
-                if *coef < 0.0 { quote!(-#e) } else { e }
+                let code = &e.code;
+                if *coef < 0.0 {
+                    (quote!(-#code), e.ready + latency::SIGN)
+                } else {
+                    (e.code, e.ready)
+                }
             }
+            call => {
+                let lat = match call {
+                    Rhs::Call1(Fn1::Abs, _) => latency::SIGN,
+                    Rhs::Call1(Fn1::Sqrt, _) => latency::SQRT,
+                    _ => latency::CALL,
+                };
+                let at = call
+                    .operands()
+                    .iter()
+                    .map(|o| self.ready_of(*o, ready))
+                    .max()
+                    .unwrap_or(0);
+                (self.call(call)?, at + lat)
+            }
+        })
+    }
+
+    /// The code of a function call.
+    fn call(&self, rhs: &Rhs) -> Result<TokenStream, CodegenError> {
+        Ok(match rhs {
+            Rhs::Sum { .. } | Rhs::Prod { .. } => unreachable!("rendered by `rhs`"),
             Rhs::Call1(f, x) => {
                 let xv = self.operand(*x)?;
                 let rv = self.receiver(*x)?;
@@ -268,9 +293,17 @@ impl Ctx<'_> {
         })
     }
 
-    fn inst(&self, inst: &Inst) -> Result<TokenStream, CodegenError> {
+    /// One `let`, recording when its value is ready in `ready` (indexed by temporary).
+    fn inst(&self, inst: &Inst, ready: &mut Vec<u32>) -> Result<TokenStream, CodegenError> {
         let ty = &self.ty;
-        let rhs = self.rhs(&inst.rhs)?;
+        let (rhs, at) = self.rhs(&inst.rhs, ready)?;
+        for d in 0..inst.rhs.defs() {
+            let t = (inst.def + d) as usize;
+            if ready.len() <= t {
+                ready.resize(t + 1, 0);
+            }
+            ready[t] = at;
+        }
         Ok(if inst.rhs.defs() == 2 {
             let (s, c) = (
                 format_ident!("t{}", inst.def),
@@ -490,6 +523,8 @@ pub(crate) fn render_fn(
 
     let mut items = TokenStream::new();
     let mut body = TokenStream::new();
+    // Estimated ready time of every temporary (values from the work buffer count as ready).
+    let mut ready: Vec<u32> = vec![0; plan.lowered.n_temps as usize];
     let load = |t: u32| {
         let i = format_ident!("t{}", t);
         let s = Literal::usize_unsuffixed(slot[&t]);
@@ -506,10 +541,10 @@ pub(crate) fn render_fn(
             let mut ld = loads[c].clone();
             ld.sort_unstable();
             let lds = ld.iter().map(|&t| load(t));
-            let lets: Vec<TokenStream> = insts[r.clone()]
-                .iter()
-                .map(|i| ctx.inst(i))
-                .collect::<Result<_, _>>()?;
+            let mut lets: Vec<TokenStream> = Vec::with_capacity(r.len());
+            for i in &insts[r.clone()] {
+                lets.push(ctx.inst(i, &mut ready)?);
+            }
             let mut stores = Vec::new();
             for inst in &insts[r.clone()] {
                 for d in 0..inst.rhs.defs() {
@@ -551,39 +586,18 @@ pub(crate) fn render_fn(
         body.extend(quote!(let _ = work;));
         body.extend(param_lets(ctx, used));
         for inst in insts {
-            body.extend(ctx.inst(inst)?);
+            body.extend(ctx.inst(inst, &mut ready)?);
         }
     }
 
     // Validity checks: identical checks are evaluated once, then one branch on all of them.
-    let checks = render_checks(ctx, &plan.checks, &ctx.problem.checks)?;
+    let checks = render_checks(ctx, &plan.checks, &ctx.problem.checks, &ready)?;
     let (check_comparisons, distinct_checks) = (checks.comparisons, checks.distinct);
     body.extend(checks.lets);
     let (oks, mags) = (&checks.ok, &checks.mag);
-    if distinct_checks > 0 {
-        let all: Vec<TokenStream> = (0..distinct_checks)
-            .map(|k| {
-                let i = format_ident!("ok{}", k);
-                quote!(#i)
-            })
-            .collect();
-        let all = join(&all, quote!(&));
-        let all = if distinct_checks > 1 {
-            quote!((#all))
-        } else {
-            all
-        };
-        body.extend(quote! {
-            if !#all {
-                if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[], &[]) {
-                    return Err(e);
-                }
-            }
-        });
-    }
 
-    // Finiteness: the sum of all computed entries is finite iff every entry is, unless it
-    // overflows, which the slow path sorts out.
+    // Finiteness of the entries and pivots. The distinct computed entries, for the slow path
+    // that names the failing one:
     let mut values: Vec<Operand> = Vec::new();
     let mut table = Vec::new();
     for &(m, i, j, o, _) in &plan.outputs {
@@ -605,14 +619,60 @@ pub(crate) fn render_fn(
         );
         table.push(quote!((Matrix::#mv, #i, #j, #k)));
     }
-    if !values.is_empty() || !checks.mags.is_empty() {
+    // The slow path (a separate cold function, so the fast one needs no stack frame for the
+    // failure report) computes the same values, then finds the first failure in the
+    // interpreter's order, or stores the entries if there is none (the sum overflowed).
+    let mut slow = body.clone();
+    let slow_name = format_ident!("{}_checked", plan.name);
+    let mat_args: Vec<Ident> = plan
+        .mats
+        .iter()
+        .map(|m| Ident::new(m.lower(), Span::call_site()))
+        .collect();
+    // The fast path adds up only the values that no other tested value depends on through
+    // operations that keep a NaN or an infinity (see [`finiteness_sinks`]), and tests the sum:
+    // it is finite iff they all are, unless it overflows by itself, which the slow path sorts
+    // out.
+    let mut musts: Vec<Operand> = values.clone();
+    musts.extend(&checks.mag_ops);
+    let sinks = finiteness_sinks(insts, &musts);
+    let mut summands: Vec<Part> = Vec::new();
+    for (k, v) in values.iter().enumerate() {
+        if sinks[k] {
+            summands.push(Part::leaf(ctx.operand(*v)?, ctx.ready_of(*v, &ready)));
+        }
+    }
+    for (k, (m, &r)) in checks.mags.iter().zip(&checks.mag_ready).enumerate() {
+        if sinks[values.len() + k] {
+            summands.push(Part::leaf(quote!(#m), r));
+        }
+    }
+    // Combined by ready time: the values that come last (after the slowest division or call)
+    // join in the last additions, so the test adds little to the critical path.
+    let finite = if summands.is_empty() {
+        None
+    } else {
+        let sum = by_ready(summands, true).code;
+        body.extend(quote!(let sum: #ty = #sum;));
+        Some(quote!(sum.is_finite()))
+    };
+    // One branch for the validity checks and the finiteness, to the slow path that finds the
+    // first failure in the interpreter's order.
+    let mut conds: Vec<TokenStream> = (0..distinct_checks)
+        .map(|k| {
+            let i = format_ident!("ok{}", k);
+            quote!(#i)
+        })
+        .collect();
+    conds.extend(finite);
+    let conds_empty = conds.is_empty();
+    if !conds_empty {
+        let all = join(&conds, quote!(&));
+        let all = if conds.len() > 1 { quote!((#all)) } else { all };
         let vals: Vec<TokenStream> = values
             .iter()
             .map(|v| ctx.operand(*v))
             .collect::<Result<_, _>>()?;
-        let mut summands = vals.clone();
-        summands.extend(checks.mags.iter().map(|m| quote!(#m)));
-        let sum = balanced_sum(&summands);
         let tname = format_ident!("{}_ENTRIES", plan.name.to_uppercase());
         let n = Literal::usize_unsuffixed(table.len());
         let doc = format!(
@@ -623,12 +683,14 @@ pub(crate) fn render_fn(
             #[doc = #doc]
             const #tname: [(Matrix, usize, usize, usize); #n] = [#(#table),*];
         });
+        slow.extend(quote! {
+            if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[#(#vals),*], &#tname) {
+                return Err(e);
+            }
+        });
         body.extend(quote! {
-            let sum: #ty = #sum;
-            if !sum.is_finite() {
-                if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[#(#vals),*], &#tname) {
-                    return Err(e);
-                }
+            if !#all {
+                return #slow_name(p, #(#mat_args,)* work);
             }
         });
     }
@@ -640,17 +702,20 @@ pub(crate) fn render_fn(
         let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
         let v = ctx.operand(o)?;
         // A negation does not change finiteness, so the check above used the plain value.
-        body.extend(if neg {
+        let store = if neg {
             quote!(#arr[#idx] = -#v;)
         } else {
             quote!(#arr[#idx] = #v;)
-        });
+        };
+        slow.extend(store.clone());
+        body.extend(store);
         if neg {
             ops.neg += 1;
         }
         stores += 1;
     }
     body.extend(quote!(Ok(())));
+    slow.extend(quote!(Ok(())));
 
     // Signature and documentation.
     let name = Ident::new(plan.name, Span::call_site());
@@ -666,6 +731,21 @@ pub(crate) fn render_fn(
         .collect();
     let doc = fn_doc(ctx.problem, plan, &which.join(", "), n_chunks, work_len);
     let docs = doc.iter().map(|l| quote!(#[doc = #l]));
+    let args: Vec<TokenStream> = args.collect();
+    if !conds_empty {
+        let doc = format!(
+            " [`{}`] with every check and entry tested one by one: the slow path it takes when its fast test fails.",
+            plan.name
+        );
+        items.extend(quote! {
+            #[doc = #doc]
+            #[cold]
+            #[inline(never)]
+            fn #slow_name(p: &[#ty; N_PARAMS], #(#args,)* work: &mut [#ty; WORK_LEN]) -> Result<(), Error> {
+                #slow
+            }
+        });
+    }
     items.extend(quote! {
         #(#docs)*
         pub fn #name(p: &[#ty; N_PARAMS], #(#args,)* work: &mut [#ty; WORK_LEN]) -> Result<(), Error> {
@@ -737,49 +817,173 @@ fn fn_doc(
     d
 }
 
-/// `v[0] op v[1] op …` as a balanced tree (`(a op b) op (c op d)`); `wrap` parenthesises a
-/// result of more than one operand (for use after `-` or `/`).
-fn balanced(v: &[TokenStream], op: TokenStream, wrap: bool) -> TokenStream {
-    fn go(v: &[TokenStream], op: &TokenStream) -> TokenStream {
-        match v.len() {
-            0 => quote!(0.0),
-            1 => v[0].clone(),
-            2 => {
-                let (a, b) = (&v[0], &v[1]);
-                quote!(#a #op #b)
+/// Which of `musts` (values that must be finite) the fast path has to test: `false` for a
+/// value that flows into another tested value through operations that keep a NaN or an
+/// infinity, since then the tested value is not finite either.
+///
+/// The operations that keep them (for every value of the other operands, as IEEE 754
+/// arithmetic defines them): `+`, `−`, `·` (∞·0 is NaN), the dividend of `/`, `√`, `sin`,
+/// `cos`, `tan`, `ln`, `|·|`, and integer powers (products). Those that may not: the divisor
+/// (`x/∞ = 0`), `exp` (`exp(−∞) = 0`), general powers and `atan2`. So if every tested value
+/// is finite, so is every value of `musts`: testing fewer values changes no result, it
+/// shortens the fast path. Walks the instructions backwards (consumers before producers).
+fn finiteness_sinks(insts: &[Inst], musts: &[Operand]) -> Vec<bool> {
+    use crate::lower::OpKey;
+    let must: HashSet<OpKey> = musts.iter().map(|o| o.key()).collect();
+    let mut covered: HashSet<OpKey> = HashSet::new();
+    let mut tested: HashSet<OpKey> = HashSet::new();
+    for inst in insts.iter().rev() {
+        let mut live = false;
+        for d in 0..inst.rhs.defs() {
+            let k = OpKey::Temp(inst.def + d);
+            if covered.contains(&k) {
+                live = true;
+            } else if must.contains(&k) {
+                tested.insert(k);
+                covered.insert(k);
+                live = true;
             }
-            n => {
-                let (l, r) = v.split_at(n.div_ceil(2));
-                let (l, r) = (go(l, op), go(r, op));
-                // Left-associative: only the right operand needs parentheses when compound.
-                let r = if v.len() - n.div_ceil(2) > 1 {
-                    quote!((#r))
-                } else {
-                    r
-                };
-                quote!(#l #op #r)
-            }
+        }
+        if !live {
+            continue;
+        }
+        let keeps: Vec<Operand> = match &inst.rhs {
+            Rhs::Sum { terms, .. } => terms.iter().map(|t| t.0).collect(),
+            Rhs::Prod { num, .. } => num.clone(),
+            Rhs::Call1(f, x) => match f {
+                Fn1::Sqrt | Fn1::Sin | Fn1::Cos | Fn1::Tan | Fn1::Ln | Fn1::Abs => vec![*x],
+                Fn1::Exp => Vec::new(),
+            },
+            Rhs::SinCos(x) => vec![*x],
+            Rhs::Call2(..) => Vec::new(),
+        };
+        for o in keeps {
+            covered.insert(o.key());
         }
     }
-    let t = go(v, &op);
-    if wrap && v.len() > 1 { quote!((#t)) } else { t }
+    musts
+        .iter()
+        .map(|o| match o {
+            Operand::Lit(_) => false,
+            Operand::Temp(_) => tested.contains(&o.key()),
+            // Parameters are defined by no instruction: tested unless a tested value uses them.
+            Operand::Param(_) => !covered.contains(&o.key()),
+        })
+        .collect()
 }
 
-fn balanced_sum(v: &[TokenStream]) -> TokenStream {
-    match v.len() {
-        0 => quote!(0.0),
-        1 => v[0].clone(),
-        2 => {
-            let (a, b) = (&v[0], &v[1]);
-            quote!(#a + #b)
+/// Estimated latencies (cycles) of the operations, for ordering the operands of sums and
+/// products. Only their relative sizes matter: a division or a call is much slower than an
+/// addition, and everything waiting on it should be combined last.
+pub(crate) mod latency {
+    /// Addition, subtraction, multiplication.
+    pub const ARITH: u32 = 3;
+    /// Sign flip or absolute value (a bit operation).
+    pub const SIGN: u32 = 1;
+    /// Division (and reciprocal).
+    pub const DIV: u32 = 13;
+    /// Square root.
+    pub const SQRT: u32 = 15;
+    /// A call of an elementary function (`sin`, `sincos`, `exp`, `pow`, …).
+    pub const CALL: u32 = 45;
+}
+
+/// A subtree of a sum or product being built: its code, when its value is ready, whether it
+/// is compound (needs parentheses as a right operand) and, in sums, whether it enters
+/// subtracted.
+#[derive(Clone)]
+struct Part {
+    code: TokenStream,
+    ready: u32,
+    compound: bool,
+    neg: bool,
+}
+
+impl Part {
+    fn leaf(code: TokenStream, ready: u32) -> Part {
+        Part {
+            code,
+            ready,
+            compound: false,
+            neg: false,
         }
-        n => {
-            let (l, r) = v.split_at(n / 2);
-            let (l, r) = (balanced_sum(l), balanced_sum(r));
-            let l = if n / 2 > 1 { quote!((#l)) } else { l };
-            let r = if n - n / 2 > 1 { quote!((#r)) } else { r };
-            quote!(#l + #r)
+    }
+}
+
+/// Combine `parts` with `op` (`+` for sums, `*` for products) by ready time: the two values
+/// that are ready first are combined first (as Huffman's code combines the two rarest), so
+/// a late value (after a division or a call) meets a sum of everything else in one last
+/// operation, instead of sitting at the bottom of a balanced tree. Equal ready times give a
+/// balanced tree. Rust keeps the written association of floating-point operations, so the
+/// tree is spelt out with parentheses.
+///
+/// In sums, subtracted parts combine as `a − b`, `b − a` or `−(a + b)`; a sum with one added
+/// term (the lowering's canonical sign guarantees one) is never negative at the root, since
+/// a part containing an added term stays added. Ties keep the given order (deterministic).
+fn by_ready(mut parts: Vec<Part>, sum: bool) -> Part {
+    if parts.is_empty() {
+        let code = if sum { quote!(0.0) } else { quote!(1.0) };
+        return Part::leaf(code, 0);
+    }
+    // Kept sorted by ready time (stable: ties in the given order); a merged part goes after
+    // the parts that are ready as early, so equal ready times give a balanced tree.
+    parts.sort_by_key(|p| p.ready);
+    while parts.len() > 1 {
+        let (mut a, mut b) = (parts.remove(0), parts.remove(0));
+        let ready = a.ready.max(b.ready) + latency::ARITH;
+        // `x + (y + z)` reads better as `y + z + x`; commuting is exact in floating point.
+        if b.compound && !a.compound && a.neg == b.neg {
+            std::mem::swap(&mut a, &mut b);
         }
+        let paren = |p: &Part| {
+            let c = &p.code;
+            if p.compound { quote!((#c)) } else { c.clone() }
+        };
+        let (code, neg) = match (sum, a.neg, b.neg) {
+            (false, _, _) => {
+                let (l, r) = (&a.code, paren(&b));
+                (quote!(#l * #r), false)
+            }
+            (true, false, false) | (true, true, true) => {
+                let (l, r) = (&a.code, paren(&b));
+                (quote!(#l + #r), a.neg)
+            }
+            (true, false, true) => {
+                let (l, r) = (&a.code, paren(&b));
+                (quote!(#l - #r), false)
+            }
+            (true, true, false) => {
+                let (l, r) = (&b.code, paren(&a));
+                (quote!(#l - #r), false)
+            }
+        };
+        let at = parts.partition_point(|p| p.ready <= ready);
+        parts.insert(
+            at,
+            Part {
+                code,
+                ready,
+                compound: true,
+                neg,
+            },
+        );
+    }
+    let root = parts.pop().expect("one part");
+    if root.neg {
+        let c = &root.code;
+        let code = if root.compound {
+            quote!(-(#c))
+        } else {
+            quote!(-#c)
+        };
+        Part {
+            code,
+            ready: root.ready + latency::SIGN,
+            compound: false,
+            neg: false,
+        }
+    } else {
+        root
     }
 }
 
@@ -818,6 +1022,10 @@ struct Checks {
     mag: Vec<TokenStream>,
     /// The distinct `avN`.
     mags: Vec<Ident>,
+    /// When each of `mags` is ready.
+    mag_ready: Vec<u32>,
+    /// The value of each of `mags` (whose absolute value it is).
+    mag_ops: Vec<Operand>,
     comparisons: usize,
     distinct: usize,
 }
@@ -827,6 +1035,7 @@ fn render_checks(
     ctx: &Ctx,
     checks: &[(Operand, Vec<Operand>)],
     specs: &[Check],
+    ready: &[u32],
 ) -> Result<Checks, CodegenError> {
     let num = ctx.num;
     let pivot_tol = num.round(eom_sym::model::reduce::PIVOT_TOLERANCE);
@@ -837,6 +1046,8 @@ fn render_checks(
     let mut per_check: Vec<TokenStream> = Vec::new();
     let mut per_mag: Vec<TokenStream> = Vec::new();
     let mut mags: Vec<Ident> = Vec::new();
+    let mut mag_ready: Vec<u32> = Vec::new();
+    let mut mag_ops: Vec<Operand> = Vec::new();
     let mut comparisons = 0;
     let mut distinct = 0;
     for ((v, others), spec) in checks.iter().zip(specs) {
@@ -884,6 +1095,8 @@ fn render_checks(
                     ts.extend(quote!(let #av = #vv.abs();));
                     mag = quote!(#av);
                     mags.push(av.clone());
+                    mag_ready.push(ctx.ready_of(*v, ready) + latency::SIGN);
+                    mag_ops.push(*v);
                     let tl = num.lit(pivot_tol, "tolerance")?;
                     let mut lit_max: f64 = 0.0;
                     let mut seen_r: Vec<crate::lower::OpKey> = Vec::new();
@@ -984,6 +1197,8 @@ fn render_checks(
         ok: per_check,
         mag: per_mag,
         mags,
+        mag_ready,
+        mag_ops,
         comparisons,
         distinct,
     })
@@ -1017,18 +1232,60 @@ mod tests {
         }
     }
 
+    fn parts(v: &[(&str, u32, bool)]) -> Vec<Part> {
+        v.iter()
+            .map(|&(name, ready, neg)| {
+                let mut p = Part::leaf(name.parse().expect("ident"), ready);
+                p.neg = neg;
+                p
+            })
+            .collect()
+    }
+
     #[test]
-    fn balanced_trees_keep_precedence() {
-        let v: Vec<TokenStream> = ["a", "b", "c", "d", "e"]
-            .iter()
-            .map(|s| s.parse().expect("ident"))
-            .collect();
-        assert_eq!(
-            balanced(&v, quote!(+), false).to_string(),
-            "a + b + c + (d + e)"
-        );
-        assert_eq!(balanced(&v[..2], quote!(*), true).to_string(), "(a * b)");
-        assert_eq!(balanced(&v[..1], quote!(*), true).to_string(), "a");
+    fn equal_ready_times_give_balanced_trees() {
+        let v = parts(&[
+            ("a", 0, false),
+            ("b", 0, false),
+            ("c", 0, false),
+            ("d", 0, false),
+        ]);
+        let p = by_ready(v, true);
+        assert_eq!(p.code.to_string(), "a + b + (c + d)");
+        assert_eq!(p.ready, 2 * latency::ARITH);
+        let v = parts(&[("a", 0, false), ("b", 0, false)]);
+        assert_eq!(by_ready(v, false).code.to_string(), "a * b");
+    }
+
+    #[test]
+    fn late_values_are_combined_last() {
+        // `d` comes out of a division: everything else is summed while it is computed.
+        let v = parts(&[
+            ("d", 20, false),
+            ("a", 0, false),
+            ("b", 3, false),
+            ("c", 3, false),
+        ]);
+        let p = by_ready(v, true);
+        assert_eq!(p.code.to_string(), "a + b + c + d");
+        assert_eq!(p.ready, 20 + latency::ARITH);
+    }
+
+    #[test]
+    fn subtracted_parts_keep_their_sign() {
+        // a − b − c + d with a late `a`: (d − (b + c)) is formed first, `a` joins last.
+        let v = parts(&[
+            ("a", 9, false),
+            ("b", 0, true),
+            ("c", 0, true),
+            ("d", 3, false),
+        ]);
+        let p = by_ready(v, true);
+        assert_eq!(p.code.to_string(), "d - (b + c) + a");
+        assert!(!p.neg);
+        // Only subtracted parts: one negation at the root.
+        let v = parts(&[("b", 0, true), ("c", 0, true)]);
+        assert_eq!(by_ready(v, true).code.to_string(), "- (b + c)");
     }
 
     #[test]
