@@ -157,6 +157,7 @@ pub fn emit_with_stats(
         math: opts.math,
         problem: &problem,
         ty: Ident::new(opts.precision.type_name(), Span::call_site()),
+        trig: std::cell::Cell::new(false),
     };
 
     let f = opts.functions;
@@ -215,7 +216,10 @@ pub fn emit_with_stats(
         simplified: problem.simplified.as_ref().map(|s| s.kept),
     };
 
-    let items = module_items(&ctx, opts, work_len)?;
+    let mut items = module_items(&ctx, opts, work_len)?;
+    if ctx.trig.get() {
+        items.extend(render::sincos_item(&ctx)?);
+    }
     let docs = module_doc(&problem, opts, &emitted_stats);
     let docs = docs.iter().map(|l| quote!(#[doc = #l]));
     let modname = Ident::new(&module, Span::call_site());

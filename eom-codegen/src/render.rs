@@ -100,6 +100,8 @@ pub(crate) struct Ctx<'a> {
     pub math: MathLib,
     pub problem: &'a Problem,
     pub ty: Ident,
+    /// Set when a function calls the module's `sincos` (which is then emitted).
+    pub trig: std::cell::Cell<bool>,
 }
 
 impl Ctx<'_> {
@@ -231,6 +233,22 @@ impl Ctx<'_> {
     fn call(&self, rhs: &Rhs) -> Result<TokenStream, CodegenError> {
         Ok(match rhs {
             Rhs::Sum { .. } | Rhs::Prod { .. } => unreachable!("rendered by `rhs`"),
+            // The module's `sincos`: inline polynomials for |x| ≤ π/4, the library beyond.
+            Rhs::SinCos(x) => {
+                self.trig.set(true);
+                let xv = self.operand(*x)?;
+                quote!(sincos(#xv))
+            }
+            Rhs::Call1(Fn1::Sin, x) => {
+                self.trig.set(true);
+                let xv = self.operand(*x)?;
+                quote!(sincos(#xv).0)
+            }
+            Rhs::Call1(Fn1::Cos, x) => {
+                self.trig.set(true);
+                let xv = self.operand(*x)?;
+                quote!(sincos(#xv).1)
+            }
             Rhs::Call1(f, x) => {
                 let xv = self.operand(*x)?;
                 let rv = self.receiver(*x)?;
@@ -277,17 +295,6 @@ impl Ctx<'_> {
                     }
                     (Fn2::Pow, MathLib::Std) => quote!(#rv.powf(#yv)),
                     (Fn2::Atan2, MathLib::Std) => quote!(#rv.atan2(#yv)),
-                }
-            }
-            Rhs::SinCos(x) => {
-                let xv = self.operand(*x)?;
-                let rv = self.receiver(*x)?;
-                match self.math {
-                    MathLib::Libm => {
-                        let func = self.libm("sincos");
-                        quote!(#func(#xv))
-                    }
-                    MathLib::Std => quote!(#rv.sin_cos()),
                 }
             }
         })
@@ -815,6 +822,61 @@ fn fn_doc(
     }
     let _ = &plan.mats;
     d
+}
+
+/// The module's `sincos`. Model angles are small (a steer-axis tilt, a caster angle), and a
+/// call of the math library costs more than the polynomial: every register live across the
+/// call is spilled, and the call's latency stalls the values that wait on it. So for
+/// |x| ≤ π/4 the Taylor polynomials run inline — truncated where the next term is below a
+/// tenth of an ulp (`f64`: sine to x¹⁷, cosine to x¹⁶; `f32`: x⁹ and x¹⁰), in Horner form, so
+/// within about an ulp of the library — and beyond it (and for NaN and ±∞) the library.
+pub(crate) fn sincos_item(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
+    let ty = &ctx.ty;
+    let (sin_top, cos_top) = match ctx.num.prec {
+        Precision::F64 => (17u32, 16u32),
+        Precision::F32 => (9, 10),
+    };
+    // (−1)^j / n! for n = 2j + 1 (sine) or 2j (cosine), as literals of this precision.
+    let coef = |n: u32| -> f64 {
+        let f: f64 = (1..=n).map(f64::from).product();
+        if (n / 2) % 2 == 1 { -1.0 / f } else { 1.0 / f }
+    };
+    let horner = |degrees: Vec<u32>| -> Result<TokenStream, CodegenError> {
+        let mut it = degrees.iter().rev();
+        let top = ctx
+            .num
+            .lit(coef(*it.next().expect("terms")), "sincos coefficient")?;
+        let mut acc = top;
+        for &n in it {
+            let c = ctx.num.lit(coef(n), "sincos coefficient")?;
+            acc = quote!(#c + z * (#acc));
+        }
+        Ok(acc)
+    };
+    let sin_poly = horner((3..=sin_top).step_by(2).collect())?;
+    let cos_poly = horner((2..=cos_top).step_by(2).collect())?;
+    let bound = ctx.num.lit(std::f64::consts::FRAC_PI_4, "π/4")?;
+    let library = match ctx.math {
+        MathLib::Libm => {
+            let f = ctx.libm("sincos");
+            quote!(#f(x))
+        }
+        MathLib::Std => quote!(x.sin_cos()),
+    };
+    Ok(quote! {
+        /// `(sin x, cos x)` as the evaluation functions compute them: inline Taylor
+        /// polynomials for |x| ≤ π/4 (within about an ulp of the math library, without the
+        /// cost of a call), the math library beyond.
+        #[inline(always)]
+        pub fn sincos(x: #ty) -> (#ty, #ty) {
+            if x.abs() <= #bound {
+                let z = x * x;
+                (x + x * z * (#sin_poly), 1.0 + z * (#cos_poly))
+            } else {
+                #library
+            }
+        }
+    })
 }
 
 /// Which of `musts` (values that must be finite) the fast path has to test: `false` for a

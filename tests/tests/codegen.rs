@@ -366,6 +366,45 @@ fn special_values_never_slip_through_the_fast_test() {
     }
 }
 
+/// Units in the last place between `a` and `b` (of `b`'s binade).
+fn ulps(a: f64, b: f64, eps: f64) -> f64 {
+    (a - b).abs() / (b.abs().max(f64::MIN_POSITIVE) * eps)
+}
+
+/// The generated `sincos` (inline polynomials for |x| ≤ π/4) against the standard library,
+/// on a fine grid through the polynomial range and beyond it, in both precisions.
+#[test]
+fn generated_sincos_is_within_an_ulp_or_two_of_the_library() {
+    let n = 20_000;
+    let mut worst: (f64, f64) = (0.0, 0.0);
+    for k in 0..=n {
+        let x = -1.2 + 2.4 * f64::from(k) / f64::from(n);
+        let (s, c) = gen64::bicycle::sincos(x);
+        worst.0 = worst.0.max(ulps(s, x.sin(), f64::EPSILON));
+        worst.1 = worst.1.max(ulps(c, x.cos(), f64::EPSILON));
+        let xf = x as f32;
+        let (sf, cf) = gen32::bicycle::sincos(xf);
+        assert!(
+            ulps(f64::from(sf), f64::from(xf.sin()), f64::from(f32::EPSILON)) <= 2.0,
+            "f32 sin at {xf}"
+        );
+        assert!(
+            ulps(f64::from(cf), f64::from(xf.cos()), f64::from(f32::EPSILON)) <= 2.0,
+            "f32 cos at {xf}"
+        );
+    }
+    assert!(
+        worst.0 <= 2.0 && worst.1 <= 2.0,
+        "sin, cos worst ulps {worst:?}"
+    );
+    for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let (s, c) = gen64::bicycle::sincos(x);
+        assert!(s.is_nan() && c.is_nan(), "sincos({x})");
+    }
+    let (s, c) = gen64::bicycle::sincos(0.0);
+    assert_eq!((s, c), (0.0, 1.0));
+}
+
 #[test]
 fn variants_equal_interpreter() {
     for g in variants() {
