@@ -46,11 +46,18 @@
 //!   that use them, so `k/m`, `−k/m` and `2k/m` cost one product;
 //! * `x^a·x^−a` cancels when a validity check keeps `x` away from zero (exact wherever the
 //!   result is returned);
-//! * `sin x` and `cos x` come from one `sincos`; operations on numbers are folded;
+//! * `sin x` and `cos x` come from one `sincos`, the module's own: inline Taylor polynomials
+//!   for |x| ≤ π/4 (within about an ulp of the library), the math library beyond; operations
+//!   on numbers are folded;
 //! * pairs of operands that several products (or sums) share become one temporary (greedy);
-//! * the validity checks are branch-free comparisons with precomputed bounds, tested with a
-//!   single branch; finiteness is one sum of the computed entries, with a slow path that names
-//!   the entry.
+//! * the operands of each sum and product are associated by estimated ready time (a value
+//!   that waits on a division or a call joins last), not in a fixed balanced tree;
+//! * the validity checks are branch-free comparisons with precomputed bounds; finiteness is
+//!   tested on one sum of the *finiteness sinks* only — the entries and pivots that no other
+//!   tested value depends on through NaN- and ∞-keeping operations (`+ − ·`, dividends, `√`,
+//!   `sin`, …), so a non-finite entry always reaches the sum. Both are tested with a single
+//!   branch to a cold copy of the function that tests every check and entry one by one and
+//!   names the first failure (the fast path needs no stack frame for the report).
 //!
 //! Large evaluations are split into `#[inline(never)]` chunks of at most
 //! [`EmitOptions::max_temporaries`] temporaries that pass values through the work buffer.
