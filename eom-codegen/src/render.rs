@@ -642,26 +642,67 @@ pub(crate) fn render_fn(
     // out.
     let mut musts: Vec<Operand> = values.clone();
     musts.extend(&checks.mag_ops);
-    let sinks = finiteness_sinks(insts, &musts);
-    let mut summands: Vec<Part> = Vec::new();
-    for (k, v) in values.iter().enumerate() {
-        if sinks[k] {
-            summands.push(Part::leaf(ctx.operand(*v)?, ctx.ready_of(*v, &ready)));
+    // Finiteness by magnitude: bounded parameters and denominators bounded away from zero
+    // keep every value finite, and these tests come early (no entry is waited for). Each
+    // parameter costs two operations, so this pays for small functions only, whose time is
+    // the latency of their longest chain (measured: shimmy 5.88 → 5.60 ns per call; the
+    // bicycle's 27 parameters make it 74.6 → 81 ns, so it tests its sinks).
+    let bounds =
+        magnitude_bounds(insts, &musts).filter(|b| !chunked && b.params.len() + b.dens.len() <= 12);
+    let finite = match (ctx.num.prec, bounds) {
+        (Precision::F64, Some(b)) => {
+            let hi = ctx.num.lit(b.hi, "parameter bound")?;
+            let lo = ctx.num.lit(1.0 / b.hi, "denominator bound")?;
+            let mut tests: Vec<TokenStream> = Vec::new();
+            if !b.params.is_empty() {
+                let parts: Vec<Part> = b
+                    .params
+                    .iter()
+                    .map(|&k| {
+                        let l = ctx.param_local(k);
+                        Part::leaf(quote!(#l.abs()), 0)
+                    })
+                    .collect();
+                let sum = by_ready(parts, true).code;
+                body.extend(quote!(let size: #ty = #sum;));
+                tests.push(quote!(size < #hi));
+            }
+            for d in &b.dens {
+                let dv = ctx.receiver(*d)?;
+                tests.push(quote!(#dv.abs() >= #lo));
+            }
+            for x in &b.roots {
+                let xv = ctx.operand(*x)?;
+                tests.push(quote!(#xv >= 0.0));
+            }
+            (!tests.is_empty()).then(|| {
+                let all = join(&tests, quote!(&));
+                quote!((#all))
+            })
         }
-    }
-    for (k, (m, &r)) in checks.mags.iter().zip(&checks.mag_ready).enumerate() {
-        if sinks[values.len() + k] {
-            summands.push(Part::leaf(quote!(#m), r));
+        _ => {
+            let sinks = finiteness_sinks(insts, &musts);
+            let mut summands: Vec<Part> = Vec::new();
+            for (k, v) in values.iter().enumerate() {
+                if sinks[k] {
+                    summands.push(Part::leaf(ctx.operand(*v)?, ctx.ready_of(*v, &ready)));
+                }
+            }
+            for (k, (m, &r)) in checks.mags.iter().zip(&checks.mag_ready).enumerate() {
+                if sinks[values.len() + k] {
+                    summands.push(Part::leaf(quote!(#m), r));
+                }
+            }
+            // Combined by ready time: the values that come last (after the slowest division or
+            // call) join in the last additions, so the test adds little to the critical path.
+            if summands.is_empty() {
+                None
+            } else {
+                let sum = by_ready(summands, true).code;
+                body.extend(quote!(let sum: #ty = #sum;));
+                Some(quote!(sum.is_finite()))
+            }
         }
-    }
-    // Combined by ready time: the values that come last (after the slowest division or call)
-    // join in the last additions, so the test adds little to the critical path.
-    let finite = if summands.is_empty() {
-        None
-    } else {
-        let sum = by_ready(summands, true).code;
-        body.extend(quote!(let sum: #ty = #sum;));
-        Some(quote!(sum.is_finite()))
     };
     // One branch for the validity checks and the finiteness, to the slow path that finds the
     // first failure in the interpreter's order.
@@ -876,6 +917,117 @@ pub(crate) fn sincos_item(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
                 #library
             }
         }
+    })
+}
+
+/// What the fast path tests instead of the entries when every value's magnitude can be
+/// bounded (see [`magnitude_bounds`]).
+struct Bounds {
+    /// Bound on the sum of the parameters' magnitudes (a power of two).
+    hi: f64,
+    /// Parameters (positions) the function reads.
+    params: Vec<u32>,
+    /// Divisors, each tested `|d| ≥ 1/hi`.
+    dens: Vec<Operand>,
+    /// Square-root arguments, each tested `x ≥ 0`.
+    roots: Vec<Operand>,
+}
+
+/// A finiteness test that waits for no entry, when one exists (`f64` only).
+///
+/// If every parameter has |p| < 2^M and every divisor |d| ≥ 2^−M (and every square-root
+/// argument is ≥ 0, NaN failing every test), then by induction over the instructions every
+/// value has |v| ≤ 2^E(v), with E(param) = M, E(c·Π x / Π d) = log₂|c| + Σ E(x) + M·#d,
+/// E(c₀ + Σ cᵢ xᵢ) = max(log₂|c₀|, log₂|cᵢ| + E(xᵢ)) + log₂(terms + 1), E(√x) = E(x)/2 and
+/// E(sin), E(cos) = 0. When the largest E stays below 1000 (far from 1024; rounding adds
+/// at most a few ulps per operation), no value overflows, no divisor is zero and no NaN can
+/// arise, so every entry and pivot is finite without testing them — and the tests read
+/// parameters and divisors only, which are ready long before the entries. The largest M
+/// (from 60 down to 10) that passes is used; `None` (test the entries instead) when none
+/// does, or the function calls anything else (`tan`, `exp`, `ln`, powers, `atan2`).
+fn magnitude_bounds(insts: &[Inst], musts: &[Operand]) -> Option<Bounds> {
+    let mut params: Vec<u32> = Vec::new();
+    let mut dens: Vec<Operand> = Vec::new();
+    let mut roots: Vec<Operand> = Vec::new();
+    let note_param = |o: &Operand, params: &mut Vec<u32>| {
+        if let Operand::Param(k) = o
+            && !params.contains(k)
+        {
+            params.push(*k);
+        }
+    };
+    for inst in insts {
+        match &inst.rhs {
+            Rhs::Sum { .. } | Rhs::SinCos(_) => {}
+            Rhs::Prod { den, .. } => {
+                for d in den {
+                    if !matches!(d, Operand::Lit(_)) && !dens.contains(d) {
+                        dens.push(*d);
+                    }
+                }
+            }
+            Rhs::Call1(Fn1::Sqrt, x) => {
+                if !matches!(x, Operand::Lit(_)) && !roots.contains(x) {
+                    roots.push(*x);
+                }
+            }
+            Rhs::Call1(Fn1::Sin | Fn1::Cos | Fn1::Abs, _) => {}
+            _ => return None,
+        }
+        for o in inst.rhs.operands() {
+            note_param(&o, &mut params);
+        }
+    }
+    for o in musts {
+        note_param(o, &mut params);
+    }
+    params.sort_unstable();
+    let log2 = |c: f64| if c == 0.0 { -1100.0 } else { c.abs().log2() };
+    let fits = |m: f64| -> bool {
+        let mut e: Vec<f64> = Vec::new();
+        let of = |o: &Operand, e: &Vec<f64>| match o {
+            Operand::Temp(t) => e.get(*t as usize).copied().unwrap_or(f64::INFINITY),
+            Operand::Param(_) => m,
+            Operand::Lit(c) => log2(*c),
+        };
+        for inst in insts {
+            let v = match &inst.rhs {
+                Rhs::Sum { c0, terms } => {
+                    let top = terms
+                        .iter()
+                        .map(|(x, c)| log2(*c) + of(x, &e))
+                        .fold(log2(*c0), f64::max);
+                    top + ((terms.len() + 1) as f64).log2()
+                }
+                Rhs::Prod { coef, num, den } => {
+                    log2(*coef) + num.iter().map(|x| of(x, &e)).sum::<f64>() + m * den.len() as f64
+                }
+                Rhs::Call1(Fn1::Sqrt, x) => of(x, &e) / 2.0 + 1.0,
+                Rhs::Call1(Fn1::Abs, x) => of(x, &e),
+                Rhs::Call1(Fn1::Sin | Fn1::Cos, _) | Rhs::SinCos(_) => 0.0,
+                _ => return false,
+            };
+            if v.is_nan() || v > 1000.0 {
+                return false;
+            }
+            for d in 0..inst.rhs.defs() {
+                let t = (inst.def + d) as usize;
+                if e.len() <= t {
+                    e.resize(t + 1, f64::INFINITY);
+                }
+                e[t] = v;
+            }
+        }
+        true
+    };
+    let m = [60, 50, 40, 30, 20, 16, 12, 10]
+        .into_iter()
+        .find(|&m| fits(f64::from(m)))?;
+    Some(Bounds {
+        hi: 2f64.powi(m),
+        params,
+        dens,
+        roots,
     })
 }
 

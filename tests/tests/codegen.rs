@@ -771,8 +771,10 @@ const SMD_EVAL_AB: &str = r#"    pub fn eval_ab(
         let t2: f64 = p_c * t0;
         let av0 = p_m.abs();
         let ok0: bool = av0 > 0.0;
-        let sum: f64 = av0 + t1 + t2;
-        if !(ok0 & sum.is_finite()) {
+        let size: f64 = p_m.abs() + p_k.abs() + p_c.abs();
+        if !(ok0
+            & (((size < 1.152921504606847e18) & (p_m.abs() >= 8.673617379884035e-19))))
+        {
             return eval_ab_checked(p, a, b, work);
         }
         a[1] = -t1;
