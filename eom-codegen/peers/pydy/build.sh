@@ -1,0 +1,14 @@
+#!/bin/sh
+# Emit eom's modules, compile each PyDy C file alone (gcc -O2 -c, as the peers' C-driver
+# measurements did), the Rust static library, and the driver.
+set -e
+cd "$(dirname "$0")"
+EOM=${EOM:-../../..}
+(cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- bicycle) > bicycle_f64.rs
+(cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- shimmy) > shimmy_f64.rs
+mkdir -p build
+for f in shimmy bicycle4 bicycle6; do gcc -O2 -c pydy_$f.c -o build/pydy_$f.o; done
+(cd rslib && cargo build --release)
+gcc -O2 -c driver.c -o build/driver.o
+gcc -o build/driver build/driver.o build/pydy_bicycle4.o build/pydy_bicycle6.o build/pydy_shimmy.o \
+    rslib/target/release/libeom_peer_rslib.a -lm -lpthread -ldl
