@@ -4,6 +4,9 @@
 //! time = iteration time / 64; criterion's throughput line gives calls per second).
 //!
 //! `cargo bench -p tests --bench codegen`
+//!
+//! PyDy's generated C cannot run here (it needs sympy and a C compiler at bench time); the
+//! same-driver comparison with it is a by-hand script: `eom-codegen/peers/pydy/README.md`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_codegen::EmitOptions;
