@@ -23,7 +23,7 @@
 //!   tests on its norm (§13.14).
 
 use super::Model;
-use super::eliminate::{Row, rref};
+use super::eliminate::{Row, fill_room, rref};
 use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit};
 use super::items::*;
 use crate::error::SymError;
@@ -1034,7 +1034,10 @@ fn solve_statics<S: Scalar>(
     for &(i, _) in j_rows.iter().chain(h_rows.iter()).flatten() {
         len[i] += 1;
     }
-    let mut rows: Vec<Row<S>> = len.iter().map(|&n| Vec::with_capacity(n)).collect();
+    let mut rows: Vec<Row<S>> = len
+        .iter()
+        .map(|&n| Vec::with_capacity(fill_room(n, nu + 1)))
+        .collect();
     for (c, r) in j_rows.iter().chain(h_rows.iter()).enumerate() {
         for &(i, v) in r {
             rows[i].push((c, v));

@@ -97,6 +97,12 @@ impl<S: Scalar> Rref<S> {
     }
 }
 
+/// Capacity for a row of `len` entries out of `ncols` about to be eliminated: room for the
+/// fill-in, so that the row seldom reallocates while it grows.
+pub fn fill_room(len: usize, ncols: usize) -> usize {
+    (2 * len).max(16).min(ncols.max(len))
+}
+
 fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
     row.binary_search_by_key(&col, |e| e.0)
         .ok()

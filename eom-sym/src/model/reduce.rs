@@ -24,7 +24,7 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, rref};
+use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, fill_room, rref};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::SymError;
@@ -252,7 +252,14 @@ fn select_rows<S: Scalar>(m: &SparseMatrix<S>, rows: &[usize]) -> SparseMatrix<S
 }
 
 fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> Vec<Row<S>> {
-    (0..m.nrows()).map(|i| m.row(i).to_vec()).collect()
+    (0..m.nrows())
+        .map(|i| {
+            let r = m.row(i);
+            let mut v = Vec::with_capacity(fill_room(r.len(), m.ncols()));
+            v.extend_from_slice(r);
+            v
+        })
+        .collect()
 }
 
 fn hstack<S: Scalar>(
