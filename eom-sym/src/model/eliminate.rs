@@ -183,7 +183,7 @@ fn row_stats<S: Scalar>(row: &[(usize, S)], col_done: &[bool], scale: f64) -> Op
 }
 
 /// Working state of one elimination.
-struct Elim<'a, S> {
+struct Elim<S> {
     rows: Vec<Row<S>>,
     eligible: usize,
     record: bool,
@@ -199,10 +199,9 @@ struct Elim<'a, S> {
     scratch: Row<S>,
     plan: EliminationPlan,
     records: Vec<PivotRecord<S>>,
-    _life: std::marker::PhantomData<&'a ()>,
 }
 
-impl<S: Scalar> Elim<'_, S> {
+impl<S: Scalar> Elim<S> {
     fn count(&mut self, r: usize, delta: isize) {
         for e in eligible_part(&self.rows[r], self.eligible) {
             self.ccount[e.0] = self.ccount[e.0].wrapping_add_signed(delta);
@@ -267,13 +266,13 @@ impl<S: Scalar> Elim<'_, S> {
     /// first in row-major order.
     fn choose(&mut self, scale: &[f64]) -> Option<(usize, usize)> {
         let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
-        for r in 0..self.rows.len() {
+        for (r, &row_scale) in scale.iter().enumerate() {
             if self.pivoted[r] {
                 continue;
             }
             let row = eligible_part(&self.rows[r], self.eligible);
             if self.dirty[r] {
-                self.stats[r] = row_stats(row, &self.col_done, scale[r]);
+                self.stats[r] = row_stats(row, &self.col_done, row_scale);
                 self.dirty[r] = false;
             }
             let Some((rmax, rc)) = self.stats[r] else {
@@ -365,7 +364,6 @@ pub fn rref<S: Scalar>(
         scratch: Vec::with_capacity(2 * el_rows_max),
         plan: EliminationPlan::default(),
         records: Vec::new(),
-        _life: std::marker::PhantomData,
     };
 
     if let Some(plan) = plan {
