@@ -39,6 +39,14 @@ impl<S: Scalar> Triplets<S> {
             items: Vec::new(),
         }
     }
+    /// An empty builder with room for `cap` entries (no reallocation while filling).
+    pub fn with_capacity(nrows: usize, ncols: usize, cap: usize) -> Self {
+        Triplets {
+            nrows,
+            ncols,
+            items: Vec::with_capacity(cap),
+        }
+    }
     /// Add `v` at `(i, j)` (structural zeros are skipped).
     pub fn push(&mut self, i: usize, j: usize, v: S) {
         assert!(
@@ -405,18 +413,27 @@ impl<S: Scalar> SparseMatrix<S> {
 
     /// Rows `rows` and columns `cols` (in the given order).
     pub fn select(&self, rows: &[usize], cols: &[usize]) -> Self {
+        self.select_with(rows.len(), |k| rows[k], cols)
+    }
+
+    /// Every row, columns `cols` (in the given order).
+    pub fn columns_of(&self, cols: &[usize]) -> Self {
+        self.select_with(self.nrows, |k| k, cols)
+    }
+
+    fn select_with(&self, nrows: usize, row_of: impl Fn(usize) -> usize, cols: &[usize]) -> Self {
         let mut colmap = vec![usize::MAX; self.ncols];
         for (k, &c) in cols.iter().enumerate() {
             colmap[c] = k;
         }
         let monotone = cols.windows(2).all(|w| w[0] < w[1]);
         Self::from_row_fn_with(
-            rows.len(),
+            nrows,
             cols.len(),
-            self.nnz().min(rows.len() * cols.len()),
+            self.nnz().min(nrows * cols.len()),
             |k, out| {
                 let start = out.len();
-                for &(j, v) in self.row(rows[k]) {
+                for &(j, v) in self.row(row_of(k)) {
                     if colmap[j] != usize::MAX {
                         out.push((colmap[j], v));
                     }
@@ -426,6 +443,69 @@ impl<S: Scalar> SparseMatrix<S> {
                 }
             },
         )
+    }
+
+    /// Rows `rows` (in the given order), every column: [`Self::select`] without a column map.
+    pub fn select_rows(&self, rows: &[usize]) -> Self {
+        let nnz = rows.iter().map(|&i| self.row(i).len()).sum();
+        Self::from_row_fn_with(rows.len(), self.ncols, nnz, |k, out| {
+            out.extend_from_slice(self.row(rows[k]))
+        })
+    }
+
+    /// The contiguous columns `cols`, every row.
+    pub fn columns(&self, cols: std::ops::Range<usize>) -> Self {
+        assert!(cols.end <= self.ncols, "columns {cols:?} out of bounds");
+        Self::from_row_fn(self.nrows, cols.len(), |i, out| {
+            let r = self.row(i);
+            let a = r.partition_point(|e| e.0 < cols.start);
+            let b = r.partition_point(|e| e.0 < cols.end);
+            out.extend(r[a..b].iter().map(|&(j, v)| (j - cols.start, v)));
+        })
+    }
+
+    /// `[b₀ b₁ …]`: blocks side by side (all of the same height). The direct form of a
+    /// one-row [`Self::block`], without its bookkeeping.
+    pub fn hcat(blocks: &[&Self]) -> Result<Self, SymError> {
+        let nrows = blocks.first().map_or(0, |b| b.nrows);
+        if let Some(b) = blocks.iter().find(|b| b.nrows != nrows) {
+            return Err(SymError::Dimension(format!(
+                "side-by-side blocks of heights {nrows} and {}",
+                b.nrows
+            )));
+        }
+        let ncols = blocks.iter().map(|b| b.ncols).sum();
+        let nnz = blocks.iter().map(|b| b.nnz()).sum();
+        Ok(Self::from_row_fn_with(nrows, ncols, nnz, |i, out| {
+            let mut c0 = 0;
+            for b in blocks {
+                out.extend(b.row(i).iter().map(|&(j, v)| (c0 + j, v)));
+                c0 += b.ncols;
+            }
+        }))
+    }
+
+    /// `[a; b]`: `a` above `b` (of the same width).
+    pub fn vcat(a: &Self, b: &Self) -> Result<Self, SymError> {
+        if a.ncols != b.ncols {
+            return Err(SymError::Dimension(format!(
+                "stacked blocks of widths {} and {}",
+                a.ncols, b.ncols
+            )));
+        }
+        let mut row_ptr = Vec::with_capacity(a.nrows + b.nrows + 1);
+        row_ptr.extend_from_slice(&a.row_ptr);
+        let off = a.entries.len();
+        row_ptr.extend(b.row_ptr[1..].iter().map(|p| p + off));
+        let mut entries = Vec::with_capacity(a.nnz() + b.nnz());
+        entries.extend_from_slice(&a.entries);
+        entries.extend_from_slice(&b.entries);
+        Ok(SparseMatrix {
+            nrows: a.nrows + b.nrows,
+            ncols: a.ncols,
+            row_ptr,
+            entries,
+        })
     }
 
     /// Assemble a block matrix from a grid of optional blocks (`None` = zero block). Every

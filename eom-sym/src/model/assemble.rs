@@ -23,7 +23,7 @@
 //!   tests on its norm (§13.14).
 
 use super::Model;
-use super::eliminate::{Row, rref};
+use super::eliminate::{Row, fill_room, rref};
 use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit};
 use super::items::*;
 use crate::error::SymError;
@@ -181,15 +181,15 @@ fn point_rows<S: Scalar>(
     mdirs: &[Vec3<S>],
 ) -> Vec<Row<S>> {
     let z = zero3::<S>();
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(fdirs.len() + mdirs.len());
     for f in fdirs {
-        let mut row = Vec::new();
+        let mut row = Vec::with_capacity(12);
         push_entries(&mut row, b[0], f, &cross(&r[0], f), true);
         push_entries(&mut row, b[1], f, &cross(&r[1], f), false);
         out.push(make_row(row));
     }
     for g in mdirs {
-        let mut row = Vec::new();
+        let mut row = Vec::with_capacity(6);
         push_entries(&mut row, b[0], &z, g, true);
         push_entries(&mut row, b[1], &z, g, false);
         out.push(make_row(row));
@@ -362,10 +362,13 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     let nb = model.bodies.len();
     let d = 6 * nb;
 
+    // Room for a few 3×3 blocks per body in each matrix, so that filling rarely reallocates.
+    let cap = 4 * d;
+
     // ---------------------------------------------------------------- mass (§4.1)
-    let mut mass = Triplets::new(d, d);
-    let mut mv = Triplets::new(d, d);
-    let mut vel = Triplets::new(d, d);
+    let mut mass = Triplets::with_capacity(d, d, cap);
+    let mut mv = Triplets::with_capacity(d, d, cap);
+    let mut vel = Triplets::with_capacity(d, d, cap);
     for (k, b) in model.bodies.iter().enumerate() {
         for i in 0..3 {
             mass.push(6 * k + i, 6 * k + i, b.mass);
@@ -388,7 +391,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
 
     // ---------------------------------------------------------------- loads (§4.2)
     let mut applied = vec![S::zero(); d];
-    let mut k_load = Triplets::new(d, d);
+    let mut k_load = Triplets::with_capacity(d, d, cap);
     for l in &model.loads {
         let (Some(p1), p2) = (cx.idx(&l.body), cx.idx(&l.frame)) else {
             warnings.push(format!(
@@ -422,9 +425,9 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     // ---------------------------------------------------------------- elastic items (§4.3)
     let mut h_rows: Vec<Row<S>> = Vec::new();
     let mut h_labels: Vec<RowLabel> = Vec::new();
-    let mut k_el = Triplets::new(d, d);
-    let mut c_el = Triplets::new(d, d);
-    let mut m_el = Triplets::new(d, d);
+    let mut k_el = Triplets::with_capacity(d, d, cap);
+    let mut c_el = Triplets::with_capacity(d, d, cap);
+    let mut m_el = Triplets::with_capacity(d, d, cap);
     // Per elastic row: stiffness blocks for the compatibility equations.
     let mut stiff_blocks: Vec<(usize, Vec<Vec<S>>)> = Vec::new();
     let mut spring_geo = Vec::new();
@@ -518,7 +521,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     )?;
 
     // ---------------------------------------------------------------- tangent stiffness (§4.6)
-    let mut k_t = Triplets::new(d, d);
+    let mut k_t = Triplets::with_capacity(d, d, cap);
     let mut preloads = Vec::new();
     let mut jc = 0;
     for (l, (u, len, b, r, twist)) in model.links.iter().zip(&link_geo) {
@@ -1027,7 +1030,14 @@ fn solve_statics<S: Scalar>(
     }
     let nu = q + s;
     // Rows of [Jᵀ Hᵀ | −F] (d rows) and [0 S | preload] (known rows).
-    let mut rows: Vec<Row<S>> = vec![Vec::new(); d];
+    let mut len = vec![1usize; d];
+    for &(i, _) in j_rows.iter().chain(h_rows.iter()).flatten() {
+        len[i] += 1;
+    }
+    let mut rows: Vec<Row<S>> = len
+        .iter()
+        .map(|&n| Vec::with_capacity(fill_room(n, nu + 1)))
+        .collect();
     for (c, r) in j_rows.iter().chain(h_rows.iter()).enumerate() {
         for &(i, v) in r {
             rows[i].push((c, v));
@@ -1055,7 +1065,7 @@ fn solve_statics<S: Scalar>(
             format!("known preload {}", i - d + 1)
         }
     };
-    let red = rref(rows.clone(), nu, &[], None)?;
+    let red = rref(rows, nu, &[], None)?;
     let rank = red.plan.pivots.len();
     let (lc, le, kind) = if rank == nu {
         let mut sol = vec![S::zero(); nu];
@@ -1156,14 +1166,19 @@ fn solve_statics<S: Scalar>(
     };
     // Relative equilibrium check per equation: |F_i + Σ T_ij λ_j| ≤ tol · (|F_i| + Σ |T_ij λ_j|).
     let lam: Vec<S> = lc.iter().chain(le.iter()).copied().collect();
-    for (i, row) in rows.iter().enumerate().take(d) {
-        let mut res = f[i].nominal();
-        let mut mag = f[i].nominal().abs();
-        for &(c, v) in row.iter().filter(|e| e.0 < nu) {
-            let t = v.nominal() * lam[c].nominal();
-            res += t;
-            mag += t.abs();
+    // Accumulated from the item rows (the columns of Tᵀ) in the order of λ, so each equation
+    // sums its terms in the same order as a walk along its row would.
+    let mut res: Vec<f64> = f.iter().map(|x| x.nominal()).collect();
+    let mut mag: Vec<f64> = res.iter().map(|x| x.abs()).collect();
+    for (c, r) in j_rows.iter().chain(h_rows.iter()).enumerate() {
+        let l = lam[c].nominal();
+        for &(i, v) in r {
+            let t = v.nominal() * l;
+            res[i] += t;
+            mag[i] += t.abs();
         }
+    }
+    for (i, (&res, &mag)) in res.iter().zip(&mag).enumerate() {
         if res.is_nan() || res.abs() > 1e-9 * mag + 1e-300 {
             return Err(SymError::Equilibrium(format!(
                 "{}: residual {res:.6e} (of terms summing to {mag:.6e} in magnitude). The given geometry is not an equilibrium with these constraints (eom uses the given geometry as the loaded equilibrium: add a support, or give spring preloads that balance the loads)",

@@ -97,6 +97,12 @@ impl<S: Scalar> Rref<S> {
     }
 }
 
+/// Capacity for a row of `len` entries out of `ncols` about to be eliminated: room for the
+/// fill-in, so that the row seldom reallocates while it grows.
+pub fn fill_room(len: usize, ncols: usize) -> usize {
+    (2 * len).max(16).min(ncols.max(len))
+}
+
 fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
     row.binary_search_by_key(&col, |e| e.0)
         .ok()
@@ -108,15 +114,15 @@ fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
 fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scratch: &mut Row<S>) {
     scratch.clear();
     let (mut i, mut j) = (0, 0);
-    while i < target.len() || j < src.len() {
-        let ci = target.get(i).map_or(usize::MAX, |e| e.0);
-        let cj = src.get(j).map_or(usize::MAX, |e| e.0);
+    while i < target.len() && j < src.len() {
+        let (ci, t) = target[i];
+        let (cj, s) = src[j];
         if ci < cj {
-            scratch.push(target[i]);
+            scratch.push((ci, t));
             i += 1;
         } else if cj < ci {
             if cj != skip_col {
-                let v = -(f * src[j].1);
+                let v = -(f * s);
                 if !v.is_zero() {
                     scratch.push((cj, v));
                 }
@@ -124,13 +130,7 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
             j += 1;
         } else {
             if ci != skip_col {
-                let s = src[j].1;
-                let v = (if s.is_one() {
-                    target[i].1 - f
-                } else {
-                    target[i].1 - f * s
-                })
-                .recognise_zero();
+                let v = (if s.is_one() { t - f } else { t - f * s }).recognise_zero();
                 if !v.is_zero() {
                     scratch.push((ci, v));
                 }
@@ -139,14 +139,163 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
             j += 1;
         }
     }
-    std::mem::swap(target, scratch);
+    scratch.extend_from_slice(&target[i..]);
+    for &(cj, s) in &src[j..] {
+        if cj != skip_col {
+            let v = -(f * s);
+            if !v.is_zero() {
+                scratch.push((cj, v));
+            }
+        }
+    }
+    // Copy back rather than swap: every row keeps its own buffer, which grows only with
+    // fill-in, and the one scratch buffer reaches its largest size once.
+    target.clear();
+    target.extend_from_slice(scratch);
+}
+
+/// The entries of a row in the eligible columns: a prefix, since rows are sorted by column.
+fn eligible_part<S>(row: &[(usize, S)], eligible: usize) -> &[(usize, S)] {
+    &row[..row.partition_point(|e| e.0 < eligible)]
 }
 
 fn row_scale<S: Scalar>(row: &Row<S>, eligible: usize) -> f64 {
-    row.iter()
-        .filter(|e| e.0 < eligible)
+    eligible_part(row, eligible)
+        .iter()
         .map(|e| e.1.nominal().abs())
         .fold(0.0, f64::max)
+}
+
+/// Pivot-search statistics of a row that has not been pivoted: the largest eligible entry
+/// and the number of entries that are not negligible (`None` when the row has no usable
+/// entry). They change only when the row does, so they are cached between steps.
+fn row_stats<S: Scalar>(row: &[(usize, S)], col_done: &[bool], scale: f64) -> Option<(f64, usize)> {
+    let live = || {
+        row.iter()
+            .filter(|e| !col_done[e.0])
+            .map(|e| e.1.nominal().abs())
+    };
+    let rmax = live().fold(0.0, f64::max);
+    if rmax.is_nan() || rmax <= NEGLIGIBLE * scale || !rmax.is_finite() {
+        return None;
+    }
+    Some((rmax, live().filter(|&v| v > NEGLIGIBLE * scale).count()))
+}
+
+/// Working state of one elimination.
+struct Elim<S> {
+    rows: Vec<Row<S>>,
+    eligible: usize,
+    record: bool,
+    /// Maintain column counts and per-row statistics (pivot search only).
+    search: bool,
+    pivoted: Vec<bool>,
+    col_done: Vec<bool>,
+    /// Structural non-zeros per eligible column over all rows (Gauss–Jordan fills every row).
+    ccount: Vec<usize>,
+    /// Cached [`row_stats`]; `dirty` rows must be recomputed.
+    stats: Vec<Option<(f64, usize)>>,
+    dirty: Vec<bool>,
+    scratch: Row<S>,
+    plan: EliminationPlan,
+    records: Vec<PivotRecord<S>>,
+}
+
+impl<S: Scalar> Elim<S> {
+    fn count(&mut self, r: usize, delta: isize) {
+        for e in eligible_part(&self.rows[r], self.eligible) {
+            self.ccount[e.0] = self.ccount[e.0].wrapping_add_signed(delta);
+        }
+    }
+
+    /// Take pivot `(r, c)`: normalise its row and eliminate column `c` from every other row.
+    fn step(&mut self, r: usize, c: usize) -> Result<(), SymError> {
+        let (nrows, eligible) = (self.rows.len(), self.eligible);
+        if r >= nrows || c >= eligible || self.pivoted[r] || self.col_done[c] {
+            return Err(SymError::Singular(format!(
+                "invalid pivot ({r}, {c}) in an elimination plan"
+            )));
+        }
+        let p = get(&self.rows[r], c).ok_or_else(|| {
+            SymError::Singular(format!("planned pivot ({r}, {c}) is a structural zero"))
+        })?;
+        if self.record {
+            self.records.push(PivotRecord {
+                row: r,
+                col: c,
+                value: p,
+                row_entries: eligible_part(&self.rows[r], eligible)
+                    .iter()
+                    .filter(|e| e.0 != c)
+                    .map(|e| e.1)
+                    .collect(),
+            });
+        }
+        // Normalise the pivot row.
+        if !p.is_one() {
+            let inv = p.recip();
+            for e in self.rows[r].iter_mut() {
+                e.1 = if e.0 == c { S::one() } else { e.1 * inv };
+            }
+        }
+        let prow = std::mem::take(&mut self.rows[r]);
+        for k in 0..nrows {
+            if k == r {
+                continue;
+            }
+            if let Some(f) = get(&self.rows[k], c) {
+                if self.search {
+                    self.count(k, -1);
+                }
+                axpy(&mut self.rows[k], f, &prow, c, &mut self.scratch);
+                if self.search {
+                    self.count(k, 1);
+                    self.dirty[k] = true;
+                }
+            }
+        }
+        self.rows[r] = prow;
+        self.pivoted[r] = true;
+        self.col_done[c] = true;
+        self.plan.pivots.push((r, c));
+        Ok(())
+    }
+
+    /// The next pivot: among the entries of the remaining rows at least [`THRESHOLD`] times
+    /// their row's largest, the smallest Markowitz count, then the largest ratio, then the
+    /// first in row-major order.
+    fn choose(&mut self, scale: &[f64]) -> Option<(usize, usize)> {
+        let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
+        for (r, &row_scale) in scale.iter().enumerate() {
+            if self.pivoted[r] {
+                continue;
+            }
+            let row = eligible_part(&self.rows[r], self.eligible);
+            if self.dirty[r] {
+                self.stats[r] = row_stats(row, &self.col_done, row_scale);
+                self.dirty[r] = false;
+            }
+            let Some((rmax, rc)) = self.stats[r] else {
+                continue;
+            };
+            for e in row.iter().filter(|e| !self.col_done[e.0]) {
+                let (c, v) = (e.0, e.1.nominal().abs());
+                if v < THRESHOLD * rmax {
+                    continue;
+                }
+                let mk = (rc - 1) * (self.ccount[c] - 1);
+                let ratio = v / rmax;
+                let better = match best {
+                    None => true,
+                    Some((bm, br, _, _)) => mk < bm || (mk == bm && -ratio < br),
+                };
+                if better {
+                    best = Some((mk, -ratio, r, c));
+                }
+            }
+        }
+        best.map(|b| (b.2, b.3))
+    }
 }
 
 /// Gauss–Jordan elimination of `rows` (each a sparse row over `ncols` columns) with pivots
@@ -158,7 +307,7 @@ fn row_scale<S: Scalar>(row: &Row<S>, eligible: usize) -> f64 {
 ///   and the validity checks use this). In replay the pivot values are not tested here; the
 ///   records let the caller test them.
 pub fn rref<S: Scalar>(
-    mut rows: Vec<Row<S>>,
+    rows: Vec<Row<S>>,
     eligible: usize,
     forced: &[(usize, usize)],
     plan: Option<&EliminationPlan>,
@@ -168,146 +317,90 @@ pub fn rref<S: Scalar>(
     // pivots hold) or replays a plan chosen elsewhere; a numeric elimination that chooses its
     // own pivots at its own point needs none.
     let record = S::SYMBOLIC || plan.is_some();
-    let orig = if record { rows.clone() } else { Vec::new() };
-    let scale: Vec<f64> = rows.iter().map(|r| row_scale(r, eligible)).collect();
-    let mut pivoted = vec![false; nrows];
-    let mut col_done = vec![false; eligible];
-    let mut out_plan = EliminationPlan::default();
-    let mut records = Vec::new();
-
-    let apply = |rows: &mut Vec<Row<S>>, r: usize, c: usize| -> Result<PivotRecord<S>, SymError> {
-        let p = get(&rows[r], c).ok_or_else(|| {
-            SymError::Singular(format!("planned pivot ({r}, {c}) is a structural zero"))
-        })?;
-        let rec = PivotRecord {
-            row: r,
-            col: c,
-            value: p,
-            row_entries: if record {
-                rows[r]
-                    .iter()
-                    .filter(|e| e.0 < eligible && e.0 != c)
-                    .map(|e| e.1)
-                    .collect()
-            } else {
-                Vec::new()
-            },
-        };
-        // Normalise the pivot row.
-        if !p.is_one() {
-            let inv = p.recip();
-            for e in rows[r].iter_mut() {
-                e.1 = if e.0 == c { S::one() } else { e.1 * inv };
+    // The original entries of the rows that may end up redundant (their scale): with a plan
+    // those are known in advance.
+    let orig: Vec<Option<Row<S>>> = match plan {
+        _ if !record => Vec::new(),
+        Some(p) => {
+            let mut o = vec![None; nrows];
+            for &r in &p.redundant {
+                if let Some(row) = rows.get(r) {
+                    o[r] = Some(eligible_part(row, eligible).to_vec());
+                }
             }
+            o
         }
-        let prow = std::mem::take(&mut rows[r]);
-        let mut scratch = Vec::with_capacity(prow.len() * 2);
-        for row in rows.iter_mut() {
-            if let Some(f) = get(row, c) {
-                axpy(row, f, &prow, c, &mut scratch);
-            }
-        }
-        rows[r] = prow;
-        Ok(rec)
+        None => rows
+            .iter()
+            .map(|row| Some(eligible_part(row, eligible).to_vec()))
+            .collect(),
     };
-
-    let mut step = |rows: &mut Vec<Row<S>>,
-                    r: usize,
-                    c: usize,
-                    pivoted: &mut Vec<bool>,
-                    col_done: &mut Vec<bool>|
-     -> Result<(), SymError> {
-        if r >= nrows || c >= eligible || pivoted[r] || col_done[c] {
-            return Err(SymError::Singular(format!(
-                "invalid pivot ({r}, {c}) in an elimination plan"
-            )));
+    let search = plan.is_none();
+    let scale: Vec<f64> = if search {
+        rows.iter().map(|r| row_scale(r, eligible)).collect()
+    } else {
+        Vec::new()
+    };
+    let mut ccount = vec![0usize; if search { eligible } else { 0 }];
+    if search {
+        for row in &rows {
+            for e in eligible_part(row, eligible) {
+                ccount[e.0] += 1;
+            }
         }
-        let rec = apply(rows, r, c)?;
-        if record {
-            records.push(rec);
-        }
-        pivoted[r] = true;
-        col_done[c] = true;
-        out_plan.pivots.push((r, c));
-        Ok(())
+    }
+    // Merges grow with fill-in; start the shared buffer at twice the longest row.
+    let el_rows_max = rows.iter().map(Vec::len).max().unwrap_or(0);
+    let mut el = Elim {
+        rows,
+        eligible,
+        record,
+        search,
+        pivoted: vec![false; nrows],
+        col_done: vec![false; eligible],
+        ccount,
+        stats: vec![None; if search { nrows } else { 0 }],
+        dirty: vec![true; if search { nrows } else { 0 }],
+        scratch: Vec::with_capacity(2 * el_rows_max),
+        plan: EliminationPlan::default(),
+        records: Vec::new(),
     };
 
     if let Some(plan) = plan {
         for &(r, c) in &plan.pivots {
-            step(&mut rows, r, c, &mut pivoted, &mut col_done)?;
+            el.step(r, c)?;
         }
-        out_plan.redundant = plan.redundant.clone();
+        el.plan.redundant = plan.redundant.clone();
     } else {
         for &(r, c) in forced {
-            step(&mut rows, r, c, &mut pivoted, &mut col_done)?;
+            el.step(r, c)?;
         }
-        loop {
-            // Column counts over all rows (Gauss–Jordan fills every row).
-            let mut ccount = vec![0usize; eligible];
-            for row in &rows {
-                for e in row.iter().filter(|e| e.0 < eligible) {
-                    ccount[e.0] += 1;
-                }
-            }
-            let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
-            for (r, row) in rows.iter().enumerate() {
-                if pivoted[r] {
-                    continue;
-                }
-                let eligible_entries = || {
-                    row.iter()
-                        .filter(|e| e.0 < eligible && !col_done[e.0])
-                        .map(|e| (e.0, e.1.nominal().abs()))
-                };
-                let rmax = eligible_entries().map(|e| e.1).fold(0.0, f64::max);
-                if rmax.is_nan() || rmax <= NEGLIGIBLE * scale[r] || !rmax.is_finite() {
-                    continue;
-                }
-                let rc = eligible_entries()
-                    .filter(|e| e.1 > NEGLIGIBLE * scale[r])
-                    .count();
-                for (c, v) in eligible_entries() {
-                    if v < THRESHOLD * rmax {
-                        continue;
-                    }
-                    let mk = (rc - 1) * (ccount[c] - 1);
-                    let ratio = v / rmax;
-                    let better = match best {
-                        None => true,
-                        Some((bm, br, _, _)) => mk < bm || (mk == bm && -ratio < br),
-                    };
-                    if better {
-                        best = Some((mk, -ratio, r, c));
-                    }
-                }
-            }
-            match best {
-                Some((_, _, r, c)) => step(&mut rows, r, c, &mut pivoted, &mut col_done)?,
-                None => break,
-            }
+        while let Some((r, c)) = el.choose(&scale) {
+            el.step(r, c)?;
         }
-        out_plan.redundant = (0..nrows).filter(|&r| !pivoted[r]).collect();
+        el.plan.redundant = (0..nrows).filter(|&r| !el.pivoted[r]).collect();
     }
 
     let mut rank_records = Vec::new();
-    for &r in out_plan.redundant.iter().filter(|_| record) {
-        for e in rows[r].iter().filter(|e| e.0 < eligible) {
-            rank_records.push(RankRecord {
-                row: r,
-                value: e.1,
-                scale_entries: orig[r]
-                    .iter()
-                    .filter(|e| e.0 < eligible)
-                    .map(|e| e.1)
-                    .collect(),
-            });
+    if record {
+        for &r in &el.plan.redundant {
+            let Some(row) = el.rows.get(r) else { continue };
+            for e in eligible_part(row, eligible) {
+                rank_records.push(RankRecord {
+                    row: r,
+                    value: e.1,
+                    scale_entries: orig[r]
+                        .as_ref()
+                        .map_or_else(Vec::new, |o| o.iter().map(|e| e.1).collect()),
+                });
+            }
         }
     }
     Ok(Rref {
         eligible,
-        rows,
-        plan: out_plan,
-        pivot_records: records,
+        rows: el.rows,
+        plan: el.plan,
+        pivot_records: el.records,
         rank_records,
     })
 }

@@ -64,10 +64,10 @@ pub fn is_zero<S: Scalar>(a: &Vec3<S>) -> bool {
 
 /// Euclidean norm (structural zeros skipped, so an axis-aligned vector has norm `|a_k|`).
 pub fn norm<S: Scalar>(a: &Vec3<S>) -> S {
-    let nz: Vec<S> = a.iter().copied().filter(|x| !x.is_zero()).collect();
-    match nz.as_slice() {
-        [] => S::zero(),
-        [x] => x.abs(),
+    let mut nz = a.iter().filter(|x| !x.is_zero());
+    match (nz.next(), nz.next()) {
+        (None, _) => S::zero(),
+        (Some(x), None) => x.abs(),
         _ => dot(a, a).sqrt(),
     }
 }

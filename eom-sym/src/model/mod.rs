@@ -485,7 +485,8 @@ impl<S: Scalar> Model<S> {
             ));
         }
         // Names.
-        let mut bodies = HashSet::new();
+        // Borrowed names, sized up front: no reference counting, no rehashing.
+        let mut bodies: HashSet<&str> = HashSet::with_capacity(self.bodies.len());
         for b in &self.bodies {
             if b.name.is_empty() {
                 return Err(err("body ``".into(), "name", "a body needs a name".into()));
@@ -497,7 +498,7 @@ impl<S: Scalar> Model<S> {
                     "`ground` is reserved for the fixed frame".into(),
                 ));
             }
-            if !bodies.insert(b.name.clone()) {
+            if !bodies.insert(&b.name) {
                 return Err(err(
                     format!("body `{}`", b.name),
                     "name",
@@ -520,7 +521,17 @@ impl<S: Scalar> Model<S> {
                 ));
             }
         }
-        let mut items = HashSet::new();
+        let mut items: HashSet<&str> = HashSet::with_capacity(
+            self.loads.len()
+                + self.links.len()
+                + self.springs.len()
+                + self.beams.len()
+                + self.rigid_points.len()
+                + self.flex_points.len()
+                + self.nh_points.len()
+                + self.actuators.len()
+                + self.sensors.len(),
+        );
         let all_names = self
             .loads
             .iter()
@@ -541,7 +552,7 @@ impl<S: Scalar> Model<S> {
                     "an item needs a name".into(),
                 ));
             }
-            if !items.insert(n.clone()) {
+            if !items.insert(n) {
                 return Err(err(
                     format!("{kind} `{n}`"),
                     "name",

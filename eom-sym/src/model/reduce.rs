@@ -24,7 +24,7 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, rref};
+use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, fill_room, rref};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::SymError;
@@ -248,19 +248,25 @@ const COORD: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 const VELO: [&str; 6] = ["vx", "vy", "vz", "wx", "wy", "wz"];
 
 fn select_rows<S: Scalar>(m: &SparseMatrix<S>, rows: &[usize]) -> SparseMatrix<S> {
-    let cols: Vec<usize> = (0..m.ncols()).collect();
-    m.select(rows, &cols)
+    m.select_rows(rows)
 }
 
 fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> Vec<Row<S>> {
-    (0..m.nrows()).map(|i| m.row(i).to_vec()).collect()
+    (0..m.nrows())
+        .map(|i| {
+            let r = m.row(i);
+            let mut v = Vec::with_capacity(fill_room(r.len(), m.ncols()));
+            v.extend_from_slice(r);
+            v
+        })
+        .collect()
 }
 
 fn hstack<S: Scalar>(
     a: &SparseMatrix<S>,
     b: &SparseMatrix<S>,
 ) -> Result<SparseMatrix<S>, SymError> {
-    SparseMatrix::block(&[vec![Some(a), Some(b)]])
+    SparseMatrix::hcat(&[a, b])
 }
 
 fn vstack<S: Scalar>(
@@ -273,7 +279,7 @@ fn vstack<S: Scalar>(
     if b.nrows() == 0 {
         return Ok(a.clone());
     }
-    SparseMatrix::block(&[vec![Some(a)], vec![Some(b)]])
+    SparseMatrix::vcat(a, b)
 }
 
 fn record_checks<S: Scalar>(
@@ -385,9 +391,7 @@ pub fn reduce<S: Scalar>(
     report.pinned = (0..d).filter(|&g| !is_active[g]).map(coord_name).collect();
     let n = active.len();
     let jm = a.holonomic.select(&j_keep, &active);
-    let nm = a
-        .nonholonomic
-        .select(&(0..a.nonholonomic.nrows()).collect::<Vec<_>>(), &active);
+    let nm = a.nonholonomic.columns_of(&active);
     let all_active: Vec<usize> = active.clone();
     let msel = |m: &SparseMatrix<S>| m.select(&all_active, &all_active);
     let mass = msel(&a.mass);
@@ -396,9 +400,7 @@ pub fn reduce<S: Scalar>(
     let vel = msel(&a.velocity);
     let f_u = select_rows(&a.input_force, &active);
     let g_u = select_rows(&a.input_rate_force, &active);
-    let c_s = a
-        .sensor_rows
-        .select(&(0..a.sensor_rows.nrows()).collect::<Vec<_>>(), &active);
+    let c_s = a.sensor_rows.columns_of(&active);
     let jlabel = |r: usize| a.holonomic_rows[j_keep[r]].clone();
     let mut checks = Vec::new();
 
@@ -509,12 +511,13 @@ pub fn reduce<S: Scalar>(
     // ------------------------------------------------------------ 4. dynamics
     let nx = np + nw;
     let rwt = rw.transpose();
-    let m_r = rwt.mul(&mass)?.mul(&rw)?;
-    let e21 = rwt.mul(&mass)?.mul(&wp)?;
+    let rwt_m = rwt.mul(&mass)?;
+    let m_r = rwt_m.mul(&rw)?;
+    let e21 = rwt_m.mul(&wp)?;
     let wfull = hstack(&wp, &rw)?; // w = Wfull x
     let pfull = hstack(&rp, &SparseMatrix::zeros(n, nw))?; // p = Pfull x
     let kin = wfull.sub(&vel.mul(&pfull)?)?; // ṗ = (W − V P) x
-    let a1 = kin.select(&indep_p, &(0..nx).collect::<Vec<_>>());
+    let a1 = kin.select_rows(&indep_p);
     let a2 = rwt
         .mul(&stiff)?
         .mul(&pfull)?
@@ -523,7 +526,7 @@ pub fn reduce<S: Scalar>(
     let rhs_a = a2.sub(&e21.mul(&a1)?)?;
     let b2 = rwt.mul(&f_u)?;
     let g2 = rwt.mul(&g_u)?;
-    let m_aug = hstack(&hstack(&m_r, &rhs_a)?, &hstack(&b2, &g2)?)?;
+    let m_aug = SparseMatrix::hcat(&[&m_r, &rhs_a, &b2, &g2])?;
     let rm = rref(to_rows(&m_aug), nw, &[], plan.map(|p| &p.mass))?;
     let vcoord = |t: usize| coord(active[indep_w[t]], true);
     let vname = |t: usize| vcoord(t).to_string();
@@ -544,19 +547,10 @@ pub fn reduce<S: Scalar>(
         )));
     }
     let mi = nm_rows_to_matrix(&rm, nw, nx + b2.ncols() + g2.ncols());
-    let xa = mi.select(
-        &(0..nw).collect::<Vec<_>>(),
-        &(nw..nw + nx).collect::<Vec<_>>(),
-    );
+    let xa = mi.columns(nw..nw + nx);
     let m_in = f_u.ncols();
-    let xb = mi.select(
-        &(0..nw).collect::<Vec<_>>(),
-        &(nw + nx..nw + nx + m_in).collect::<Vec<_>>(),
-    );
-    let xg = mi.select(
-        &(0..nw).collect::<Vec<_>>(),
-        &(nw + nx + m_in..nw + nx + 2 * m_in).collect::<Vec<_>>(),
-    );
+    let xb = mi.columns(nw + nx..nw + nx + m_in);
+    let xg = mi.columns(nw + nx + m_in..nw + nx + 2 * m_in);
     let a_ss = vstack(&a1, &xa)?;
     let gamma = vstack(&SparseMatrix::zeros(np, m_in), &xg)?;
     let b_raw = vstack(&SparseMatrix::zeros(np, m_in), &xb)?;
@@ -570,7 +564,7 @@ pub fn reduce<S: Scalar>(
         d_out.push(i, j, v);
     }
     for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
-        let row = c_s.select(&[o], &(0..n).collect::<Vec<_>>());
+        let row = c_s.select_rows(&[o]);
         let (c_row, d_row) = match (order, frame) {
             (SensorOrder::Displacement, _) => {
                 let c = row.mul(&pfull)?;
