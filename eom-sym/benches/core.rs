@@ -20,9 +20,12 @@
 //!   libm's fast paths for inf/NaN rather than the tape). Throughput is in unique DAG nodes
 //!   (numbers included), so the time per element is the time per node: `tape_eval_into`
 //!   (target ≤ 2 ns per node) against `eval_generic::<f64>` (the recursive reference) and
-//!   `eval_generic::<Dd>` (double-double). The tape's instruction count (binary operations
-//!   after sharing) is printed once. `tape_eval_batch64` evaluates 64 points per call (in
-//!   chunks of 16), throughput in nodes × points: the time per node per point.
+//!   `eval_generic::<Dd>` (double-double); the tape's instruction count (binary operations
+//!   after common subexpressions) is printed once. `tape_reassociating_eval_into`: the same
+//!   roots compiled by `Tape::new_reassociating` (fewer instructions; its values differ from
+//!   the others in rounding, and by much on this ill-conditioned DAG, which changes the cost
+//!   of `sin` too). `tape_eval_batch64` evaluates 64 points per call (in chunks of 16),
+//!   throughput in nodes × points: the time per node per point.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_sym::testing::{SplitMix, params, random_node};
@@ -253,6 +256,21 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
     g.bench_function("tape_eval_into", |b| {
         b.iter(|| {
             tape.eval_into(black_box(&values), &mut out, &mut work)
+                .unwrap()
+        })
+    });
+    // The same roots with reassociating sharing: fewer instructions, other rounding (the
+    // values differ, by much on this ill-conditioned DAG, so the cost of libm may too).
+    let shared = Tape::new_reassociating(roots, ps).expect("tape");
+    let mut swork = vec![0.0; shared.work_len()];
+    eprintln!(
+        "{name}: reassociating tape of {} instructions",
+        shared.len()
+    );
+    g.bench_function("tape_reassociating_eval_into", |b| {
+        b.iter(|| {
+            shared
+                .eval_into(black_box(&values), &mut out, &mut swork)
                 .unwrap()
         })
     });
