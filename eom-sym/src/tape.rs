@@ -98,10 +98,9 @@ pub struct TapeWorkspace {
     lanes: Vec<[f64; LANES]>,
 }
 
-/// Points evaluated together by [`Tape::eval_batch`]. Interpreting a tape costs mostly the
-/// decoding of each instruction (mispredicted branches), not the arithmetic; decoding once per
-/// chunk of points and applying the instruction to all of them in a tight loop divides that
-/// cost by the chunk size.
+/// Points evaluated together by [`Tape::eval_batch`]: the interpreter's own work (operand
+/// indices, block loops) is paid once per chunk, and the arithmetic on contiguous lanes
+/// vectorises. (Measured on a 10 000-node DAG: 16 beats 4 and 8; 32 is no better.)
 const LANES: usize = 16;
 
 /// What the interpreter computes on: one point (`f64`) or a chunk of points
