@@ -12,17 +12,20 @@
 //!   its numeric coefficients and exponents (one per term of a sum or factor of a product) —
 //!   about 6.3 here; the counts (calls, insertions, nodes created) are printed once so that
 //!   constructor calls per second can be derived. Target: ≥ 5·10⁶ insertions per second.
-//! * `eval/*`, `eval_bounded/*`: one evaluation of the 50 roots of a random DAG over 20
-//!   parameters; throughput in tape instructions (= unique nodes), so the time per element is
-//!   the time per node. `tape_eval_into` (target ≤ 2 ns per node) against
-//!   `eval_generic::<f64>` (the recursive reference) and `eval_generic::<Dd>` (double-double).
-//!   `eval` is `testing::random_dag(&params(20, 7, true), 10_000, 50, 11)` as specified; its
-//!   values overflow (repeated squaring) and about two thirds of its instructions compute
-//!   inf/NaN, which libm handles on fast paths. `eval_bounded` uses the same operation mix but
-//!   keeps only nodes whose nominal value lies in [1e-6, 1e6], so every instruction computes a
-//!   finite number — the representative case. `eval_bounded/tape_eval_batch64` evaluates 64
-//!   points per call (in chunks of 16) (throughput in instructions × points: time per node per point); the
-//!   overflowing DAG has no batch bench, since `eval_batch` reports its non-finite outputs.
+//! * `eval/*`: one evaluation of the 50 roots of a random DAG of 10 033 unique nodes over 20
+//!   parameters, built with the operation mix of `testing::random_dag` (`testing::random_node`:
+//!   `+ − · /(1+b²) sin √(1+a²) powi`) but keeping only nodes whose nominal value lies in
+//!   [1e-6, 1e6], so that every instruction computes a finite number (`random_dag` itself
+//!   overflows to ±inf in about two thirds of its nodes by repeated squaring, which measures
+//!   libm's fast paths for inf/NaN rather than the tape). Throughput is in unique DAG nodes
+//!   (numbers included), so the time per element is the time per node: `tape_eval_into`
+//!   (target ≤ 2 ns per node) against `eval_generic::<f64>` (the recursive reference) and
+//!   `eval_generic::<Dd>` (double-double); the tape's instruction count (binary operations
+//!   after common subexpressions) is printed once. `tape_reassociating_eval_into`: the same
+//!   roots compiled by `Tape::new_reassociating` (fewer instructions; its values differ from
+//!   the others in rounding, and by much on this ill-conditioned DAG, which changes the cost
+//!   of `sin` too). `tape_eval_batch64` evaluates 64 points per call (in chunks of 16),
+//!   throughput in nodes × points: the time per node per point.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_sym::testing::{SplitMix, params, random_node};
@@ -233,29 +236,41 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
     tape.eval_into(&values, &mut out, &mut work).unwrap();
     let non_finite = work.iter().filter(|v| !v.is_finite()).count();
     eprintln!(
-        "{name}: DAG of {} unique nodes ({} tape instructions, {non_finite} of them non-finite \
-         at the nominal point; {} arithmetic operations), {} roots, {} parameters",
+        "{name}: DAG of {} unique nodes ({} arithmetic operations; {} tape instructions, \
+         {non_finite} work slots non-finite at the nominal point), {} roots, {} parameters",
         Expr::dag_size(roots),
-        tape.len(),
         Expr::op_count(roots).total(),
+        tape.len(),
         roots.len(),
         ps.len()
     );
-    // The evaluators agree where the values are finite (the property tests check this in
-    // general, with error bounds).
+    // The tape keeps the recursive evaluator's order of operations: the same values exactly
+    // (this DAG's values are mostly rounding noise, so any reassociation would show).
     let g64 = eval_generic::<f64>(roots, |i| Some(by_index[i as usize])).unwrap();
     for (a, b) in out.iter().zip(&g64) {
-        assert!(
-            !b.is_finite() || (a - b).abs() <= 1e-9 * b.abs().max(1.0),
-            "{a} vs {b}"
-        );
+        assert!(a.to_bits() == b.to_bits(), "{a} vs {b}");
     }
 
     let mut g = c.benchmark_group(name);
-    g.throughput(Throughput::Elements(tape.len() as u64));
+    g.throughput(Throughput::Elements(tape.n_nodes() as u64));
     g.bench_function("tape_eval_into", |b| {
         b.iter(|| {
             tape.eval_into(black_box(&values), &mut out, &mut work)
+                .unwrap()
+        })
+    });
+    // The same roots with reassociating sharing: fewer instructions, other rounding (the
+    // values differ, by much on this ill-conditioned DAG, so the cost of libm may too).
+    let shared = Tape::new_reassociating(roots, ps).expect("tape");
+    let mut swork = vec![0.0; shared.work_len()];
+    eprintln!(
+        "{name}: reassociating tape of {} instructions",
+        shared.len()
+    );
+    g.bench_function("tape_reassociating_eval_into", |b| {
+        b.iter(|| {
+            shared
+                .eval_into(black_box(&values), &mut out, &mut swork)
                 .unwrap()
         })
     });
@@ -269,14 +284,14 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
         let mut bout = vec![0.0; POINTS * tape.n_outputs()];
         tape.eval_batch(&batch, &mut bout, &mut ws)
             .expect("finite batch");
-        g.throughput(Throughput::Elements((tape.len() * POINTS) as u64));
+        g.throughput(Throughput::Elements((tape.n_nodes() * POINTS) as u64));
         g.bench_function("tape_eval_batch64", |b| {
             b.iter(|| {
                 tape.eval_batch(black_box(&batch), &mut bout, &mut ws)
                     .unwrap()
             })
         });
-        g.throughput(Throughput::Elements(tape.len() as u64));
+        g.throughput(Throughput::Elements(tape.n_nodes() as u64));
     }
     g.bench_function("eval_generic_f64", |b| {
         b.iter(|| eval_generic::<f64>(black_box(roots), |i| Some(by_index[i as usize])).unwrap())

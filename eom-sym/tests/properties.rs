@@ -438,22 +438,24 @@ fn tape_recursive_and_double_double_evaluation_agree() {
             (walked - reference).to_f64().abs() <= dd_tol,
             "walker {walked} vs eval_generic::<Dd> {reference} (tol {dd_tol:e}) for {e}"
         );
-        let tape = Tape::new(&[e], &p).expect("tape of a valid expression");
-        let t = tape.eval_vec(&x);
         let g = eval_generic::<f64>(&[e], |i| pt.f64_of(i)).unwrap()[0];
         let tol = 2.0 * bound + TINY;
         let rf = reference.to_f64();
-        match t {
-            Ok(t) => prop_assert!(
-                (Dd::from_f64(t[0]) - reference).to_f64().abs() <= tol,
-                "tape {} vs reference {reference}: error {:e} > tol {tol:e} for {e}",
-                t[0],
-                (t[0] - rf).abs()
-            ),
-            Err(err) => prop_assert!(
-                false,
-                "tape failed ({err}) where the reference is {reference}"
-            ),
+        // The exact tape and the reassociating one (other rounding, same bound).
+        for tape in [Tape::new(&[e], &p), Tape::new_reassociating(&[e], &p)] {
+            let tape = tape.expect("tape of a valid expression");
+            match tape.eval_vec(&x) {
+                Ok(t) => prop_assert!(
+                    (Dd::from_f64(t[0]) - reference).to_f64().abs() <= tol,
+                    "tape {} vs reference {reference}: error {:e} > tol {tol:e} for {e}",
+                    t[0],
+                    (t[0] - rf).abs()
+                ),
+                Err(err) => prop_assert!(
+                    false,
+                    "tape failed ({err}) where the reference is {reference}"
+                ),
+            }
         }
         prop_assert!(
             g.is_finite() && (Dd::from_f64(g) - reference).to_f64().abs() <= tol,
