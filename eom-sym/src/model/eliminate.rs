@@ -209,15 +209,12 @@ fn row_scale<S: Scalar>(row: &Row<S>, eligible: usize) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Pivot-search statistics of a row that has not been pivoted: the largest eligible entry
+/// Pivot-search statistics of a row that has not been pivoted (all its eligible entries are
+/// live): the largest eligible entry
 /// and the number of entries that are not negligible (`None` when the row has no usable
 /// entry). They change only when the row does, so they are cached between steps.
-fn row_stats<S: Scalar>(row: &[(usize, S)], col_done: &[bool], scale: f64) -> Option<(f64, usize)> {
-    let live = || {
-        row.iter()
-            .filter(|e| !col_done[e.0])
-            .map(|e| e.1.nominal().abs())
-    };
+fn row_stats<S: Scalar>(row: &[(usize, S)], scale: f64) -> Option<(f64, usize)> {
+    let live = || row.iter().map(|e| e.1.nominal().abs());
     let rmax = live().fold(0.0, f64::max);
     if rmax.is_nan() || rmax <= NEGLIGIBLE * scale || !rmax.is_finite() {
         return None;
@@ -239,6 +236,8 @@ struct Elim<S> {
     /// Cached [`row_stats`]; `dirty` rows must be recomputed.
     stats: Vec<Option<(f64, usize)>>,
     dirty: Vec<bool>,
+    /// Length of each row's eligible part, cached with `stats`.
+    elen: Vec<usize>,
     cols: ColRows,
     scratch: Row<S>,
     plan: EliminationPlan,
@@ -334,15 +333,20 @@ impl<S: Scalar> Elim<S> {
             if self.pivoted[r] {
                 continue;
             }
-            let row = eligible_part(&self.rows[r], self.eligible);
             if self.dirty[r] {
-                self.stats[r] = row_stats(row, &self.col_done, row_scale);
+                let row = eligible_part(&self.rows[r], self.eligible);
+                self.stats[r] = row_stats(row, row_scale);
+                self.elen[r] = row.len();
                 self.dirty[r] = false;
             }
             let Some((rmax, rc)) = self.stats[r] else {
                 continue;
             };
-            for e in row.iter().filter(|e| !self.col_done[e.0]) {
+            // A row without a pivot has no entry in a pivot column (each step clears its
+            // column from every other row), so all its eligible entries are live.
+            let row = &self.rows[r][..self.elen[r]];
+            debug_assert!(row.iter().all(|e| !self.col_done[e.0]));
+            for e in row {
                 let (c, v) = (e.0, e.1.nominal().abs());
                 if v < THRESHOLD * rmax {
                     continue;
@@ -431,6 +435,7 @@ pub fn rref<S: Scalar>(
         ccount,
         stats: vec![None; if search { nrows } else { 0 }],
         dirty: vec![true; if search { nrows } else { 0 }],
+        elen: vec![0; if search { nrows } else { 0 }],
         cols,
         scratch: Vec::with_capacity(2 * el_rows_max),
         plan: EliminationPlan::default(),
