@@ -348,12 +348,16 @@ impl<S: Scalar> SparseMatrix<S> {
             products += p;
             row_max = row_max.max(p);
         }
+        let nnz_hint = products.min(self.nrows * other.ncols);
+        if S::FOLD_SUM {
+            return Ok(self.mul_dense_acc(other, row_max, nnz_hint));
+        }
         let mut acc: Vec<(usize, S)> = Vec::with_capacity(row_max);
         let mut terms: Vec<S> = Vec::with_capacity(row_max.min(self.ncols));
         Ok(Self::from_row_fn_with(
             self.nrows,
             other.ncols,
-            products.min(self.nrows * other.ncols),
+            nnz_hint,
             |i, out| {
                 acc.clear();
                 for &(k, a) in self.row(i) {
@@ -390,6 +394,44 @@ impl<S: Scalar> SparseMatrix<S> {
                 }
             },
         ))
+    }
+
+    /// [`Self::mul`] for scalars whose sums are folds: each entry is accumulated in a dense
+    /// row in the order its terms arise, which is the order `mul` would sum them in (the
+    /// value differs only in the sign of a zero result, which is dropped either way).
+    fn mul_dense_acc(&self, other: &Self, row_max: usize, nnz_hint: usize) -> Self {
+        let mut dense = vec![S::zero(); other.ncols];
+        // Row (plus one) that last touched each column: no clearing between rows.
+        let mut stamp = vec![0usize; other.ncols];
+        let mut cols: Vec<usize> = Vec::with_capacity(row_max.min(other.ncols));
+        Self::from_row_fn_with(self.nrows, other.ncols, nnz_hint, |i, out| {
+            cols.clear();
+            for &(k, a) in self.row(i) {
+                for &(j, b) in other.row(k) {
+                    let p = if a.is_one() {
+                        b
+                    } else if b.is_one() {
+                        a
+                    } else {
+                        a * b
+                    };
+                    if stamp[j] != i + 1 {
+                        stamp[j] = i + 1;
+                        dense[j] = p;
+                        cols.push(j);
+                    } else {
+                        dense[j] = dense[j] + p;
+                    }
+                }
+            }
+            cols.sort_unstable();
+            for &j in &cols {
+                let v = dense[j];
+                if !v.is_zero() {
+                    out.push((j, v));
+                }
+            }
+        })
     }
 
     /// `self + other`.
