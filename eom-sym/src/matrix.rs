@@ -58,37 +58,71 @@ impl<S: Scalar> Triplets<S> {
         }
     }
     /// Build the matrix.
-    pub fn build(mut self) -> SparseMatrix<S> {
-        self.items.sort_by_key(|e| (e.0, e.1));
-        let mut m = SparseMatrix {
-            nrows: self.nrows,
-            ncols: self.ncols,
-            row_ptr: Vec::with_capacity(self.nrows + 1),
-            entries: Vec::with_capacity(self.items.len()),
-        };
-        m.row_ptr.push(0);
+    pub fn build(self) -> SparseMatrix<S> {
+        // Counting sort by row, then a stable insertion sort of each row's few entries by
+        // column: the order of a stable sort by (row, column), so duplicates are summed in
+        // insertion order, without a general sort's work and scratch allocation.
+        let nrows = self.nrows;
+        let mut row_ptr = vec![0usize; nrows + 1];
+        for it in &self.items {
+            row_ptr[it.0 + 1] += 1;
+        }
+        for i in 0..nrows {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        let mut entries: Vec<(usize, S)> = vec![(0, S::zero()); self.items.len()];
+        // `row_ptr[i]` serves as row i's insertion point, then holds the start of row i + 1.
+        for &(i, j, v) in &self.items {
+            entries[row_ptr[i]] = (j, v);
+            row_ptr[i] += 1;
+        }
+        for i in (1..=nrows).rev() {
+            row_ptr[i] = row_ptr[i - 1];
+        }
+        row_ptr[0] = 0;
         let mut terms: Vec<S> = Vec::new();
-        let mut p = 0;
-        for i in 0..self.nrows {
-            while p < self.items.len() && self.items[p].0 == i {
-                let j = self.items[p].1;
-                terms.clear();
-                while p < self.items.len() && self.items[p].0 == i && self.items[p].1 == j {
-                    terms.push(self.items[p].2);
-                    p += 1;
+        let mut w = 0;
+        for i in 0..nrows {
+            let (a, b) = (row_ptr[i], row_ptr[i + 1]);
+            let row = &mut entries[a..b];
+            for k in 1..row.len() {
+                let mut m = k;
+                while m > 0 && row[m - 1].0 > row[m].0 {
+                    row.swap(m - 1, m);
+                    m -= 1;
                 }
-                let v = if terms.len() == 1 {
-                    terms[0]
+            }
+            row_ptr[i] = w;
+            // Sum duplicates, compacting in place (the write position never passes the read).
+            let mut p = a;
+            while p < b {
+                let j = entries[p].0;
+                let mut q = p + 1;
+                while q < b && entries[q].0 == j {
+                    q += 1;
+                }
+                let v = if q == p + 1 {
+                    entries[p].1
                 } else {
+                    terms.clear();
+                    terms.extend(entries[p..q].iter().map(|e| e.1));
                     S::sum(&terms).recognise_zero()
                 };
                 if !v.is_zero() {
-                    m.entries.push((j, v));
+                    entries[w] = (j, v);
+                    w += 1;
                 }
+                p = q;
             }
-            m.row_ptr.push(m.entries.len());
         }
-        m
+        row_ptr[nrows] = w;
+        entries.truncate(w);
+        SparseMatrix {
+            nrows,
+            ncols: self.ncols,
+            row_ptr,
+            entries,
+        }
     }
 }
 
@@ -302,18 +336,28 @@ impl<S: Scalar> SparseMatrix<S> {
                 self.nrows, self.ncols, other.nrows, other.ncols
             )));
         }
-        // Flat accumulator: (column, product) pairs of one row, grouped by column.
-        let products: usize = self
-            .entries
-            .iter()
-            .map(|&(k, _)| other.row_ptr[k + 1] - other.row_ptr[k])
-            .sum();
-        let mut acc: Vec<(usize, S)> = Vec::with_capacity(other.ncols.min(products));
-        let mut terms: Vec<S> = Vec::with_capacity(8);
+        // Flat accumulator: (column, product) pairs of one row, grouped by column; sized for
+        // the row with the most products so that it never grows.
+        let (mut products, mut row_max) = (0, 0);
+        for i in 0..self.nrows {
+            let p: usize = self
+                .row(i)
+                .iter()
+                .map(|&(k, _)| other.row_ptr[k + 1] - other.row_ptr[k])
+                .sum();
+            products += p;
+            row_max = row_max.max(p);
+        }
+        let nnz_hint = products.min(self.nrows * other.ncols);
+        if S::FOLD_SUM {
+            return Ok(self.mul_dense_acc(other, row_max, nnz_hint));
+        }
+        let mut acc: Vec<(usize, S)> = Vec::with_capacity(row_max);
+        let mut terms: Vec<S> = Vec::with_capacity(row_max.min(self.ncols));
         Ok(Self::from_row_fn_with(
             self.nrows,
             other.ncols,
-            products.min(self.nrows * other.ncols),
+            nnz_hint,
             |i, out| {
                 acc.clear();
                 for &(k, a) in self.row(i) {
@@ -350,6 +394,44 @@ impl<S: Scalar> SparseMatrix<S> {
                 }
             },
         ))
+    }
+
+    /// [`Self::mul`] for scalars whose sums are folds: each entry is accumulated in a dense
+    /// row in the order its terms arise, which is the order `mul` would sum them in (the
+    /// value differs only in the sign of a zero result, which is dropped either way).
+    fn mul_dense_acc(&self, other: &Self, row_max: usize, nnz_hint: usize) -> Self {
+        let mut dense = vec![S::zero(); other.ncols];
+        // Row (plus one) that last touched each column: no clearing between rows.
+        let mut stamp = vec![0usize; other.ncols];
+        let mut cols: Vec<usize> = Vec::with_capacity(row_max.min(other.ncols));
+        Self::from_row_fn_with(self.nrows, other.ncols, nnz_hint, |i, out| {
+            cols.clear();
+            for &(k, a) in self.row(i) {
+                for &(j, b) in other.row(k) {
+                    let p = if a.is_one() {
+                        b
+                    } else if b.is_one() {
+                        a
+                    } else {
+                        a * b
+                    };
+                    if stamp[j] != i + 1 {
+                        stamp[j] = i + 1;
+                        dense[j] = p;
+                        cols.push(j);
+                    } else {
+                        dense[j] = dense[j] + p;
+                    }
+                }
+            }
+            cols.sort_unstable();
+            for &j in &cols {
+                let v = dense[j];
+                if !v.is_zero() {
+                    out.push((j, v));
+                }
+            }
+        })
     }
 
     /// `self + other`.

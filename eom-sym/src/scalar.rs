@@ -27,6 +27,11 @@ pub trait Scalar:
     /// Is this a symbolic type (results are expressions whose validity elsewhere must be
     /// recorded)? Numeric types evaluate at one point, where their own pivots are valid.
     const SYMBOLIC: bool = false;
+    /// Is [`Scalar::sum`] the left-to-right fold of `+` (and [`Scalar::recognise_zero`] the
+    /// identity), so that a sum may be accumulated term by term in the same order, with the
+    /// same value wherever it is not zero? Lets numeric products use a dense accumulator
+    /// instead of gathering and sorting each entry's terms.
+    const FOLD_SUM: bool = false;
     /// 0.
     fn zero() -> Self;
     /// 1.
@@ -80,6 +85,7 @@ pub trait Scalar:
 }
 
 impl Scalar for f64 {
+    const FOLD_SUM: bool = true;
     fn zero() -> f64 {
         0.0
     }

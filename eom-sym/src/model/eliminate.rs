@@ -110,8 +110,16 @@ fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
 }
 
 /// `target ← target − f · src` (the pivot column `skip_col` is dropped), skipping structural
-/// zeros; `scratch` is reused so that repeated updates do not allocate.
-fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scratch: &mut Row<S>) {
+/// zeros; `scratch` is reused so that repeated updates do not allocate. `mark(col, present)`
+/// hears of every column that enters or leaves the row's structure.
+fn axpy<S: Scalar>(
+    target: &mut Row<S>,
+    f: S,
+    src: &Row<S>,
+    skip_col: usize,
+    scratch: &mut Row<S>,
+    mut mark: impl FnMut(usize, bool),
+) {
     scratch.clear();
     let (mut i, mut j) = (0, 0);
     while i < target.len() && j < src.len() {
@@ -125,6 +133,7 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
                 let v = -(f * s);
                 if !v.is_zero() {
                     scratch.push((cj, v));
+                    mark(cj, true);
                 }
             }
             j += 1;
@@ -133,7 +142,11 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
                 let v = (if s.is_one() { t - f } else { t - f * s }).recognise_zero();
                 if !v.is_zero() {
                     scratch.push((ci, v));
+                } else {
+                    mark(ci, false);
                 }
+            } else {
+                mark(ci, false);
             }
             i += 1;
             j += 1;
@@ -145,6 +158,7 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
             let v = -(f * s);
             if !v.is_zero() {
                 scratch.push((cj, v));
+                mark(cj, true);
             }
         }
     }
@@ -152,6 +166,35 @@ fn axpy<S: Scalar>(target: &mut Row<S>, f: S, src: &Row<S>, skip_col: usize, scr
     // fill-in, and the one scratch buffer reaches its largest size once.
     target.clear();
     target.extend_from_slice(scratch);
+}
+
+/// Which rows hold an entry in each eligible column (one bit per row), so that a pivot step
+/// visits only the rows it changes instead of searching every row for the pivot column.
+struct ColRows {
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl ColRows {
+    fn new<S>(rows: &[Row<S>], eligible: usize) -> Self {
+        let words = rows.len().div_ceil(64);
+        let mut m = ColRows {
+            words,
+            bits: vec![0; words * eligible],
+        };
+        for (r, row) in rows.iter().enumerate() {
+            for e in eligible_part(row, eligible) {
+                m.set(e.0, r, true);
+            }
+        }
+        m
+    }
+
+    fn set(&mut self, col: usize, row: usize, present: bool) {
+        let w = &mut self.bits[col * self.words + row / 64];
+        let b = 1u64 << (row % 64);
+        if present { *w |= b } else { *w &= !b }
+    }
 }
 
 /// The entries of a row in the eligible columns: a prefix, since rows are sorted by column.
@@ -166,15 +209,12 @@ fn row_scale<S: Scalar>(row: &Row<S>, eligible: usize) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Pivot-search statistics of a row that has not been pivoted: the largest eligible entry
+/// Pivot-search statistics of a row that has not been pivoted (all its eligible entries are
+/// live): the largest eligible entry
 /// and the number of entries that are not negligible (`None` when the row has no usable
 /// entry). They change only when the row does, so they are cached between steps.
-fn row_stats<S: Scalar>(row: &[(usize, S)], col_done: &[bool], scale: f64) -> Option<(f64, usize)> {
-    let live = || {
-        row.iter()
-            .filter(|e| !col_done[e.0])
-            .map(|e| e.1.nominal().abs())
-    };
+fn row_stats<S: Scalar>(row: &[(usize, S)], scale: f64) -> Option<(f64, usize)> {
+    let live = || row.iter().map(|e| e.1.nominal().abs());
     let rmax = live().fold(0.0, f64::max);
     if rmax.is_nan() || rmax <= NEGLIGIBLE * scale || !rmax.is_finite() {
         return None;
@@ -196,6 +236,9 @@ struct Elim<S> {
     /// Cached [`row_stats`]; `dirty` rows must be recomputed.
     stats: Vec<Option<(f64, usize)>>,
     dirty: Vec<bool>,
+    /// Length of each row's eligible part, cached with `stats`.
+    elen: Vec<usize>,
+    cols: ColRows,
     scratch: Row<S>,
     plan: EliminationPlan,
     records: Vec<PivotRecord<S>>,
@@ -239,15 +282,35 @@ impl<S: Scalar> Elim<S> {
             }
         }
         let prow = std::mem::take(&mut self.rows[r]);
-        for k in 0..nrows {
-            if k == r {
-                continue;
-            }
-            if let Some(f) = get(&self.rows[k], c) {
+        // Only the rows holding column `c` change; a word is read before its rows are updated
+        // (which clear their bit of column `c`).
+        for w in 0..self.cols.words {
+            let mut bits = self.cols.bits[c * self.cols.words + w];
+            while bits != 0 {
+                let k = 64 * w + bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                if k == r {
+                    continue;
+                }
+                let Some(f) = get(&self.rows[k], c) else {
+                    continue;
+                };
                 if self.search {
                     self.count(k, -1);
                 }
-                axpy(&mut self.rows[k], f, &prow, c, &mut self.scratch);
+                let cols = &mut self.cols;
+                axpy(
+                    &mut self.rows[k],
+                    f,
+                    &prow,
+                    c,
+                    &mut self.scratch,
+                    |j, present| {
+                        if j < eligible {
+                            cols.set(j, k, present);
+                        }
+                    },
+                );
                 if self.search {
                     self.count(k, 1);
                     self.dirty[k] = true;
@@ -270,15 +333,20 @@ impl<S: Scalar> Elim<S> {
             if self.pivoted[r] {
                 continue;
             }
-            let row = eligible_part(&self.rows[r], self.eligible);
             if self.dirty[r] {
-                self.stats[r] = row_stats(row, &self.col_done, row_scale);
+                let row = eligible_part(&self.rows[r], self.eligible);
+                self.stats[r] = row_stats(row, row_scale);
+                self.elen[r] = row.len();
                 self.dirty[r] = false;
             }
             let Some((rmax, rc)) = self.stats[r] else {
                 continue;
             };
-            for e in row.iter().filter(|e| !self.col_done[e.0]) {
+            // A row without a pivot has no entry in a pivot column (each step clears its
+            // column from every other row), so all its eligible entries are live.
+            let row = &self.rows[r][..self.elen[r]];
+            debug_assert!(row.iter().all(|e| !self.col_done[e.0]));
+            for e in row {
                 let (c, v) = (e.0, e.1.nominal().abs());
                 if v < THRESHOLD * rmax {
                     continue;
@@ -291,6 +359,11 @@ impl<S: Scalar> Elim<S> {
                 };
                 if better {
                     best = Some((mk, -ratio, r, c));
+                    // No fill-in at the row's largest entry cannot be beaten, and ties go
+                    // to the first found: stop searching.
+                    if mk == 0 && ratio == 1.0 {
+                        return Some((r, c));
+                    }
                 }
             }
         }
@@ -351,6 +424,7 @@ pub fn rref<S: Scalar>(
     }
     // Merges grow with fill-in; start the shared buffer at twice the longest row.
     let el_rows_max = rows.iter().map(Vec::len).max().unwrap_or(0);
+    let cols = ColRows::new(&rows, eligible);
     let mut el = Elim {
         rows,
         eligible,
@@ -361,6 +435,8 @@ pub fn rref<S: Scalar>(
         ccount,
         stats: vec![None; if search { nrows } else { 0 }],
         dirty: vec![true; if search { nrows } else { 0 }],
+        elen: vec![0; if search { nrows } else { 0 }],
+        cols,
         scratch: Vec::with_capacity(2 * el_rows_max),
         plan: EliminationPlan::default(),
         records: Vec::new(),

@@ -425,7 +425,14 @@ pub fn reduce<S: Scalar>(
     for (t, &k) in indep_p.iter().enumerate() {
         indep_pos[k] = t;
     }
-    let mut rp = Triplets::new(n, np);
+    let pivot_nnz = |r: &Rref<S>| {
+        r.plan
+            .pivots
+            .iter()
+            .map(|&(p, _)| r.rows[p].len())
+            .sum::<usize>()
+    };
+    let mut rp = Triplets::with_capacity(n, np, np + pivot_nnz(&rj));
     for (t, &k) in indep_p.iter().enumerate() {
         rp.push(k, t, S::one());
     }
@@ -488,8 +495,9 @@ pub fn reduce<S: Scalar>(
     for (t, &k) in indep_w.iter().enumerate() {
         indep_wpos[k] = t;
     }
-    let mut rw = Triplets::new(n, nw);
-    let mut wp = Triplets::new(n, np);
+    let rg_nnz = pivot_nnz(&rg);
+    let mut rw = Triplets::with_capacity(n, nw, nw + rg_nnz);
+    let mut wp = Triplets::with_capacity(n, np, rg_nnz);
     for (t, &k) in indep_w.iter().enumerate() {
         rw.push(k, t, S::one());
     }
@@ -558,8 +566,12 @@ pub fn reduce<S: Scalar>(
 
     // ------------------------------------------------------------ 5. outputs
     let nout = c_s.nrows();
-    let mut c_out = Triplets::new(nout, nx);
-    let mut d_out = Triplets::new(nout, a.feedthrough.ncols());
+    let mut c_out = Triplets::with_capacity(nout, nx, nout * nx);
+    let mut d_out = Triplets::with_capacity(
+        nout,
+        a.feedthrough.ncols(),
+        a.feedthrough.nnz() + nout * a.feedthrough.ncols(),
+    );
     for (i, j, v) in a.feedthrough.iter() {
         d_out.push(i, j, v);
     }
@@ -604,7 +616,7 @@ pub fn reduce<S: Scalar>(
     }
 
     // ------------------------------------------------------------ 6. map back and names
-    let mut phys = Triplets::new(d, nx);
+    let mut phys = Triplets::with_capacity(d, nx, pfull.nnz());
     for (i, j, v) in pfull.iter() {
         phys.push(active[i], j, v);
     }
@@ -662,7 +674,13 @@ fn to_dense<S: Scalar>(m: &SparseMatrix<S>) -> DMatrix<S> {
 /// The reduced rows of a square elimination with its right-hand sides, pivot rows reordered
 /// so that row `c` holds the solution for unknown `c`.
 fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> SparseMatrix<S> {
-    let mut m = Triplets::new(nunk, nunk + nrhs);
+    let nnz = r
+        .plan
+        .pivots
+        .iter()
+        .map(|&(row, _)| r.rows[row].len())
+        .sum();
+    let mut m = Triplets::with_capacity(nunk, nunk + nrhs, nnz);
     for &(row, c) in &r.plan.pivots {
         for &(k, v) in &r.rows[row] {
             m.push(c, k, v);
