@@ -257,12 +257,10 @@ impl Ctx<'_> {
                     (f, MathLib::Libm) => {
                         let name = match f {
                             Fn1::Sqrt => "sqrt",
-                            Fn1::Sin => "sin",
-                            Fn1::Cos => "cos",
                             Fn1::Tan => "tan",
                             Fn1::Exp => "exp",
                             Fn1::Ln => "log",
-                            Fn1::Abs => unreachable!("handled above"),
+                            Fn1::Sin | Fn1::Cos | Fn1::Abs => unreachable!("handled above"),
                         };
                         let func = self.libm(name);
                         quote!(#func(#xv))
@@ -270,12 +268,10 @@ impl Ctx<'_> {
                     (f, MathLib::Std) => {
                         let name = match f {
                             Fn1::Sqrt => "sqrt",
-                            Fn1::Sin => "sin",
-                            Fn1::Cos => "cos",
                             Fn1::Tan => "tan",
                             Fn1::Exp => "exp",
                             Fn1::Ln => "ln",
-                            Fn1::Abs => unreachable!("handled above"),
+                            Fn1::Sin | Fn1::Cos | Fn1::Abs => unreachable!("handled above"),
                         };
                         let m = Ident::new(name, Span::call_site());
                         quote!(#rv.#m())
