@@ -23,7 +23,7 @@
 //!   tests on its norm (§13.14).
 
 use super::Model;
-use super::eliminate::{Row, fill_room, rref};
+use super::eliminate::{Row, RowStore, rref};
 use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit};
 use super::items::*;
 use crate::error::SymError;
@@ -1034,26 +1034,24 @@ fn solve_statics<S: Scalar>(
     for &(i, _) in j_rows.iter().chain(h_rows.iter()).flatten() {
         len[i] += 1;
     }
-    let mut rows: Vec<Row<S>> = len
-        .iter()
-        .map(|&n| Vec::with_capacity(fill_room(n, nu + 1)))
-        .collect();
+    let mut rows = RowStore::with_lengths(&len, nu + 1);
     for (c, r) in j_rows.iter().chain(h_rows.iter()).enumerate() {
         for &(i, v) in r {
-            rows[i].push((c, v));
+            rows.push(i, (c, v));
         }
     }
-    for (i, row) in rows.iter_mut().enumerate() {
-        if !f[i].is_zero() {
-            row.push((nu, -f[i]));
+    for (i, &fi) in f.iter().enumerate().take(d) {
+        if !fi.is_zero() {
+            rows.push(i, (nu, -fi));
         }
     }
     for &(spring, p, _) in known {
-        let mut row = vec![(q + spring, S::one())];
-        if !p.is_zero() {
-            row.push((nu, p));
+        let one = (q + spring, S::one());
+        if p.is_zero() {
+            rows.push_row(&[one]);
+        } else {
+            rows.push_row(&[one, (nu, p)]);
         }
-        rows.push(row);
     }
     let coord_label = |i: usize| -> String {
         if i < d {
@@ -1122,7 +1120,7 @@ fn solve_statics<S: Scalar>(
                 m
             })
             .collect();
-        let tr = rref(trows, n, &[], None)?;
+        let tr = rref(RowStore::from_rows(&trows, n + 1), n, &[], None)?;
         if tr.plan.pivots.len() < n {
             return Err(SymError::Singular(format!(
                 "the model is statically indeterminate (rank {rank} of {nu} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",

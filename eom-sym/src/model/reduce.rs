@@ -24,7 +24,7 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, fill_room, rref};
+use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::SymError;
@@ -251,15 +251,8 @@ fn select_rows<S: Scalar>(m: &SparseMatrix<S>, rows: &[usize]) -> SparseMatrix<S
     m.select_rows(rows)
 }
 
-fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> Vec<Row<S>> {
-    (0..m.nrows())
-        .map(|i| {
-            let r = m.row(i);
-            let mut v = Vec::with_capacity(fill_room(r.len(), m.ncols()));
-            v.extend_from_slice(r);
-            v
-        })
-        .collect()
+fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> RowStore<S> {
+    RowStore::from_matrix(m)
 }
 
 fn hstack<S: Scalar>(
@@ -437,7 +430,7 @@ pub fn reduce<S: Scalar>(
         rp.push(k, t, S::one());
     }
     for &(r, c) in &rj.plan.pivots {
-        for &(k, v) in &rj.rows[r] {
+        for &(k, v) in rj.rows.row(r) {
             if k != c && k < n && indep_pos[k] != usize::MAX {
                 rp.push(c, indep_pos[k], -v);
             }
@@ -478,7 +471,7 @@ pub fn reduce<S: Scalar>(
             report.redundant.push(g_label(r).to_string());
         }
         // A redundant velocity row must also be consistent (its right-hand side negligible).
-        for &(k, v) in &rg.rows[r] {
+        for &(k, v) in rg.rows.row(r) {
             if k >= n {
                 checks.push(ValidityCheck::Negligible {
                     what: CheckLabel::VelocityConsistency { row: g_label(r) },
@@ -502,7 +495,7 @@ pub fn reduce<S: Scalar>(
         rw.push(k, t, S::one());
     }
     for &(r, c) in &rg.plan.pivots {
-        for &(k, v) in &rg.rows[r] {
+        for &(k, v) in rg.rows.row(r) {
             if k < n {
                 if k != c && indep_wpos[k] != usize::MAX {
                     rw.push(c, indep_wpos[k], -v);
@@ -682,7 +675,7 @@ fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> Sparse
         .sum();
     let mut m = Triplets::with_capacity(nunk, nunk + nrhs, nnz);
     for &(row, c) in &r.plan.pivots {
-        for &(k, v) in &r.rows[row] {
+        for &(k, v) in r.rows.row(row) {
             m.push(c, k, v);
         }
     }
