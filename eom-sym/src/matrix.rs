@@ -21,6 +21,9 @@ pub struct SparseMatrix<S> {
     entries: Vec<(usize, S)>,
 }
 
+/// Widest product that [`SparseMatrix::mul`] accumulates in stack scratch (a multiple of 64).
+const SMALL_WIDTH: usize = 128;
+
 /// A coordinate-list builder for [`SparseMatrix`]: push `(row, col, value)` in any order;
 /// duplicates are summed (one n-ary [`Scalar::sum`] per entry) when the matrix is built.
 #[derive(Clone, Debug)]
@@ -350,6 +353,9 @@ impl<S: Scalar> SparseMatrix<S> {
         }
         let nnz_hint = products.min(self.nrows * other.ncols);
         if S::FOLD_SUM {
+            if other.ncols <= SMALL_WIDTH {
+                return Ok(self.mul_small(other, nnz_hint));
+            }
             return Ok(self.mul_dense_acc(other, row_max, nnz_hint));
         }
         let mut acc: Vec<(usize, S)> = Vec::with_capacity(row_max);
@@ -394,6 +400,45 @@ impl<S: Scalar> SparseMatrix<S> {
                 }
             },
         ))
+    }
+
+    /// [`Self::mul_dense_acc`] for products at most [`SMALL_WIDTH`] columns wide: the dense
+    /// row lives on the stack and a bit mask marks the touched columns, which also lists them
+    /// in order without a sort. Same terms in the same order, so the same values; what it
+    /// saves is the scratch allocations (most products of a reduction are this narrow).
+    fn mul_small(&self, other: &Self, nnz_hint: usize) -> Self {
+        let mut dense = [S::zero(); SMALL_WIDTH];
+        let mut mask = [0u64; SMALL_WIDTH / 64];
+        Self::from_row_fn_with(self.nrows, other.ncols, nnz_hint, |i, out| {
+            for &(k, a) in self.row(i) {
+                for &(j, b) in other.row(k) {
+                    let p = if a.is_one() {
+                        b
+                    } else if b.is_one() {
+                        a
+                    } else {
+                        a * b
+                    };
+                    let (w, bit) = (j / 64, 1u64 << (j % 64));
+                    if mask[w] & bit == 0 {
+                        mask[w] |= bit;
+                        dense[j] = p;
+                    } else {
+                        dense[j] = dense[j] + p;
+                    }
+                }
+            }
+            for (w, m) in mask.iter_mut().enumerate() {
+                while *m != 0 {
+                    let j = 64 * w + m.trailing_zeros() as usize;
+                    *m &= *m - 1;
+                    let v = dense[j];
+                    if !v.is_zero() {
+                        out.push((j, v));
+                    }
+                }
+            }
+        })
     }
 
     /// [`Self::mul`] for scalars whose sums are folds: each entry is accumulated in a dense
