@@ -348,6 +348,28 @@ fn row_stats<S: Scalar>(row: &[(usize, S)], scale: f64) -> Option<(f64, usize)> 
     Some((rmax, live().filter(|&v| v > NEGLIGIBLE * scale).count()))
 }
 
+/// Bookkeeping of one row of an elimination.
+#[derive(Clone, Copy)]
+struct RowState {
+    pivoted: bool,
+    /// `stats` and `elen` must be recomputed (pivot search only).
+    dirty: bool,
+    /// Cached [`row_stats`].
+    stats: Option<(f64, usize)>,
+    /// Length of the row's eligible part, cached with `stats`.
+    elen: usize,
+    /// The row's original scale ([`row_scale`], pivot search only).
+    scale: f64,
+}
+
+/// Bookkeeping of one eligible column of an elimination.
+#[derive(Clone, Copy)]
+struct ColState {
+    done: bool,
+    /// Structural non-zeros over all rows (Gauss–Jordan fills every row; pivot search only).
+    count: usize,
+}
+
 /// Working state of one elimination.
 struct Elim<S> {
     rows: RowStore<S>,
@@ -355,15 +377,10 @@ struct Elim<S> {
     record: bool,
     /// Maintain column counts and per-row statistics (pivot search only).
     search: bool,
-    pivoted: Vec<bool>,
-    col_done: Vec<bool>,
-    /// Structural non-zeros per eligible column over all rows (Gauss–Jordan fills every row).
-    ccount: Vec<usize>,
-    /// Cached [`row_stats`]; `dirty` rows must be recomputed.
-    stats: Vec<Option<(f64, usize)>>,
-    dirty: Vec<bool>,
-    /// Length of each row's eligible part, cached with `stats`.
-    elen: Vec<usize>,
+    /// Per row (one vector rather than one per field: fewer allocations).
+    row_state: Vec<RowState>,
+    /// Per eligible column.
+    col_state: Vec<ColState>,
     cols: ColRows,
     scratch: Row<S>,
     /// The pivot row of the current step (a copy: the other rows change meanwhile).
@@ -376,7 +393,7 @@ impl<S: Scalar> Elim<S> {
     /// Take pivot `(r, c)`: normalise its row and eliminate column `c` from every other row.
     fn step(&mut self, r: usize, c: usize) -> Result<(), SymError> {
         let (nrows, eligible) = (self.rows.nrows(), self.eligible);
-        if r >= nrows || c >= eligible || self.pivoted[r] || self.col_done[c] {
+        if r >= nrows || c >= eligible || self.row_state[r].pivoted || self.col_state[c].done {
             return Err(SymError::Singular(format!(
                 "invalid pivot ({r}, {c}) in an elimination plan"
             )));
@@ -419,7 +436,7 @@ impl<S: Scalar> Elim<S> {
                 let Some(f) = get(&self.rows[k], c) else {
                     continue;
                 };
-                let (cols, ccount, search) = (&mut self.cols, &mut self.ccount, self.search);
+                let (cols, col_state, search) = (&mut self.cols, &mut self.col_state, self.search);
                 axpy(
                     &self.rows[k],
                     f,
@@ -432,9 +449,9 @@ impl<S: Scalar> Elim<S> {
                             // The column counts change exactly where the structure does.
                             if search {
                                 if present {
-                                    ccount[j] += 1;
+                                    col_state[j].count += 1;
                                 } else {
-                                    ccount[j] -= 1;
+                                    col_state[j].count -= 1;
                                 }
                             }
                         }
@@ -442,13 +459,13 @@ impl<S: Scalar> Elim<S> {
                 );
                 self.rows.set(k, &self.scratch);
                 if self.search {
-                    self.dirty[k] = true;
+                    self.row_state[k].dirty = true;
                 }
             }
         }
         self.prow = prow;
-        self.pivoted[r] = true;
-        self.col_done[c] = true;
+        self.row_state[r].pivoted = true;
+        self.col_state[c].done = true;
         self.plan.pivots.push((r, c));
         Ok(())
     }
@@ -456,31 +473,32 @@ impl<S: Scalar> Elim<S> {
     /// The next pivot: among the entries of the remaining rows at least [`THRESHOLD`] times
     /// their row's largest, the smallest Markowitz count, then the largest ratio, then the
     /// first in row-major order.
-    fn choose(&mut self, scale: &[f64]) -> Option<(usize, usize)> {
+    fn choose(&mut self) -> Option<(usize, usize)> {
         let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
-        for (r, &row_scale) in scale.iter().enumerate() {
-            if self.pivoted[r] {
+        for r in 0..self.row_state.len() {
+            let st = &mut self.row_state[r];
+            if st.pivoted {
                 continue;
             }
-            if self.dirty[r] {
+            if st.dirty {
                 let row = eligible_part(&self.rows[r], self.eligible);
-                self.stats[r] = row_stats(row, row_scale);
-                self.elen[r] = row.len();
-                self.dirty[r] = false;
+                st.stats = row_stats(row, st.scale);
+                st.elen = row.len();
+                st.dirty = false;
             }
-            let Some((rmax, rc)) = self.stats[r] else {
+            let Some((rmax, rc)) = st.stats else {
                 continue;
             };
             // A row without a pivot has no entry in a pivot column (each step clears its
             // column from every other row), so all its eligible entries are live.
-            let row = &self.rows[r][..self.elen[r]];
-            debug_assert!(row.iter().all(|e| !self.col_done[e.0]));
+            let row = &self.rows[r][..st.elen];
+            debug_assert!(row.iter().all(|e| !self.col_state[e.0].done));
             for e in row {
                 let (c, v) = (e.0, e.1.nominal().abs());
                 if v < THRESHOLD * rmax {
                     continue;
                 }
-                let mk = (rc - 1) * (self.ccount[c] - 1);
+                let mk = (rc - 1) * (self.col_state[c].count - 1);
                 let ratio = v / rmax;
                 let better = match best {
                     None => true,
@@ -537,37 +555,52 @@ pub fn rref<S: Scalar>(
             .collect(),
     };
     let search = plan.is_none();
-    let scale: Vec<f64> = if search {
-        (0..nrows).map(|r| row_scale(&rows[r], eligible)).collect()
-    } else {
-        Vec::new()
-    };
-    let mut ccount = vec![0usize; if search { eligible } else { 0 }];
+    let row_state: Vec<RowState> = (0..nrows)
+        .map(|r| RowState {
+            pivoted: false,
+            dirty: true,
+            stats: None,
+            elen: 0,
+            scale: if search {
+                row_scale(&rows[r], eligible)
+            } else {
+                0.0
+            },
+        })
+        .collect();
+    let mut col_state = vec![
+        ColState {
+            done: false,
+            count: 0
+        };
+        eligible
+    ];
     if search {
         for r in 0..nrows {
             for e in eligible_part(&rows[r], eligible) {
-                ccount[e.0] += 1;
+                col_state[e.0].count += 1;
             }
         }
     }
-    // Merges grow with fill-in; start the shared buffer at twice the longest row.
-    let el_rows_max = (0..nrows).map(|r| rows[r].len()).max().unwrap_or(0);
+    // No row outgrows the width, so buffers of that size never reallocate.
+    let width = rows
+        .ncols
+        .max((0..nrows).map(|r| rows[r].len()).max().unwrap_or(0));
     let cols = ColRows::new(&rows, eligible);
     let mut el = Elim {
         rows,
         eligible,
         record,
         search,
-        pivoted: vec![false; nrows],
-        col_done: vec![false; eligible],
-        ccount,
-        stats: vec![None; if search { nrows } else { 0 }],
-        dirty: vec![true; if search { nrows } else { 0 }],
-        elen: vec![0; if search { nrows } else { 0 }],
+        row_state,
+        col_state,
         cols,
-        scratch: Vec::with_capacity(2 * el_rows_max),
-        prow: Vec::with_capacity(2 * el_rows_max),
-        plan: EliminationPlan::default(),
+        scratch: Vec::with_capacity(width),
+        prow: Vec::with_capacity(width),
+        plan: EliminationPlan {
+            pivots: Vec::with_capacity(nrows.min(eligible)),
+            redundant: Vec::new(),
+        },
         records: Vec::new(),
     };
 
@@ -580,10 +613,10 @@ pub fn rref<S: Scalar>(
         for &(r, c) in forced {
             el.step(r, c)?;
         }
-        while let Some((r, c)) = el.choose(&scale) {
+        while let Some((r, c)) = el.choose() {
             el.step(r, c)?;
         }
-        el.plan.redundant = (0..nrows).filter(|&r| !el.pivoted[r]).collect();
+        el.plan.redundant = (0..nrows).filter(|&r| !el.row_state[r].pivoted).collect();
     }
 
     let mut rank_records = Vec::new();
