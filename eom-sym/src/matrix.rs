@@ -206,7 +206,8 @@ impl<S: Scalar> SparseMatrix<S> {
 
     /// From sparse rows (each sorted by column).
     pub fn from_sparse_rows(rows: &[Vec<(usize, S)>], ncols: usize) -> Self {
-        Self::from_row_fn(rows.len(), ncols, |i, out| {
+        let nnz = rows.iter().map(Vec::len).sum();
+        Self::from_row_fn_with(rows.len(), ncols, nnz, |i, out| {
             out.extend(rows[i].iter().copied().filter(|e| !e.1.is_zero()))
         })
     }
@@ -583,7 +584,13 @@ impl<S: Scalar> SparseMatrix<S> {
     /// The contiguous columns `cols`, every row.
     pub fn columns(&self, cols: std::ops::Range<usize>) -> Self {
         assert!(cols.end <= self.ncols, "columns {cols:?} out of bounds");
-        Self::from_row_fn(self.nrows, cols.len(), |i, out| {
+        let nnz = (0..self.nrows)
+            .map(|i| {
+                let r = self.row(i);
+                r.partition_point(|e| e.0 < cols.end) - r.partition_point(|e| e.0 < cols.start)
+            })
+            .sum();
+        Self::from_row_fn_with(self.nrows, cols.len(), nnz, |i, out| {
             let r = self.row(i);
             let a = r.partition_point(|e| e.0 < cols.start);
             let b = r.partition_point(|e| e.0 < cols.end);

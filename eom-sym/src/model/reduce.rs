@@ -71,13 +71,19 @@ pub struct Coord {
 
 impl std::fmt::Display for Coord {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let n = if self.velocity {
-            VELO[self.dof]
-        } else {
-            COORD[self.dof]
-        };
-        write!(f, "{}.{n}", self.body)
+        f.write_str(&coord_text(&self.body, self.dof, self.velocity))
     }
+}
+
+/// The text of a [`Coord`] (`body.x`, `body.vx`, …), built in one allocation: state names
+/// are made on every reduction, and formatting machinery would grow the string piecewise.
+fn coord_text(body: &str, dof: usize, velocity: bool) -> String {
+    let n = if velocity { VELO[dof] } else { COORD[dof] };
+    let mut s = String::with_capacity(body.len() + 1 + n.len());
+    s.push_str(body);
+    s.push('.');
+    s.push_str(n);
+    s
 }
 
 /// What a validity check guards (formatted only when displayed).
@@ -334,13 +340,17 @@ pub fn reduce<S: Scalar>(
         ..Default::default()
     };
     report.warnings = a.warnings.clone();
-    let body_names: Vec<Name> = a.bodies.iter().map(|b| Name::from(b.as_str())).collect();
+    // Shared names for check labels, made only when a check needs one (a numeric reduction
+    // without a plan records none).
+    let body_names: std::cell::OnceCell<Vec<Name>> = std::cell::OnceCell::new();
     let coord = |g: usize, velocity: bool| Coord {
-        body: body_names[g / 6].clone(),
+        body: body_names.get_or_init(|| a.bodies.iter().map(|b| Name::from(b.as_str())).collect())
+            [g / 6]
+            .clone(),
         dof: g % 6,
         velocity,
     };
-    let coord_name = |g: usize| coord(g, false).to_string();
+    let coord_name = |g: usize| coord_text(&a.bodies[g / 6], g % 6, false);
 
     // ------------------------------------------------------------ 1. pinned coordinates
     let (active, j_keep) = match plan {
@@ -530,7 +540,10 @@ pub fn reduce<S: Scalar>(
     let m_aug = SparseMatrix::hcat(&[&m_r, &rhs_a, &b2, &g2])?;
     let rm = rref(to_rows(&m_aug), nw, &[], plan.map(|p| &p.mass))?;
     let vcoord = |t: usize| coord(active[indep_w[t]], true);
-    let vname = |t: usize| vcoord(t).to_string();
+    let vname = |t: usize| {
+        let g = active[indep_w[t]];
+        coord_text(&a.bodies[g / 6], g % 6, true)
+    };
     record_checks(
         &rm,
         &|r, c| CheckLabel::MassPivot {
@@ -644,9 +657,9 @@ pub fn reduce<S: Scalar>(
     let plan = ReductionPlan {
         active,
         j_rows: j_keep,
-        position: rj.plan.clone(),
-        velocity: rg.plan.clone(),
-        mass: rm.plan.clone(),
+        position: rj.plan,
+        velocity: rg.plan,
+        mass: rm.plan,
     };
     Ok(Reduction {
         state_space: ss,
