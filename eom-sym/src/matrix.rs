@@ -205,10 +205,10 @@ impl<S: Scalar> SparseMatrix<S> {
     }
 
     /// From sparse rows (each sorted by column).
-    pub fn from_sparse_rows(rows: &[Vec<(usize, S)>], ncols: usize) -> Self {
-        let nnz = rows.iter().map(Vec::len).sum();
+    pub fn from_sparse_rows<R: AsRef<[(usize, S)]>>(rows: &[R], ncols: usize) -> Self {
+        let nnz = rows.iter().map(|r| r.as_ref().len()).sum();
         Self::from_row_fn_with(rows.len(), ncols, nnz, |i, out| {
-            out.extend(rows[i].iter().copied().filter(|e| !e.1.is_zero()))
+            out.extend(rows[i].as_ref().iter().copied().filter(|e| !e.1.is_zero()))
         })
     }
 
