@@ -619,6 +619,24 @@ impl<S: Scalar> SparseMatrix<S> {
         }))
     }
 
+    /// `[self 0]`: the same rows, widened to `ncols` columns by zero columns on the right
+    /// (no copy: the entries are unchanged).
+    pub fn widen(mut self, ncols: usize) -> Self {
+        assert!(ncols >= self.ncols, "cannot widen to fewer columns");
+        self.ncols = ncols;
+        self
+    }
+
+    /// `[0; self]`: `k` zero rows above the same rows (the entries are not copied).
+    pub fn below_zero_rows(mut self, k: usize) -> Self {
+        let mut row_ptr = Vec::with_capacity(k + self.row_ptr.len());
+        row_ptr.resize(k, 0);
+        row_ptr.extend_from_slice(&self.row_ptr);
+        self.row_ptr = row_ptr;
+        self.nrows += k;
+        self
+    }
+
     /// `[a; b]`: `a` above `b` (of the same width).
     pub fn vcat(a: &Self, b: &Self) -> Result<Self, SymError> {
         if a.ncols != b.ncols {

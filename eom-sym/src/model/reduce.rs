@@ -451,10 +451,8 @@ pub fn reduce<S: Scalar>(
     // ------------------------------------------------------------ 3. velocities
     let rhs = jm.mul(&vel)?.mul(&rp)?;
     let nq = jm.nrows();
-    let nn = nm.nrows();
-    let g_top = hstack(&jm, &rhs)?;
-    let g_bot = hstack(&nm, &SparseMatrix::zeros(nn, np))?;
-    let g = vstack(&g_top, &g_bot)?;
+    // [J  J V R_p; N  0] in one pass.
+    let g = SparseMatrix::block(&[vec![Some(&jm), Some(&rhs)], vec![Some(&nm), None]])?;
     let g_label = |r: usize| {
         if r < nq {
             jlabel(r)
@@ -526,7 +524,7 @@ pub fn reduce<S: Scalar>(
     let m_r = rwt_m.mul(&rw)?;
     let e21 = rwt_m.mul(&wp)?;
     let wfull = hstack(&wp, &rw)?; // w = Wfull x
-    let pfull = hstack(&rp, &SparseMatrix::zeros(n, nw))?; // p = Pfull x
+    let pfull = rp.widen(np + nw); // p = Pfull x = [R_p 0] x
     let kin = wfull.sub(&vel.mul(&pfull)?)?; // ṗ = (W − V P) x
     let a1 = kin.select_rows(&indep_p);
     let a2 = rwt
@@ -566,8 +564,8 @@ pub fn reduce<S: Scalar>(
     let xb = mi.columns(nw + nx..nw + nx + m_in);
     let xg = mi.columns(nw + nx + m_in..nw + nx + 2 * m_in);
     let a_ss = vstack(&a1, &xa)?;
-    let gamma = vstack(&SparseMatrix::zeros(np, m_in), &xg)?;
-    let b_raw = vstack(&SparseMatrix::zeros(np, m_in), &xb)?;
+    let gamma = xg.below_zero_rows(np);
+    let b_raw = xb.below_zero_rows(np);
     let b_ss = b_raw.add(&a_ss.mul(&gamma)?)?;
 
     // ------------------------------------------------------------ 5. outputs
