@@ -21,6 +21,9 @@ pub struct SparseMatrix<S> {
     entries: Vec<(usize, S)>,
 }
 
+/// Widest product that [`SparseMatrix::mul`] accumulates in stack scratch (a multiple of 64).
+const SMALL_WIDTH: usize = 128;
+
 /// A coordinate-list builder for [`SparseMatrix`]: push `(row, col, value)` in any order;
 /// duplicates are summed (one n-ary [`Scalar::sum`] per entry) when the matrix is built.
 #[derive(Clone, Debug)]
@@ -202,9 +205,10 @@ impl<S: Scalar> SparseMatrix<S> {
     }
 
     /// From sparse rows (each sorted by column).
-    pub fn from_sparse_rows(rows: &[Vec<(usize, S)>], ncols: usize) -> Self {
-        Self::from_row_fn(rows.len(), ncols, |i, out| {
-            out.extend(rows[i].iter().copied().filter(|e| !e.1.is_zero()))
+    pub fn from_sparse_rows<R: AsRef<[(usize, S)]>>(rows: &[R], ncols: usize) -> Self {
+        let nnz = rows.iter().map(|r| r.as_ref().len()).sum();
+        Self::from_row_fn_with(rows.len(), ncols, nnz, |i, out| {
+            out.extend(rows[i].as_ref().iter().copied().filter(|e| !e.1.is_zero()))
         })
     }
 
@@ -350,6 +354,9 @@ impl<S: Scalar> SparseMatrix<S> {
         }
         let nnz_hint = products.min(self.nrows * other.ncols);
         if S::FOLD_SUM {
+            if other.ncols <= SMALL_WIDTH {
+                return Ok(self.mul_small(other, nnz_hint));
+            }
             return Ok(self.mul_dense_acc(other, row_max, nnz_hint));
         }
         let mut acc: Vec<(usize, S)> = Vec::with_capacity(row_max);
@@ -394,6 +401,45 @@ impl<S: Scalar> SparseMatrix<S> {
                 }
             },
         ))
+    }
+
+    /// [`Self::mul_dense_acc`] for products at most [`SMALL_WIDTH`] columns wide: the dense
+    /// row lives on the stack and a bit mask marks the touched columns, which also lists them
+    /// in order without a sort. Same terms in the same order, so the same values; what it
+    /// saves is the scratch allocations (most products of a reduction are this narrow).
+    fn mul_small(&self, other: &Self, nnz_hint: usize) -> Self {
+        let mut dense = [S::zero(); SMALL_WIDTH];
+        let mut mask = [0u64; SMALL_WIDTH / 64];
+        Self::from_row_fn_with(self.nrows, other.ncols, nnz_hint, |i, out| {
+            for &(k, a) in self.row(i) {
+                for &(j, b) in other.row(k) {
+                    let p = if a.is_one() {
+                        b
+                    } else if b.is_one() {
+                        a
+                    } else {
+                        a * b
+                    };
+                    let (w, bit) = (j / 64, 1u64 << (j % 64));
+                    if mask[w] & bit == 0 {
+                        mask[w] |= bit;
+                        dense[j] = p;
+                    } else {
+                        dense[j] = dense[j] + p;
+                    }
+                }
+            }
+            for (w, m) in mask.iter_mut().enumerate() {
+                while *m != 0 {
+                    let j = 64 * w + m.trailing_zeros() as usize;
+                    *m &= *m - 1;
+                    let v = dense[j];
+                    if !v.is_zero() {
+                        out.push((j, v));
+                    }
+                }
+            }
+        })
     }
 
     /// [`Self::mul`] for scalars whose sums are folds: each entry is accumulated in a dense
@@ -538,7 +584,13 @@ impl<S: Scalar> SparseMatrix<S> {
     /// The contiguous columns `cols`, every row.
     pub fn columns(&self, cols: std::ops::Range<usize>) -> Self {
         assert!(cols.end <= self.ncols, "columns {cols:?} out of bounds");
-        Self::from_row_fn(self.nrows, cols.len(), |i, out| {
+        let nnz = (0..self.nrows)
+            .map(|i| {
+                let r = self.row(i);
+                r.partition_point(|e| e.0 < cols.end) - r.partition_point(|e| e.0 < cols.start)
+            })
+            .sum();
+        Self::from_row_fn_with(self.nrows, cols.len(), nnz, |i, out| {
             let r = self.row(i);
             let a = r.partition_point(|e| e.0 < cols.start);
             let b = r.partition_point(|e| e.0 < cols.end);
@@ -565,6 +617,24 @@ impl<S: Scalar> SparseMatrix<S> {
                 c0 += b.ncols;
             }
         }))
+    }
+
+    /// `[self 0]`: the same rows, widened to `ncols` columns by zero columns on the right
+    /// (no copy: the entries are unchanged).
+    pub fn widen(mut self, ncols: usize) -> Self {
+        assert!(ncols >= self.ncols, "cannot widen to fewer columns");
+        self.ncols = ncols;
+        self
+    }
+
+    /// `[0; self]`: `k` zero rows above the same rows (the entries are not copied).
+    pub fn below_zero_rows(mut self, k: usize) -> Self {
+        let mut row_ptr = Vec::with_capacity(k + self.row_ptr.len());
+        row_ptr.resize(k, 0);
+        row_ptr.extend_from_slice(&self.row_ptr);
+        self.row_ptr = row_ptr;
+        self.nrows += k;
+        self
     }
 
     /// `[a; b]`: `a` above `b` (of the same width).

@@ -23,7 +23,7 @@
 //!   tests on its norm (§13.14).
 
 use super::Model;
-use super::eliminate::{Row, fill_room, rref};
+use super::eliminate::{Row, RowStore, rref};
 use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit};
 use super::items::*;
 use crate::error::SymError;
@@ -146,12 +146,65 @@ type LineParts<S> = (Rows<S>, Vec3<S>, S, [Option<usize>; 2], [Vec3<S>; 2]);
 
 /// A point or line item's Jacobian rows on the bodies' coordinates.
 struct Rows<S> {
-    rows: Vec<Row<S>>,
+    rows: Vec<ItemRow<S>>,
     labels: Vec<RowLabel>,
 }
 
+/// Entries of an item row at most: six coordinates of each of two bodies.
+const ITEM_ROW: usize = 12;
+
+/// An item's Jacobian row, `(coordinate, value)` sorted by coordinate, stored inline: an
+/// item row never has more than [`ITEM_ROW`] entries, and a model has many rows, each of
+/// which would otherwise be an allocation of its own.
+#[derive(Clone, Copy, Debug)]
+struct ItemRow<S> {
+    len: usize,
+    entries: [(usize, S); ITEM_ROW],
+}
+
+impl<S: Scalar> ItemRow<S> {
+    fn new() -> Self {
+        ItemRow {
+            len: 0,
+            entries: [(0, S::zero()); ITEM_ROW],
+        }
+    }
+
+    fn push(&mut self, e: (usize, S)) {
+        self.entries[self.len] = e;
+        self.len += 1;
+    }
+}
+
+impl<S> std::ops::Deref for ItemRow<S> {
+    type Target = [(usize, S)];
+    fn deref(&self) -> &[(usize, S)] {
+        &self.entries[..self.len]
+    }
+}
+
+impl<S> std::ops::DerefMut for ItemRow<S> {
+    fn deref_mut(&mut self) -> &mut [(usize, S)] {
+        &mut self.entries[..self.len]
+    }
+}
+
+impl<S> AsRef<[(usize, S)]> for ItemRow<S> {
+    fn as_ref(&self) -> &[(usize, S)] {
+        self
+    }
+}
+
+impl<'a, S> IntoIterator for &'a ItemRow<S> {
+    type Item = &'a (usize, S);
+    type IntoIter = std::slice::Iter<'a, (usize, S)>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
 fn push_entries<S: Scalar>(
-    row: &mut Vec<(usize, S)>,
+    row: &mut ItemRow<S>,
     body: Option<usize>,
     trans: &Vec3<S>,
     rot: &Vec3<S>,
@@ -166,7 +219,7 @@ fn push_entries<S: Scalar>(
     }
 }
 
-fn make_row<S: Scalar>(mut row: Vec<(usize, S)>) -> Row<S> {
+fn make_row<S: Scalar>(mut row: ItemRow<S>) -> ItemRow<S> {
     row.sort_by_key(|e| e.0);
     row
 }
@@ -179,17 +232,17 @@ fn point_rows<S: Scalar>(
     r: [Vec3<S>; 2],
     fdirs: &[Vec3<S>],
     mdirs: &[Vec3<S>],
-) -> Vec<Row<S>> {
+) -> Vec<ItemRow<S>> {
     let z = zero3::<S>();
     let mut out = Vec::with_capacity(fdirs.len() + mdirs.len());
     for f in fdirs {
-        let mut row = Vec::with_capacity(12);
+        let mut row = ItemRow::new();
         push_entries(&mut row, b[0], f, &cross(&r[0], f), true);
         push_entries(&mut row, b[1], f, &cross(&r[1], f), false);
         out.push(make_row(row));
     }
     for g in mdirs {
-        let mut row = Vec::with_capacity(6);
+        let mut row = ItemRow::new();
         push_entries(&mut row, b[0], &z, g, true);
         push_entries(&mut row, b[1], &z, g, false);
         out.push(make_row(row));
@@ -290,7 +343,7 @@ impl<S: Scalar> Ctx<'_, S> {
     }
 }
 
-fn rows_to_matrix<S: Scalar>(rows: &[Row<S>], ncols: usize) -> SparseMatrix<S> {
+fn rows_to_matrix<S: Scalar>(rows: &[ItemRow<S>], ncols: usize) -> SparseMatrix<S> {
     SparseMatrix::from_sparse_rows(rows, ncols)
 }
 
@@ -322,7 +375,7 @@ fn add_block<S: Scalar>(
 
 fn add_rows_block<S: Scalar>(
     m: &mut Triplets<S>,
-    rows: &[Row<S>],
+    rows: &[ItemRow<S>],
     props: &[Vec<S>],
 ) -> Result<(), SymError> {
     // m += Rᵀ P R for the item's rows R and property block P.
@@ -423,7 +476,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     }
 
     // ---------------------------------------------------------------- elastic items (§4.3)
-    let mut h_rows: Vec<Row<S>> = Vec::new();
+    let mut h_rows: Vec<ItemRow<S>> = Vec::new();
     let mut h_labels: Vec<RowLabel> = Vec::new();
     let mut k_el = Triplets::with_capacity(d, d, cap);
     let mut c_el = Triplets::with_capacity(d, d, cap);
@@ -476,7 +529,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
     }
 
     // ---------------------------------------------------------------- constraints (§4.4)
-    let mut j_rows: Vec<Row<S>> = Vec::new();
+    let mut j_rows: Vec<ItemRow<S>> = Vec::new();
     let mut j_labels: Vec<RowLabel> = Vec::new();
     let mut link_geo = Vec::new();
     for l in &model.links {
@@ -492,7 +545,7 @@ pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
         j_labels.extend(rows.labels);
         rigid_geo.push((fd, md, b, r));
     }
-    let mut n_rows: Vec<Row<S>> = Vec::new();
+    let mut n_rows: Vec<ItemRow<S>> = Vec::new();
     let mut n_labels: Vec<RowLabel> = Vec::new();
     for p in &model.nh_points {
         let (rows, ..) = cx.point(&p.point, "nh point", &p.name);
@@ -765,12 +818,12 @@ fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, S
     let mut rows = Vec::new();
     for (k, (body, rad)) in b.iter().zip(&r).enumerate() {
         for e in [&e1, &e2] {
-            let mut row = Vec::new();
+            let mut row = ItemRow::new();
             push_entries(&mut row, *body, e, &cross(rad, e), true);
             rows.push(make_row(row));
         }
         for e in [&e1, &e2] {
-            let mut row = Vec::new();
+            let mut row = ItemRow::new();
             push_entries(&mut row, *body, &z, e, true);
             rows.push(make_row(row));
         }
@@ -1012,8 +1065,8 @@ type StaticsResult<S> = (Vec<S>, Vec<S>, Statics);
 #[allow(clippy::too_many_arguments)]
 fn solve_statics<S: Scalar>(
     d: usize,
-    j_rows: &[Row<S>],
-    h_rows: &[Row<S>],
+    j_rows: &[ItemRow<S>],
+    h_rows: &[ItemRow<S>],
     f: &[S],
     known: &[(usize, S, S)],
     stiff_blocks: &[(usize, Vec<Vec<S>>)],
@@ -1034,26 +1087,24 @@ fn solve_statics<S: Scalar>(
     for &(i, _) in j_rows.iter().chain(h_rows.iter()).flatten() {
         len[i] += 1;
     }
-    let mut rows: Vec<Row<S>> = len
-        .iter()
-        .map(|&n| Vec::with_capacity(fill_room(n, nu + 1)))
-        .collect();
+    let mut rows = RowStore::with_lengths(&len, nu + 1);
     for (c, r) in j_rows.iter().chain(h_rows.iter()).enumerate() {
         for &(i, v) in r {
-            rows[i].push((c, v));
+            rows.push(i, (c, v));
         }
     }
-    for (i, row) in rows.iter_mut().enumerate() {
-        if !f[i].is_zero() {
-            row.push((nu, -f[i]));
+    for (i, &fi) in f.iter().enumerate().take(d) {
+        if !fi.is_zero() {
+            rows.push(i, (nu, -fi));
         }
     }
     for &(spring, p, _) in known {
-        let mut row = vec![(q + spring, S::one())];
-        if !p.is_zero() {
-            row.push((nu, p));
+        let one = (q + spring, S::one());
+        if p.is_zero() {
+            rows.push_row(&[one]);
+        } else {
+            rows.push_row(&[one, (nu, p)]);
         }
-        rows.push(row);
     }
     let coord_label = |i: usize| -> String {
         if i < d {
@@ -1122,7 +1173,7 @@ fn solve_statics<S: Scalar>(
                 m
             })
             .collect();
-        let tr = rref(trows, n, &[], None)?;
+        let tr = rref(RowStore::from_rows(&trows, n + 1), n, &[], None)?;
         if tr.plan.pivots.len() < n {
             return Err(SymError::Singular(format!(
                 "the model is statically indeterminate (rank {rank} of {nu} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",

@@ -14,6 +14,7 @@
 //! row ([`PivotRecord`]): the validity region of a symbolic result.
 
 use crate::error::SymError;
+use crate::matrix::SparseMatrix;
 use crate::scalar::Scalar;
 
 /// Minimum ratio `|pivot| / max |row entry|` at the nominal point for a pivot candidate.
@@ -68,7 +69,7 @@ pub struct Rref<S> {
     pub eligible: usize,
     /// The reduced rows: a pivot row has 1 at its pivot column and zeros in all other pivot
     /// columns.
-    pub rows: Vec<Row<S>>,
+    pub rows: RowStore<S>,
     /// The plan (pivots in order, redundant rows).
     pub plan: EliminationPlan,
     /// Pivots with their row entries at the time.
@@ -80,7 +81,7 @@ pub struct Rref<S> {
 impl<S: Scalar> Rref<S> {
     /// Pivot column of each row (`None` for rows without a pivot).
     pub fn pivot_col_of_row(&self) -> Vec<Option<usize>> {
-        let mut v = vec![None; self.rows.len()];
+        let mut v = vec![None; self.rows.nrows()];
         for &(r, c) in &self.plan.pivots {
             v[r] = Some(c);
         }
@@ -97,23 +98,152 @@ impl<S: Scalar> Rref<S> {
     }
 }
 
-/// Capacity for a row of `len` entries out of `ncols` about to be eliminated: room for the
-/// fill-in, so that the row seldom reallocates while it grows.
-pub fn fill_room(len: usize, ncols: usize) -> usize {
-    (2 * len).max(16).min(ncols.max(len))
+/// The rows of an elimination, all in one buffer: row `i` is
+/// `entries[start[i]..start[i] + len[i]]`, sorted by column, with room up to `cap[i]`. One
+/// allocation for all rows instead of one per row (a numeric elimination is dominated by
+/// such bookkeeping). Rows start packed; a row that outgrows its room moves to the end of
+/// the buffer with room to double, so fill-in costs few moves and no per-row allocation.
+#[derive(Clone, Debug)]
+pub struct RowStore<S> {
+    entries: Vec<(usize, S)>,
+    start: Vec<usize>,
+    len: Vec<usize>,
+    cap: Vec<usize>,
+    ncols: usize,
 }
 
-fn get<S: Scalar>(row: &Row<S>, col: usize) -> Option<S> {
+impl<S: Scalar> RowStore<S> {
+    /// Empty rows with room for exactly `lens[i]` entries each, over `ncols` columns.
+    pub fn with_lengths(lens: &[usize], ncols: usize) -> Self {
+        let mut st = RowStore {
+            entries: Vec::new(),
+            start: Vec::with_capacity(lens.len()),
+            len: Vec::with_capacity(lens.len()),
+            cap: Vec::with_capacity(lens.len()),
+            ncols,
+        };
+        let mut total = 0;
+        for &n in lens {
+            st.start.push(total);
+            st.len.push(0);
+            st.cap.push(n);
+            total += n;
+        }
+        st.entries.reserve(Self::room(total));
+        st.entries.resize(total, (0, S::zero()));
+        st
+    }
+
+    /// Buffer capacity for rows of `nnz` entries: room for the moves of rows that grow with
+    /// fill-in, so that the buffer itself seldom reallocates (reserved, not initialised).
+    fn room(nnz: usize) -> usize {
+        4 * nnz + 64
+    }
+
+    /// The rows of a matrix.
+    pub fn from_matrix(m: &SparseMatrix<S>) -> Self {
+        let n = m.nrows();
+        let mut entries = Vec::with_capacity(Self::room(m.nnz()));
+        let (mut start, mut len) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for i in 0..n {
+            let r = m.row(i);
+            start.push(entries.len());
+            len.push(r.len());
+            entries.extend_from_slice(r);
+        }
+        RowStore {
+            entries,
+            start,
+            cap: len.clone(),
+            len,
+            ncols: m.ncols(),
+        }
+    }
+
+    /// Rows given as vectors (each sorted by column).
+    pub fn from_rows(rows: &[Row<S>], ncols: usize) -> Self {
+        let lens: Vec<usize> = rows.iter().map(Vec::len).collect();
+        let mut st = Self::with_lengths(&lens, ncols);
+        for (i, r) in rows.iter().enumerate() {
+            st.set(i, r);
+        }
+        st
+    }
+
+    /// Number of rows.
+    pub fn nrows(&self) -> usize {
+        self.start.len()
+    }
+
+    /// Row `i`.
+    pub fn row(&self, i: usize) -> &[(usize, S)] {
+        &self.entries[self.start[i]..self.start[i] + self.len[i]]
+    }
+
+    fn row_mut(&mut self, i: usize) -> &mut [(usize, S)] {
+        &mut self.entries[self.start[i]..self.start[i] + self.len[i]]
+    }
+
+    /// Append `e` to row `i` (its column must exceed the row's last).
+    pub fn push(&mut self, i: usize, e: (usize, S)) {
+        if self.len[i] == self.cap[i] {
+            self.relocate(i, self.len[i] + 1, true);
+        }
+        self.entries[self.start[i] + self.len[i]] = e;
+        self.len[i] += 1;
+    }
+
+    /// Append a row.
+    pub fn push_row(&mut self, row: &[(usize, S)]) {
+        self.start.push(self.entries.len());
+        self.len.push(row.len());
+        self.cap.push(row.len());
+        self.entries.extend_from_slice(row);
+    }
+
+    /// Replace row `i` by `row`.
+    fn set(&mut self, i: usize, row: &[(usize, S)]) {
+        if row.len() > self.cap[i] {
+            self.relocate(i, row.len(), false);
+        }
+        let a = self.start[i];
+        self.entries[a..a + row.len()].copy_from_slice(row);
+        self.len[i] = row.len();
+    }
+
+    /// Move row `i` to the end of the buffer with room for at least `need` entries (its
+    /// entries come along when `keep`; otherwise the caller overwrites them).
+    fn relocate(&mut self, i: usize, need: usize, keep: bool) {
+        let c = (2 * need).min(self.ncols.max(need));
+        let (a, n) = (self.start[i], self.len[i]);
+        let b = self.entries.len();
+        if keep {
+            self.entries.extend_from_within(a..a + n);
+        }
+        self.entries.resize(b + c, (0, S::zero()));
+        self.start[i] = b;
+        self.cap[i] = c;
+    }
+}
+
+impl<S: Scalar> std::ops::Index<usize> for RowStore<S> {
+    type Output = [(usize, S)];
+    fn index(&self, i: usize) -> &[(usize, S)] {
+        self.row(i)
+    }
+}
+
+fn get<S: Scalar>(row: &[(usize, S)], col: usize) -> Option<S> {
     row.binary_search_by_key(&col, |e| e.0)
         .ok()
         .map(|k| row[k].1)
 }
 
-/// `target ← target − f · src` (the pivot column `skip_col` is dropped), skipping structural
+/// `scratch ← target − f · src` (the pivot column `skip_col` is dropped), skipping structural
 /// zeros; `scratch` is reused so that repeated updates do not allocate. `mark(col, present)`
 /// hears of every column that enters or leaves the row's structure.
 fn axpy<S: Scalar>(
-    target: &mut Row<S>,
+    target: &[(usize, S)],
     f: S,
     src: &Row<S>,
     skip_col: usize,
@@ -162,10 +292,6 @@ fn axpy<S: Scalar>(
             }
         }
     }
-    // Copy back rather than swap: every row keeps its own buffer, which grows only with
-    // fill-in, and the one scratch buffer reaches its largest size once.
-    target.clear();
-    target.extend_from_slice(scratch);
 }
 
 /// Which rows hold an entry in each eligible column (one bit per row), so that a pivot step
@@ -176,14 +302,14 @@ struct ColRows {
 }
 
 impl ColRows {
-    fn new<S>(rows: &[Row<S>], eligible: usize) -> Self {
-        let words = rows.len().div_ceil(64);
+    fn new<S: Scalar>(rows: &RowStore<S>, eligible: usize) -> Self {
+        let words = rows.nrows().div_ceil(64);
         let mut m = ColRows {
             words,
             bits: vec![0; words * eligible],
         };
-        for (r, row) in rows.iter().enumerate() {
-            for e in eligible_part(row, eligible) {
+        for r in 0..rows.nrows() {
+            for e in eligible_part(rows.row(r), eligible) {
                 m.set(e.0, r, true);
             }
         }
@@ -202,7 +328,7 @@ fn eligible_part<S>(row: &[(usize, S)], eligible: usize) -> &[(usize, S)] {
     &row[..row.partition_point(|e| e.0 < eligible)]
 }
 
-fn row_scale<S: Scalar>(row: &Row<S>, eligible: usize) -> f64 {
+fn row_scale<S: Scalar>(row: &[(usize, S)], eligible: usize) -> f64 {
     eligible_part(row, eligible)
         .iter()
         .map(|e| e.1.nominal().abs())
@@ -222,39 +348,52 @@ fn row_stats<S: Scalar>(row: &[(usize, S)], scale: f64) -> Option<(f64, usize)> 
     Some((rmax, live().filter(|&v| v > NEGLIGIBLE * scale).count()))
 }
 
+/// Bookkeeping of one row of an elimination.
+#[derive(Clone, Copy)]
+struct RowState {
+    pivoted: bool,
+    /// `stats` and `elen` must be recomputed (pivot search only).
+    dirty: bool,
+    /// Cached [`row_stats`].
+    stats: Option<(f64, usize)>,
+    /// Length of the row's eligible part, cached with `stats`.
+    elen: usize,
+    /// The row's original scale ([`row_scale`], pivot search only).
+    scale: f64,
+}
+
+/// Bookkeeping of one eligible column of an elimination.
+#[derive(Clone, Copy)]
+struct ColState {
+    done: bool,
+    /// Structural non-zeros over all rows (Gauss–Jordan fills every row; pivot search only).
+    count: usize,
+}
+
 /// Working state of one elimination.
 struct Elim<S> {
-    rows: Vec<Row<S>>,
+    rows: RowStore<S>,
     eligible: usize,
     record: bool,
     /// Maintain column counts and per-row statistics (pivot search only).
     search: bool,
-    pivoted: Vec<bool>,
-    col_done: Vec<bool>,
-    /// Structural non-zeros per eligible column over all rows (Gauss–Jordan fills every row).
-    ccount: Vec<usize>,
-    /// Cached [`row_stats`]; `dirty` rows must be recomputed.
-    stats: Vec<Option<(f64, usize)>>,
-    dirty: Vec<bool>,
-    /// Length of each row's eligible part, cached with `stats`.
-    elen: Vec<usize>,
+    /// Per row (one vector rather than one per field: fewer allocations).
+    row_state: Vec<RowState>,
+    /// Per eligible column.
+    col_state: Vec<ColState>,
     cols: ColRows,
     scratch: Row<S>,
+    /// The pivot row of the current step (a copy: the other rows change meanwhile).
+    prow: Row<S>,
     plan: EliminationPlan,
     records: Vec<PivotRecord<S>>,
 }
 
 impl<S: Scalar> Elim<S> {
-    fn count(&mut self, r: usize, delta: isize) {
-        for e in eligible_part(&self.rows[r], self.eligible) {
-            self.ccount[e.0] = self.ccount[e.0].wrapping_add_signed(delta);
-        }
-    }
-
     /// Take pivot `(r, c)`: normalise its row and eliminate column `c` from every other row.
     fn step(&mut self, r: usize, c: usize) -> Result<(), SymError> {
-        let (nrows, eligible) = (self.rows.len(), self.eligible);
-        if r >= nrows || c >= eligible || self.pivoted[r] || self.col_done[c] {
+        let (nrows, eligible) = (self.rows.nrows(), self.eligible);
+        if r >= nrows || c >= eligible || self.row_state[r].pivoted || self.col_state[c].done {
             return Err(SymError::Singular(format!(
                 "invalid pivot ({r}, {c}) in an elimination plan"
             )));
@@ -277,11 +416,13 @@ impl<S: Scalar> Elim<S> {
         // Normalise the pivot row.
         if !p.is_one() {
             let inv = p.recip();
-            for e in self.rows[r].iter_mut() {
+            for e in self.rows.row_mut(r).iter_mut() {
                 e.1 = if e.0 == c { S::one() } else { e.1 * inv };
             }
         }
-        let prow = std::mem::take(&mut self.rows[r]);
+        let mut prow = std::mem::take(&mut self.prow);
+        prow.clear();
+        prow.extend_from_slice(&self.rows[r]);
         // Only the rows holding column `c` change; a word is read before its rows are updated
         // (which clear their bit of column `c`).
         for w in 0..self.cols.words {
@@ -295,12 +436,9 @@ impl<S: Scalar> Elim<S> {
                 let Some(f) = get(&self.rows[k], c) else {
                     continue;
                 };
-                if self.search {
-                    self.count(k, -1);
-                }
-                let cols = &mut self.cols;
+                let (cols, col_state, search) = (&mut self.cols, &mut self.col_state, self.search);
                 axpy(
-                    &mut self.rows[k],
+                    &self.rows[k],
                     f,
                     &prow,
                     c,
@@ -308,18 +446,26 @@ impl<S: Scalar> Elim<S> {
                     |j, present| {
                         if j < eligible {
                             cols.set(j, k, present);
+                            // The column counts change exactly where the structure does.
+                            if search {
+                                if present {
+                                    col_state[j].count += 1;
+                                } else {
+                                    col_state[j].count -= 1;
+                                }
+                            }
                         }
                     },
                 );
+                self.rows.set(k, &self.scratch);
                 if self.search {
-                    self.count(k, 1);
-                    self.dirty[k] = true;
+                    self.row_state[k].dirty = true;
                 }
             }
         }
-        self.rows[r] = prow;
-        self.pivoted[r] = true;
-        self.col_done[c] = true;
+        self.prow = prow;
+        self.row_state[r].pivoted = true;
+        self.col_state[c].done = true;
         self.plan.pivots.push((r, c));
         Ok(())
     }
@@ -327,31 +473,32 @@ impl<S: Scalar> Elim<S> {
     /// The next pivot: among the entries of the remaining rows at least [`THRESHOLD`] times
     /// their row's largest, the smallest Markowitz count, then the largest ratio, then the
     /// first in row-major order.
-    fn choose(&mut self, scale: &[f64]) -> Option<(usize, usize)> {
+    fn choose(&mut self) -> Option<(usize, usize)> {
         let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
-        for (r, &row_scale) in scale.iter().enumerate() {
-            if self.pivoted[r] {
+        for r in 0..self.row_state.len() {
+            let st = &mut self.row_state[r];
+            if st.pivoted {
                 continue;
             }
-            if self.dirty[r] {
+            if st.dirty {
                 let row = eligible_part(&self.rows[r], self.eligible);
-                self.stats[r] = row_stats(row, row_scale);
-                self.elen[r] = row.len();
-                self.dirty[r] = false;
+                st.stats = row_stats(row, st.scale);
+                st.elen = row.len();
+                st.dirty = false;
             }
-            let Some((rmax, rc)) = self.stats[r] else {
+            let Some((rmax, rc)) = st.stats else {
                 continue;
             };
             // A row without a pivot has no entry in a pivot column (each step clears its
             // column from every other row), so all its eligible entries are live.
-            let row = &self.rows[r][..self.elen[r]];
-            debug_assert!(row.iter().all(|e| !self.col_done[e.0]));
+            let row = &self.rows[r][..st.elen];
+            debug_assert!(row.iter().all(|e| !self.col_state[e.0].done));
             for e in row {
                 let (c, v) = (e.0, e.1.nominal().abs());
                 if v < THRESHOLD * rmax {
                     continue;
                 }
-                let mk = (rc - 1) * (self.ccount[c] - 1);
+                let mk = (rc - 1) * (self.col_state[c].count - 1);
                 let ratio = v / rmax;
                 let better = match best {
                     None => true,
@@ -380,12 +527,12 @@ impl<S: Scalar> Elim<S> {
 ///   and the validity checks use this). In replay the pivot values are not tested here; the
 ///   records let the caller test them.
 pub fn rref<S: Scalar>(
-    rows: Vec<Row<S>>,
+    rows: RowStore<S>,
     eligible: usize,
     forced: &[(usize, usize)],
     plan: Option<&EliminationPlan>,
 ) -> Result<Rref<S>, SymError> {
-    let nrows = rows.len();
+    let nrows = rows.nrows();
     // Validity records are needed when the result is symbolic (valid elsewhere only if its
     // pivots hold) or replays a plan chosen elsewhere; a numeric elimination that chooses its
     // own pivots at its own point needs none.
@@ -397,48 +544,63 @@ pub fn rref<S: Scalar>(
         Some(p) => {
             let mut o = vec![None; nrows];
             for &r in &p.redundant {
-                if let Some(row) = rows.get(r) {
-                    o[r] = Some(eligible_part(row, eligible).to_vec());
+                if r < nrows {
+                    o[r] = Some(eligible_part(&rows[r], eligible).to_vec());
                 }
             }
             o
         }
-        None => rows
-            .iter()
-            .map(|row| Some(eligible_part(row, eligible).to_vec()))
+        None => (0..nrows)
+            .map(|r| Some(eligible_part(&rows[r], eligible).to_vec()))
             .collect(),
     };
     let search = plan.is_none();
-    let scale: Vec<f64> = if search {
-        rows.iter().map(|r| row_scale(r, eligible)).collect()
-    } else {
-        Vec::new()
-    };
-    let mut ccount = vec![0usize; if search { eligible } else { 0 }];
+    let row_state: Vec<RowState> = (0..nrows)
+        .map(|r| RowState {
+            pivoted: false,
+            dirty: true,
+            stats: None,
+            elen: 0,
+            scale: if search {
+                row_scale(&rows[r], eligible)
+            } else {
+                0.0
+            },
+        })
+        .collect();
+    let mut col_state = vec![
+        ColState {
+            done: false,
+            count: 0
+        };
+        eligible
+    ];
     if search {
-        for row in &rows {
-            for e in eligible_part(row, eligible) {
-                ccount[e.0] += 1;
+        for r in 0..nrows {
+            for e in eligible_part(&rows[r], eligible) {
+                col_state[e.0].count += 1;
             }
         }
     }
-    // Merges grow with fill-in; start the shared buffer at twice the longest row.
-    let el_rows_max = rows.iter().map(Vec::len).max().unwrap_or(0);
+    // No row outgrows the width, so buffers of that size never reallocate.
+    let width = rows
+        .ncols
+        .max((0..nrows).map(|r| rows[r].len()).max().unwrap_or(0));
     let cols = ColRows::new(&rows, eligible);
     let mut el = Elim {
         rows,
         eligible,
         record,
         search,
-        pivoted: vec![false; nrows],
-        col_done: vec![false; eligible],
-        ccount,
-        stats: vec![None; if search { nrows } else { 0 }],
-        dirty: vec![true; if search { nrows } else { 0 }],
-        elen: vec![0; if search { nrows } else { 0 }],
+        row_state,
+        col_state,
         cols,
-        scratch: Vec::with_capacity(2 * el_rows_max),
-        plan: EliminationPlan::default(),
+        scratch: Vec::with_capacity(width),
+        prow: Vec::with_capacity(width),
+        plan: EliminationPlan {
+            pivots: Vec::with_capacity(nrows.min(eligible)),
+            redundant: Vec::new(),
+        },
         records: Vec::new(),
     };
 
@@ -451,17 +613,19 @@ pub fn rref<S: Scalar>(
         for &(r, c) in forced {
             el.step(r, c)?;
         }
-        while let Some((r, c)) = el.choose(&scale) {
+        while let Some((r, c)) = el.choose() {
             el.step(r, c)?;
         }
-        el.plan.redundant = (0..nrows).filter(|&r| !el.pivoted[r]).collect();
+        el.plan.redundant = (0..nrows).filter(|&r| !el.row_state[r].pivoted).collect();
     }
 
     let mut rank_records = Vec::new();
     if record {
         for &r in &el.plan.redundant {
-            let Some(row) = el.rows.get(r) else { continue };
-            for e in eligible_part(row, eligible) {
+            if r >= nrows {
+                continue;
+            }
+            for e in eligible_part(&el.rows[r], eligible) {
                 rank_records.push(RankRecord {
                     row: r,
                     value: e.1,

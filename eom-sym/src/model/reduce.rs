@@ -24,7 +24,7 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, Row, Rref, fill_room, rref};
+use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::SymError;
@@ -71,13 +71,19 @@ pub struct Coord {
 
 impl std::fmt::Display for Coord {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let n = if self.velocity {
-            VELO[self.dof]
-        } else {
-            COORD[self.dof]
-        };
-        write!(f, "{}.{n}", self.body)
+        f.write_str(&coord_text(&self.body, self.dof, self.velocity))
     }
+}
+
+/// The text of a [`Coord`] (`body.x`, `body.vx`, …), built in one allocation: state names
+/// are made on every reduction, and formatting machinery would grow the string piecewise.
+fn coord_text(body: &str, dof: usize, velocity: bool) -> String {
+    let n = if velocity { VELO[dof] } else { COORD[dof] };
+    let mut s = String::with_capacity(body.len() + 1 + n.len());
+    s.push_str(body);
+    s.push('.');
+    s.push_str(n);
+    s
 }
 
 /// What a validity check guards (formatted only when displayed).
@@ -251,15 +257,8 @@ fn select_rows<S: Scalar>(m: &SparseMatrix<S>, rows: &[usize]) -> SparseMatrix<S
     m.select_rows(rows)
 }
 
-fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> Vec<Row<S>> {
-    (0..m.nrows())
-        .map(|i| {
-            let r = m.row(i);
-            let mut v = Vec::with_capacity(fill_room(r.len(), m.ncols()));
-            v.extend_from_slice(r);
-            v
-        })
-        .collect()
+fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> RowStore<S> {
+    RowStore::from_matrix(m)
 }
 
 fn hstack<S: Scalar>(
@@ -341,13 +340,17 @@ pub fn reduce<S: Scalar>(
         ..Default::default()
     };
     report.warnings = a.warnings.clone();
-    let body_names: Vec<Name> = a.bodies.iter().map(|b| Name::from(b.as_str())).collect();
+    // Shared names for check labels, made only when a check needs one (a numeric reduction
+    // without a plan records none).
+    let body_names: std::cell::OnceCell<Vec<Name>> = std::cell::OnceCell::new();
     let coord = |g: usize, velocity: bool| Coord {
-        body: body_names[g / 6].clone(),
+        body: body_names.get_or_init(|| a.bodies.iter().map(|b| Name::from(b.as_str())).collect())
+            [g / 6]
+            .clone(),
         dof: g % 6,
         velocity,
     };
-    let coord_name = |g: usize| coord(g, false).to_string();
+    let coord_name = |g: usize| coord_text(&a.bodies[g / 6], g % 6, false);
 
     // ------------------------------------------------------------ 1. pinned coordinates
     let (active, j_keep) = match plan {
@@ -437,7 +440,7 @@ pub fn reduce<S: Scalar>(
         rp.push(k, t, S::one());
     }
     for &(r, c) in &rj.plan.pivots {
-        for &(k, v) in &rj.rows[r] {
+        for &(k, v) in rj.rows.row(r) {
             if k != c && k < n && indep_pos[k] != usize::MAX {
                 rp.push(c, indep_pos[k], -v);
             }
@@ -448,10 +451,8 @@ pub fn reduce<S: Scalar>(
     // ------------------------------------------------------------ 3. velocities
     let rhs = jm.mul(&vel)?.mul(&rp)?;
     let nq = jm.nrows();
-    let nn = nm.nrows();
-    let g_top = hstack(&jm, &rhs)?;
-    let g_bot = hstack(&nm, &SparseMatrix::zeros(nn, np))?;
-    let g = vstack(&g_top, &g_bot)?;
+    // [J  J V R_p; N  0] in one pass.
+    let g = SparseMatrix::block(&[vec![Some(&jm), Some(&rhs)], vec![Some(&nm), None]])?;
     let g_label = |r: usize| {
         if r < nq {
             jlabel(r)
@@ -478,7 +479,7 @@ pub fn reduce<S: Scalar>(
             report.redundant.push(g_label(r).to_string());
         }
         // A redundant velocity row must also be consistent (its right-hand side negligible).
-        for &(k, v) in &rg.rows[r] {
+        for &(k, v) in rg.rows.row(r) {
             if k >= n {
                 checks.push(ValidityCheck::Negligible {
                     what: CheckLabel::VelocityConsistency { row: g_label(r) },
@@ -502,7 +503,7 @@ pub fn reduce<S: Scalar>(
         rw.push(k, t, S::one());
     }
     for &(r, c) in &rg.plan.pivots {
-        for &(k, v) in &rg.rows[r] {
+        for &(k, v) in rg.rows.row(r) {
             if k < n {
                 if k != c && indep_wpos[k] != usize::MAX {
                     rw.push(c, indep_wpos[k], -v);
@@ -523,7 +524,7 @@ pub fn reduce<S: Scalar>(
     let m_r = rwt_m.mul(&rw)?;
     let e21 = rwt_m.mul(&wp)?;
     let wfull = hstack(&wp, &rw)?; // w = Wfull x
-    let pfull = hstack(&rp, &SparseMatrix::zeros(n, nw))?; // p = Pfull x
+    let pfull = rp.widen(np + nw); // p = Pfull x = [R_p 0] x
     let kin = wfull.sub(&vel.mul(&pfull)?)?; // ṗ = (W − V P) x
     let a1 = kin.select_rows(&indep_p);
     let a2 = rwt
@@ -537,7 +538,10 @@ pub fn reduce<S: Scalar>(
     let m_aug = SparseMatrix::hcat(&[&m_r, &rhs_a, &b2, &g2])?;
     let rm = rref(to_rows(&m_aug), nw, &[], plan.map(|p| &p.mass))?;
     let vcoord = |t: usize| coord(active[indep_w[t]], true);
-    let vname = |t: usize| vcoord(t).to_string();
+    let vname = |t: usize| {
+        let g = active[indep_w[t]];
+        coord_text(&a.bodies[g / 6], g % 6, true)
+    };
     record_checks(
         &rm,
         &|r, c| CheckLabel::MassPivot {
@@ -560,8 +564,8 @@ pub fn reduce<S: Scalar>(
     let xb = mi.columns(nw + nx..nw + nx + m_in);
     let xg = mi.columns(nw + nx + m_in..nw + nx + 2 * m_in);
     let a_ss = vstack(&a1, &xa)?;
-    let gamma = vstack(&SparseMatrix::zeros(np, m_in), &xg)?;
-    let b_raw = vstack(&SparseMatrix::zeros(np, m_in), &xb)?;
+    let gamma = xg.below_zero_rows(np);
+    let b_raw = xb.below_zero_rows(np);
     let b_ss = b_raw.add(&a_ss.mul(&gamma)?)?;
 
     // ------------------------------------------------------------ 5. outputs
@@ -651,9 +655,9 @@ pub fn reduce<S: Scalar>(
     let plan = ReductionPlan {
         active,
         j_rows: j_keep,
-        position: rj.plan.clone(),
-        velocity: rg.plan.clone(),
-        mass: rm.plan.clone(),
+        position: rj.plan,
+        velocity: rg.plan,
+        mass: rm.plan,
     };
     Ok(Reduction {
         state_space: ss,
@@ -682,7 +686,7 @@ fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> Sparse
         .sum();
     let mut m = Triplets::with_capacity(nunk, nunk + nrhs, nnz);
     for &(row, c) in &r.plan.pivots {
-        for &(k, v) in &r.rows[row] {
+        for &(k, v) in r.rows.row(row) {
             m.push(c, k, v);
         }
     }
