@@ -30,6 +30,17 @@ pub enum CodegenError {
         /// What is wrong.
         problem: String,
     },
+    /// The model is too large for the generated `Error`, whose indices are small integers
+    /// (`u32` checks, `u16` rows and columns) so that `Result<(), Error>` fits in one register.
+    #[error("{what}: {count} exceeds {max}, the most the generated `Error` can index")]
+    TooLarge {
+        /// What is too large (the checks, the rows or columns of a matrix).
+        what: String,
+        /// How many there are.
+        count: usize,
+        /// The most there may be.
+        max: u64,
+    },
     /// The generated tokens do not parse as a Rust file (a bug of this crate).
     #[error("generated code does not parse: {0}")]
     Syntax(String),

@@ -33,7 +33,9 @@
 //!   `fn(p: &[Real; N_PARAMS], a: &mut [Real; A_LEN], …, work: &mut [Real; WORK_LEN]) -> Result<(), Error>`,
 //!   column-major outputs, structural zeros never written;
 //! * `StateSpace`: A, B, C, D and the workspace in one value, `evaluate(&Params)`;
-//! * `Error` (`Validity { check, what }`, `NonFinite { matrix, row, col }`).
+//! * `Error` (`Validity { check }`, `NonFinite { matrix, row, col }`; 8 bytes, so that
+//!   `Result<(), Error>` is returned in a register; `what()` gives the failing check's
+//!   description).
 //!
 //! ## Lowering
 //!
@@ -143,6 +145,15 @@ pub fn emit_with_stats(
         });
     }
     let problem = Problem::new(sym, opts.model_name.as_deref(), opts)?;
+    // The generated `Error` holds a check as `u32`, a row and a column as `u16`.
+    index_fits(problem.checks.len(), u32::MAX, || "validity checks".into())?;
+    for m in Mat::ALL {
+        let spec = &problem.mats[m.index()];
+        index_fits(spec.rows, u16::MAX, || format!("rows of {}", m.variant()))?;
+        index_fits(spec.cols, u16::MAX, || {
+            format!("columns of {}", m.variant())
+        })?;
+    }
     let module = match &opts.module {
         Some(m) => {
             let id = problem::module_ident(m);
@@ -267,6 +278,20 @@ pub fn emit_with_stats(
         source: header + &body,
         module,
         stats: emitted_stats,
+    })
+}
+
+/// `count` as the index type `T` of the generated `Error` (`u32` or `u16`), or
+/// [`CodegenError::TooLarge`] naming `what`: indices are below counts, so every index fits too.
+pub(crate) fn index_fits<T: TryFrom<usize> + Into<u64>>(
+    count: usize,
+    max: T,
+    what: impl FnOnce() -> String,
+) -> Result<T, CodegenError> {
+    T::try_from(count).map_err(|_| CodegenError::TooLarge {
+        what: what(),
+        count,
+        max: max.into(),
     })
 }
 
@@ -632,6 +657,7 @@ fn module_items(
 
         /// The matrices, for error reports.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        #[repr(u8)]
         pub enum Matrix {
             /// State matrix (`N_STATES × N_STATES`).
             A,
@@ -646,30 +672,51 @@ fn module_items(
         }
 
         /// Why an evaluation produced no result.
+        ///
+        /// Eight bytes (a `u32` check index, `u16` row and column), so that on 64-bit targets
+        /// `Result<(), Error>` is returned in a register. The Rust ABI returns a larger one
+        /// (anything beyond a pointer's size that is not a pair of scalars) through a hidden
+        /// pointer, and the fast path of a small evaluation function then moves every argument
+        /// to the next register to call its slow path.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         pub enum Error {
             /// The parameters are outside the validity region: this check fails.
             Validity {
-                /// Index into [`CHECKS`].
-                check: usize,
-                /// The check's description (`CHECKS[check]`).
-                what: &'static str,
+                /// Index into [`CHECKS`] (its description: [`Error::what`]).
+                check: u32,
             },
             /// An entry is a NaN or an infinity.
             NonFinite {
                 /// The matrix.
                 matrix: Matrix,
                 /// Row of the entry.
-                row: usize,
+                row: u16,
                 /// Column of the entry.
-                col: usize,
+                col: u16,
             },
+        }
+
+        // `Result<(), Error>` fits in one register on 64-bit targets (returned in it).
+        const _: () = if core::mem::size_of::<Result<(), Error>>() > 8 {
+            panic!("Result<(), Error> must fit in 8 bytes, to be returned in a register");
+        };
+
+        impl Error {
+            /// The description of the failing check (`CHECKS[check]`) for
+            /// [`Error::Validity`]; `None` for [`Error::NonFinite`] (and for a check index
+            /// out of range, which the evaluation functions never return).
+            pub fn what(&self) -> Option<&'static str> {
+                match *self {
+                    Error::Validity { check } => CHECKS.get(check as usize).copied(),
+                    Error::NonFinite { .. } => None,
+                }
+            }
         }
 
         impl core::fmt::Display for Error {
             fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
                 match self {
-                    Error::Validity { check, what } => write!(f, "outside the validity region: check {} fails ({})", check, what),
+                    Error::Validity { check } => write!(f, "outside the validity region: check {} fails ({})", check, self.what().unwrap_or("unknown check")),
                     Error::NonFinite { matrix, row, col } => write!(f, "entry ({}, {}) of {:?} is not finite", row, col, matrix),
                 }
             }
@@ -680,11 +727,12 @@ fn module_items(
         /// that fails or whose pivot is not finite, else an entry that is not finite (the fast
         /// path tests finiteness with one sum, which may also overflow by itself: then `None`).
         #[inline(always)]
-        fn failure(ok: &[bool], mag: &[Real], values: &[Real], entries: &[(Matrix, usize, usize, usize)]) -> Option<Error> {
+        fn failure(ok: &[bool], mag: &[Real], values: &[Real], entries: &[(Matrix, u16, u16, usize)]) -> Option<Error> {
             let mut check = 0;
             while check < ok.len() {
                 if !ok[check] || !mag[check].is_finite() {
-                    return Some(Error::Validity { check, what: CHECKS[check] });
+                    // `N_CHECKS ≤ u32::MAX`: the generator refuses larger models.
+                    return Some(Error::Validity { check: check as u32 });
                 }
                 check += 1;
             }
@@ -737,4 +785,35 @@ fn module_items(
         });
     }
     Ok(ts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn indices_too_large_for_the_generated_error_are_an_error_not_a_truncation() {
+        assert_eq!(
+            index_fits(7, u16::MAX, || "rows of A".into()).expect("fits"),
+            7u16
+        );
+        let max = u16::MAX as usize;
+        assert_eq!(
+            index_fits(max, u16::MAX, || "rows of A".into()).expect("fits"),
+            u16::MAX
+        );
+        let e = index_fits(max + 1, u16::MAX, || "rows of A".into()).expect_err("too large");
+        assert!(
+            matches!(&e, CodegenError::TooLarge { what, count, max: 65535 } if what == "rows of A" && *count == max + 1),
+            "{e:?}"
+        );
+        assert_eq!(
+            e.to_string(),
+            "rows of A: 65536 exceeds 65535, the most the generated `Error` can index"
+        );
+        if let Some(over) = (u32::MAX as usize).checked_add(1) {
+            let e = index_fits(over, u32::MAX, || "validity checks".into()).expect_err("too large");
+            assert!(matches!(e, CodegenError::TooLarge { .. }), "{e:?}");
+        }
+    }
 }

@@ -615,9 +615,12 @@ pub(crate) fn render_fn(
             }
         };
         let mv = Ident::new(m.variant(), Span::call_site());
+        // Row and column are `u16` in the generated `Error`.
+        let row = crate::index_fits(i, u16::MAX, || format!("row of {}", m.variant()))?;
+        let col = crate::index_fits(j, u16::MAX, || format!("column of {}", m.variant()))?;
         let (i, j, k) = (
-            Literal::usize_unsuffixed(i),
-            Literal::usize_unsuffixed(j),
+            Literal::u16_unsuffixed(row),
+            Literal::u16_unsuffixed(col),
             Literal::usize_unsuffixed(k),
         );
         table.push(quote!((Matrix::#mv, #i, #j, #k)));
@@ -731,7 +734,7 @@ pub(crate) fn render_fn(
         );
         items.extend(quote! {
             #[doc = #doc]
-            const #tname: [(Matrix, usize, usize, usize); #n] = [#(#table),*];
+            const #tname: [(Matrix, u16, u16, usize); #n] = [#(#table),*];
         });
         slow.extend(quote! {
             if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[#(#vals),*], &#tname) {

@@ -39,9 +39,11 @@ macro_rules! generated {
         use $m as g;
         fn conv(e: g::Error) -> GenErr {
             match e {
-                g::Error::Validity { check, what } => GenErr::Validity(check, what),
+                g::Error::Validity { check } => {
+                    GenErr::Validity(check as usize, e.what().expect("a check's description"))
+                }
                 g::Error::NonFinite { matrix, row, col } => {
-                    GenErr::NonFinite(format!("{matrix:?}"), row, col)
+                    GenErr::NonFinite(format!("{matrix:?}"), row as usize, col as usize)
                 }
             }
         }
@@ -537,6 +539,45 @@ fn outside_the_validity_region_both_refuse_with_the_same_check() {
         b::eval_abcd(&p.to_array(), &mut a, &mut bb, &mut c, &mut d, &mut w).expect_err("outside");
     assert!(e.to_string().contains("outside the validity region"), "{e}");
     assert!(a.iter().chain(&bb).chain(&c).chain(&d).all(|&x| x == 7.25));
+    // The check by index, its description through `what` and in the message.
+    let b::Error::Validity { check } = e else {
+        panic!("{e:?}")
+    };
+    let what = e.what().expect("a validity error has a description");
+    assert_eq!(what, b::CHECKS[check as usize]);
+    assert_eq!(
+        e.to_string(),
+        format!("outside the validity region: check {check} fails ({what})")
+    );
+}
+
+/// The generated `Error` is compact: `Result<(), Error>` fits in one register, which the Rust
+/// ABI returns it in (a larger one goes through a hidden pointer, and the fast path of a small
+/// function then moves every argument to call its slow path).
+#[test]
+fn generated_error_is_compact() {
+    use std::mem::size_of;
+    let sizes = [
+        ("smd", size_of::<Result<(), gen64::smd::Error>>()),
+        ("shimmy", size_of::<Result<(), gen64::shimmy::Error>>()),
+        ("bicycle", size_of::<Result<(), gen64::bicycle::Error>>()),
+        (
+            "bicycle f32",
+            size_of::<Result<(), gen32::bicycle::Error>>(),
+        ),
+    ];
+    println!("size_of::<Result<(), Error>>(): {sizes:?}");
+    for (model, size) in sizes {
+        assert!(size <= 8, "{model}: Result<(), Error> is {size} bytes");
+    }
+    assert_eq!(size_of::<gen64::shimmy::Matrix>(), 1);
+    let e = gen64::smd::Error::NonFinite {
+        matrix: gen64::smd::Matrix::A,
+        row: 1,
+        col: 0,
+    };
+    assert_eq!(e.what(), None);
+    assert_eq!(e.to_string(), "entry (1, 0) of A is not finite");
 }
 
 #[test]

@@ -71,7 +71,8 @@ fn outside_the_validity_region_a_tick_is_an_error() {
     p.lambda = core::f32::consts::FRAC_PI_2;
     let mut bad = Controller::new(p, [0.0; bicycle::N_STATES], 0.01);
     match bad.tick(5.0, &[0.0; bicycle::N_STATES]) {
-        Err(bicycle::Error::Validity { what, .. }) => {
+        Err(e @ bicycle::Error::Validity { .. }) => {
+            let what = e.what().expect("a validity error has a description");
             assert!(what.contains("steer hinge"), "{what}")
         }
         other => panic!("{other:?}"),
