@@ -25,11 +25,14 @@
 //!   roots compiled by `Tape::new_reassociating` (fewer instructions; its values differ from
 //!   the others in rounding, and by much on this ill-conditioned DAG, which changes the cost
 //!   of `sin` too). `tape_eval_batch64` evaluates 64 points per call (in chunks of 16),
-//!   throughput in nodes × points: the time per node per point.
+//!   throughput in nodes × points: the time per node per point. `native_eval_into` and
+//!   `native_reassociating_eval_into`: the same two tapes translated to machine code
+//!   (`NativeTape`, x86-64 Unix), which computes the interpreter's values bit for bit; the
+//!   code size and translation time are printed once.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use eom_sym::testing::{SplitMix, params, random_node};
-use eom_sym::{Dd, Expr, ExprPool, Tape, TapeWorkspace, eval_generic};
+use eom_sym::testing::{SplitMix, bounded_dag, params};
+use eom_sym::{Dd, Expr, ExprPool, NativeTape, Tape, TapeWorkspace, eval_generic};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -187,33 +190,6 @@ fn intern(c: &mut Criterion) {
     g.finish();
 }
 
-/// `testing::random_dag` with one change: a new node is kept only if its nominal value lies in
-/// [1e-6, 1e6], so that evaluation at the nominal point computes finite numbers throughout.
-fn bounded_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) -> Vec<Expr> {
-    let mut rng = SplitMix(seed);
-    let mut pool: Vec<Expr> = params.to_vec();
-    let roots_of = |pool: &Vec<Expr>| -> Vec<Expr> {
-        let n = pool.len();
-        (0..n_roots)
-            .map(|k| pool[n - 1 - (k * 7) % n.min(200)])
-            .collect()
-    };
-    // Grow until the roots' DAG (what the tape evaluates) has `n_nodes` unique nodes.
-    let mut guard = 0;
-    while guard < 50 * n_nodes {
-        if guard % 256 == 0 && Expr::dag_size(&roots_of(&pool)) >= n_nodes {
-            break;
-        }
-        guard += 1;
-        let e = random_node(&mut rng, &pool);
-        let v = e.nominal().abs();
-        if e.check().is_ok() && !e.is_number() && (1e-6..=1e6).contains(&v) {
-            pool.push(e);
-        }
-    }
-    roots_of(&pool)
-}
-
 fn eval(c: &mut Criterion) {
     let ps = params(20, 7, true);
     // (`testing::random_dag` overflows to ±inf in most nodes at the nominal point, which
@@ -274,6 +250,42 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
                 .unwrap()
         })
     });
+    // The same tapes as machine code (x86-64 Unix): the same values bit for bit.
+    match (NativeTape::new(&tape), NativeTape::new(&shared)) {
+        (Ok(native), Ok(native_shared)) => {
+            let (mut nout, mut tout) = (vec![0.0; tape.n_outputs()], vec![0.0; tape.n_outputs()]);
+            native.eval_into(&values, &mut nout, &mut work).unwrap();
+            tape.eval_into(&values, &mut tout, &mut work).unwrap();
+            assert!(
+                nout.iter()
+                    .zip(&tout)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                "native and interpreted tapes differ"
+            );
+            let t0 = Instant::now();
+            let again = NativeTape::new(&tape).unwrap();
+            eprintln!(
+                "{name}: native code of {} bytes, translated in {:.2} ms",
+                again.code_len(),
+                t0.elapsed().as_secs_f64() * 1e3
+            );
+            g.bench_function("native_eval_into", |b| {
+                b.iter(|| {
+                    native
+                        .eval_into(black_box(&values), &mut nout, &mut work)
+                        .unwrap()
+                })
+            });
+            g.bench_function("native_reassociating_eval_into", |b| {
+                b.iter(|| {
+                    native_shared
+                        .eval_into(black_box(&values), &mut nout, &mut swork)
+                        .unwrap()
+                })
+            });
+        }
+        (Err(e), _) | (_, Err(e)) => eprintln!("{name}: no native tape here ({e})"),
+    }
     if non_finite == 0 {
         const POINTS: usize = 64;
         // The same point 64 times: the random DAG is chaotic (a relative change of 1e-7 in

@@ -84,8 +84,8 @@ impl Func {
     /// Evaluate in `f64`.
     pub fn eval_f64(self, x: f64) -> f64 {
         match self {
-            Func::Sin => x.sin(),
-            Func::Cos => x.cos(),
+            Func::Sin => crate::trig::sin(x),
+            Func::Cos => crate::trig::cos(x),
             Func::Tan => x.tan(),
             Func::Exp => x.exp(),
             Func::Ln => x.ln(),

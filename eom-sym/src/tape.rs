@@ -27,6 +27,9 @@ use crate::rational::Rational;
 use crate::scalar::Elementary;
 use hashbrown::{HashMap, HashSet};
 
+mod native;
+pub use native::NativeTape;
+
 /// The operation of one instruction, on the values of slots `a`, `b` (and `c`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(u8)]
@@ -88,6 +91,9 @@ pub struct Tape {
     outputs: Vec<u32>,
     /// Unique nodes of the DAG compiled (for reporting).
     nodes: usize,
+    /// The instructions (positions in `args`) in the order they were compiled, operands
+    /// right before their uses: the order [`NativeTape`] emits them in.
+    compile_order: Vec<u32>,
 }
 
 /// Reusable work buffer for [`Tape::eval`].
@@ -248,8 +254,8 @@ unsafe fn exec<T: Lane>(blocks: &[Block], args: &[Args], w: &mut [T], base: usiz
                     }
                 }
                 Code::Pow => binary(g, w, out, |x, y| x.zip(y, f64::powf)),
-                Code::Sin => unary(g, w, out, f64::sin),
-                Code::Cos => unary(g, w, out, f64::cos),
+                Code::Sin => unary(g, w, out, crate::trig::sin),
+                Code::Cos => unary(g, w, out, crate::trig::cos),
                 Code::Tan => unary(g, w, out, f64::tan),
                 Code::Exp => unary(g, w, out, f64::exp),
                 Code::Ln => unary(g, w, out, f64::ln),
@@ -932,6 +938,7 @@ impl Tape {
             args,
             outputs: outputs.into_iter().map(slot).collect(),
             nodes: ids.len(),
+            compile_order: new_pos,
         })
     }
 
@@ -978,6 +985,16 @@ impl Tape {
         out: &mut [f64],
         work: &mut [f64],
     ) -> Result<(), SymError> {
+        self.check_lengths(values, out, work)?;
+        self.run(values, work);
+        for (o, &s) in out.iter_mut().zip(&self.outputs) {
+            *o = work[s as usize];
+        }
+        Ok(())
+    }
+
+    /// The buffer lengths [`Tape::eval_into`] requires, or an error saying which is wrong.
+    fn check_lengths(&self, values: &[f64], out: &[f64], work: &[f64]) -> Result<(), SymError> {
         if values.len() != self.params.len() {
             return Err(SymError::Dimension(format!(
                 "{} parameter values given, the tape expects {} ({})",
@@ -995,11 +1012,28 @@ impl Tape {
                 self.work_len()
             )));
         }
-        self.run(values, work);
-        for (o, &s) in out.iter_mut().zip(&self.outputs) {
-            *o = work[s as usize];
-        }
         Ok(())
+    }
+
+    /// The number of points of a batch, or an error if the buffers do not match.
+    fn batch_count(&self, points: &[f64], out: &[f64]) -> Result<usize, SymError> {
+        let np = self.params.len().max(1);
+        let no = self.outputs.len();
+        let count = if self.params.is_empty() {
+            out.len() / no.max(1)
+        } else {
+            points.len() / np
+        };
+        if (!self.params.is_empty() && points.len() != count * np) || out.len() != count * no {
+            return Err(SymError::Dimension(format!(
+                "batch of {} values / {} outputs does not match {} parameters and {} outputs per point",
+                points.len(),
+                out.len(),
+                self.params.len(),
+                no
+            )));
+        }
+        Ok(count)
     }
 
     /// One point; `values` and `w` have the lengths checked by the callers.
@@ -1025,13 +1059,7 @@ impl Tape {
             ws.work.resize(self.work_len(), 0.0);
         }
         self.eval_into(values, out, &mut ws.work)?;
-        if let Some((k, &v)) = out.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(SymError::EvalNonFinite {
-                what: format!("output {k}"),
-                value: v,
-            });
-        }
-        Ok(())
+        first_non_finite(out)
     }
 
     /// Evaluate into a new vector (allocates; convenient for one-off use).
@@ -1054,20 +1082,7 @@ impl Tape {
     ) -> Result<(), SymError> {
         let np = self.params.len().max(1);
         let no = self.outputs.len();
-        let count = if self.params.is_empty() {
-            out.len() / no.max(1)
-        } else {
-            points.len() / np
-        };
-        if (!self.params.is_empty() && points.len() != count * np) || out.len() != count * no {
-            return Err(SymError::Dimension(format!(
-                "batch of {} values / {} outputs does not match {} parameters and {} outputs per point",
-                points.len(),
-                out.len(),
-                self.params.len(),
-                no
-            )));
-        }
+        let count = self.batch_count(points, out)?;
         let n_params = self.params.len();
         let (base, len) = (self.base(), self.work_len());
         // Chunks of LANES points; a final remainder of fewer than LANES/4 points is cheaper
@@ -1132,6 +1147,17 @@ impl Tape {
             }
         }
         Ok(())
+    }
+}
+
+/// An error naming the first output that is not finite.
+fn first_non_finite(out: &[f64]) -> Result<(), SymError> {
+    match out.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        Some((k, &v)) => Err(SymError::EvalNonFinite {
+            what: format!("output {k}"),
+            value: v,
+        }),
+        None => Ok(()),
     }
 }
 
@@ -1296,6 +1322,15 @@ mod tests {
             let want = eval_generic::<f64>(roots, |i| index.get(&i).copied()).unwrap();
             for (k, (&t, &g)) in out.iter().zip(&want).enumerate() {
                 assert!(same(t, g), "output {k}: tape {t:e} vs eval_generic {g:e}");
+            }
+            #[cfg(all(target_arch = "x86_64", unix))]
+            {
+                let native = NativeTape::new(&tape).unwrap();
+                let mut got = vec![0.0; tape.n_outputs()];
+                native.eval_into(x, &mut got, &mut work).unwrap();
+                for (k, (&n, &t)) in got.iter().zip(&out).enumerate() {
+                    assert!(same(n, t), "output {k}: native {n:e} vs tape {t:e}");
+                }
             }
         }
     }

@@ -97,3 +97,31 @@ pub fn random_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) ->
         .map(|k| pool[n - 1 - (k * 7) % n.min(200)])
         .collect()
 }
+
+/// [`random_dag`] with one change: a new node is kept only if its nominal value lies in
+/// [1e-6, 1e6], so that evaluation at the nominal point computes finite numbers throughout
+/// (`random_dag` overflows to ±inf in most nodes by repeated squaring). Grows until the
+/// roots' DAG has `n_nodes` unique nodes. The benchmark DAG of the tape (`benches/core.rs`).
+pub fn bounded_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) -> Vec<Expr> {
+    let mut rng = SplitMix(seed);
+    let mut pool: Vec<Expr> = params.to_vec();
+    let roots_of = |pool: &Vec<Expr>| -> Vec<Expr> {
+        let n = pool.len();
+        (0..n_roots)
+            .map(|k| pool[n - 1 - (k * 7) % n.min(200)])
+            .collect()
+    };
+    let mut guard = 0;
+    while guard < 50 * n_nodes {
+        if guard % 256 == 0 && Expr::dag_size(&roots_of(&pool)) >= n_nodes {
+            break;
+        }
+        guard += 1;
+        let e = random_node(&mut rng, &pool);
+        let v = e.nominal().abs();
+        if e.check().is_ok() && !e.is_number() && (1e-6..=1e6).contains(&v) {
+            pool.push(e);
+        }
+    }
+    roots_of(&pool)
+}

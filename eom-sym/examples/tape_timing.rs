@@ -1,0 +1,81 @@
+//! Time the tape on the benchmark DAG of `benches/core.rs` (10 033 unique nodes, 50 roots,
+//! 20 parameters) as medians of short batches, which this noisy 2-core VM reports far more
+//! steadily than criterion's means: 200 batches of 20 evaluations each, interpreted
+//! ([`Tape::eval_into`]) and as machine code ([`NativeTape::eval_into`]), in turn.
+//!
+//! `cargo run --release -p eom-sym --example tape_timing`
+
+use eom_sym::testing::{bounded_dag, params};
+use eom_sym::{NativeTape, Tape};
+use std::time::Instant;
+
+/// Median and minimum over 200 batches of 20 calls, in seconds per call.
+fn time(mut f: impl FnMut()) -> (f64, f64) {
+    let mut t: Vec<f64> = (0..200)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..20 {
+                f();
+            }
+            start.elapsed().as_secs_f64() / 20.0
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    (t[100], t[0])
+}
+
+fn main() {
+    let ps = params(20, 7, true);
+    let roots = bounded_dag(&ps, 10_000, 50, 11);
+    let values: Vec<f64> = ps.iter().map(|p| p.nominal()).collect();
+    for (name, tape) in [
+        ("exact", Tape::new(&roots, &ps).unwrap()),
+        (
+            "reassociating",
+            Tape::new_reassociating(&roots, &ps).unwrap(),
+        ),
+    ] {
+        let nodes = tape.n_nodes() as f64;
+        let native = match NativeTape::new(&tape) {
+            Ok(n) => Some(n),
+            Err(e) => {
+                println!("no native tape here: {e}");
+                None
+            }
+        };
+        let mut work = vec![0.0; tape.work_len()];
+        let mut out = vec![0.0; tape.n_outputs()];
+        println!(
+            "{name} tape: {} nodes, {} instructions, {} bytes of machine code",
+            tape.n_nodes(),
+            tape.len(),
+            native.as_ref().map_or(0, |n| n.code_len())
+        );
+        for round in 0..3 {
+            let (med, min) = time(|| {
+                tape.eval_into(std::hint::black_box(&values), &mut out, &mut work)
+                    .unwrap()
+            });
+            print!(
+                "  round {round}: interpreted {:6.2} µs (min {:6.2}) = {:.2} ns/node",
+                med * 1e6,
+                min * 1e6,
+                med * 1e9 / nodes
+            );
+            if let Some(native) = &native {
+                let (med, min) = time(|| {
+                    native
+                        .eval_into(std::hint::black_box(&values), &mut out, &mut work)
+                        .unwrap()
+                });
+                print!(
+                    "; native {:6.2} µs (min {:6.2}) = {:.2} ns/node",
+                    med * 1e6,
+                    min * 1e6,
+                    med * 1e9 / nodes
+                );
+            }
+            println!();
+        }
+    }
+}
