@@ -660,15 +660,26 @@ pub(crate) fn render_fn(
             let lo = ctx.num.lit(1.0 / b.hi, "denominator bound")?;
             let mut tests: Vec<TokenStream> = Vec::new();
             if !b.params.is_empty() {
-                let parts: Vec<Part> = b
-                    .params
+                // Two running sums, of the even- and of the odd-numbered parameters, in
+                // index order: the same operations on consecutive array elements, which
+                // LLVM turns into packed `andpd`/`addpd` on pairs (shimmy, same driver:
+                // 5.26 → 4.95 ns per call against one tree over all of them).
+                let mut params = b.params.clone();
+                params.sort_unstable();
+                let mut lanes: [Vec<TokenStream>; 2] = [Vec::new(), Vec::new()];
+                for &k in &params {
+                    let l = ctx.param_local(k);
+                    lanes[k as usize % 2].push(quote!(#l.abs()));
+                }
+                let lanes: Vec<TokenStream> = lanes
                     .iter()
-                    .map(|&k| {
-                        let l = ctx.param_local(k);
-                        Part::leaf(quote!(#l.abs()), 0)
+                    .filter(|l| !l.is_empty())
+                    .map(|l| {
+                        let sum = join(l, quote!(+));
+                        if l.len() > 1 { quote!((#sum)) } else { sum }
                     })
                     .collect();
-                let sum = by_ready(parts, true).code;
+                let sum = join(&lanes, quote!(+));
                 body.extend(quote!(let size: #ty = #sum;));
                 tests.push(quote!(size < #hi));
             }
