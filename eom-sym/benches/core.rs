@@ -12,10 +12,10 @@
 //!   its numeric coefficients and exponents (one per term of a sum or factor of a product) —
 //!   about 6.3 here; the counts (calls, insertions, nodes created) are printed once so that
 //!   constructor calls per second can be derived. Target: ≥ 5·10⁶ insertions per second.
-//! * `eval/*`: one evaluation of the 50 roots of a random DAG of 10 033 unique nodes over 20
+//! * `eval/*`: one evaluation of the 50 roots of a random DAG of 10 199 unique nodes over 20
 //!   parameters, built with the operation mix of `testing::random_dag` (`testing::random_node`:
 //!   `+ − · /(1+b²) sin √(1+a²) powi`) but keeping only nodes whose nominal value lies in
-//!   [1e-6, 1e6], so that every instruction computes a finite number (`random_dag` itself
+//!   [1e-6, 1e6], so that (nearly) every instruction computes a finite number (`random_dag` itself
 //!   overflows to ±inf in about two thirds of its nodes by repeated squaring, which measures
 //!   libm's fast paths for inf/NaN rather than the tape). Throughput is in unique DAG nodes
 //!   (numbers included), so the time per element is the time per node: `tape_eval_into`
@@ -286,7 +286,7 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
         }
         (Err(e), _) | (_, Err(e)) => eprintln!("{name}: no native tape here ({e})"),
     }
-    if non_finite == 0 {
+    if out.iter().all(|v| v.is_finite()) {
         const POINTS: usize = 64;
         // The same point 64 times: the random DAG is chaotic (a relative change of 1e-7 in
         // the parameters already overflows some nodes), and the kernel's cost does not depend
