@@ -4,6 +4,10 @@
 //! ([`Tape::eval_into`]) and as machine code ([`NativeTape::eval_into`]), in turn.
 //!
 //! `cargo run --release -p eom-sym --example tape_timing`
+//!
+//! With arguments `interpreted N` or `native N` it only evaluates the exact tape `N` times
+//! (for instruction counts: run it under `valgrind --tool=callgrind` with two values of `N`
+//! and take the difference).
 
 use eom_sym::testing::{bounded_dag, params};
 use eom_sym::{NativeTape, Tape};
@@ -28,6 +32,22 @@ fn main() {
     let ps = params(20, 7, true);
     let roots = bounded_dag(&ps, 10_000, 50, 11);
     let values: Vec<f64> = ps.iter().map(|p| p.nominal()).collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let [how, n] = &args[..] {
+        let n: usize = n.parse().expect("a count");
+        let tape = Tape::new(&roots, &ps).unwrap();
+        let native = NativeTape::new(&tape).unwrap();
+        let mut work = vec![0.0; tape.work_len()];
+        let mut out = vec![0.0; tape.n_outputs()];
+        for _ in 0..n {
+            match how.as_str() {
+                "native" => native.eval_into(&values, &mut out, &mut work).unwrap(),
+                _ => tape.eval_into(&values, &mut out, &mut work).unwrap(),
+            }
+        }
+        std::hint::black_box(&out);
+        return;
+    }
     for (name, tape) in [
         ("exact", Tape::new(&roots, &ps).unwrap()),
         (
