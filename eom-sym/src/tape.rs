@@ -19,6 +19,10 @@
 //! branch on almost every instruction, more than the arithmetic. Evaluation allocates
 //! nothing; the work buffer is the caller's ([`Tape::eval_into`]) or kept in a
 //! [`TapeWorkspace`].
+//!
+//! [`NativeTape`] translates a tape to machine code (x86-64 Unix) with the same results bit
+//! for bit, about twice as fast; the interpreter remains for other platforms and for tapes
+//! evaluated too few times to repay the translation (about 0.25 µs per instruction).
 
 use crate::error::SymError;
 use crate::expr::{Expr, reachable};
@@ -1036,12 +1040,17 @@ impl Tape {
         Ok(count)
     }
 
-    /// One point; `values` and `w` have the lengths checked by the callers.
-    #[inline]
-    fn run(&self, values: &[f64], w: &mut [f64]) {
+    /// The parameters and constants into their slots (lengths checked by the callers).
+    fn load_inputs(&self, values: &[f64], w: &mut [f64]) {
         let np = self.params.len();
         w[..np].copy_from_slice(values);
         w[np..self.base()].copy_from_slice(&self.consts);
+    }
+
+    /// One point; `values` and `w` have the lengths checked by the callers.
+    #[inline]
+    fn run(&self, values: &[f64], w: &mut [f64]) {
+        self.load_inputs(values, w);
         assert!(w.len() >= self.work_len());
         // SAFETY: length asserted above; operand order checked by `Tape::new`.
         unsafe { exec(&self.blocks, &self.args, w, self.base()) }

@@ -5,17 +5,25 @@
 //! The translation is one-to-one: every tape instruction becomes the same IEEE operations in
 //! the same order (`a + c·b` as a product then a sum, `a·(1/b)` as a division then a product,
 //! `a³` as `(a·a)·a`, the library functions through the very functions the interpreter
-//! calls), so a [`NativeTape`] computes what [`Tape::eval_into`] computes, bit for bit; a
-//! test checks this. Every value is still written to its slot of the work buffer (the
-//! outputs are read from there), but operands are taken from a cache of the fourteen
-//! registers `xmm2`–`xmm15`, most recently written first, so that a value used soon after
-//! it is computed is not loaded back. A call (`sin`, `exp`, …) clobbers every `xmm`
-//! register under the System V ABI, so the cache is emptied there.
+//! calls; only the exact rewrites `a + 1·b = a + b`, `a + (−1)·b = a − b`, `1·(1/b) = 1/b`),
+//! so a [`NativeTape`] computes what [`Tape::eval_into`] computes, bit for bit; tests check
+//! this.
 //!
-//! Instructions are emitted in the order the compiler produced them (operands right before
-//! their use), not in the interpreter's runs of one operation: without dispatch there is
-//! nothing to gain from grouping, and short distances between a value and its uses keep it
-//! in a register.
+//! * **Order.** Instructions are emitted in the order the compiler produced them (operands
+//!   right before their use), not in the interpreter's runs of one operation: without
+//!   dispatch there is nothing to gain from grouping, and short distances keep values in
+//!   registers. Results get their work-buffer slots in this order, so that most addresses
+//!   are a one-byte displacement from a base register that moves forward.
+//! * **Registers.** Values live in `xmm2`–`xmm15`; when one must go, it is the one needed
+//!   furthest in the future (Belady: the whole program is known). An operation runs in the
+//!   register of an operand that dies there. A call (`sin`, `exp`, …) clobbers every `xmm`
+//!   register under the System V ABI, so values live across it are read back from memory.
+//! * **Stores.** A result is written to the work buffer only if some later use reads it
+//!   from memory (or it is an output): a first pass with the same decisions finds which.
+//!
+//! The 10 000-node benchmark DAG (`benches/core.rs`): 1.83–1.90 ns per node against 4.2–4.4
+//! for the interpreter, 136 k instructions per evaluation against 342 k; translation takes
+//! about 0.25 µs per instruction.
 //!
 //! Supported on x86-64 Unix (System V calling convention, `mmap`/`mprotect` for an
 //! executable page that is never writable at the same time); elsewhere
@@ -25,7 +33,7 @@ use super::Tape;
 use crate::error::SymError;
 
 /// A [`Tape`] compiled to native code. Evaluation has the same contract as
-/// [`Tape::eval_into`] and gives identical results, several times faster on large tapes.
+/// [`Tape::eval_into`] and gives identical results, about twice as fast on large tapes.
 ///
 /// ```
 /// use eom_sym::{Expr, NativeTape, Tape};
@@ -127,10 +135,7 @@ impl NativeTape {
         work: &mut [f64],
     ) -> Result<(), SymError> {
         self.tape.check_lengths(values, out, work)?;
-        let t = &self.tape;
-        let np = t.params.len();
-        work[..np].copy_from_slice(values);
-        work[np..t.base()].copy_from_slice(&t.consts);
+        self.tape.load_inputs(values, work);
         #[cfg(all(target_arch = "x86_64", unix))]
         // SAFETY: the code reads and writes slots below `work_len()` only (they are the
         // operands and results of the tape's instructions, whose order `Tape::new` checked),
