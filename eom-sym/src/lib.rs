@@ -47,7 +47,7 @@
 //!   only identities that are safe (the table in [`pool`]). Nothing is ever expanded.
 //!   [`parse`] reads expressions as people write them; [`display`] prints them back (plain
 //!   text that re-parses to the same node, and LaTeX).
-//! * **Evaluation**: a compiled [`Tape`] (no allocation per call, batch form for sweeps), the
+//! * **Evaluation** (guide: [`tutorials::_01_evaluation`]): a compiled [`Tape`] (no allocation per call, batch form for sweeps), the
 //!   same tape as machine code ([`NativeTape`], x86-64 Unix: no compiler needed, identical
 //!   values, about twice as fast on large tapes), and
 //!   [`eval_generic`] in any [`Elementary`] scalar — `f64`, double-double [`Dd`] (the accuracy
@@ -93,6 +93,7 @@ pub mod tape;
 #[doc(hidden)]
 pub mod testing;
 pub mod trig;
+pub mod tutorials;
 pub mod zero;
 
 pub use dd::Dd;

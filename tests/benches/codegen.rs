@@ -1,4 +1,5 @@
-//! Generated code against the tape interpreter on the same expressions, in the same run:
+//! Generated code against the tape interpreter (and its native-code form, `NativeTape`) on
+//! the same expressions, in the same run:
 //! bicycle A..D with all parameters symbolic (libm and std math, f64 and f32), shimmy, chain50,
 //! and the generation time. Each iteration evaluates 64 distinct points near nominal (per-call
 //! time = iteration time / 64; criterion's throughput line gives calls per second).
@@ -10,8 +11,8 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_codegen::EmitOptions;
-use eom_sym::Tape;
 use eom_sym::model::{Linearizer, ValidityCheck};
+use eom_sym::{NativeTape, Tape};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
 
@@ -96,6 +97,23 @@ macro_rules! bench_abcd {
 
 fn bench_tape(c: &mut Criterion, label: &str, model: &str) {
     let tape = abcd_tape(model);
+    if let Ok(native) = NativeTape::new(&tape) {
+        let m = models::build(model, &[]).expect("model");
+        let pts = points(&m.scope.nominal_values(), 64);
+        let mut out = vec![0.0; tape.n_outputs()];
+        let mut work = vec![0.0; tape.work_len()];
+        let mut group = c.benchmark_group("per call");
+        group.throughput(Throughput::Elements(64));
+        group.bench_function(label.replace("tape", "native tape"), |b| {
+            b.iter(|| {
+                for p in black_box(&pts) {
+                    native.eval_into(p, &mut out, &mut work).expect("eval");
+                }
+                black_box(&out);
+            })
+        });
+        group.finish();
+    }
     let m = models::build(model, &[]).expect("model");
     let pts = points(&m.scope.nominal_values(), 64);
     let mut out = vec![0.0; tape.n_outputs()];
