@@ -944,6 +944,27 @@ mod tests {
         agree(&roots, &ps, &points);
     }
 
+    /// No instructions at all: outputs that are parameters and constants.
+    #[test]
+    fn tapes_without_instructions() {
+        let ps = params(2, 1, true);
+        let roots = [ps[1], Expr::int(3), ps[0]];
+        let tape = Tape::new(&roots, &ps).unwrap();
+        assert_eq!(tape.len(), 0);
+        let native = NativeTape::new(&tape).unwrap();
+        let mut work = vec![0.0; native.work_len()];
+        let mut out = [0.0; 3];
+        native.eval_into(&[1.5, -2.0], &mut out, &mut work).unwrap();
+        assert_eq!(out, [-2.0, 3.0, 1.5]);
+        let constant = Tape::new(&[Expr::int(7)], &[]).unwrap();
+        let native = NativeTape::new(&constant).unwrap();
+        let mut one = [0.0];
+        native
+            .eval_into(&[], &mut one, &mut vec![0.0; native.work_len()])
+            .unwrap();
+        assert_eq!(one, [7.0]);
+    }
+
     #[test]
     fn buffers_of_the_wrong_length_are_errors_and_batches_match() {
         let ps = params(2, 1, true);
