@@ -77,6 +77,13 @@ impl NativeTape {
     pub fn new(tape: &Tape) -> Result<NativeTape, SymError> {
         #[cfg(all(target_arch = "x86_64", unix))]
         {
+            // Slots are addressed with 32-bit displacements.
+            if tape.work_len() >= (i32::MAX as usize) / 16 {
+                return Err(SymError::Unsupported(format!(
+                    "native tape: {} work slots exceed the 32-bit displacements of the code",
+                    tape.work_len()
+                )));
+            }
             let (bytes, outputs) = emit::program(tape);
             let code = exec::Code::new(&bytes)?;
             Ok(NativeTape {
