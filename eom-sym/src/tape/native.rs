@@ -52,10 +52,12 @@ use crate::error::SymError;
 ///     Err(e) => println!("{e}"),
 /// }
 /// ```
+#[derive(Clone)]
 pub struct NativeTape {
     tape: Tape,
+    /// The machine code, shared by clones (it is never written after construction).
     #[cfg(all(target_arch = "x86_64", unix))]
-    code: exec::Code,
+    code: std::sync::Arc<exec::Code>,
     /// The slots the outputs are left in (the native layout differs from the tape's).
     #[cfg(all(target_arch = "x86_64", unix))]
     outputs: Vec<u32>,
@@ -85,7 +87,7 @@ impl NativeTape {
                 )));
             }
             let (bytes, outputs) = emit::program(tape);
-            let code = exec::Code::new(&bytes)?;
+            let code = std::sync::Arc::new(exec::Code::new(&bytes)?);
             Ok(NativeTape {
                 tape: tape.clone(),
                 code,
@@ -949,6 +951,26 @@ mod tests {
             }
         }
         agree(&roots, &ps, &points);
+    }
+
+    #[test]
+    fn clones_share_the_code_and_cross_threads() {
+        fn send_sync<T: Send + Sync>(_: &T) {}
+        let ps = params(2, 3, true);
+        let tape = Tape::new(&[(ps[0] * ps[1]).sin()], &ps).unwrap();
+        let native = NativeTape::new(&tape).unwrap();
+        send_sync(&native);
+        let copy = native.clone();
+        drop(native);
+        let got = std::thread::spawn(move || {
+            let mut out = [0.0];
+            copy.eval_into(&[0.5, 3.0], &mut out, &mut vec![0.0; copy.work_len()])
+                .unwrap();
+            out[0]
+        })
+        .join()
+        .unwrap();
+        assert_eq!(got, crate::trig::sin(1.5));
     }
 
     /// No instructions at all: outputs that are parameters and constants.
