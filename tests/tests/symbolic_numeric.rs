@@ -173,3 +173,31 @@ fn native_tape_equals_the_interpreter_on_every_model() {
         }
     }
 }
+
+/// The compiled state space switches to native code after `NATIVE_AFTER` evaluations: the
+/// matrices before and after are the same bit for bit, and a breakdown is still reported.
+#[test]
+fn tiering_to_native_code_changes_no_result() {
+    let model = models::build("bicycle", &[]).unwrap();
+    let sym = Linearizer::new(&model).symbolic().unwrap();
+    let compiled = sym.compiled().clone();
+    let nominal = model.scope.nominal_values();
+    let bits = |ss: &StateSpace<f64>| -> Vec<u64> {
+        [&ss.a, &ss.b, &ss.c, &ss.d]
+            .iter()
+            .flat_map(|m| m.iter().map(|x| x.to_bits()))
+            .collect()
+    };
+    let before = bits(&compiled.evaluate(&nominal).unwrap());
+    let broken = model.scope.values_with(&[("w", 0.0)]).unwrap();
+    for _ in 0..eom_sym::model::NATIVE_AFTER + 5 {
+        compiled.evaluate(&nominal).unwrap();
+    }
+    // A clone shares the tier (and its native code).
+    let after = bits(&sym.compiled().clone().evaluate(&nominal).unwrap());
+    assert_eq!(before, after);
+    match compiled.evaluate(&broken) {
+        Err(SymError::PivotBreakdown(msg)) => assert!(msg.contains("steer hinge"), "{msg}"),
+        other => panic!("expected a pivot breakdown, got {other:?}"),
+    }
+}

@@ -18,8 +18,8 @@ pub use assemble::{Assembled, RowLabel, assemble};
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use reduce::{
-    CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, MatrixSize, Reduction, ReductionPlan,
-    ReductionReport, SymbolicStateSpace, ValidityCheck, reduce,
+    CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, MatrixSize, NATIVE_AFTER, Reduction,
+    ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 
