@@ -56,7 +56,7 @@
 ///
 /// (Measured on a 2-core VM: `cargo bench -p tests --bench codegen`; the large random DAG of
 /// `cargo run --release -p eom-sym --example tape_timing` gives 4.2 ns per node interpreted
-/// and 1.85 ns per node native.)
+/// and 1.83–1.91 ns per node native.)
 ///
 /// ## Why the tape is fast
 ///

@@ -21,7 +21,7 @@
 //! * **Stores.** A result is written to the work buffer only if some later use reads it
 //!   from memory (or it is an output): a first pass with the same decisions finds which.
 //!
-//! The 10 000-node benchmark DAG (`benches/core.rs`): 1.83–1.90 ns per node against 4.2–4.4
+//! The 10 000-node benchmark DAG (`benches/core.rs`): 1.83–1.91 ns per node against 4.2–4.4
 //! for the interpreter, 136 k instructions per evaluation against 342 k; translation takes
 //! about 0.25 µs per instruction.
 //!
