@@ -12,7 +12,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_codegen::EmitOptions;
 use eom_sym::model::{Linearizer, ValidityCheck};
-use eom_sym::{NativeTape, Tape};
+use eom_sym::{NativeTape, SymError, Tape};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
 
@@ -96,38 +96,36 @@ macro_rules! bench_abcd {
 }
 
 fn bench_tape(c: &mut Criterion, label: &str, model: &str) {
+    type Kernel<'a> = Box<dyn Fn(&[f64], &mut [f64], &mut [f64]) -> Result<(), SymError> + 'a>;
     let tape = abcd_tape(model);
-    if let Ok(native) = NativeTape::new(&tape) {
-        let m = models::build(model, &[]).expect("model");
-        let pts = points(&m.scope.nominal_values(), 64);
-        let mut out = vec![0.0; tape.n_outputs()];
-        let mut work = vec![0.0; tape.work_len()];
-        let mut group = c.benchmark_group("per call");
-        group.throughput(Throughput::Elements(64));
-        group.bench_function(label.replace("tape", "native tape"), |b| {
-            b.iter(|| {
-                for p in black_box(&pts) {
-                    native.eval_into(p, &mut out, &mut work).expect("eval");
-                }
-                black_box(&out);
-            })
-        });
-        group.finish();
-    }
     let m = models::build(model, &[]).expect("model");
     let pts = points(&m.scope.nominal_values(), 64);
     let mut out = vec![0.0; tape.n_outputs()];
     let mut work = vec![0.0; tape.work_len()];
+    // The interpreter and, where the platform has it, the same tape as machine code.
+    let native = NativeTape::new(&tape).ok();
+    let mut kernels: Vec<(String, Kernel)> = vec![(
+        label.to_string(),
+        Box::new(|p, o, w| tape.eval_into(p, o, w)),
+    )];
+    if let Some(n) = &native {
+        kernels.push((
+            label.replace("tape", "native tape"),
+            Box::new(|p, o, w| n.eval_into(p, o, w)),
+        ));
+    }
     let mut group = c.benchmark_group("per call");
     group.throughput(Throughput::Elements(64));
-    group.bench_function(label, |b| {
-        b.iter(|| {
-            for p in black_box(&pts) {
-                tape.eval_into(p, &mut out, &mut work).expect("eval");
-            }
-            black_box(&out);
-        })
-    });
+    for (name, eval) in &kernels {
+        group.bench_function(name.as_str(), |b| {
+            b.iter(|| {
+                for p in black_box(&pts) {
+                    eval(p, &mut out, &mut work).expect("eval");
+                }
+                black_box(&out);
+            })
+        });
+    }
     group.finish();
 }
 
