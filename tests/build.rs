@@ -89,8 +89,10 @@ fn main() {
     add(
         "bicycle_simplified.rs",
         "f64 simplified",
+        // `simplify_always`: by its longer dependency chain plain `simplify` would keep the
+        // original here, and this module is to test simplified code.
         Generate::model("bicycle")
-            .simplify(true)
+            .simplify_always(true)
             .module("bicycle_simplified"),
         &mut index,
     );

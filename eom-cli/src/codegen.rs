@@ -16,6 +16,8 @@ pub struct CodegenRequest {
     pub no_std: bool,
     /// Run the bounded simplification before lowering.
     pub simplify: bool,
+    /// Use the simplification whenever it has fewer operations.
+    pub simplify_always: bool,
     /// Name of the generated module (default: from the model name).
     pub module: Option<String>,
 }
@@ -33,7 +35,9 @@ pub fn codegen(
     use eom_codegen::EmitOptions;
     let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     let model = models::build(&choice.name, &ov)?;
-    let mut opts = EmitOptions::default().simplify(req.simplify);
+    let mut opts = EmitOptions::default()
+        .simplify(req.simplify)
+        .simplify_always(req.simplify_always);
     if req.f32 {
         opts = opts.f32();
     }
@@ -70,6 +74,7 @@ pub fn codegen(
 /// The summary printed after writing.
 #[cfg(feature = "codegen")]
 fn summary(e: &eom_codegen::Emitted, path: &Path, req: &CodegenRequest) -> String {
+    use eom_codegen::Simplification;
     let s = &e.stats;
     let lines = e.source.lines().count();
     let math = if req.no_std {
@@ -84,10 +89,24 @@ fn summary(e: &eom_codegen::Emitted, path: &Path, req: &CodegenRequest) -> Strin
         if req.f32 { "f32" } else { "f64" },
         s.checks,
     );
-    match s.simplified {
-        Some(true) => t.push_str("simplification: used (cheaper than the original)\n"),
-        Some(false) => t.push_str("simplification: run, original kept (not cheaper)\n"),
-        None => {}
+    match s.simplification {
+        Simplification::Used if req.simplify_always => {
+            t.push_str("simplification: used (fewer operations)\n")
+        }
+        Simplification::Used => {
+            t.push_str("simplification: used (fewer operations, no longer a dependency chain)\n")
+        }
+        Simplification::NotCheaper => {
+            t.push_str("simplification: run, original kept (no fewer operations)\n")
+        }
+        Simplification::LongerChain {
+            simplified,
+            original,
+        } => t.push_str(&format!(
+            "simplification: run, original kept (fewer operations, but a longer dependency \
+             chain: {simplified} against {original} estimated cycles)\n"
+        )),
+        Simplification::NotRun => {}
     }
     t.push_str(&format!(
         "use it with: include!(\"{}\");  // then `{}::StateSpace`, `{}::Params`, …\n",

@@ -201,9 +201,14 @@ struct CodegenArgs {
     /// Code for #![no_std] targets: elementary functions from the `libm` crate
     #[arg(long)]
     no_std: bool,
-    /// Simplify the expressions first (bounded e-graph rewriting; kept only when cheaper)
+    /// Simplify the expressions first (bounded e-graph rewriting; used only when it gives
+    /// fewer operations and no longer a dependency chain)
     #[arg(long)]
     simplify: bool,
+    /// Simplify, and use the result whenever it has fewer operations, even with a longer
+    /// dependency chain (factoring can remove cancellations: more accurate, maybe slower)
+    #[arg(long)]
+    simplify_always: bool,
     /// Nominal parameter value (repeatable): where the pivots are chosen, and the default of
     /// the generated `Params::NOMINAL`
     #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -303,6 +308,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 f32: c.f32,
                 no_std: c.no_std,
                 simplify: c.simplify,
+                simplify_always: c.simplify_always,
                 module: c.module,
             };
             codegen::codegen(&choice, &overrides, &req, &c.output)?

@@ -76,9 +76,15 @@ impl Generate {
         self.opts = self.opts.module(name);
         self
     }
-    /// Run the bounded egg simplification first.
+    /// Run the bounded egg simplification first (used when fewer operations and no longer
+    /// a dependency chain).
     pub fn simplify(mut self, on: bool) -> Self {
         self.opts = self.opts.simplify(on);
+        self
+    }
+    /// Simplify, and use the result whenever it has fewer operations.
+    pub fn simplify_always(mut self, on: bool) -> Self {
+        self.opts = self.opts.simplify_always(on);
         self
     }
     /// Most temporaries per generated function.

@@ -77,8 +77,13 @@ pub struct EmitOptions {
     /// Model name used in the documentation (`None`: from the model, or `model`).
     pub model_name: Option<String>,
     /// Run the bounded egg simplification ([`eom_sym::simplify::Simplifier`]) over all
-    /// entries and checks before lowering; its result is used only when it is cheaper.
+    /// entries and checks before lowering; its result is used only when it has fewer
+    /// operations and no longer a dependency chain (see [`emit_with_stats`](crate::emit_with_stats)).
     pub simplify: bool,
+    /// With `simplify`: use the simplified expressions whenever they have fewer operations,
+    /// even with a longer dependency chain. Factoring can also remove a cancellation (the
+    /// shimmy's `k·lx − k·(lx − l)` becomes `k·l`), so this trades speed for accuracy.
+    pub simplify_always: bool,
     /// Most temporaries per generated function; larger evaluations are split into chunks that
     /// pass values through the caller's work buffer.
     pub max_temporaries: usize,
@@ -97,6 +102,7 @@ impl Default for EmitOptions {
             module: None,
             model_name: None,
             simplify: false,
+            simplify_always: false,
             max_temporaries: DEFAULT_CHUNK,
             functions: Functions::default(),
             fixed: Vec::new(),
@@ -130,9 +136,19 @@ impl EmitOptions {
         self.model_name = Some(name.to_string());
         self
     }
-    /// Run the bounded egg simplification first.
+    /// Run the bounded egg simplification first (used when fewer operations and no longer
+    /// a dependency chain).
     pub fn simplify(mut self, on: bool) -> Self {
         self.simplify = on;
+        self
+    }
+    /// Simplify, and use the result whenever it has fewer operations (see
+    /// [`EmitOptions::simplify_always`]).
+    pub fn simplify_always(mut self, on: bool) -> Self {
+        self.simplify_always = on;
+        if on {
+            self.simplify = true;
+        }
         self
     }
     /// Most temporaries per generated function (at least 1).
