@@ -221,6 +221,9 @@ struct Lowerer<'a> {
     scaled_memo: HashMap<(OpKey, u64), Operand>,
     mono_memo: HashMap<Vec<(OpKey, Rational)>, Operand>,
     sum_memo: HashMap<(u64, Vec<(OpKey, u64)>), Operand>,
+    /// The terms of every sum temporary (`c0`, terms as in its instruction), for
+    /// [`Lowerer::expand_cancelling_sums`].
+    sum_terms: HashMap<u32, (f64, Vec<(Operand, f64)>)>,
     sincos_memo: HashMap<OpKey, (Operand, Operand)>,
     /// Arguments of both a `sin` and a `cos`.
     sincos_args: HashSet<Expr>,
@@ -570,6 +573,7 @@ fn run(
         scaled_memo: HashMap::new(),
         mono_memo: HashMap::new(),
         sum_memo: HashMap::new(),
+        sum_terms: HashMap::new(),
         sincos_memo: HashMap::new(),
         sincos_args,
         analysis,
@@ -715,6 +719,7 @@ impl Lowerer<'_> {
             }
         }
         merged.retain(|t| t.1 != 0.0);
+        self.expand_cancelling_sums(&mut c0, &mut merged);
         if merged.is_empty() {
             return Val::of(Operand::Lit(c0));
         }
@@ -749,9 +754,62 @@ impl Lowerer<'_> {
                 scale: sign,
             };
         }
-        let o = self.push(Rhs::Sum { c0, terms: merged });
+        let o = self.push(Rhs::Sum {
+            c0,
+            terms: merged.clone(),
+        });
+        if let Operand::Temp(t) = o {
+            self.sum_terms.insert(t, (c0, merged));
+        }
         self.sum_memo.insert(key, o);
         Val { op: o, scale: sign }
+    }
+
+    /// Expands a term that is itself a sum temporary when that cancels terms, so that
+    /// `a + b − (a + b − c)` is computed as `c`, not as `c` plus rounding noise. The pool
+    /// flattens nested sums itself; such a term reaches the lowering as a product whose
+    /// factors cancel only here (`cos λ · S / cos λ`: the pool keeps `x/x` unless `x` is
+    /// provably nonzero, and the lowering cancels it when a validity check keeps `x` away from
+    /// zero). Expanded only when the sum gets no more operations than before.
+    fn expand_cancelling_sums(&self, c0: &mut f64, terms: &mut Vec<(Operand, f64)>) {
+        let size = |c0: f64, t: &[(Operand, f64)]| t.len() + usize::from(c0 != 0.0);
+        let mut k = 0;
+        while k < terms.len() {
+            let (op, c) = terms[k];
+            let inner = match op {
+                Operand::Temp(u) => self.sum_terms.get(&u),
+                _ => None,
+            };
+            let Some((ic0, inner)) = inner else {
+                k += 1;
+                continue;
+            };
+            let mut cand: Vec<(Operand, f64)> = terms
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != k)
+                .map(|(_, t)| *t)
+                .chain(inner.iter().map(|&(o, ci)| (o, ci * c)))
+                .collect();
+            let unmerged = cand.len();
+            cand.sort_by_key(|a| a.0.key());
+            let mut m: Vec<(Operand, f64)> = Vec::with_capacity(cand.len());
+            for (o, ci) in cand {
+                match m.last_mut() {
+                    Some(last) if last.0 == o => last.1 += ci,
+                    _ => m.push((o, ci)),
+                }
+            }
+            m.retain(|t| t.1 != 0.0);
+            let cc0 = *c0 + ic0 * c;
+            if m.len() < unmerged && size(cc0, &m) <= size(*c0, terms) {
+                *c0 = cc0;
+                *terms = m;
+                k = 0;
+            } else {
+                k += 1;
+            }
+        }
     }
 
     fn product(&mut self, coef: f64, factors: &[(Expr, Rational)]) -> Val {
@@ -984,5 +1042,67 @@ fn fold(rhs: &Rhs) -> Option<f64> {
             })
         }
         Rhs::SinCos(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Lowers `roots` over the parameters `ps` (interface positions in order), with `pivots`
+    /// checked nonzero.
+    fn lowered(roots: &[Expr], ps: &[Expr], pivots: &[Expr]) -> Lowered {
+        let pos: HashMap<u32, u32> = ps
+            .iter()
+            .enumerate()
+            .map(|(k, p)| (p.param_index().expect("param"), k as u32))
+            .collect();
+        let dag = crate::order::build(roots, &pos).expect("dag");
+        lower(&dag, roots, pivots).expect("lower")
+    }
+
+    /// `a + b − cos x · (a + b − c) / cos x` is `c`: the pool keeps `cos x / cos x` (cos x may
+    /// be zero), the lowering cancels it where a validity check keeps `cos x` nonzero (as in
+    /// the bicycle, with `cos λ`), and then the sum must cancel too rather than compute `c`
+    /// plus the rounding error of `a + b`.
+    #[test]
+    fn sums_that_cancel_after_a_cancelled_product_are_expanded() {
+        let [a, b, c, x] = ["ea", "eb", "ec", "ex"].map(|n| Expr::param(n, 0.5).expect("param"));
+        let inner = a + b - c;
+        let cx = x.cos();
+        let e = a + b - cx * inner * cx.recip();
+        // The pool has not cancelled it (or this test tests nothing).
+        assert!(e.to_string().contains("cos"), "{e}");
+        let l = lowered(&[inner, e], &[a, b, c, x], &[cx]);
+        let (op, neg) = l.roots[1];
+        assert_eq!(op, Operand::Param(2), "{:?}", l.insts);
+        assert!(!neg);
+        // `a + b − c` is still computed once for the first root, and nothing else is.
+        let sums = l
+            .insts
+            .iter()
+            .filter(|i| matches!(i.rhs, Rhs::Sum { .. }))
+            .count();
+        assert_eq!(sums, 1, "{:?}", l.insts);
+    }
+
+    /// Expansion is refused when it would add operations: `d + cos x·(a + b + c)/cos x` keeps
+    /// the shared sum as one term.
+    #[test]
+    fn sums_without_cancellation_are_not_expanded() {
+        let [a, b, c, d, x] =
+            ["fa", "fb", "fc", "fd", "fx"].map(|n| Expr::param(n, 0.5).expect("param"));
+        let inner = a + b + c;
+        let cx = x.cos();
+        let e = d + cx * inner * cx.recip();
+        let l = lowered(&[inner, e], &[a, b, c, d, x], &[cx]);
+        let Operand::Temp(t) = l.roots[1].0 else {
+            panic!("{:?}", l.roots)
+        };
+        let rhs = &l.insts.iter().find(|i| i.def == t).expect("def").rhs;
+        let Rhs::Sum { terms, .. } = rhs else {
+            panic!("{rhs:?}")
+        };
+        assert_eq!(terms.len(), 2, "{rhs:?}");
     }
 }
