@@ -89,7 +89,7 @@ fn main() {
     add(
         "bicycle_simplified.rs",
         "f64 simplified",
-        // `simplify_always`: by its longer dependency chain plain `simplify` would keep the
+        // `simplify_always`: by its cost estimate plain `simplify` would keep the
         // original here, and this module is to test simplified code.
         Generate::model("bicycle")
             .simplify_always(true)

@@ -94,17 +94,17 @@ fn summary(e: &eom_codegen::Emitted, path: &Path, req: &CodegenRequest) -> Strin
             t.push_str("simplification: used (fewer operations)\n")
         }
         Simplification::Used => {
-            t.push_str("simplification: used (fewer operations, no longer a dependency chain)\n")
+            t.push_str("simplification: used (fewer operations, estimated faster)\n")
         }
         Simplification::NotCheaper => {
             t.push_str("simplification: run, original kept (no fewer operations)\n")
         }
-        Simplification::LongerChain {
+        Simplification::NotFaster {
             simplified,
             original,
         } => t.push_str(&format!(
             "simplification: run, original kept (fewer operations, but a longer dependency \
-             chain: {simplified} against {original} estimated cycles)\n"
+             chain: cost estimate {simplified} against {original})\n"
         )),
         Simplification::NotRun => {}
     }

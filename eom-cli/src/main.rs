@@ -202,11 +202,11 @@ struct CodegenArgs {
     #[arg(long)]
     no_std: bool,
     /// Simplify the expressions first (bounded e-graph rewriting; used only when it gives
-    /// fewer operations and no longer a dependency chain)
+    /// fewer operations and is estimated faster)
     #[arg(long)]
     simplify: bool,
-    /// Simplify, and use the result whenever it has fewer operations, even with a longer
-    /// dependency chain (factoring can remove cancellations: more accurate, maybe slower)
+    /// Simplify, and use the result whenever it has fewer operations, even when estimated
+    /// slower (factoring can remove cancellations: more accurate, maybe slower)
     #[arg(long)]
     simplify_always: bool,
     /// Nominal parameter value (repeatable): where the pivots are chosen, and the default of

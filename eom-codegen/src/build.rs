@@ -76,8 +76,8 @@ impl Generate {
         self.opts = self.opts.module(name);
         self
     }
-    /// Run the bounded egg simplification first (used when fewer operations and no longer
-    /// a dependency chain).
+    /// Run the bounded egg simplification first (used when fewer operations and estimated
+    /// faster).
     pub fn simplify(mut self, on: bool) -> Self {
         self.opts = self.opts.simplify(on);
         self

@@ -78,10 +78,10 @@ pub struct EmitOptions {
     pub model_name: Option<String>,
     /// Run the bounded egg simplification ([`eom_sym::simplify::Simplifier`]) over all
     /// entries and checks before lowering; its result is used only when it has fewer
-    /// operations and no longer a dependency chain (see [`emit_with_stats`](crate::emit_with_stats)).
+    /// operations and is estimated faster (see [`emit_with_stats`](crate::emit_with_stats)).
     pub simplify: bool,
     /// With `simplify`: use the simplified expressions whenever they have fewer operations,
-    /// even with a longer dependency chain. Factoring can also remove a cancellation (the
+    /// even when estimated slower. Factoring can also remove a cancellation (the
     /// shimmy's `k·lx − k·(lx − l)` becomes `k·l`), so this trades speed for accuracy.
     pub simplify_always: bool,
     /// Most temporaries per generated function; larger evaluations are split into chunks that
@@ -136,8 +136,8 @@ impl EmitOptions {
         self.model_name = Some(name.to_string());
         self
     }
-    /// Run the bounded egg simplification first (used when fewer operations and no longer
-    /// a dependency chain).
+    /// Run the bounded egg simplification first (used when fewer operations and estimated
+    /// faster).
     pub fn simplify(mut self, on: bool) -> Self {
         self.simplify = on;
         self
