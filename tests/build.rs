@@ -96,6 +96,14 @@ fn main() {
             .module("bicycle_simplified"),
         &mut index,
     );
+    add(
+        "shimmy_simplified.rs",
+        "f64 simplified",
+        Generate::model("shimmy")
+            .simplify(true)
+            .module("shimmy_simplified"),
+        &mut index,
+    );
     let mut speed_only = Generate::model("bicycle").module("bicycle_speed");
     for p in models::find("bicycle").expect("bicycle").0.params {
         if p.name != "v" {

@@ -153,6 +153,12 @@ fn evaluation(c: &mut Criterion) {
     );
     bench_tape(c, "bicycle/abcd/tape", "bicycle");
     bench_abcd!(c, "shimmy/abcd/generated f64", gen64::shimmy, f64);
+    bench_abcd!(
+        c,
+        "shimmy/abcd/generated f64 simplified",
+        gen64::shimmy_simplified,
+        f64
+    );
     bench_abcd!(c, "shimmy/abcd/generated f32", gen32::shimmy, f32);
     bench_tape(c, "shimmy/abcd/tape", "shimmy");
     bench_abcd!(c, "chain50/abcd/generated f64", gen64::chain50, f64);

@@ -130,6 +130,7 @@ fn variants() -> Vec<Gen> {
         generated!("bicycle", gen64::bicycle_std, f64),
         generated!("bicycle", gen64::bicycle_chunked, f64),
         generated!("bicycle", gen64::bicycle_simplified, f64),
+        generated!("shimmy", gen64::shimmy_simplified, f64),
         generated!("chain50", gen64::chain50_chunked, f64),
     ]
 }
