@@ -1,6 +1,7 @@
 //! Print the generated module of a built-in model on stdout, statistics on stderr.
 //!
-//! `cargo run -p eom-codegen --example emit --release -- bicycle [--f32] [--std] [--simplify] [--chunk N]`
+//! `cargo run -p eom-codegen --example emit --release -- bicycle [--f32] [--std] [--simplify]
+//! [--simplify-always] [--module NAME] [--chunk N]`
 
 use eom_codegen::{EmitOptions, emit_model};
 
@@ -13,6 +14,8 @@ fn main() {
             "--f32" => opts.f32(),
             "--std" => opts.std_math(),
             "--simplify" => opts.simplify(true),
+            "--simplify-always" => opts.simplify_always(true),
+            "--module" => opts.module(&args.next().expect("--module NAME")),
             "--chunk" => {
                 opts.max_temporaries(args.next().and_then(|n| n.parse().ok()).expect("--chunk N"))
             }
@@ -27,7 +30,7 @@ fn main() {
     eprintln!("{name}: {} bytes in {dt:?}", e.source.len());
     for f in &e.stats.functions {
         eprintln!(
-            "  {}: {} ops ({} add, {} mul, {} div, {} sqrt, {} calls), {} distinct checks ({} comparisons), {} stores, {} chunk(s)",
+            "  {}: {} ops ({} add, {} mul, {} div, {} sqrt, {} calls), critical path {}, cost estimate {}, {} distinct checks ({} comparisons), {} stores, {} chunk(s)",
             f.name,
             f.ops.total(),
             f.ops.add,
@@ -35,12 +38,15 @@ fn main() {
             f.ops.div,
             f.ops.sqrt,
             f.ops.func,
+            f.critical_path,
+            f.cost_estimate(),
             f.distinct_checks,
             f.check_comparisons,
             f.stores,
             f.chunks
         );
     }
+    eprintln!("  simplification: {:?}", e.stats.simplification);
     eprintln!(
         "  DAG of A..D: {} nodes, {} operations {:?}",
         e.stats.dag_nodes_abcd,

@@ -6,6 +6,12 @@ cd "$(dirname "$0")"
 EOM=${EOM:-../../..}
 (cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- bicycle) > bicycle_f64.rs
 (cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- shimmy) > shimmy_f64.rs
+# The same, simplified: `--simplify` uses it for the shimmy; the bicycle needs
+# `--simplify-always` (its estimate says slower, which this driver confirms).
+(cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- bicycle \
+    --simplify-always --module bicycle_simplified) > bicycle_simplified_f64.rs
+(cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- shimmy \
+    --simplify --module shimmy_simplified) > shimmy_simplified_f64.rs
 mkdir -p build
 for f in shimmy bicycle4 bicycle6; do gcc -O2 -c pydy_$f.c -o build/pydy_$f.o; done
 (cd rslib && cargo build --release)

@@ -17,6 +17,11 @@ void shimmy_pydy(double *in, double *a, double *b, double *c, double *d);
 void bicycle4_pydy(double *in, double *a, double *b);
 void bicycle6_pydy(double *in, double *a, double *b, double *c, double *d);
 int shimmy_rs(const double *p, double *a, double *b, double *c, double *d);
+int bicycle_simplified_rs(const double *p, double *a, double *b, double *c, double *d);
+int shimmy_simplified_rs(const double *p, double *a, double *b, double *c, double *d);
+int anatomy_no_tests(const double *p, double *a, double *b, double *c, double *d);
+int anatomy_pivot(const double *p, double *a, double *b, double *c, double *d);
+int anatomy_sinks(const double *p, double *a, double *b, double *c, double *d);
 int bicycle_rs(const double *p, double *a, double *b, double *c, double *d);
 
 #define NV 1024
@@ -75,23 +80,34 @@ int main(int argc, char **argv) {
     printf("\n  B:"); for (int i = 0; i < 6; i++) printf(" %.9g", B[i]);
     printf("\n  C:"); for (int i = 0; i < 12; i++) printf(" %.9g", C[i]);
     printf("\n");
-    double As[9], Bs[3], Cs[6], Ds[2], Ar[9] = {0}, Br[3] = {0}, Cr[6] = {0}, Dr[2] = {0}, md = 0;
-    for (int i = 0; i < NV; i++) {
-        shimmy_pydy(sp[i], As, Bs, Cs, Ds);
-        shimmy_rs(sp[i], Ar, Br, Cr, Dr);
-        for (int r = 0; r < 3; r++) for (int c = 0; c < 3; c++) md = fmax(md, fabs(As[r * 3 + c] - Ar[r + 3 * c]));
-        for (int r = 0; r < 2; r++) for (int c = 0; c < 3; c++) md = fmax(md, fabs(Cs[r * 3 + c] - Cr[r + 2 * c]));
-        for (int r = 0; r < 3; r++) md = fmax(md, fabs(Bs[r] - Br[r]));
+    typedef int (*shimmy_fn)(const double *, double *, double *, double *, double *);
+    const shimmy_fn rs[5] = {shimmy_rs, shimmy_simplified_rs, anatomy_no_tests, anatomy_pivot, anatomy_sinks};
+    const char *rs_name[5] = {"shimmy_rs", "shimmy_simplified_rs", "anatomy_no_tests", "anatomy_pivot", "anatomy_sinks"};
+    for (int f = 0; f < 5; f++) {
+        double As[9], Bs[3], Cs[6], Ds[2], Ar[9] = {0}, Br[3] = {0}, Cr[6] = {0}, Dr[2] = {0}, md = 0;
+        for (int i = 0; i < NV; i++) {
+            shimmy_pydy(sp[i], As, Bs, Cs, Ds);
+            rs[f](sp[i], Ar, Br, Cr, Dr);
+            for (int r = 0; r < 3; r++) for (int c = 0; c < 3; c++) md = fmax(md, fabs(As[r * 3 + c] - Ar[r + 3 * c]));
+            for (int r = 0; r < 2; r++) for (int c = 0; c < 3; c++) md = fmax(md, fabs(Cs[r * 3 + c] - Cr[r + 2 * c]));
+            for (int r = 0; r < 3; r++) md = fmax(md, fabs(Bs[r] - Br[r]));
+        }
+        printf("shimmy: max |PyDy - %s| over the 1024 vectors (A,B,C): %.3g\n", rs_name[f], md);
     }
-    printf("shimmy: max |PyDy - Rust| over the 1024 vectors (A,B,C): %.3g\n\n", md);
+    printf("\n");
 
     for (int k = 0; k < rounds; k++) {
         printf("round %d\n", k);
         RUN("bicycle6_pydy", (bicycle6_pydy((double *)p, A, B, C, D), 0), &bp[0][0], 27, BREPS);
         RUN("bicycle_rs", bicycle_rs(p, A, B, C, D), &bp[0][0], 27, BREPS);
+        RUN("bicycle_simplified_rs", bicycle_simplified_rs(p, A, B, C, D), &bp[0][0], 27, BREPS);
         RUN("bicycle4_pydy", (bicycle4_pydy((double *)p, A, B), 0), &bp[0][0], 27, BREPS);
         RUN("shimmy_pydy", (shimmy_pydy((double *)p, A, B, C, D), 0), &sp[0][0], 6, SREPS);
         RUN("shimmy_rs", shimmy_rs(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("shimmy_simplified_rs", shimmy_simplified_rs(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("anatomy_no_tests", anatomy_no_tests(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("anatomy_pivot", anatomy_pivot(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("anatomy_sinks", anatomy_sinks(p, A, B, C, D), &sp[0][0], 6, SREPS);
     }
     return (int)(sink * 0);
 }

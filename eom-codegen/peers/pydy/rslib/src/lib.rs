@@ -2,6 +2,10 @@
 // eom-codegen's modules for the bicycle and the shimmy (written by build.sh), called from C.
 include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../bicycle_f64.rs"));
 include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../shimmy_f64.rs"));
+include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../bicycle_simplified_f64.rs"));
+include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../shimmy_simplified_f64.rs"));
+
+mod anatomy;
 
 /// `extern "C" fn NAME(p, a, b, c, d) -> i32` around `MODULE::eval_abcd` (1 on error).
 macro_rules! wrap {
@@ -33,3 +37,5 @@ macro_rules! wrap {
 
 wrap!(bicycle_rs, bicycle);
 wrap!(shimmy_rs, shimmy);
+wrap!(bicycle_simplified_rs, bicycle_simplified);
+wrap!(shimmy_simplified_rs, shimmy_simplified);

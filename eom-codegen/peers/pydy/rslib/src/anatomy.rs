@@ -1,0 +1,89 @@
+//! What the fast path's tests cost: the simplified shimmy (`--simplify`) written by hand with
+//! different tests, called from the driver next to the generated code. Not generated code and
+//! not for use: a measurement.
+//!
+//! * `anatomy_no_tests`: the arithmetic and the stores only.
+//! * `anatomy_pivot`: plus the pivot test `|I + m l² x²| ≥ 2⁻⁶⁰`, which is ready early.
+//! * `anatomy_sinks`: pivot, and the finiteness of the sum of the finiteness sinks (the values
+//!   no other tested value depends on), which is ready only after the last entry.
+//!
+//! The generated code tests the pivot and the parameters' magnitudes (`Σ|p| < 2⁶⁰`), both
+//! ready early; see the README for the figures.
+
+#[inline(always)]
+fn values(p: &[f64; 6]) -> (f64, [f64; 8]) {
+    let (m, i, k, l, x, u) = (p[0], p[1], p[2], p[3], p[4], p[5]);
+    let pivot = i + m * (l * l) * (x * x);
+    let r = 1.0 / pivot;
+    let lr = l * r;
+    let klr = k * lr;
+    let lx = l * x;
+    let kd = k * (lx - l);
+    let a21 = kd * lr;
+    let xlr = x * lr;
+    let a22 = m * u * xlr;
+    (pivot, [klr, u, a21, lx, a22, xlr, k, kd])
+}
+
+#[inline(always)]
+fn store(v: &[f64; 8], a: &mut [f64; 9], b: &mut [f64; 3], c: &mut [f64; 6]) {
+    a[2] = -v[0];
+    a[3] = v[1];
+    a[5] = v[2];
+    a[6] = v[3];
+    a[7] = 1.0;
+    a[8] = -v[4];
+    b[2] = -v[5];
+    c[0] = -v[6];
+    c[1] = -1.0;
+    c[2] = v[7];
+}
+
+#[cold]
+#[inline(never)]
+fn failed() -> i32 {
+    1
+}
+
+const TINY: f64 = 8.673617379884035e-19;
+
+macro_rules! variant {
+    ($name:ident, |$pivot:ident, $v:ident| $ok:expr) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            p: *const f64,
+            a: *mut f64,
+            b: *mut f64,
+            c: *mut f64,
+            _d: *mut f64,
+        ) -> i32 {
+            let (p, a, b, c) = unsafe {
+                (
+                    &*(p as *const [f64; 6]),
+                    &mut *(a as *mut [f64; 9]),
+                    &mut *(b as *mut [f64; 3]),
+                    &mut *(c as *mut [f64; 6]),
+                )
+            };
+            let ($pivot, $v) = values(p);
+            if !($ok) {
+                return failed();
+            }
+            store(&$v, a, b, c);
+            0
+        }
+    };
+}
+
+variant!(anatomy_no_tests, |pivot, v| {
+    let _ = (pivot, &v);
+    true
+});
+variant!(anatomy_pivot, |pivot, v| {
+    let _ = &v;
+    pivot.abs() >= TINY
+});
+variant!(anatomy_sinks, |pivot, v| {
+    let s = (v[0] + v[2]) + (v[4] + pivot);
+    (pivot.abs() >= TINY) & (s - s == 0.0)
+});
