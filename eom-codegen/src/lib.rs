@@ -168,8 +168,8 @@ pub fn emit_model(model: &Model<Expr>, opts: &EmitOptions) -> Result<Emitted, Co
 /// fewer operations *and* a lower [`FunctionStats::cost_estimate`] (longest chain times
 /// operations) of the first function; [`EmitStats::simplification`] says which. Measured in
 /// one driver (`peers/pydy`): the bicycle's simplified form has 17 weighted operations fewer
-/// but a chain 9 longer, and takes 83 ns against 75 ns (kept out); the shimmy's has 5 fewer
-/// and a chain 3 longer, and takes 4.78 against 4.94 ns (used).
+/// but a chain 9 longer, and takes 80.4 ns against 68.2 ns (kept out); the shimmy's has 5
+/// fewer and a chain 3 longer, and takes 4.77 against 4.94 ns (used).
 pub fn emit_with_stats(
     sym: &SymbolicStateSpace,
     opts: &EmitOptions,

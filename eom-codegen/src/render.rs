@@ -377,9 +377,9 @@ impl FunctionStats {
     /// of operations count, and in proportion: a change is judged by its relative effect on
     /// each. This is a heuristic fitted to two measurements (one driver, `peers/pydy`): the
     /// shimmy's simplified form has a chain 34 against 31 and 18 against 23 weighted
-    /// operations, estimate 612 against 713, and takes 4.78 against 4.94 ns; the bicycle's
+    /// operations, estimate 612 against 713, and takes 4.77 against 4.94 ns; the bicycle's
     /// has 131 against 122 and 319 against 336, estimate 41 789 against 40 992, and takes
-    /// 83 against 75 ns.
+    /// 80.4 against 68.2 ns.
     pub fn cost_estimate(&self) -> u64 {
         u64::from(self.critical_path) * self.weighted_ops()
     }
