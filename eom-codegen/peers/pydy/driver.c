@@ -21,6 +21,7 @@ int bicycle_simplified_rs(const double *p, double *a, double *b, double *c, doub
 int shimmy_simplified_rs(const double *p, double *a, double *b, double *c, double *d);
 int anatomy_no_tests(const double *p, double *a, double *b, double *c, double *d);
 int anatomy_pivot(const double *p, double *a, double *b, double *c, double *d);
+int anatomy_magnitude(const double *p, double *a, double *b, double *c, double *d);
 int anatomy_sinks(const double *p, double *a, double *b, double *c, double *d);
 int bicycle_rs(const double *p, double *a, double *b, double *c, double *d);
 
@@ -81,9 +82,9 @@ int main(int argc, char **argv) {
     printf("\n  C:"); for (int i = 0; i < 12; i++) printf(" %.9g", C[i]);
     printf("\n");
     typedef int (*shimmy_fn)(const double *, double *, double *, double *, double *);
-    const shimmy_fn rs[5] = {shimmy_rs, shimmy_simplified_rs, anatomy_no_tests, anatomy_pivot, anatomy_sinks};
-    const char *rs_name[5] = {"shimmy_rs", "shimmy_simplified_rs", "anatomy_no_tests", "anatomy_pivot", "anatomy_sinks"};
-    for (int f = 0; f < 5; f++) {
+    const shimmy_fn rs[6] = {shimmy_rs, shimmy_simplified_rs, anatomy_no_tests, anatomy_pivot, anatomy_sinks, anatomy_magnitude};
+    const char *rs_name[6] = {"shimmy_rs", "shimmy_simplified_rs", "anatomy_no_tests", "anatomy_pivot", "anatomy_sinks", "anatomy_magnitude"};
+    for (int f = 0; f < 6; f++) {
         double As[9], Bs[3], Cs[6], Ds[2], Ar[9] = {0}, Br[3] = {0}, Cr[6] = {0}, Dr[2] = {0}, md = 0;
         for (int i = 0; i < NV; i++) {
             shimmy_pydy(sp[i], As, Bs, Cs, Ds);
@@ -108,6 +109,7 @@ int main(int argc, char **argv) {
         RUN("anatomy_no_tests", anatomy_no_tests(p, A, B, C, D), &sp[0][0], 6, SREPS);
         RUN("anatomy_pivot", anatomy_pivot(p, A, B, C, D), &sp[0][0], 6, SREPS);
         RUN("anatomy_sinks", anatomy_sinks(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("anatomy_magnitude", anatomy_magnitude(p, A, B, C, D), &sp[0][0], 6, SREPS);
     }
     return (int)(sink * 0);
 }
