@@ -310,6 +310,21 @@ pub(crate) fn lower(dag: &Dag, roots: &[Expr], pivots: &[Expr]) -> Result<Lowere
     Ok(lowered)
 }
 
+/// The terms sorted by operand, equal operands merged (coefficients added), zero
+/// coefficients dropped.
+fn merge_terms(mut terms: Vec<(Operand, f64)>) -> Vec<(Operand, f64)> {
+    terms.sort_by_key(|a| a.0.key());
+    let mut merged: Vec<(Operand, f64)> = Vec::with_capacity(terms.len());
+    for (op, c) in terms {
+        match merged.last_mut() {
+            Some(last) if last.0 == op => last.1 += c,
+            _ => merged.push((op, c)),
+        }
+    }
+    merged.retain(|t| t.1 != 0.0);
+    merged
+}
+
 /// Work budget of [`common_pairs`] (pair occurrences counted over all iterations): bounds the
 /// generation time of very large models, where the pass then stops early.
 const PAIR_BUDGET: usize = 50_000_000;
@@ -710,15 +725,7 @@ impl Lowerer<'_> {
             }
         }
         // Terms that became the same value (up to a scale) merge.
-        acc.sort_by_key(|a| a.0.key());
-        let mut merged: Vec<(Operand, f64)> = Vec::with_capacity(acc.len());
-        for (op, c) in acc {
-            match merged.last_mut() {
-                Some(last) if last.0 == op => last.1 += c,
-                _ => merged.push((op, c)),
-            }
-        }
-        merged.retain(|t| t.1 != 0.0);
+        let mut merged = merge_terms(acc);
         self.expand_cancelling_sums(&mut c0, &mut merged);
         if merged.is_empty() {
             return Val::of(Operand::Lit(c0));
@@ -784,7 +791,7 @@ impl Lowerer<'_> {
                 k += 1;
                 continue;
             };
-            let mut cand: Vec<(Operand, f64)> = terms
+            let cand: Vec<(Operand, f64)> = terms
                 .iter()
                 .enumerate()
                 .filter(|&(i, _)| i != k)
@@ -792,15 +799,7 @@ impl Lowerer<'_> {
                 .chain(inner.iter().map(|&(o, ci)| (o, ci * c)))
                 .collect();
             let unmerged = cand.len();
-            cand.sort_by_key(|a| a.0.key());
-            let mut m: Vec<(Operand, f64)> = Vec::with_capacity(cand.len());
-            for (o, ci) in cand {
-                match m.last_mut() {
-                    Some(last) if last.0 == o => last.1 += ci,
-                    _ => m.push((o, ci)),
-                }
-            }
-            m.retain(|t| t.1 != 0.0);
+            let m = merge_terms(cand);
             let cc0 = *c0 + ic0 * c;
             if m.len() < unmerged && size(cc0, &m) <= size(*c0, terms) {
                 *c0 = cc0;
