@@ -129,6 +129,18 @@ impl<S: Scalar> Triplets<S> {
     }
 }
 
+/// `a·b`, skipping a multiplication by an exact one (for expressions, no new node).
+#[inline]
+fn times<S: Scalar>(a: S, b: S) -> S {
+    if a.is_one() {
+        b
+    } else if b.is_one() {
+        a
+    } else {
+        a * b
+    }
+}
+
 impl<S: Scalar> SparseMatrix<S> {
     /// The `nrows × ncols` zero matrix.
     pub fn zeros(nrows: usize, ncols: usize) -> Self {
@@ -369,16 +381,7 @@ impl<S: Scalar> SparseMatrix<S> {
                 acc.clear();
                 for &(k, a) in self.row(i) {
                     for &(j, b) in other.row(k) {
-                        acc.push((
-                            j,
-                            if a.is_one() {
-                                b
-                            } else if b.is_one() {
-                                a
-                            } else {
-                                a * b
-                            },
-                        ));
+                        acc.push((j, times(a, b)));
                     }
                 }
                 acc.sort_by_key(|e| e.0);
@@ -413,13 +416,7 @@ impl<S: Scalar> SparseMatrix<S> {
         Self::from_row_fn_with(self.nrows, other.ncols, nnz_hint, |i, out| {
             for &(k, a) in self.row(i) {
                 for &(j, b) in other.row(k) {
-                    let p = if a.is_one() {
-                        b
-                    } else if b.is_one() {
-                        a
-                    } else {
-                        a * b
-                    };
+                    let p = times(a, b);
                     let (w, bit) = (j / 64, 1u64 << (j % 64));
                     if mask[w] & bit == 0 {
                         mask[w] |= bit;
@@ -454,13 +451,7 @@ impl<S: Scalar> SparseMatrix<S> {
             cols.clear();
             for &(k, a) in self.row(i) {
                 for &(j, b) in other.row(k) {
-                    let p = if a.is_one() {
-                        b
-                    } else if b.is_one() {
-                        a
-                    } else {
-                        a * b
-                    };
+                    let p = times(a, b);
                     if stamp[j] != i + 1 {
                         stamp[j] = i + 1;
                         dense[j] = p;
