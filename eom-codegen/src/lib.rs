@@ -32,7 +32,12 @@
 //! * the kernels `eval_abcd`, `eval_ab`, `eval_cd`, `eval_phys`:
 //!   `fn(p: &[Real; N_PARAMS], a: &mut [Real; A_LEN], …, work: &mut [Real; WORK_LEN]) -> Result<(), Error>`,
 //!   column-major outputs, structural zeros never written;
-//! * `StateSpace`: A, B, C, D and the workspace in one value, `evaluate(&Params)`;
+//! * `eval_abcd_varying` (same signature) writes only the entries that depend on the
+//!   parameters, and `const fn write_abcd_constants(a, b, c, d)` the constant ones (a `1` of a
+//!   kinematic row, a sign), once: the kernel for callers that keep their arrays between calls
+//!   (without constant entries it is `eval_abcd` itself);
+//! * `StateSpace`: A, B, C, D and the workspace in one value, constants written at
+//!   construction, `evaluate(&Params)` through `eval_abcd_varying`;
 //! * `Error` (`Validity { check }`, `NonFinite { matrix, row, col }`; 8 bytes, so that
 //!   `Result<(), Error>` is returned in a register; `what()` gives the failing check's
 //!   description).
@@ -270,8 +275,32 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
     let mut fn_items = TokenStream::new();
     let mut stats = Vec::new();
     let mut work_len = 0;
+    // `eval_abcd_varying` leaves out the constant entries; without any, it is `eval_abcd`.
+    let mut varying: Option<render::FnPlan> = None;
     for spec in &specs {
         let plan = render::plan(spec, &problem)?;
+        let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
+        work_len = work_len.max(r.work_len);
+        fn_items.extend(r.items);
+        stats.push(r.stats);
+        if spec.name == "eval_abcd" {
+            fn_items.extend(render::render_constants(
+                &ctx,
+                &plan,
+                "write_abcd_constants",
+                "eval_abcd_varying",
+            )?);
+            if plan.writes_constants() {
+                varying = Some(plan.varying_only("eval_abcd_varying"));
+            } else {
+                fn_items.extend(quote! {
+                    /// [`eval_abcd`]: this model has no constant entry, so there is nothing to leave out.
+                    pub use eval_abcd as eval_abcd_varying;
+                });
+            }
+        }
+    }
+    if let Some(plan) = varying {
         let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
         work_len = work_len.max(r.work_len);
         fn_items.extend(r.items);
@@ -821,13 +850,16 @@ fn module_items(
                 work: [Real; WORK_LEN],
             }
             impl StateSpace {
-                /// All entries zero.
+                /// The constant entries set (see [`write_abcd_constants`]), all others zero.
                 pub const fn new() -> Self {
-                    StateSpace { a: [0.0; A_LEN], b: [0.0; B_LEN], c: [0.0; C_LEN], d: [0.0; D_LEN], work: [0.0; WORK_LEN] }
+                    let mut s = StateSpace { a: [0.0; A_LEN], b: [0.0; B_LEN], c: [0.0; C_LEN], d: [0.0; D_LEN], work: [0.0; WORK_LEN] };
+                    write_abcd_constants(&mut s.a, &mut s.b, &mut s.c, &mut s.d);
+                    s
                 }
-                /// Evaluate at `params`. On error the matrices keep their previous values.
+                /// Evaluate at `params`, writing only the entries that depend on them
+                /// ([`eval_abcd_varying`]). On error the matrices keep their previous values.
                 pub fn evaluate(&mut self, params: &Params) -> Result<(), Error> {
-                    eval_abcd(&params.to_array(), &mut self.a, &mut self.b, &mut self.c, &mut self.d, &mut self.work)
+                    eval_abcd_varying(&params.to_array(), &mut self.a, &mut self.b, &mut self.c, &mut self.d, &mut self.work)
                 }
                 /// A, column-major (`a[i + j * N_STATES]`).
                 pub fn a(&self) -> &[Real; A_LEN] { &self.a }

@@ -157,6 +157,7 @@ impl CodeOps {
 }
 
 /// The lowered form of a set of roots.
+#[derive(Clone)]
 pub(crate) struct Lowered {
     pub insts: Vec<Inst>,
     pub n_temps: u32,

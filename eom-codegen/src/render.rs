@@ -327,8 +327,12 @@ pub(crate) struct FnSpec {
 }
 
 /// The lowered form of one function.
+#[derive(Clone)]
 pub(crate) struct FnPlan {
     pub name: &'static str,
+    /// Writes only the entries that depend on the parameters (`eval_abcd_varying`): the
+    /// constant ones are written once by `write_abcd_constants`.
+    pub varying_only: bool,
     pub mats: Vec<Mat>,
     pub lowered: Lowered,
     /// `(matrix, row, col, value, negated)`, in matrix order then column-major.
@@ -385,6 +389,57 @@ impl FunctionStats {
     }
 }
 
+impl FnPlan {
+    /// Does the function write entries that are the same for every parameter value?
+    pub(crate) fn writes_constants(&self) -> bool {
+        self.outputs.iter().any(|o| matches!(o.3, Operand::Lit(_)))
+    }
+
+    /// The same function without the constant entries, named `name`.
+    pub(crate) fn varying_only(&self, name: &'static str) -> FnPlan {
+        let mut p = self.clone();
+        p.name = name;
+        p.varying_only = true;
+        p.outputs.retain(|o| !matches!(o.3, Operand::Lit(_)));
+        p
+    }
+}
+
+/// `const fn NAME(a, b, …)` writing the constant entries of `plan` (those
+/// [`FnPlan::varying_only`] leaves out).
+pub(crate) fn render_constants(
+    ctx: &Ctx,
+    plan: &FnPlan,
+    name: &str,
+    varying: &str,
+) -> Result<TokenStream, CodegenError> {
+    let ty = &ctx.ty;
+    let mut stores = TokenStream::new();
+    for &(m, i, j, o, neg) in &plan.outputs {
+        if let Operand::Lit(x) = o {
+            let arr = Ident::new(m.lower(), Span::call_site());
+            let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
+            let v = ctx.num.lit(if neg { -x } else { x }, "constant entry")?;
+            stores.extend(quote!(#arr[#idx] = #v;));
+        }
+    }
+    let args = plan.mats.iter().map(|m| {
+        let arr = Ident::new(m.lower(), Span::call_site());
+        let len = format_ident!("{}_LEN", m.lower().to_uppercase());
+        quote!(#arr: &mut [#ty; #len])
+    });
+    let fname = Ident::new(name, Span::call_site());
+    let doc = format!(
+        " Write the entries of A, B, C, D that are the same for every parameter value: the ones [`{varying}`] leaves out. Call it once per set of arrays."
+    );
+    Ok(quote! {
+        #[doc = #doc]
+        pub const fn #fname(#(#args),*) {
+            #stores
+        }
+    })
+}
+
 pub(crate) fn plan(spec: &FnSpec, problem: &Problem) -> Result<FnPlan, CodegenError> {
     let mut roots = Vec::new();
     let mut where_: Vec<(Mat, usize, usize)> = Vec::new();
@@ -432,6 +487,7 @@ pub(crate) fn plan(spec: &FnSpec, problem: &Problem) -> Result<FnPlan, CodegenEr
     }
     Ok(FnPlan {
         name: spec.name,
+        varying_only: false,
         mats: spec.mats.clone(),
         lowered,
         outputs,
@@ -821,6 +877,10 @@ pub(crate) fn render_fn(
         .map(|m| format!("`{}`", m.variant()))
         .collect();
     let mut doc = fn_doc(ctx.problem, plan, &which.join(", "), n_chunks, work_len);
+    if plan.varying_only {
+        doc.push(String::new());
+        doc.push(" Only the entries that depend on the parameters are written: the constant ones (a `1` of a kinematic row, a sign) are written once by [`write_abcd_constants`]. For callers that keep their arrays between calls, as a controller does every tick; [`StateSpace`] works this way.".into());
+    }
     if let Some(n) = fast_note {
         doc.push(String::new());
         doc.push(n);

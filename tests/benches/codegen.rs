@@ -59,7 +59,11 @@ fn abcd_tape(model: &str) -> Tape {
 /// function pointer hidden from the optimiser (no inlining into the loop: like calling into a
 /// separately compiled object).
 macro_rules! bench_abcd {
-    ($c:expr, $label:expr, $m:path, $ty:ty) => {{
+    ($c:expr, $label:expr, $m:path, $ty:ty) => {
+        bench_abcd!($c, $label, $m, $ty, eval_abcd)
+    };
+    // `eval_abcd_varying` relies on the constant entries written once, before the loop.
+    ($c:expr, $label:expr, $m:path, $ty:ty, $kernel:ident) => {{
         use $m as g;
         type Kernel = fn(
             &[$ty; g::N_PARAMS],
@@ -78,7 +82,8 @@ macro_rules! bench_abcd {
         let mut c = [0.0; g::C_LEN];
         let mut d = [0.0; g::D_LEN];
         let mut w = [0.0; g::WORK_LEN];
-        let f: Kernel = black_box(g::eval_abcd);
+        g::write_abcd_constants(&mut a, &mut b, &mut c, &mut d);
+        let f: Kernel = black_box(g::$kernel);
         let mut group = $c.benchmark_group("per call");
         group.throughput(Throughput::Elements(64));
         group.bench_function($label, |bch| {
@@ -144,6 +149,13 @@ fn evaluation(c: &mut Criterion) {
         gen64::bicycle_chunked,
         f64
     );
+    bench_abcd!(
+        c,
+        "bicycle/abcd/generated f64 libm, varying entries only",
+        gen64::bicycle,
+        f64,
+        eval_abcd_varying
+    );
     bench_abcd!(c, "bicycle/abcd/generated f32 libm", gen32::bicycle, f32);
     bench_abcd!(
         c,
@@ -158,6 +170,13 @@ fn evaluation(c: &mut Criterion) {
         "shimmy/abcd/generated f64 simplified",
         gen64::shimmy_simplified,
         f64
+    );
+    bench_abcd!(
+        c,
+        "shimmy/abcd/generated f64 simplified, varying entries only",
+        gen64::shimmy_simplified,
+        f64,
+        eval_abcd_varying
     );
     bench_abcd!(c, "shimmy/abcd/generated f32", gen32::shimmy, f32);
     bench_tape(c, "shimmy/abcd/tape", "shimmy");

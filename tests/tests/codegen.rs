@@ -24,10 +24,19 @@ enum GenErr {
 
 type Eval = fn(&[f64]) -> Result<Vec<Vec<f64>>, GenErr>;
 
+/// A value no entry takes, for arrays whose untouched entries must be seen.
+const SENTINEL: f64 = -3.5;
+
 /// One generated module behind a uniform interface (`f64` in and out).
 struct Gen {
     model: &'static str,
     abcd: Eval,
+    /// `eval_abcd_varying` into arrays filled with [`SENTINEL`].
+    varying: Eval,
+    /// `write_abcd_constants` into arrays filled with [`SENTINEL`].
+    constants: fn() -> Vec<Vec<f64>>,
+    /// `StateSpace::new()`, then `evaluate`.
+    state_space: Eval,
     ab: Eval,
     cd: Eval,
     phys: Eval,
@@ -67,6 +76,32 @@ macro_rules! generated {
                 );
                 g::eval_abcd(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w).map_err(conv)?;
                 Ok(vec![back(&a), back(&b), back(&c), back(&d)])
+            },
+            varying: |p| {
+                let s = SENTINEL as $ty;
+                let (mut a, mut b, mut c, mut d, mut w) = (
+                    [s; g::A_LEN],
+                    [s; g::B_LEN],
+                    [s; g::C_LEN],
+                    [s; g::D_LEN],
+                    [0.0; g::WORK_LEN],
+                );
+                g::eval_abcd_varying(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w)
+                    .map_err(conv)?;
+                Ok(vec![back(&a), back(&b), back(&c), back(&d)])
+            },
+            constants: || {
+                let s = SENTINEL as $ty;
+                let (mut a, mut b, mut c, mut d) =
+                    ([s; g::A_LEN], [s; g::B_LEN], [s; g::C_LEN], [s; g::D_LEN]);
+                g::write_abcd_constants(&mut a, &mut b, &mut c, &mut d);
+                vec![back(&a), back(&b), back(&c), back(&d)]
+            },
+            state_space: |p| {
+                let mut ss = g::StateSpace::new();
+                ss.evaluate(&g::Params::from_array(&params(p)))
+                    .map_err(conv)?;
+                Ok(vec![back(ss.a()), back(ss.b()), back(ss.c()), back(ss.d())])
             },
             ab: |p| {
                 let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
@@ -664,6 +699,87 @@ fn only_structural_nonzeros_are_written() {
             assert_eq!(*x == -3.5, !structural, "entry {idx}");
         }
     }
+}
+
+/// `eval_abcd_varying` writes exactly the structural non-zeros that `write_abcd_constants`
+/// does not, and together they give `eval_abcd`'s values, bit for bit; so does `StateSpace`,
+/// which is built on them. At nominal and at random points, on every module.
+#[test]
+fn varying_kernel_and_constants_make_up_eval_abcd() {
+    let mut with_constants = 0;
+    for g in all_f64().into_iter().chain(all_f32()).chain(variants()) {
+        let r = reference(g.model);
+        let constants = (g.constants)();
+        let check = |values: &[f64]| -> Result<(), TestCaseError> {
+            let whole = (g.abcd)(values);
+            let part = (g.varying)(values);
+            let ss = (g.state_space)(values);
+            let (whole, part, ss) = match (whole, part, ss) {
+                (Ok(w), Ok(p), Ok(s)) => (w, p, s),
+                (Err(a), Err(b), Err(c)) => {
+                    prop_assert_eq!(&a, &b, "{}: different errors", g.model);
+                    prop_assert_eq!(&a, &c, "{}: different errors", g.model);
+                    return Ok(());
+                }
+                (w, p, s) => {
+                    return Err(TestCaseError::fail(format!(
+                        "{}: eval_abcd {:?}, eval_abcd_varying {:?}, StateSpace {:?}",
+                        g.model,
+                        w.is_ok(),
+                        p.is_ok(),
+                        s.is_ok()
+                    )));
+                }
+            };
+            let sym = r.sym.state_space();
+            for (k, rows) in [sym.a.nrows(), sym.b.nrows(), sym.c.nrows(), sym.d.nrows()]
+                .into_iter()
+                .enumerate()
+            {
+                for idx in 0..whole[k].len() {
+                    let structural = g.nonzeros[k].contains(&(idx % rows, idx / rows));
+                    let (c, p) = (constants[k][idx], part[k][idx]);
+                    // Exactly one of the two writes each structural non-zero, neither the rest.
+                    prop_assert!(
+                        structural == ((c == SENTINEL) != (p == SENTINEL)),
+                        "{}: matrix {k} entry {idx}: constants {c}, varying {p}",
+                        g.model
+                    );
+                    let joined = if c == SENTINEL { p } else { c };
+                    let want = if structural { whole[k][idx] } else { SENTINEL };
+                    prop_assert_eq!(
+                        joined.to_bits(),
+                        want.to_bits(),
+                        "{}: matrix {} entry {}",
+                        g.model,
+                        k,
+                        idx
+                    );
+                    prop_assert_eq!(
+                        ss[k][idx].to_bits(),
+                        whole[k][idx].to_bits(),
+                        "{}: StateSpace matrix {} entry {}",
+                        g.model,
+                        k,
+                        idx
+                    );
+                }
+            }
+            Ok(())
+        };
+        let nominal = r.model.scope.nominal_values();
+        check(&nominal).expect("nominal point");
+        proptest!(config(8), |(values in near_nominal(nominal.clone()))| {
+            check(&values)?;
+        });
+        if constants.iter().flatten().any(|&x| x != SENTINEL) {
+            with_constants += 1;
+        }
+    }
+    assert!(
+        with_constants > 0,
+        "no module has constant entries: the test tests nothing"
+    );
 }
 
 #[test]

@@ -1,9 +1,11 @@
 //! # A `no_std` controller on generated code
 //!
 //! The bicycle's linearized model depends on the forward speed `v`. A controller that runs at a
-//! fixed rate re-evaluates A and B at the measured speed every tick — with the generated
-//! [`bicycle::eval_ab`], which takes the parameters by value, writes into fixed-size arrays and
-//! allocates nothing — and uses them in a fault detector, and reads the lean angle through C and D:
+//! fixed rate re-evaluates A, B, C and D at the measured speed every tick — with the generated
+//! [`bicycle::eval_abcd_varying`], which takes the parameters as an array, writes into
+//! fixed-size arrays only the entries that depend on them (the constant ones are written once,
+//! by [`bicycle::write_abcd_constants`]) and allocates nothing — and uses them in a fault
+//! detector, and reads the lean angle through C and D:
 //!
 //! * steer torque by state feedback `u = −K x`;
 //! * a one-step prediction `x⁺ = x + Δt (A x + B u)` whose difference from the next
@@ -64,12 +66,15 @@ impl Controller {
     /// A controller for the bicycle with `params` (e.g. [`Params::NOMINAL`]), state feedback
     /// `u = −gain · x` (order of [`bicycle::STATE_NAMES`]), ticking every `dt` seconds.
     pub fn new(params: Params, gain: [f32; N_STATES], dt: f32) -> Self {
+        let (mut a, mut b, mut c, mut d) = ([0.0; A_LEN], [0.0; B_LEN], [0.0; C_LEN], [0.0; D_LEN]);
+        // The entries that are the same at every speed, once; each tick writes the others.
+        bicycle::write_abcd_constants(&mut a, &mut b, &mut c, &mut d);
         Controller {
             params: params.to_array(),
-            a: [0.0; A_LEN],
-            b: [0.0; B_LEN],
-            c: [0.0; C_LEN],
-            d: [0.0; D_LEN],
+            a,
+            b,
+            c,
+            d,
             work: [0.0; WORK_LEN],
             predicted: None,
             gain,
@@ -82,7 +87,7 @@ impl Controller {
     /// previous matrices stay as they were.
     pub fn tick(&mut self, speed: f32, x: &[f32; N_STATES]) -> Result<Command, bicycle::Error> {
         self.params[V] = speed;
-        bicycle::eval_abcd(
+        bicycle::eval_abcd_varying(
             &self.params,
             &mut self.a,
             &mut self.b,

@@ -7,9 +7,13 @@ include!(concat!(env!("CARGO_MANIFEST_DIR"), "/../shimmy_simplified_f64.rs"));
 
 mod anatomy;
 
-/// `extern "C" fn NAME(p, a, b, c, d) -> i32` around `MODULE::eval_abcd` (1 on error).
+/// `extern "C" fn NAME(p, a, b, c, d) -> i32` around `MODULE::eval_abcd` (or the kernel
+/// named third, e.g. `eval_abcd_varying`; 1 on error).
 macro_rules! wrap {
     ($name:ident, $m:ident) => {
+        wrap!($name, $m, eval_abcd);
+    };
+    ($name:ident, $m:ident, $f:ident) => {
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $name(
             p: *const f64,
@@ -21,7 +25,7 @@ macro_rules! wrap {
             use $m::*;
             unsafe {
                 let mut w = [0.0; WORK_LEN];
-                eval_abcd(
+                $f(
                     &*(p as *const [f64; N_PARAMS]),
                     &mut *(a as *mut [f64; A_LEN]),
                     &mut *(b as *mut [f64; B_LEN]),
@@ -39,3 +43,6 @@ wrap!(bicycle_rs, bicycle);
 wrap!(shimmy_rs, shimmy);
 wrap!(bicycle_simplified_rs, bicycle_simplified);
 wrap!(shimmy_simplified_rs, shimmy_simplified);
+// Constant entries written once (the driver's arrays keep them between calls).
+wrap!(bicycle_varying_rs, bicycle, eval_abcd_varying);
+wrap!(shimmy_varying_rs, shimmy_simplified, eval_abcd_varying);
