@@ -291,7 +291,7 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
                 "eval_abcd_varying",
             )?);
             if plan.writes_constants() {
-                varying = Some(plan.varying_only("eval_abcd_varying"));
+                varying = Some(plan.without_constants("eval_abcd_varying"));
             } else {
                 fn_items.extend(quote! {
                     /// [`eval_abcd`]: this model has no constant entry, so there is nothing to leave out.

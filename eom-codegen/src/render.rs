@@ -389,6 +389,25 @@ impl FunctionStats {
     }
 }
 
+/// `arr[idx]`: entry `(i, j)` of matrix `m` in its column-major array.
+fn entry(ctx: &Ctx, m: Mat, i: usize, j: usize) -> TokenStream {
+    let arr = Ident::new(m.lower(), Span::call_site());
+    let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
+    quote!(#arr[#idx])
+}
+
+/// The array arguments `a: &mut [Real; A_LEN], …` of the matrices `mats`.
+fn matrix_args(ctx: &Ctx, mats: &[Mat]) -> Vec<TokenStream> {
+    let ty = &ctx.ty;
+    mats.iter()
+        .map(|m| {
+            let arr = Ident::new(m.lower(), Span::call_site());
+            let len = format_ident!("{}_LEN", m.lower().to_uppercase());
+            quote!(#arr: &mut [#ty; #len])
+        })
+        .collect()
+}
+
 impl FnPlan {
     /// Does the function write entries that are the same for every parameter value?
     pub(crate) fn writes_constants(&self) -> bool {
@@ -396,7 +415,7 @@ impl FnPlan {
     }
 
     /// The same function without the constant entries, named `name`.
-    pub(crate) fn varying_only(&self, name: &'static str) -> FnPlan {
+    pub(crate) fn without_constants(&self, name: &'static str) -> FnPlan {
         let mut p = self.clone();
         p.name = name;
         p.varying_only = true;
@@ -406,28 +425,22 @@ impl FnPlan {
 }
 
 /// `const fn NAME(a, b, …)` writing the constant entries of `plan` (those
-/// [`FnPlan::varying_only`] leaves out).
+/// [`FnPlan::without_constants`] leaves out).
 pub(crate) fn render_constants(
     ctx: &Ctx,
     plan: &FnPlan,
     name: &str,
     varying: &str,
 ) -> Result<TokenStream, CodegenError> {
-    let ty = &ctx.ty;
     let mut stores = TokenStream::new();
     for &(m, i, j, o, neg) in &plan.outputs {
         if let Operand::Lit(x) = o {
-            let arr = Ident::new(m.lower(), Span::call_site());
-            let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
+            let e = entry(ctx, m, i, j);
             let v = ctx.num.lit(if neg { -x } else { x }, "constant entry")?;
-            stores.extend(quote!(#arr[#idx] = #v;));
+            stores.extend(quote!(#e = #v;));
         }
     }
-    let args = plan.mats.iter().map(|m| {
-        let arr = Ident::new(m.lower(), Span::call_site());
-        let len = format_ident!("{}_LEN", m.lower().to_uppercase());
-        quote!(#arr: &mut [#ty; #len])
-    });
+    let args = matrix_args(ctx, &plan.mats);
     let fname = Ident::new(name, Span::call_site());
     let doc = format!(
         " Write the entries of A, B, C, D that are the same for every parameter value: the ones [`{varying}`] leaves out. Call it once per set of arrays."
@@ -845,14 +858,13 @@ pub(crate) fn render_fn(
     // Stores.
     let mut stores = 0;
     for &(m, i, j, o, neg) in &plan.outputs {
-        let arr = Ident::new(m.lower(), Span::call_site());
-        let idx = Literal::usize_unsuffixed(i + j * ctx.problem.mats[m.index()].rows);
+        let e = entry(ctx, m, i, j);
         let v = ctx.operand(o)?;
         // A negation does not change finiteness, so the check above used the plain value.
         let store = if neg {
-            quote!(#arr[#idx] = -#v;)
+            quote!(#e = -#v;)
         } else {
-            quote!(#arr[#idx] = #v;)
+            quote!(#e = #v;)
         };
         slow.extend(store.clone());
         body.extend(store);
@@ -866,11 +878,7 @@ pub(crate) fn render_fn(
 
     // Signature and documentation.
     let name = Ident::new(plan.name, Span::call_site());
-    let args = plan.mats.iter().map(|m| {
-        let arr = Ident::new(m.lower(), Span::call_site());
-        let len = format_ident!("{}_LEN", m.lower().to_uppercase());
-        quote!(#arr: &mut [#ty; #len])
-    });
+    let args = matrix_args(ctx, &plan.mats);
     let which: Vec<String> = plan
         .mats
         .iter()
@@ -886,7 +894,6 @@ pub(crate) fn render_fn(
         doc.push(n);
     }
     let docs = doc.iter().map(|l| quote!(#[doc = #l]));
-    let args: Vec<TokenStream> = args.collect();
     if !conds_empty {
         let doc = format!(
             " [`{}`] with every check and entry tested one by one: the slow path it takes when its fast test fails.",
