@@ -4,6 +4,8 @@
 //! the code generator:
 //! * **Powers** by multiplication chains shared between products (`x²` is computed once
 //!   wherever a product contains `x²` or `x³`); half-integer powers through one `sqrt`.
+//!   Bases with one exponent in a product share one chain when none of their powers exists
+//!   already: `m·l²·x²` is `m·(l x)²`.
 //! * **Denominators**: a base that appears with a negative exponent in two or more products
 //!   gets one reciprocal that every product multiplies by; a base that divides only once is
 //!   divided directly, and all such factors of a product share one division.
@@ -891,6 +893,14 @@ impl Lowerer<'_> {
     fn monomial(&mut self, items: &[(Operand, Rational, Option<OpKey>)]) -> Operand {
         let mut num = Vec::new();
         let mut den = Vec::new();
+        let grouped = self.group_equal_powers(items);
+        let items: Vec<&(Operand, Rational, Option<OpKey>)> = match &grouped {
+            Some((product, k, rest)) => {
+                num.push(self.pow(*product, *k));
+                rest.iter().map(|&i| &items[i]).collect()
+            }
+            None => items.iter().collect(),
+        };
         for (x, r, class) in items {
             let x = *x;
             let shared = |half: bool, l: &Self| {
@@ -932,6 +942,61 @@ impl Lowerer<'_> {
             num,
             den,
         })
+    }
+
+    /// Bases that share one integer exponent `k ≥ 2` in a monomial: `a^k·b^k = (a·b)^k`
+    /// takes `n − 1` multiplications and one chain instead of `n` chains and `n − 1`
+    /// multiplications (`m·l²·x²`: 3 → 2, and `l·x` is often needed anyway). Only when none
+    /// of those powers exists already, since sharing them is cheaper still. Returns the
+    /// product of the bases, `k`, and the positions of the other items.
+    fn group_equal_powers(
+        &mut self,
+        items: &[(Operand, Rational, Option<OpKey>)],
+    ) -> Option<(Operand, i64, Vec<usize>)> {
+        let exponent = |r: &Rational| match classify(r) {
+            Exponent::Int(k) if k >= 2 => Some(k),
+            _ => None,
+        };
+        // The exponent shared by the most bases (the largest on a tie).
+        let mut best: Option<(usize, i64)> = None;
+        for (x, r, _) in items {
+            let Some(k) = exponent(r) else { continue };
+            if matches!(x, Operand::Lit(_)) || self.pow_memo.contains_key(&(x.key(), k)) {
+                return None;
+            }
+            let n = items
+                .iter()
+                .filter(|(y, s, _)| !matches!(y, Operand::Lit(_)) && exponent(s) == Some(k))
+                .count();
+            if best.is_none_or(|(bn, bk)| (n, k) > (bn, bk)) {
+                best = Some((n, k));
+            }
+        }
+        let (n, k) = best?;
+        if n < 2 {
+            return None;
+        }
+        let (bases, rest): (Vec<usize>, Vec<usize>) =
+            (0..items.len()).partition(|&i| exponent(&items[i].1) == Some(k));
+        let one = Rational::int(1);
+        let key: Vec<(OpKey, Rational)> = bases
+            .iter()
+            .map(|&i| (items[i].0.key(), one.clone()))
+            .collect();
+        let product = match self.mono_memo.get(&key) {
+            Some(o) => *o,
+            None => {
+                let o = self.push(Rhs::Prod {
+                    coef: 1.0,
+                    num: bases.iter().map(|&i| items[i].0).collect(),
+                    den: vec![],
+                });
+                self.mono_memo.insert(key.clone(), o);
+                self.mono_factors.insert(o.key(), key);
+                o
+            }
+        };
+        Some((product, k, rest))
     }
 
     /// `x^k`, `k ≥ 1`, by a shared square-and-multiply chain.
@@ -1104,5 +1169,52 @@ mod tests {
             panic!("{rhs:?}")
         };
         assert_eq!(terms.len(), 2, "{rhs:?}");
+    }
+
+    /// Multiplications of the instructions (a coefficient other than ±1 counts as one).
+    fn multiplications(l: &Lowered) -> usize {
+        l.insts
+            .iter()
+            .map(|i| match &i.rhs {
+                Rhs::Prod { coef, num, den } => {
+                    let factors = num.len() + den.len() + usize::from(coef.abs() != 1.0);
+                    factors.saturating_sub(1)
+                }
+                _ => 0,
+            })
+            .sum()
+    }
+
+    /// `m·l²·x²` next to `l·x` (the shimmy's pivot) is `m·(l·x)²`: three multiplications in
+    /// all, sharing `l·x`, where one chain per square takes four.
+    #[test]
+    fn equal_powers_are_grouped_and_share_their_base() {
+        let [m, l, x] = ["gm", "gl", "gx"].map(|n| Expr::param(n, 0.5).expect("param"));
+        let pivot = m * l.powi(2) * x.powi(2);
+        let lowered = lowered(&[pivot, l * x], &[m, l, x], &[]);
+        assert_eq!(multiplications(&lowered), 3, "{:?}", lowered.insts);
+        let lx = |i: &Inst| {
+            matches!(&i.rhs, Rhs::Prod { num, den, .. }
+                if den.is_empty() && num.len() == 2 && num.contains(&Operand::Param(1))
+                    && num.contains(&Operand::Param(2)))
+        };
+        assert_eq!(lowered.insts.iter().filter(|i| lx(i)).count(), 1);
+    }
+
+    /// A square that exists already is shared instead: `l²` then `m·l²·x²` keeps `l²`.
+    #[test]
+    fn equal_powers_are_not_grouped_when_a_power_exists() {
+        let [m, l, x] = ["hm", "hl", "hx"].map(|n| Expr::param(n, 0.5).expect("param"));
+        let square = l.powi(2);
+        let lowered = lowered(&[square, m * square * x.powi(2)], &[m, l, x], &[]);
+        // l², x², and the product of three: four, the same as grouping would take.
+        assert_eq!(multiplications(&lowered), 4, "{:?}", lowered.insts);
+        let ll = |i: &Inst| matches!(&i.rhs, Rhs::Prod { num, .. } if num == &[Operand::Param(1), Operand::Param(1)]);
+        assert_eq!(
+            lowered.insts.iter().filter(|i| ll(i)).count(),
+            1,
+            "{:?}",
+            lowered.insts
+        );
     }
 }

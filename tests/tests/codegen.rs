@@ -931,9 +931,11 @@ const SMD_EVAL_AB: &str = r#"    pub fn eval_ab(
         let t2: f64 = p_c * t0;
         let av0 = p_m.abs();
         let ok0: bool = av0 > 0.0;
-        let size: f64 = (p_m.abs() + p_c.abs()) + p_k.abs();
+        let size0: f64 = p_m.abs() + p_c.abs();
+        let size1: f64 = p_k.abs();
         if !(ok0
-            & (((size < 1.152921504606847e18) & (p_m.abs() >= 8.673617379884035e-19))))
+            & (((size0 < 1.152921504606847e18) & (size1 < 1.152921504606847e18)
+                & (p_m.abs() >= 8.673617379884035e-19))))
         {
             return eval_ab_checked(p, a, b, work);
         }
