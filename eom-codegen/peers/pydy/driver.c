@@ -23,6 +23,8 @@ int anatomy_no_tests(const double *p, double *a, double *b, double *c, double *d
 int anatomy_pivot(const double *p, double *a, double *b, double *c, double *d);
 int anatomy_magnitude(const double *p, double *a, double *b, double *c, double *d);
 int anatomy_sinks(const double *p, double *a, double *b, double *c, double *d);
+int anatomy_varying_no_tests(const double *p, double *a, double *b, double *c, double *d);
+int anatomy_best(const double *p, double *a, double *b, double *c, double *d);
 int bicycle_rs(const double *p, double *a, double *b, double *c, double *d);
 int bicycle_varying_rs(const double *p, double *a, double *b, double *c, double *d);
 int shimmy_varying_rs(const double *p, double *a, double *b, double *c, double *d);
@@ -84,12 +86,12 @@ int main(int argc, char **argv) {
     printf("\n  C:"); for (int i = 0; i < 12; i++) printf(" %.9g", C[i]);
     printf("\n");
     typedef int (*shimmy_fn)(const double *, double *, double *, double *, double *);
-    const shimmy_fn rs[7] = {shimmy_rs, shimmy_simplified_rs, shimmy_varying_rs, anatomy_no_tests, anatomy_pivot, anatomy_sinks, anatomy_magnitude};
-    const char *rs_name[7] = {"shimmy_rs", "shimmy_simplified_rs", "shimmy_varying_rs", "anatomy_no_tests", "anatomy_pivot", "anatomy_sinks", "anatomy_magnitude"};
-    for (int f = 0; f < 7; f++) {
+    const shimmy_fn rs[9] = {shimmy_rs, shimmy_simplified_rs, shimmy_varying_rs, anatomy_no_tests, anatomy_pivot, anatomy_sinks, anatomy_magnitude, anatomy_varying_no_tests, anatomy_best};
+    const char *rs_name[9] = {"shimmy_rs", "shimmy_simplified_rs", "shimmy_varying_rs", "anatomy_no_tests", "anatomy_pivot", "anatomy_sinks", "anatomy_magnitude", "anatomy_varying_no_tests", "anatomy_best"};
+    for (int f = 0; f < 9; f++) {
         double As[9], Bs[3], Cs[6], Ds[2], Ar[9] = {0}, Br[3] = {0}, Cr[6] = {0}, Dr[2] = {0}, md = 0;
         /* the varying kernel writes no constant entry: they come from one full call */
-        if (rs[f] == shimmy_varying_rs) shimmy_simplified_rs(sp[0], Ar, Br, Cr, Dr);
+        if (rs[f] == shimmy_varying_rs || rs[f] == anatomy_varying_no_tests || rs[f] == anatomy_best) shimmy_simplified_rs(sp[0], Ar, Br, Cr, Dr);
         for (int i = 0; i < NV; i++) {
             shimmy_pydy(sp[i], As, Bs, Cs, Ds);
             rs[f](sp[i], Ar, Br, Cr, Dr);
@@ -116,6 +118,8 @@ int main(int argc, char **argv) {
         RUN("anatomy_pivot", anatomy_pivot(p, A, B, C, D), &sp[0][0], 6, SREPS);
         RUN("anatomy_sinks", anatomy_sinks(p, A, B, C, D), &sp[0][0], 6, SREPS);
         RUN("anatomy_magnitude", anatomy_magnitude(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("anatomy_varying_no_tests", anatomy_varying_no_tests(p, A, B, C, D), &sp[0][0], 6, SREPS);
+        RUN("anatomy_best", anatomy_best(p, A, B, C, D), &sp[0][0], 6, SREPS);
     }
     return (int)(sink * 0);
 }

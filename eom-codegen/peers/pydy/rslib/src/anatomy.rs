@@ -7,7 +7,12 @@
 //! * `anatomy_sinks`: pivot, and the finiteness of the sum of the finiteness sinks (the values
 //!   no other tested value depends on), which is ready only after the last entry.
 //! * `anatomy_magnitude`: pivot, and the parameters' magnitudes (`Σ|p| < 2⁶⁰`), both ready
-//!   early: what the generated code does (it times the same).
+//!   early: what the generated code did before the varying kernel.
+//! * `anatomy_varying_no_tests`: the arithmetic and the varying entries' stores only (what
+//!   `eval_abcd_varying` would cost without any test).
+//! * `anatomy_best`: the fewest instructions found by hand with the generated code's
+//!   guarantees: `m·(l x)²` with `m·l x` shared, every entry one multiplication after the
+//!   division, one packed test of the two lanes' magnitudes, and the pivot test.
 //!
 //! See the README for the figures.
 
@@ -98,3 +103,69 @@ variant!(anatomy_magnitude, |q, pivot, v| {
     let size = (q[0].abs() + q[2].abs() + q[4].abs()) + (q[1].abs() + q[3].abs() + q[5].abs());
     (size < BIG) & (pivot.abs() >= TINY)
 });
+
+/// The varying entries (no constant stores).
+#[inline(always)]
+fn store_varying(v: &[f64; 8], a: &mut [f64; 9], b: &mut [f64; 3], c: &mut [f64; 6]) {
+    a[2] = -v[0];
+    a[3] = v[1];
+    a[5] = v[2];
+    a[6] = v[3];
+    a[8] = -v[4];
+    b[2] = -v[5];
+    c[0] = -v[6];
+    c[2] = v[7];
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn anatomy_varying_no_tests(
+    p: *const f64,
+    a: *mut f64,
+    b: *mut f64,
+    c: *mut f64,
+    _d: *mut f64,
+) -> i32 {
+    let (p, a, b, c) = unsafe {
+        (
+            &*(p as *const [f64; 6]),
+            &mut *(a as *mut [f64; 9]),
+            &mut *(b as *mut [f64; 3]),
+            &mut *(c as *mut [f64; 6]),
+        )
+    };
+    let (_, v) = values(p);
+    store_varying(&v, a, b, c);
+    0
+}
+
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn anatomy_best(
+    p: *const f64,
+    a: *mut f64,
+    b: *mut f64,
+    c: *mut f64,
+    _d: *mut f64,
+) -> i32 {
+    let (p, a, b, c) = unsafe {
+        (
+            &*(p as *const [f64; 6]),
+            &mut *(a as *mut [f64; 9]),
+            &mut *(b as *mut [f64; 3]),
+            &mut *(c as *mut [f64; 6]),
+        )
+    };
+    let (m, i, k, l, x, u) = (p[0], p[1], p[2], p[3], p[4], p[5]);
+    let lx = l * x;
+    let mlx = m * lx;
+    let pivot = i + mlx * lx;
+    let r = 1.0 / pivot;
+    let kd = k * (lx - l);
+    let v = [(k * l) * r, u, (kd * l) * r, lx, (mlx * u) * r, lx * r, k, kd];
+    let even = m.abs() + k.abs() + x.abs();
+    let odd = i.abs() + l.abs() + u.abs();
+    if !((even < BIG) & (odd < BIG) & (pivot.abs() >= TINY)) {
+        return failed();
+    }
+    store_varying(&v, a, b, c);
+    0
+}
