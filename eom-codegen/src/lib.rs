@@ -32,10 +32,12 @@
 //! * the kernels `eval_abcd`, `eval_ab`, `eval_cd`, `eval_phys`:
 //!   `fn(p: &[Real; N_PARAMS], a: &mut [Real; A_LEN], …, work: &mut [Real; WORK_LEN]) -> Result<(), Error>`,
 //!   column-major outputs, structural zeros never written;
-//! * `eval_abcd_varying` (same signature) writes only the entries that depend on the
-//!   parameters, and `const fn write_abcd_constants(a, b, c, d)` the constant ones (a `1` of a
-//!   kinematic row, a sign), once: the kernel for callers that keep their arrays between calls
-//!   (without constant entries it is `eval_abcd` itself);
+//! * for each kernel, `eval_abcd_varying`, `eval_ab_varying`… (same signature) write only
+//!   the entries that depend on the parameters, and `const fn write_abcd_constants(a, b, c,
+//!   d)`, `write_ab_constants(a, b)`… the constant ones (a `1` of a kinematic row, a sign),
+//!   once: the kernels for callers that keep their arrays between calls, as a controller
+//!   evaluating A and B every tick (without constant entries the varying kernel is the
+//!   whole one itself);
 //! * `StateSpace`: A, B, C, D and the workspace in one value, constants written at
 //!   construction, `evaluate(&Params)` through `eval_abcd_varying`;
 //! * `Error` (`Validity { check }`, `NonFinite { matrix, row, col }`; 8 bytes, so that
@@ -245,24 +247,32 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
     if f.abcd {
         specs.push(FnSpec {
             name: "eval_abcd",
+            varying: "eval_abcd_varying",
+            constants: "write_abcd_constants",
             mats: vec![Mat::A, Mat::B, Mat::C, Mat::D],
         });
     }
     if f.ab {
         specs.push(FnSpec {
             name: "eval_ab",
+            varying: "eval_ab_varying",
+            constants: "write_ab_constants",
             mats: vec![Mat::A, Mat::B],
         });
     }
     if f.cd {
         specs.push(FnSpec {
             name: "eval_cd",
+            varying: "eval_cd_varying",
+            constants: "write_cd_constants",
             mats: vec![Mat::C, Mat::D],
         });
     }
     if f.phys {
         specs.push(FnSpec {
             name: "eval_phys",
+            varying: "eval_phys_varying",
+            constants: "write_phys_constants",
             mats: vec![Mat::Phys],
         });
     }
@@ -275,32 +285,36 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
     let mut fn_items = TokenStream::new();
     let mut stats = Vec::new();
     let mut work_len = 0;
-    // `eval_abcd_varying` leaves out the constant entries; without any, it is `eval_abcd`.
-    let mut varying: Option<render::FnPlan> = None;
+    // Each `eval_X_varying` leaves out the constant entries; without any, it is `eval_X`.
+    let mut varying: Vec<render::FnPlan> = Vec::new();
     for spec in &specs {
         let plan = render::plan(spec, &problem)?;
         let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
         work_len = work_len.max(r.work_len);
         fn_items.extend(r.items);
         stats.push(r.stats);
-        if spec.name == "eval_abcd" {
-            fn_items.extend(render::render_constants(
-                &ctx,
-                &plan,
-                "write_abcd_constants",
-                "eval_abcd_varying",
-            )?);
-            if plan.writes_constants() {
-                varying = Some(plan.without_constants("eval_abcd_varying"));
-            } else {
-                fn_items.extend(quote! {
-                    /// [`eval_abcd`]: this model has no constant entry, so there is nothing to leave out.
-                    pub use eval_abcd as eval_abcd_varying;
-                });
-            }
+        fn_items.extend(render::render_constants(
+            &ctx,
+            &plan,
+            spec.constants,
+            spec.varying,
+        )?);
+        if plan.writes_constants() {
+            varying.push(plan.without_constants(spec.varying, spec.constants));
+        } else {
+            let whole = Ident::new(spec.name, Span::call_site());
+            let alias = Ident::new(spec.varying, Span::call_site());
+            let doc = format!(
+                " [`{}`]: this model has no constant entry there, so there is nothing to leave out.",
+                spec.name
+            );
+            fn_items.extend(quote! {
+                #[doc = #doc]
+                pub use #whole as #alias;
+            });
         }
     }
-    if let Some(plan) = varying {
+    for plan in varying {
         let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
         work_len = work_len.max(r.work_len);
         fn_items.extend(r.items);

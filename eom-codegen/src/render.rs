@@ -324,6 +324,10 @@ impl Ctx<'_> {
 pub(crate) struct FnSpec {
     pub name: &'static str,
     pub mats: Vec<Mat>,
+    /// The same kernel without the constant entries (`eval_ab_varying`).
+    pub varying: &'static str,
+    /// The `const fn` that writes the constant entries (`write_ab_constants`).
+    pub constants: &'static str,
 }
 
 /// The lowered form of one function.
@@ -331,8 +335,8 @@ pub(crate) struct FnSpec {
 pub(crate) struct FnPlan {
     pub name: &'static str,
     /// Writes only the entries that depend on the parameters (`eval_abcd_varying`): the
-    /// constant ones are written once by `write_abcd_constants`.
-    pub varying_only: bool,
+    /// constant ones are written once by the function named here (`write_abcd_constants`).
+    pub constants_written_by: Option<&'static str>,
     pub mats: Vec<Mat>,
     pub lowered: Lowered,
     /// `(matrix, row, col, value, negated)`, in matrix order then column-major.
@@ -414,11 +418,11 @@ impl FnPlan {
         self.outputs.iter().any(|o| matches!(o.3, Operand::Lit(_)))
     }
 
-    /// The same function without the constant entries, named `name`.
-    pub(crate) fn without_constants(&self, name: &'static str) -> FnPlan {
+    /// The same function without the constant entries, named `name`; `constants` writes them.
+    pub(crate) fn without_constants(&self, name: &'static str, constants: &'static str) -> FnPlan {
         let mut p = self.clone();
         p.name = name;
-        p.varying_only = true;
+        p.constants_written_by = Some(constants);
         p.outputs.retain(|o| !matches!(o.3, Operand::Lit(_)));
         p
     }
@@ -442,8 +446,10 @@ pub(crate) fn render_constants(
     }
     let args = matrix_args(ctx, &plan.mats);
     let fname = Ident::new(name, Span::call_site());
+    let which: Vec<&str> = plan.mats.iter().map(|m| m.variant()).collect();
+    let which = which.join(", ");
     let doc = format!(
-        " Write the entries of A, B, C, D that are the same for every parameter value: the ones [`{varying}`] leaves out. Call it once per set of arrays."
+        " Write the entries of {which} that are the same for every parameter value: the ones [`{varying}`] leaves out. Call it once per set of arrays."
     );
     Ok(quote! {
         #[doc = #doc]
@@ -500,7 +506,7 @@ pub(crate) fn plan(spec: &FnSpec, problem: &Problem) -> Result<FnPlan, CodegenEr
     }
     Ok(FnPlan {
         name: spec.name,
-        varying_only: false,
+        constants_written_by: None,
         mats: spec.mats.clone(),
         lowered,
         outputs,
@@ -887,9 +893,14 @@ pub(crate) fn render_fn(
         .map(|m| format!("`{}`", m.variant()))
         .collect();
     let mut doc = fn_doc(ctx.problem, plan, &which.join(", "), n_chunks, work_len);
-    if plan.varying_only {
+    if let Some(constants) = plan.constants_written_by {
         doc.push(String::new());
-        doc.push(" Only the entries that depend on the parameters are written: the constant ones (a `1` of a kinematic row, a sign) are written once by [`write_abcd_constants`]. For callers that keep their arrays between calls, as a controller does every tick; [`StateSpace`] works this way.".into());
+        let state_space = if plan.name == "eval_abcd_varying" {
+            "; [`StateSpace`] works this way"
+        } else {
+            ""
+        };
+        doc.push(format!(" Only the entries that depend on the parameters are written: the constant ones (a `1` of a kinematic row, a sign) are written once by [`{constants}`]. For callers that keep their arrays between calls, as a controller does every tick{state_space}."));
     }
     if let Some(n) = fast_note {
         doc.push(String::new());

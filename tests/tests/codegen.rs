@@ -31,10 +31,11 @@ const SENTINEL: f64 = -3.5;
 struct Gen {
     model: &'static str,
     abcd: Eval,
-    /// `eval_abcd_varying` into arrays filled with [`SENTINEL`].
-    varying: Eval,
-    /// `write_abcd_constants` into arrays filled with [`SENTINEL`].
-    constants: fn() -> Vec<Vec<f64>>,
+    /// `eval_abcd_varying`, `eval_ab_varying`, `eval_cd_varying`, `eval_phys_varying` (the
+    /// order of [`KERNELS`]) into arrays filled with [`SENTINEL`].
+    varying: [Eval; 4],
+    /// `write_abcd_constants`… into arrays filled with [`SENTINEL`].
+    constants: [fn() -> Vec<Vec<f64>>; 4],
     /// `StateSpace::new()`, then `evaluate`.
     state_space: Eval,
     ab: Eval,
@@ -77,26 +78,65 @@ macro_rules! generated {
                 g::eval_abcd(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w).map_err(conv)?;
                 Ok(vec![back(&a), back(&b), back(&c), back(&d)])
             },
-            varying: |p| {
-                let s = SENTINEL as $ty;
-                let (mut a, mut b, mut c, mut d, mut w) = (
-                    [s; g::A_LEN],
-                    [s; g::B_LEN],
-                    [s; g::C_LEN],
-                    [s; g::D_LEN],
-                    [0.0; g::WORK_LEN],
-                );
-                g::eval_abcd_varying(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w)
-                    .map_err(conv)?;
-                Ok(vec![back(&a), back(&b), back(&c), back(&d)])
-            },
-            constants: || {
-                let s = SENTINEL as $ty;
-                let (mut a, mut b, mut c, mut d) =
-                    ([s; g::A_LEN], [s; g::B_LEN], [s; g::C_LEN], [s; g::D_LEN]);
-                g::write_abcd_constants(&mut a, &mut b, &mut c, &mut d);
-                vec![back(&a), back(&b), back(&c), back(&d)]
-            },
+            varying: [
+                |p| {
+                    let s = SENTINEL as $ty;
+                    let (mut a, mut b, mut c, mut d, mut w) = (
+                        [s; g::A_LEN],
+                        [s; g::B_LEN],
+                        [s; g::C_LEN],
+                        [s; g::D_LEN],
+                        [0.0; g::WORK_LEN],
+                    );
+                    g::eval_abcd_varying(&params(p), &mut a, &mut b, &mut c, &mut d, &mut w)
+                        .map_err(conv)?;
+                    Ok(vec![back(&a), back(&b), back(&c), back(&d)])
+                },
+                |p| {
+                    let s = SENTINEL as $ty;
+                    let (mut a, mut b, mut w) = ([s; g::A_LEN], [s; g::B_LEN], [0.0; g::WORK_LEN]);
+                    g::eval_ab_varying(&params(p), &mut a, &mut b, &mut w).map_err(conv)?;
+                    Ok(vec![back(&a), back(&b)])
+                },
+                |p| {
+                    let s = SENTINEL as $ty;
+                    let (mut c, mut d, mut w) = ([s; g::C_LEN], [s; g::D_LEN], [0.0; g::WORK_LEN]);
+                    g::eval_cd_varying(&params(p), &mut c, &mut d, &mut w).map_err(conv)?;
+                    Ok(vec![back(&c), back(&d)])
+                },
+                |p| {
+                    let s = SENTINEL as $ty;
+                    let (mut q, mut w) = ([s; g::PHYS_LEN], [0.0; g::WORK_LEN]);
+                    g::eval_phys_varying(&params(p), &mut q, &mut w).map_err(conv)?;
+                    Ok(vec![back(&q)])
+                },
+            ],
+            constants: [
+                || {
+                    let s = SENTINEL as $ty;
+                    let (mut a, mut b, mut c, mut d) =
+                        ([s; g::A_LEN], [s; g::B_LEN], [s; g::C_LEN], [s; g::D_LEN]);
+                    g::write_abcd_constants(&mut a, &mut b, &mut c, &mut d);
+                    vec![back(&a), back(&b), back(&c), back(&d)]
+                },
+                || {
+                    let s = SENTINEL as $ty;
+                    let (mut a, mut b) = ([s; g::A_LEN], [s; g::B_LEN]);
+                    g::write_ab_constants(&mut a, &mut b);
+                    vec![back(&a), back(&b)]
+                },
+                || {
+                    let s = SENTINEL as $ty;
+                    let (mut c, mut d) = ([s; g::C_LEN], [s; g::D_LEN]);
+                    g::write_cd_constants(&mut c, &mut d);
+                    vec![back(&c), back(&d)]
+                },
+                || {
+                    let mut q = [SENTINEL as $ty; g::PHYS_LEN];
+                    g::write_phys_constants(&mut q);
+                    vec![back(&q)]
+                },
+            ],
             state_space: |p| {
                 let mut ss = g::StateSpace::new();
                 ss.evaluate(&g::Params::from_array(&params(p)))
@@ -701,85 +741,116 @@ fn only_structural_nonzeros_are_written() {
     }
 }
 
-/// `eval_abcd_varying` writes exactly the structural non-zeros that `write_abcd_constants`
-/// does not, and together they give `eval_abcd`'s values, bit for bit; so does `StateSpace`,
-/// which is built on them. At nominal and at random points, on every module.
+/// The kernels and the matrices each writes (0–3: A, B, C, D; 4: the physical coordinates).
+const KERNELS: [(&str, &[usize]); 4] = [
+    ("eval_abcd", &[0, 1, 2, 3]),
+    ("eval_ab", &[0, 1]),
+    ("eval_cd", &[2, 3]),
+    ("eval_phys", &[4]),
+];
+
+/// Each `eval_X_varying` writes exactly the structural non-zeros that `write_X_constants`
+/// does not, and together they give `eval_X`'s values, bit for bit; so does `StateSpace`,
+/// which is built on `eval_abcd_varying`. At nominal and at random points, on every module.
 #[test]
-fn varying_kernel_and_constants_make_up_eval_abcd() {
-    let mut with_constants = 0;
+fn varying_kernels_and_constants_make_up_the_kernels() {
+    let mut with_constants = [0; 4];
     for g in all_f64().into_iter().chain(all_f32()).chain(variants()) {
         let r = reference(g.model);
-        let constants = (g.constants)();
-        let check = |values: &[f64]| -> Result<(), TestCaseError> {
-            let whole = (g.abcd)(values);
-            let part = (g.varying)(values);
-            let ss = (g.state_space)(values);
-            let (whole, part, ss) = match (whole, part, ss) {
-                (Ok(w), Ok(p), Ok(s)) => (w, p, s),
-                (Err(a), Err(b), Err(c)) => {
-                    prop_assert_eq!(&a, &b, "{}: different errors", g.model);
-                    prop_assert_eq!(&a, &c, "{}: different errors", g.model);
-                    return Ok(());
+        let sym = r.sym.state_space();
+        let rows = [&sym.a, &sym.b, &sym.c, &sym.d, &sym.phys].map(|m| m.nrows());
+        let wholes = [g.abcd, g.ab, g.cd, g.phys];
+        for (kernel, (name, mats)) in KERNELS.iter().enumerate() {
+            let constants = (g.constants[kernel])();
+            let check = |values: &[f64]| -> Result<(), TestCaseError> {
+                let whole = (wholes[kernel])(values);
+                let part = (g.varying[kernel])(values);
+                let ss = if kernel == 0 {
+                    Some((g.state_space)(values))
+                } else {
+                    None
+                };
+                let (whole, part) = match (whole, part) {
+                    (Ok(w), Ok(p)) => (w, p),
+                    (Err(a), Err(b)) => {
+                        prop_assert_eq!(&a, &b, "{}: {}: different errors", g.model, name);
+                        if let Some(s) = ss {
+                            prop_assert_eq!(Err(a), s.map(|_| ()), "{}: StateSpace", g.model);
+                        }
+                        return Ok(());
+                    }
+                    (w, p) => {
+                        return Err(TestCaseError::fail(format!(
+                            "{}: {name} {:?}, {name}_varying {:?}",
+                            g.model,
+                            w.is_ok(),
+                            p.is_ok(),
+                        )));
+                    }
+                };
+                let ss = match ss {
+                    Some(Ok(s)) => Some(s),
+                    Some(Err(e)) => {
+                        return Err(TestCaseError::fail(format!(
+                            "{}: StateSpace fails where eval_abcd does not: {e:?}",
+                            g.model
+                        )));
+                    }
+                    None => None,
+                };
+                for (n, &k) in mats.iter().enumerate() {
+                    for idx in 0..whole[n].len() {
+                        let structural = g.nonzeros[k].contains(&(idx % rows[k], idx / rows[k]));
+                        let (c, p) = (constants[n][idx], part[n][idx]);
+                        // Exactly one of the two writes each structural non-zero, neither the
+                        // rest.
+                        prop_assert!(
+                            structural == ((c == SENTINEL) != (p == SENTINEL)),
+                            "{}: {name}: matrix {k} entry {idx}: constants {c}, varying {p}",
+                            g.model
+                        );
+                        let joined = if c == SENTINEL { p } else { c };
+                        let want = if structural { whole[n][idx] } else { SENTINEL };
+                        prop_assert_eq!(
+                            joined.to_bits(),
+                            want.to_bits(),
+                            "{}: {}: matrix {} entry {}",
+                            g.model,
+                            name,
+                            k,
+                            idx
+                        );
+                        if let Some(ss) = &ss {
+                            prop_assert_eq!(
+                                ss[n][idx].to_bits(),
+                                whole[n][idx].to_bits(),
+                                "{}: StateSpace matrix {} entry {}",
+                                g.model,
+                                k,
+                                idx
+                            );
+                        }
+                    }
                 }
-                (w, p, s) => {
-                    return Err(TestCaseError::fail(format!(
-                        "{}: eval_abcd {:?}, eval_abcd_varying {:?}, StateSpace {:?}",
-                        g.model,
-                        w.is_ok(),
-                        p.is_ok(),
-                        s.is_ok()
-                    )));
-                }
+                Ok(())
             };
-            let sym = r.sym.state_space();
-            for (k, rows) in [sym.a.nrows(), sym.b.nrows(), sym.c.nrows(), sym.d.nrows()]
-                .into_iter()
-                .enumerate()
-            {
-                for idx in 0..whole[k].len() {
-                    let structural = g.nonzeros[k].contains(&(idx % rows, idx / rows));
-                    let (c, p) = (constants[k][idx], part[k][idx]);
-                    // Exactly one of the two writes each structural non-zero, neither the rest.
-                    prop_assert!(
-                        structural == ((c == SENTINEL) != (p == SENTINEL)),
-                        "{}: matrix {k} entry {idx}: constants {c}, varying {p}",
-                        g.model
-                    );
-                    let joined = if c == SENTINEL { p } else { c };
-                    let want = if structural { whole[k][idx] } else { SENTINEL };
-                    prop_assert_eq!(
-                        joined.to_bits(),
-                        want.to_bits(),
-                        "{}: matrix {} entry {}",
-                        g.model,
-                        k,
-                        idx
-                    );
-                    prop_assert_eq!(
-                        ss[k][idx].to_bits(),
-                        whole[k][idx].to_bits(),
-                        "{}: StateSpace matrix {} entry {}",
-                        g.model,
-                        k,
-                        idx
-                    );
-                }
+            let nominal = r.model.scope.nominal_values();
+            check(&nominal).expect("nominal point");
+            proptest!(config(8), |(values in near_nominal(nominal.clone()))| {
+                check(&values)?;
+            });
+            if constants.iter().flatten().any(|&x| x != SENTINEL) {
+                with_constants[kernel] += 1;
             }
-            Ok(())
-        };
-        let nominal = r.model.scope.nominal_values();
-        check(&nominal).expect("nominal point");
-        proptest!(config(8), |(values in near_nominal(nominal.clone()))| {
-            check(&values)?;
-        });
-        if constants.iter().flatten().any(|&x| x != SENTINEL) {
-            with_constants += 1;
         }
     }
-    assert!(
-        with_constants > 0,
-        "no module has constant entries: the test tests nothing"
-    );
+    // Every kernel of some module has constant entries, or its half of the test tests nothing.
+    for (kernel, (name, _)) in KERNELS.iter().enumerate() {
+        assert!(
+            with_constants[kernel] > 0,
+            "no module's {name} has constant entries: the test tests nothing for it"
+        );
+    }
 }
 
 #[test]
