@@ -51,6 +51,26 @@ fn failed() -> i32 {
     1
 }
 
+/// The driver's pointers as the shimmy's arrays.
+///
+/// # Safety
+/// The pointers must point to 6, 9, 3 and 6 valid `f64`, the last three not aliased.
+unsafe fn arrays<'x>(
+    p: *const f64,
+    a: *mut f64,
+    b: *mut f64,
+    c: *mut f64,
+) -> (&'x [f64; 6], &'x mut [f64; 9], &'x mut [f64; 3], &'x mut [f64; 6]) {
+    unsafe {
+        (
+            &*(p as *const [f64; 6]),
+            &mut *(a as *mut [f64; 9]),
+            &mut *(b as *mut [f64; 3]),
+            &mut *(c as *mut [f64; 6]),
+        )
+    }
+}
+
 const TINY: f64 = 8.673617379884035e-19;
 
 macro_rules! variant {
@@ -63,14 +83,7 @@ macro_rules! variant {
             c: *mut f64,
             _d: *mut f64,
         ) -> i32 {
-            let (p, a, b, c) = unsafe {
-                (
-                    &*(p as *const [f64; 6]),
-                    &mut *(a as *mut [f64; 9]),
-                    &mut *(b as *mut [f64; 3]),
-                    &mut *(c as *mut [f64; 6]),
-                )
-            };
+            let (p, a, b, c) = unsafe { arrays(p, a, b, c) };
             let ($pivot, $v) = values(p);
             let $q = p;
             if !($ok) {
@@ -125,14 +138,7 @@ pub unsafe extern "C" fn anatomy_varying_no_tests(
     c: *mut f64,
     _d: *mut f64,
 ) -> i32 {
-    let (p, a, b, c) = unsafe {
-        (
-            &*(p as *const [f64; 6]),
-            &mut *(a as *mut [f64; 9]),
-            &mut *(b as *mut [f64; 3]),
-            &mut *(c as *mut [f64; 6]),
-        )
-    };
+    let (p, a, b, c) = unsafe { arrays(p, a, b, c) };
     let (_, v) = values(p);
     store_varying(&v, a, b, c);
     0
@@ -146,14 +152,7 @@ pub unsafe extern "C" fn anatomy_best(
     c: *mut f64,
     _d: *mut f64,
 ) -> i32 {
-    let (p, a, b, c) = unsafe {
-        (
-            &*(p as *const [f64; 6]),
-            &mut *(a as *mut [f64; 9]),
-            &mut *(b as *mut [f64; 3]),
-            &mut *(c as *mut [f64; 6]),
-        )
-    };
+    let (p, a, b, c) = unsafe { arrays(p, a, b, c) };
     let (m, i, k, l, x, u) = (p[0], p[1], p[2], p[3], p[4], p[5]);
     let lx = l * x;
     let mlx = m * lx;
