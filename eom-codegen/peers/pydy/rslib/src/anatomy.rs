@@ -73,8 +73,13 @@ unsafe fn arrays<'x>(
 
 const TINY: f64 = 8.673617379884035e-19;
 
+/// `extern "C" fn NAME(p, a, b, c, d) -> i32`: the values by `$values`, the test `$ok`, the
+/// stores by `$store` (default: [`values`] and [`store`]).
 macro_rules! variant {
     ($name:ident, |$q:ident, $pivot:ident, $v:ident| $ok:expr) => {
+        variant!($name, values, store, |$q, $pivot, $v| $ok);
+    };
+    ($name:ident, $values:ident, $store:ident, |$q:ident, $pivot:ident, $v:ident| $ok:expr) => {
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $name(
             p: *const f64,
@@ -84,12 +89,12 @@ macro_rules! variant {
             _d: *mut f64,
         ) -> i32 {
             let (p, a, b, c) = unsafe { arrays(p, a, b, c) };
-            let ($pivot, $v) = values(p);
+            let ($pivot, $v) = $values(p);
             let $q = p;
             if !($ok) {
                 return failed();
             }
-            store(&$v, a, b, c);
+            $store(&$v, a, b, c);
             0
         }
     };
@@ -130,41 +135,26 @@ fn store_varying(v: &[f64; 8], a: &mut [f64; 9], b: &mut [f64; 3], c: &mut [f64;
     c[2] = v[7];
 }
 
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn anatomy_varying_no_tests(
-    p: *const f64,
-    a: *mut f64,
-    b: *mut f64,
-    c: *mut f64,
-    _d: *mut f64,
-) -> i32 {
-    let (p, a, b, c) = unsafe { arrays(p, a, b, c) };
-    let (_, v) = values(p);
-    store_varying(&v, a, b, c);
-    0
-}
+variant!(anatomy_varying_no_tests, values, store_varying, |q, pivot, v| {
+    let _ = (q, pivot, &v);
+    true
+});
 
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn anatomy_best(
-    p: *const f64,
-    a: *mut f64,
-    b: *mut f64,
-    c: *mut f64,
-    _d: *mut f64,
-) -> i32 {
-    let (p, a, b, c) = unsafe { arrays(p, a, b, c) };
+/// Every entry one multiplication after the division, `m·l x` shared.
+#[inline(always)]
+fn values_best(p: &[f64; 6]) -> (f64, [f64; 8]) {
     let (m, i, k, l, x, u) = (p[0], p[1], p[2], p[3], p[4], p[5]);
     let lx = l * x;
     let mlx = m * lx;
     let pivot = i + mlx * lx;
     let r = 1.0 / pivot;
     let kd = k * (lx - l);
-    let v = [(k * l) * r, u, (kd * l) * r, lx, (mlx * u) * r, lx * r, k, kd];
-    let even = m.abs() + k.abs() + x.abs();
-    let odd = i.abs() + l.abs() + u.abs();
-    if !((even < BIG) & (odd < BIG) & (pivot.abs() >= TINY)) {
-        return failed();
-    }
-    store_varying(&v, a, b, c);
-    0
+    (pivot, [(k * l) * r, u, (kd * l) * r, lx, (mlx * u) * r, lx * r, k, kd])
 }
+
+variant!(anatomy_best, values_best, store_varying, |q, pivot, v| {
+    let _ = &v;
+    let even = q[0].abs() + q[2].abs() + q[4].abs();
+    let odd = q[1].abs() + q[3].abs() + q[5].abs();
+    (even < BIG) & (odd < BIG) & (pivot.abs() >= TINY)
+});
