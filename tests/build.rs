@@ -68,20 +68,20 @@ fn main() {
         add(
             &format!("{m}_f64.rs"),
             "f64",
-            Generate::model(m),
+            builtin(m),
             &mut index,
         );
     }
     add(
         "bicycle_std.rs",
         "f64 std math",
-        Generate::model("bicycle").std_math().module("bicycle_std"),
+        builtin("bicycle").std_math().module("bicycle_std"),
         &mut index,
     );
     add(
         "bicycle_chunked.rs",
         "f64 chunks of 16",
-        Generate::model("bicycle")
+        builtin("bicycle")
             .max_temporaries(16)
             .module("bicycle_chunked"),
         &mut index,
@@ -91,7 +91,7 @@ fn main() {
         "f64 simplified",
         // `simplify_always`: by its cost estimate plain `simplify` would keep the
         // original here, and this module is to test simplified code.
-        Generate::model("bicycle")
+        builtin("bicycle")
             .simplify_always(true)
             .module("bicycle_simplified"),
         &mut index,
@@ -99,12 +99,12 @@ fn main() {
     add(
         "shimmy_simplified.rs",
         "f64 simplified",
-        Generate::model("shimmy")
+        builtin("shimmy")
             .simplify(true)
             .module("shimmy_simplified"),
         &mut index,
     );
-    let mut speed_only = Generate::model("bicycle").module("bicycle_speed");
+    let mut speed_only = builtin("bicycle").module("bicycle_speed");
     for p in models::find("bicycle").expect("bicycle").0.params {
         if p.name != "v" {
             speed_only = speed_only.fix(p.name, p.default);
@@ -114,7 +114,7 @@ fn main() {
     add(
         "chain50_chunked.rs",
         "f64 chunks of 4",
-        Generate::model("chain50")
+        builtin("chain50")
             .max_temporaries(4)
             .module("chain50_chunked"),
         &mut index,
@@ -124,7 +124,7 @@ fn main() {
         add(
             &format!("{m}_f32.rs"),
             "f32",
-            Generate::model(m).f32(),
+            builtin(m).f32(),
             &mut index,
         );
     }
@@ -140,4 +140,9 @@ fn main() {
     write_if_changed(&out.join("smd_again.rs"), &again).expect("write");
     write_if_changed(&out.join("generated.rs"), &index).expect("write");
     write_if_changed(&out.join("codegen_stats.csv"), &stats).expect("write");
+}
+
+/// The code generator for a built-in model at its defaults.
+fn builtin(name: &str) -> Generate {
+    Generate::new(models::build(name, &[]).unwrap_or_else(|e| panic!("{name}: {e}")))
 }

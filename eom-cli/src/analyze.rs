@@ -19,8 +19,8 @@ use eom_num::minreal::{
 };
 use eom_num::modes::{Mode, ModeKind, Modes, Stability};
 use eom_num::zeros::transmission_zeros;
-use eom_sym::SymError;
-use eom_sym::model::{Linearizer, Method};
+use eom_model::ModelError;
+use eom_model::{Linearizer, Method};
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
 
@@ -294,7 +294,7 @@ pub(crate) fn ratio_unit(out: &str, inp: &str) -> String {
 ///
 /// With [`Method::Symbolic`] the model is reduced with pivots chosen at the catalogue defaults
 /// and evaluated at the requested point, so a point outside the symbolic validity region is an
-/// error ([`eom_sym::SymError::PivotBreakdown`]); the other methods reduce at the point.
+/// error ([`eom_model::ModelError::PivotBreakdown`]); the other methods reduce at the point.
 pub fn analyze(
     choice: &ModelChoice,
     overrides: &[(String, f64)],
@@ -311,8 +311,8 @@ pub fn analyze(
                 .method(Method::Symbolic)
                 .run()
                 .map_err(|e| match e {
-                    SymError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion { source: e },
-                    e => CliError::Sym(e),
+                    ModelError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion { source: e },
+                    e => CliError::Model(e),
                 })?
         }
         m => Linearizer::new(&at_point).method(m).run()?,

@@ -2,8 +2,9 @@
 
 use eom_num::NumError;
 use eom_num::sweep::SweepError;
+use eom_model::ModelError;
 use eom_sym::SymError;
-use models::ModelError;
+use models::CatalogueError;
 
 /// Exit code of a usage error: unknown model or parameter, malformed argument (the same code
 /// clap uses for its own argument errors).
@@ -18,7 +19,7 @@ pub const EXIT_FAILURE: u8 = 1;
 pub enum CliError {
     /// The model library rejected the model, a parameter name or a parameter value.
     #[error(transparent)]
-    Model(#[from] ModelError),
+    Catalogue(#[from] CatalogueError),
     /// A malformed command-line argument (`--set`, `--param`, `--freq-range`, …).
     #[error("argument `{argument}`: {problem}")]
     BadArgument {
@@ -29,6 +30,9 @@ pub enum CliError {
     },
     /// Building, reducing or evaluating the model failed.
     #[error(transparent)]
+    Model(#[from] ModelError),
+    /// An expression could not be built or evaluated.
+    #[error(transparent)]
     Sym(#[from] SymError),
     /// `--method symbolic` at a point outside the validity region of the symbolic reduction.
     #[error(
@@ -38,7 +42,7 @@ pub enum CliError {
     )]
     OutsideSymbolicRegion {
         /// The failed validity check.
-        source: SymError,
+        source: ModelError,
     },
     /// A numeric analysis failed.
     #[error(transparent)]
@@ -90,10 +94,10 @@ impl CliError {
     /// arguments, [`EXIT_FAILURE`] otherwise.
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::Model(
-                ModelError::UnknownModel { .. }
-                | ModelError::UnknownParameter { .. }
-                | ModelError::BadValue { .. },
+            CliError::Catalogue(
+                CatalogueError::UnknownModel { .. }
+                | CatalogueError::UnknownParameter { .. }
+                | CatalogueError::BadValue { .. },
             )
             | CliError::BadArgument { .. } => EXIT_USAGE,
             _ => EXIT_FAILURE,

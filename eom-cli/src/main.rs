@@ -22,7 +22,7 @@ use crate::codegen::CodegenRequest;
 use crate::error::CliError;
 use crate::params::{ModelChoice, SweepSpec, parse_freq_range};
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use eom_sym::model::Method;
+use eom_model::Method;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

@@ -2,7 +2,7 @@
 //! NAME=VALUE` and `--param NAME=START:STOP:COUNT`, the full parameter list of a model.
 
 use crate::error::CliError;
-use models::{ModelError, ModelInfo, ParamSpec};
+use models::{CatalogueError, ModelInfo, ParamSpec};
 
 /// A built-in model chosen by name (`chain50` resolves to the `chainN` entry with size 50).
 #[derive(Clone, Debug)]
@@ -14,7 +14,7 @@ pub struct ModelChoice {
 }
 
 impl ModelChoice {
-    /// Looks the model up; an unknown name is [`ModelError::UnknownModel`], which lists the
+    /// Looks the model up; an unknown name is [`CatalogueError::UnknownModel`], which lists the
     /// models.
     pub fn resolve(name: &str) -> Result<ModelChoice, CliError> {
         let (info, _) = models::find(name)?;
@@ -33,14 +33,14 @@ impl ModelChoice {
             .collect()
     }
 
-    /// The catalogue entry of a parameter, or [`ModelError::UnknownParameter`] listing them.
+    /// The catalogue entry of a parameter, or [`CatalogueError::UnknownParameter`] listing them.
     pub fn param(&self, name: &str) -> Result<&ParamSpec, CliError> {
         self.info
             .params
             .iter()
             .find(|p| p.name == name)
             .ok_or_else(|| {
-                CliError::Model(ModelError::UnknownParameter {
+                CliError::Catalogue(CatalogueError::UnknownParameter {
                     model: self.name.clone(),
                     name: name.to_string(),
                     known: self.param_names(),

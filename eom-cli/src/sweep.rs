@@ -11,9 +11,9 @@ use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
 use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
-use eom_sym::model::{Linearizer, Method, Model};
+use eom_model::{Linearizer, Method, Model, ModelError};
 use eom_sym::{Assumption, Expr, SymError};
-use models::ModelError;
+use models::CatalogueError;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
@@ -100,7 +100,7 @@ thread_local! {
 }
 
 impl ModelRecipe {
-    fn build(&self) -> Result<Model<Expr>, ModelError> {
+    fn build(&self) -> Result<Model<Expr>, CatalogueError> {
         let ov: Vec<(&str, f64)> = self.nominal.iter().map(|(k, v)| (k.as_str(), *v)).collect();
         models::build(&self.name, &ov)
     }
@@ -129,7 +129,7 @@ impl ModelRecipe {
 }
 
 /// Checks every value of the range against the parameter's sign assumption, with the model
-/// library's own error ([`ModelError::BadValue`]).
+/// library's own error ([`CatalogueError::BadValue`]).
 fn check_range(
     choice: &ModelChoice,
     spec: &SweepSpec,
@@ -138,7 +138,7 @@ fn check_range(
     let p = choice.param(&spec.name)?;
     let (lo, hi) = spec.bounds();
     if p.assume == Assumption::Nonzero && lo <= 0.0 && hi >= 0.0 {
-        return Err(CliError::Model(ModelError::BadValue {
+        return Err(CliError::Catalogue(CatalogueError::BadValue {
             model: choice.name.clone(),
             name: spec.name.clone(),
             value: 0.0,
@@ -214,11 +214,11 @@ pub fn sweep(
             v[k] = x;
             match c.evaluate(&v) {
                 Ok(ss) => Ok(ss.a),
-                Err(SymError::PivotBreakdown(why)) => {
+                Err(ModelError::PivotBreakdown(why)) => {
                     record(x, why);
                     recipe.robust_state_matrix(&spec.name, x)
                 }
-                Err(e @ SymError::EvalNonFinite { .. }) => {
+                Err(e @ ModelError::Sym(SymError::EvalNonFinite { .. })) => {
                     record(x, e.to_string());
                     recipe.robust_state_matrix(&spec.name, x)
                 }

@@ -3,7 +3,8 @@
 //! ```no_run
 //! // build.rs of a controller crate, in `fn main()`:
 //! println!("cargo:rerun-if-changed=build.rs");
-//! eom_codegen::build::Generate::model("bicycle")
+//! let model = models::build("bicycle", &[]).expect("model");
+//! eom_codegen::build::Generate::new(model)
 //!     .f32()
 //!     .write_to_out_dir("bicycle.rs")
 //!     .expect("code generation");
@@ -14,47 +15,27 @@
 //! The file is rewritten only when its content changes, so an unchanged model does not make
 //! cargo recompile the crate that includes it. Built-in models read no file; a build script
 //! should print `cargo:rerun-if-changed=build.rs` so that cargo does not rerun it on every
-//! change of the package (the build-dependency on this crate reruns it when the generator or
-//! the model library changes).
+//! change of the package (the build-dependencies on this crate and on the model's crate rerun it
+//! when the generator or the model changes).
 
 use crate::{CodegenError, EmitOptions, Emitted, Functions, emit_model};
 use eom_sym::Expr;
-use eom_sym::model::Model;
+use eom_model::Model;
 use std::path::{Path, PathBuf};
-
-enum Source {
-    Named(String, Vec<(String, f64)>),
-    Model(Box<Model<Expr>>),
-}
 
 /// Builder for one generated file.
 pub struct Generate {
-    source: Source,
+    model: Box<Model<Expr>>,
     opts: EmitOptions,
 }
 
 impl Generate {
-    /// A built-in model by name (`"bicycle"`, `"chain50"`, …; see `models::catalogue`).
-    pub fn model(name: &str) -> Self {
+    /// Generate code for `model` (built by the caller, e.g. with `models::build`).
+    pub fn new(model: Model<Expr>) -> Self {
         Generate {
-            source: Source::Named(name.to_string(), Vec::new()),
+            model: Box::new(model),
             opts: EmitOptions::default(),
         }
-    }
-    /// A model built by the caller.
-    pub fn from_model(model: Model<Expr>) -> Self {
-        Generate {
-            source: Source::Model(Box::new(model)),
-            opts: EmitOptions::default(),
-        }
-    }
-    /// Nominal value of a parameter of a built-in model (where the pivots are chosen and the
-    /// default of `Params::NOMINAL`); ignored for [`Generate::from_model`].
-    pub fn nominal(mut self, name: &str, value: f64) -> Self {
-        if let Source::Named(_, o) = &mut self.source {
-            o.push((name.to_string(), value));
-        }
-        self
     }
     /// `f32` code.
     pub fn f32(mut self) -> Self {
@@ -110,14 +91,7 @@ impl Generate {
 
     /// Generate the source.
     pub fn emit(&self) -> Result<Emitted, CodegenError> {
-        match &self.source {
-            Source::Named(name, nominal) => {
-                let o: Vec<(&str, f64)> = nominal.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-                let m = models::build(name, &o)?;
-                emit_model(&m, &self.opts)
-            }
-            Source::Model(m) => emit_model(m, &self.opts),
-        }
+        emit_model(&self.model, &self.opts)
     }
 
     /// Generate and write to `path` (only if the content changed). Returns what was generated.

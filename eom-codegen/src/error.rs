@@ -9,9 +9,9 @@ pub enum CodegenError {
     /// expression cannot be evaluated (an invalid node, a parameter missing from the list).
     #[error(transparent)]
     Sym(#[from] SymError),
-    /// A built-in model could not be built.
+    /// The model layer failed (validating, assembling or reducing the model).
     #[error(transparent)]
-    Model(#[from] models::ModelError),
+    Model(#[from] eom_model::ModelError),
     /// A numeric constant that has no finite value in the chosen precision.
     #[error("{matrix}: the constant {value:?} is not finite in {precision}")]
     NonFiniteConstant {

@@ -9,7 +9,7 @@
 //!
 //! ```
 //! let model = models::build("smd", &[]).unwrap();
-//! let sym = eom_sym::model::Linearizer::new(&model).symbolic().unwrap();
+//! let sym = eom_model::Linearizer::new(&model).symbolic().unwrap();
 //! let src = eom_codegen::emit(&sym, &eom_codegen::EmitOptions::default().model_name("smd")).unwrap();
 //! assert!(src.contains("pub fn eval_ab("));
 //! ```
@@ -18,7 +18,8 @@
 //!
 //! ```no_run
 //! // build.rs
-//! eom_codegen::build::Generate::model("bicycle").f32().write_to_out_dir("bicycle.rs").unwrap();
+//! let model = models::build("bicycle", &[]).unwrap();
+//! eom_codegen::build::Generate::new(model).f32().write_to_out_dir("bicycle.rs").unwrap();
 //! // lib.rs:  include!(concat!(env!("OUT_DIR"), "/bicycle.rs"));   // defines `mod bicycle`
 //! ```
 //!
@@ -88,7 +89,7 @@
 //! Large kernels may go the other way: from SSE3 on, LLVM's SLP vectoriser packs the bicycle's
 //! operations into pairs twice as often and loses more to shuffles than it gains. Measure with
 //! your model. Against PyDy's generated C in one driver, both sides compiled alike
-//! (`eom-codegen/peers/pydy/README.md`, AMD EPYC Zen 4, ns per call):
+//! (`bench/pydy/README.md`, AMD EPYC Zen 4, ns per call):
 //!
 //! | | baseline (SSE2) | `x86-64-v3` | `native` |
 //! |---|---|---|---|
@@ -113,7 +114,7 @@ pub use lower::CodeOps;
 pub use options::{DEFAULT_CHUNK, EmitOptions, Functions, MathLib, Precision};
 pub use render::FunctionStats;
 
-use eom_sym::model::{Linearizer, Model, SymbolicStateSpace};
+use eom_model::{Linearizer, Model, SymbolicStateSpace};
 use eom_sym::{Expr, OpCount};
 use problem::{Mat, Problem};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
@@ -199,7 +200,7 @@ pub fn emit_model(model: &Model<Expr>, opts: &EmitOptions) -> Result<Emitted, Co
 /// With [`EmitOptions::simplify`], the simplified expressions are used only when they have
 /// fewer operations *and* a lower [`FunctionStats::cost_estimate`] (longest chain times
 /// operations) of the first function; [`EmitStats::simplification`] says which. Measured in
-/// one driver (`peers/pydy`): the bicycle's simplified form has 17 weighted operations fewer
+/// one driver (`bench/pydy`): the bicycle's simplified form has 17 weighted operations fewer
 /// but a chain 9 longer, and takes 80.4 ns against 68.2 ns (kept out); the shimmy's has 5
 /// fewer and a chain 3 longer, and takes 4.77 against 4.94 ns (used).
 pub fn emit_with_stats(
@@ -565,8 +566,8 @@ fn validity_doc(p: &Problem) -> Vec<String> {
         format!(
             " The formulas come from an elimination whose pivots were chosen at the nominal point. They hold where these {} checks hold (`PIVOT_TOLERANCE` = {:e}, `RANK_TOLERANCE` = {:e}); every evaluation function tests them and returns `Error::Validity` naming the first that fails. The margin is the ratio at the nominal point.",
             p.checks.len(),
-            eom_sym::model::reduce::PIVOT_TOLERANCE,
-            eom_sym::model::reduce::RANK_TOLERANCE
+            eom_model::reduce::PIVOT_TOLERANCE,
+            eom_model::reduce::RANK_TOLERANCE
         ),
         String::new(),
     ];
@@ -689,8 +690,8 @@ fn module_items(
     let (pnames, punits) = (str_array(&pnames), str_array(&punits));
     let checks: Vec<String> = p.checks.iter().map(|c| c.what.clone()).collect();
     let checks = str_array(&checks);
-    let ptol = num.lit(eom_sym::model::reduce::PIVOT_TOLERANCE, "tolerance")?;
-    let rtol = num.lit(eom_sym::model::reduce::RANK_TOLERANCE, "tolerance")?;
+    let ptol = num.lit(eom_model::reduce::PIVOT_TOLERANCE, "tolerance")?;
+    let rtol = num.lit(eom_model::reduce::RANK_TOLERANCE, "tolerance")?;
     ts.extend(quote! {
         /// Parameter names, in the order of the parameter array.
         pub const PARAM_NAMES: [&str; N_PARAMS] = #pnames;

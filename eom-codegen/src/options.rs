@@ -3,7 +3,7 @@
 /// The floating-point type of the generated code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Precision {
-    /// `f64` throughout (the default): agrees with [`SymbolicStateSpace::evaluate`](eom_sym::model::SymbolicStateSpace::evaluate)
+    /// `f64` throughout (the default): agrees with [`SymbolicStateSpace::evaluate`](eom_model::SymbolicStateSpace::evaluate)
     /// to rounding.
     #[default]
     F64,

@@ -383,7 +383,7 @@ impl FunctionStats {
     ///
     /// Calls run back to back overlap only in part, so both the longest chain and the number
     /// of operations count, and in proportion: a change is judged by its relative effect on
-    /// each. This is a heuristic fitted to two measurements (one driver, `peers/pydy`): the
+    /// each. This is a heuristic fitted to two measurements (one driver, `bench/pydy`): the
     /// shimmy's simplified form has a chain 34 against 31 and 18 against 23 weighted
     /// operations, estimate 612 against 713, and takes 4.77 against 4.94 ns; the bicycle's
     /// has 131 against 122 and 319 against 336, estimate 41 789 against 40 992, and takes
@@ -1386,8 +1386,8 @@ fn render_checks(
     ready: &[u32],
 ) -> Result<Checks, CodegenError> {
     let num = ctx.num;
-    let pivot_tol = num.round(eom_sym::model::reduce::PIVOT_TOLERANCE);
-    let rank_tol = num.round(eom_sym::model::reduce::RANK_TOLERANCE);
+    let pivot_tol = num.round(eom_model::reduce::PIVOT_TOLERANCE);
+    let rank_tol = num.round(eom_model::reduce::RANK_TOLERANCE);
     let mut ts = TokenStream::new();
     let mut seen: HashMap<(bool, Vec<crate::lower::OpKey>), (TokenStream, TokenStream)> =
         HashMap::new();

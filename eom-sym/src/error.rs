@@ -77,30 +77,6 @@ pub enum SymError {
         /// The value obtained (NaN or ±inf).
         value: f64,
     },
-    /// A model item or field is invalid.
-    #[error("{item}{}: {problem}", if field.is_empty() { String::new() } else { format!(", field `{field}`") })]
-    Model {
-        /// The item, e.g. ``spring `front` ``.
-        item: String,
-        /// The field, e.g. `stiffness` (may be empty).
-        field: String,
-        /// What is wrong.
-        problem: String,
-    },
-    /// The model is not in static equilibrium at its given geometry.
-    #[error("not in equilibrium: {0}")]
-    Equilibrium(String),
-    /// A matrix that must be invertible is singular (at the nominal point, or at the point of
-    /// evaluation).
-    #[error("singular: {0}")]
-    Singular(String),
-    /// A pivot recorded in the symbolic elimination plan broke down at the evaluation point:
-    /// the symbolic result is not valid there (use the robust numeric path).
-    #[error("outside the validity region of the symbolic reduction: {0}")]
-    PivotBreakdown(String),
-    /// An error of the numeric layer.
-    #[error(transparent)]
-    Num(#[from] eom_num::NumError),
     /// A model feature that this path does not support (the message says which path does).
     #[error("not supported: {0}")]
     Unsupported(String),

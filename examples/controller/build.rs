@@ -6,7 +6,7 @@ use std::fmt::Write;
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
-    Generate::model("bicycle")
+    builtin("bicycle")
         .f32()
         .write_to_out_dir("bicycle.rs")
         .expect("bicycle");
@@ -18,8 +18,8 @@ fn main() {
             info.name
         };
         for (ty, g) in [
-            ("f64", Generate::model(name)),
-            ("f32", Generate::model(name).f32()),
+            ("f64", builtin(name)),
+            ("f32", builtin(name).f32()),
         ] {
             let file = format!("check_{name}_{ty}.rs");
             g.module(&format!("{name}_{ty}"))
@@ -30,4 +30,9 @@ fn main() {
     }
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
     eom_codegen::build::write_if_changed(&out.join("check_all.rs"), &index).expect("write");
+}
+
+/// The code generator for a built-in model at its defaults.
+fn builtin(name: &str) -> Generate {
+    Generate::new(models::build(name, &[]).unwrap_or_else(|e| panic!("{name}: {e}")))
 }

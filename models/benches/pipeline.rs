@@ -11,7 +11,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use eom_sym::Expr;
-use eom_sym::model::{Linearizer, assemble, reduce, reduce_robust};
+use eom_model::{Linearizer, assemble, reduce, reduce_robust};
 use std::hint::black_box;
 use std::time::Instant;
 

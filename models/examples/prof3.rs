@@ -1,4 +1,4 @@
-use eom_sym::model::*;
+use eom_model::*;
 use std::time::Instant;
 fn main() {
     let arg = std::env::args().nth(1).unwrap_or_default();

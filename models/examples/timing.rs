@@ -1,4 +1,4 @@
-use eom_sym::model::*;
+use eom_model::*;
 use std::time::Instant;
 fn main() {
     let model = models::build("bicycle", &[]).unwrap();

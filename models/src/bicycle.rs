@@ -9,9 +9,9 @@
 //! frame's forward motion is prescribed. Input: steer torque; outputs: steer angle and roll
 //! angle. The benchmark's Table 1 values are the defaults.
 
-use crate::ModelError;
+use crate::CatalogueError;
 use crate::catalogue::ParamSpec;
-use eom_sym::model::*;
+use eom_model::*;
 use eom_sym::{Assumption, Expr};
 
 const fn p(
@@ -91,7 +91,7 @@ pub(crate) fn params() -> Vec<ParamSpec> {
     ]
 }
 
-pub(crate) fn build(md: &mut Model<Expr>, ps: &[Expr], _: usize) -> Result<(), ModelError> {
+pub(crate) fn build(md: &mut Model<Expr>, ps: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let v = |name: &str| md.scope.get(name).expect("declared");
     let _ = ps;
     let (w, c, lambda, g, speed) = (v("w"), v("c"), v("lambda"), v("g"), v("v"));

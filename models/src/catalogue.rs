@@ -1,7 +1,7 @@
 //! The catalogue of built-in models.
 
-use crate::ModelError;
-use eom_sym::model::*;
+use crate::CatalogueError;
+use eom_model::*;
 use eom_sym::{Assumption, Expr, ParamInfo};
 
 /// A parameter of a built-in model.
@@ -48,7 +48,7 @@ const fn real(
     }
 }
 
-type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), ModelError>;
+type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), CatalogueError>;
 
 /// A built-in model.
 #[derive(Clone, Debug)]
@@ -69,10 +69,10 @@ impl ModelInfo {
         overrides: &[(&str, f64)],
         size: usize,
         name: &str,
-    ) -> Result<Model<Expr>, ModelError> {
+    ) -> Result<Model<Expr>, CatalogueError> {
         for (k, _) in overrides {
             if !self.params.iter().any(|p| p.name == *k) {
-                return Err(ModelError::UnknownParameter {
+                return Err(CatalogueError::UnknownParameter {
                     model: name.to_string(),
                     name: k.to_string(),
                     known: self.params.iter().map(|p| p.name.to_string()).collect(),
@@ -94,7 +94,7 @@ impl ModelInfo {
                 Assumption::Real => !value.is_finite(),
             };
             if bad {
-                return Err(ModelError::BadValue {
+                return Err(CatalogueError::BadValue {
                     model: name.to_string(),
                     name: spec.name.to_string(),
                     value,
@@ -239,7 +239,7 @@ pub fn catalogue() -> Vec<ModelInfo> {
 pub const MAX_CHAIN: usize = 5000;
 
 /// The catalogue entry and size for a model name (`chain50` → the chain entry, 50).
-pub fn find(name: &str) -> Result<(ModelInfo, usize), ModelError> {
+pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
     let cat = catalogue();
     if let Some(n) = name.strip_prefix("chain")
         && let Ok(k) = n.parse::<usize>()
@@ -253,7 +253,7 @@ pub fn find(name: &str) -> Result<(ModelInfo, usize), ModelError> {
     }
     match cat.iter().position(|m| m.name == name) {
         Some(i) if name != "chainN" => Ok((cat[i].clone(), 0)),
-        _ => Err(ModelError::UnknownModel {
+        _ => Err(CatalogueError::UnknownModel {
             name: name.to_string(),
             known: cat
                 .iter()
@@ -270,12 +270,12 @@ pub fn find(name: &str) -> Result<(ModelInfo, usize), ModelError> {
 }
 
 /// Build a model by name with parameter overrides.
-pub fn build(name: &str, overrides: &[(&str, f64)]) -> Result<Model<Expr>, ModelError> {
+pub fn build(name: &str, overrides: &[(&str, f64)]) -> Result<Model<Expr>, CatalogueError> {
     let (info, size) = find(name)?;
     info.build(overrides, size, name)
 }
 
-fn smd(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
+fn smd(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [m, k, c] = [p[0], p[1], p[2]];
     md.add(Body::new("block").mass(m).at(vec3(0, 0, 1)));
     md.add(
@@ -322,7 +322,7 @@ fn smd(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     Ok(())
 }
 
-fn pendulum(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
+fn pendulum(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [m, r, ix, g] = [p[0], p[1], p[2], p[3]];
     let body = Body::new("block")
         .mass(m)
@@ -366,7 +366,7 @@ fn pendulum(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError
     Ok(())
 }
 
-fn shimmy(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
+fn shimmy(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [m, i, k, l, x, u] = [p[0], p[1], p[2], p[3], p[4], p[5]];
     let a = x * l;
     let b = l - a;
@@ -424,7 +424,7 @@ fn shimmy(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> 
     Ok(())
 }
 
-fn quarter_car(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
+fn quarter_car(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [ms, mu, ks, kt, cs, ct] = [p[0], p[1], p[2], p[3], p[4], p[5]];
     let g = Expr::float(9.81)?;
     let unsprung = Body::new("unsprung").mass(mu).at(vec3(0, 0, 0.3));
@@ -493,7 +493,7 @@ fn quarter_car(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelEr
     Ok(())
 }
 
-fn top(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
+fn top(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [r, m, h, it, ia, g] = [p[0], p[1], p[2], p[3], p[4], p[5]];
     let body = Body::new("top")
         .mass(m)
@@ -534,7 +534,7 @@ fn top(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     Ok(())
 }
 
-fn disk(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
+fn disk(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [u, m, r, g] = [p[0], p[1], p[2], p[3]];
     let a = m * r * r / 4;
     let c = m * r * r / 2;
@@ -593,7 +593,7 @@ fn disk(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), ModelError> {
     Ok(())
 }
 
-fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), ModelError> {
+fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), CatalogueError> {
     let [m, k, c] = [p[0], p[1], p[2]];
     for i in 0..n {
         let name = format!("mass{}", i + 1);

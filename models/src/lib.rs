@@ -28,9 +28,9 @@ mod catalogue;
 
 pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 
-/// Errors of the model library.
+/// Errors of the model library (the catalogue of built-in models).
 #[derive(Debug, thiserror::Error)]
-pub enum ModelError {
+pub enum CatalogueError {
     /// No model of this name.
     #[error("unknown model `{name}`; models are: {}", known.join(", "))]
     UnknownModel {
@@ -61,9 +61,12 @@ pub enum ModelError {
         /// Why it is not acceptable.
         problem: String,
     },
-    /// An error while building the model.
+    /// An error of an expression while building the model.
     #[error(transparent)]
     Sym(#[from] eom_sym::SymError),
+    /// An error of the model layer while building the model.
+    #[error(transparent)]
+    Model(#[from] eom_model::ModelError),
 }
 
-pub use eom_sym::model::Model;
+pub use eom_model::Model;

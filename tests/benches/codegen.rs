@@ -7,11 +7,11 @@
 //! `cargo bench -p tests --bench codegen`
 //!
 //! PyDy's generated C cannot run here (it needs sympy and a C compiler at bench time); the
-//! same-driver comparison with it is a by-hand script: `eom-codegen/peers/pydy/README.md`.
+//! same-driver comparison with it is a by-hand script: `bench/pydy/README.md`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_codegen::EmitOptions;
-use eom_sym::model::{Linearizer, ValidityCheck};
+use eom_model::{Linearizer, ValidityCheck};
 use eom_sym::{NativeTape, SymError, Tape};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;

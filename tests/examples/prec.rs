@@ -1,4 +1,4 @@
-use eom_sym::model::*;
+use eom_model::*;
 use eom_sym::{Dd, dd::refine_eigenvalue, scalar::Scalar};
 fn exact(model: &Model, v: f64) -> Vec<(f64, f64)> {
     let values: Vec<Dd> = model

@@ -8,8 +8,8 @@
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_num::sweep::Sweep;
-use eom_sym::model::*;
-use eom_sym::{Expr, SymError};
+use eom_model::*;
+use eom_sym::Expr;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -25,7 +25,7 @@ fn shimmy_stable_interval_is_exact() {
         let base = model.scope.nominal_values();
         let result = Sweep::linspace(0.0, 1.0, 101)
             .with_param_name("x")
-            .run(|x| -> Result<DMatrix<f64>, SymError> {
+            .run(|x| -> Result<DMatrix<f64>, ModelError> {
                 let mut v = base.clone();
                 v[x_index] = x;
                 compiled.evaluate(&v).map(|ss| ss.a)

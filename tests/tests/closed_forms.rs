@@ -5,7 +5,7 @@
 #![allow(clippy::excessive_precision)]
 
 use eom_num::StateSpace;
-use eom_sym::model::{Linearizer, Method};
+use eom_model::{Linearizer, Method};
 use num_complex::Complex64;
 use tests::{max_abs_error, max_relative_error, nonzero};
 

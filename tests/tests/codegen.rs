@@ -7,8 +7,9 @@
 //! expressions, in units of their running error bound.
 
 use eom_num::StateSpace;
+use eom_model::ModelError;
 use eom_sym::SymError;
-use eom_sym::model::{Linearizer, Method, SymbolicStateSpace};
+use eom_model::{Linearizer, Method, SymbolicStateSpace};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -214,7 +215,7 @@ fn variants() -> Vec<Gen> {
 
 struct Reference {
     sym: SymbolicStateSpace,
-    model: eom_sym::model::Model,
+    model: eom_model::Model,
 }
 
 fn reference(name: &str) -> Reference {
@@ -244,16 +245,16 @@ fn rel_diff(got: &[f64], want: &[f64]) -> f64 {
 }
 
 /// The interpreter's error in the common form (`None` for other errors).
-fn sym_err(e: &SymError, g: &Gen) -> Option<GenErr> {
+fn sym_err(e: &ModelError, g: &Gen) -> Option<GenErr> {
     match e {
-        SymError::PivotBreakdown(msg) => {
+        ModelError::PivotBreakdown(msg) => {
             let k = g
                 .checks
                 .iter()
                 .position(|c| msg.starts_with(&format!("{c} (value")))?;
             Some(GenErr::Validity(k, g.checks[k]))
         }
-        SymError::EvalNonFinite { what, .. } => Some(GenErr::NonFinite(what.clone(), 0, 0)),
+        ModelError::Sym(SymError::EvalNonFinite { what, .. }) => Some(GenErr::NonFinite(what.clone(), 0, 0)),
         _ => None,
     }
 }
@@ -298,7 +299,7 @@ fn compare(g: &Gen, r: &Reference, values: &[f64], tol: f64) -> Result<bool, Tes
             );
             Ok(false)
         }
-        (Err(GenErr::NonFinite(..)), Err(SymError::EvalNonFinite { .. })) => Ok(false),
+        (Err(GenErr::NonFinite(..)), Err(ModelError::Sym(SymError::EvalNonFinite { .. }))) => Ok(false),
         (got, want) => Err(TestCaseError::fail(format!(
             "{}: generated {:?} but the interpreter {:?} at {values:?}",
             g.model,
@@ -426,7 +427,7 @@ fn special_values_never_slip_through_the_fast_test() {
                     let want = r.sym.evaluate(&values);
                     let same = match (&got, &want) {
                         (Ok(_), Ok(_)) => true,
-                        (Err(GenErr::NonFinite(..)), Err(SymError::EvalNonFinite { .. })) => true,
+                        (Err(GenErr::NonFinite(..)), Err(ModelError::Sym(SymError::EvalNonFinite { .. }))) => true,
                         (Err(e @ GenErr::Validity(..)), Err(w)) => {
                             sym_err(w, &g).as_ref() == Some(e)
                         }
@@ -590,7 +591,7 @@ fn outside_the_validity_region_both_refuse_with_the_same_check() {
             .sym
             .evaluate(&values)
             .expect_err("the interpreter refuses");
-        assert!(matches!(e, SymError::PivotBreakdown(_)), "{model}: {e}");
+        assert!(matches!(e, ModelError::PivotBreakdown(_)), "{model}: {e}");
         // The generated code refuses with the same check, and leaves the outputs untouched.
         let got = (g.abcd)(&values).expect_err("the generated code refuses");
         assert_eq!(Some(got.clone()), sym_err(&e, g), "{model}");
@@ -666,7 +667,7 @@ fn non_finite_entries_are_errors_but_overflowing_sums_are_not() {
     let p = [1.0, f64::INFINITY, 0.1];
     assert!(matches!(
         r.sym.evaluate(&p),
-        Err(SymError::EvalNonFinite { .. })
+        Err(ModelError::Sym(SymError::EvalNonFinite { .. }))
     ));
     let (mut a, mut b, mut c, mut d, mut w) = (
         [0.0; g::A_LEN],
@@ -963,10 +964,6 @@ fn bad_options_are_typed_errors_naming_the_option() {
         ),
         "{e}"
     );
-    let e = eom_codegen::build::Generate::model("bicycel")
-        .emit()
-        .expect_err("unknown model");
-    assert!(e.to_string().contains("bicycle"), "{e}");
 }
 
 /// Formatting snapshot of a tiny model (the only exact-text test).

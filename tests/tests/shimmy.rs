@@ -5,7 +5,7 @@
 // Reference values are transcribed digit for digit from their sources.
 #![allow(clippy::excessive_precision)]
 
-use eom_sym::model::{Linearizer, Method};
+use eom_model::{Linearizer, Method};
 use num_complex::Complex64;
 use tests::{max_relative_error, read_csv};
 

@@ -9,8 +9,8 @@
 #![allow(clippy::excessive_precision)]
 
 use eom_num::StateSpace;
-use eom_sym::SymError;
-use eom_sym::model::{Linearizer, assemble, reduce, reduce_robust};
+use eom_model::ModelError;
+use eom_model::{Linearizer, assemble, reduce, reduce_robust};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rand::{Rng, SeedableRng, rngs::StdRng};
@@ -120,14 +120,14 @@ fn outside_the_validity_region_is_reported() {
     let sym = Linearizer::new(&model).symbolic().unwrap();
     let values = model.scope.values_with(&[("w", 0.0)]).unwrap();
     match sym.evaluate(&values) {
-        Err(SymError::PivotBreakdown(msg)) => assert!(msg.contains("steer hinge"), "{msg}"),
+        Err(ModelError::PivotBreakdown(msg)) => assert!(msg.contains("steer hinge"), "{msg}"),
         other => panic!("expected a pivot breakdown, got {other:?}"),
     }
     // A massless block: the reduced mass pivot vanishes.
     let model = models::build("smd", &[]).unwrap();
     let sym = Linearizer::new(&model).symbolic().unwrap();
     match sym.evaluate(&[0.0, 10.0, 0.1]) {
-        Err(SymError::PivotBreakdown(msg)) => assert!(msg.contains("reduced mass"), "{msg}"),
+        Err(ModelError::PivotBreakdown(msg)) => assert!(msg.contains("reduced mass"), "{msg}"),
         other => panic!("expected a pivot breakdown, got {other:?}"),
     }
     // A pivot that is small but still valid gives accurate numbers (not a breakdown).
@@ -190,14 +190,14 @@ fn tiering_to_native_code_changes_no_result() {
     };
     let before = bits(&compiled.evaluate(&nominal).unwrap());
     let broken = model.scope.values_with(&[("w", 0.0)]).unwrap();
-    for _ in 0..eom_sym::model::NATIVE_AFTER + 5 {
+    for _ in 0..eom_model::NATIVE_AFTER + 5 {
         compiled.evaluate(&nominal).unwrap();
     }
     // A clone shares the tier (and its native code).
     let after = bits(&sym.compiled().clone().evaluate(&nominal).unwrap());
     assert_eq!(before, after);
     match compiled.evaluate(&broken) {
-        Err(SymError::PivotBreakdown(msg)) => assert!(msg.contains("steer hinge"), "{msg}"),
+        Err(ModelError::PivotBreakdown(msg)) => assert!(msg.contains("steer hinge"), "{msg}"),
         other => panic!("expected a pivot breakdown, got {other:?}"),
     }
 }

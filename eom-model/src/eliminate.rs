@@ -13,9 +13,9 @@
 //! can check, at any other parameter point, that the pivot is still at least a fraction of its
 //! row ([`PivotRecord`]): the validity region of a symbolic result.
 
-use crate::error::SymError;
-use crate::matrix::SparseMatrix;
-use crate::scalar::Scalar;
+use crate::error::ModelError;
+use eom_sym::matrix::SparseMatrix;
+use eom_sym::scalar::Scalar;
 
 /// Minimum ratio `|pivot| / max |row entry|` at the nominal point for a pivot candidate.
 pub const THRESHOLD: f64 = 0.1;
@@ -391,15 +391,15 @@ struct Elim<S> {
 
 impl<S: Scalar> Elim<S> {
     /// Take pivot `(r, c)`: normalise its row and eliminate column `c` from every other row.
-    fn step(&mut self, r: usize, c: usize) -> Result<(), SymError> {
+    fn step(&mut self, r: usize, c: usize) -> Result<(), ModelError> {
         let (nrows, eligible) = (self.rows.nrows(), self.eligible);
         if r >= nrows || c >= eligible || self.row_state[r].pivoted || self.col_state[c].done {
-            return Err(SymError::Singular(format!(
+            return Err(ModelError::Singular(format!(
                 "invalid pivot ({r}, {c}) in an elimination plan"
             )));
         }
         let p = get(&self.rows[r], c).ok_or_else(|| {
-            SymError::Singular(format!("planned pivot ({r}, {c}) is a structural zero"))
+            ModelError::Singular(format!("planned pivot ({r}, {c}) is a structural zero"))
         })?;
         if self.record {
             self.records.push(PivotRecord {
@@ -531,7 +531,7 @@ pub fn rref<S: Scalar>(
     eligible: usize,
     forced: &[(usize, usize)],
     plan: Option<&EliminationPlan>,
-) -> Result<Rref<S>, SymError> {
+) -> Result<Rref<S>, ModelError> {
     let nrows = rows.nrows();
     // Validity records are needed when the result is symbolic (valid elsewhere only if its
     // pivots hold) or replays a plan chosen elsewhere; a numeric elimination that chooses its

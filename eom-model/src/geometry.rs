@@ -1,8 +1,8 @@
 //! Small generic 3-D geometry over any [`Scalar`]: cross products, skew matrices, unit
 //! vectors, and the deterministic direction basis of point and line items.
 
-use crate::model::items::Vec3;
-use crate::scalar::Scalar;
+use crate::items::Vec3;
+use eom_sym::scalar::Scalar;
 
 /// A 3×3 matrix, row-major.
 pub type Mat3<S> = [[S; 3]; 3];

@@ -1,13 +1,13 @@
 //! The items a model is made of (eom-method §1), with builders that read like the model.
 //!
-//! Every numeric field is a scalar `S` — an [`Expr`](crate::Expr) in a symbolic model, `f64`
-//! (or [`Dd`](crate::Dd)) in a numeric one — and every builder method takes anything that
+//! Every numeric field is a scalar `S` — an [`Expr`](eom_sym::Expr) in a symbolic model, `f64`
+//! (or [`Dd`](eom_sym::Dd)) in a numeric one — and every builder method takes anything that
 //! converts into it (`Expr`, `f64`, `i32`). Vectors are `[S; 3]` in global axes (x forward,
 //! y left, z up by default); build them with [`vec3`].
 //!
 //! Items name the bodies they connect; `"ground"` is the fixed frame and the default.
 
-use crate::scalar::Scalar;
+use eom_sym::scalar::Scalar;
 use std::sync::Arc;
 
 /// The name of the ground (the fixed frame). Reserved: no body may be called this.

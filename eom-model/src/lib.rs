@@ -1,11 +1,62 @@
-//! Multibody models: items, validation, assembly (eom-method §1–§5) and reduction to state
-//! space.
+//! # eom-model — the multibody model
 //!
-//! A [`Model`] holds bodies and the items connecting them. Every numeric field is a scalar `S`:
-//! in a symbolic model (`Model<Expr>`, the default) fields are expressions over the model's
-//! parameters; [`Model::evaluate`] turns it into a numeric `Model<f64>` at given parameter
-//! values, and [`Model::map`] into any other scalar (e.g. double-double).
+//! A [`Model`] holds parameters, bodies and the items connecting them (springs, links, joints,
+//! rolling contacts, beams, loads, actuators, sensors). Every numeric field is a scalar `S`: in a
+//! symbolic model (`Model<Expr>`, the default) fields are expressions over the model's
+//! parameters; [`Model::evaluate`] turns it into a numeric `Model<f64>` at given parameter values,
+//! and [`Model::map`] into any other scalar (e.g. double-double).
+//!
+//! The data flow is one algorithm written once for every scalar type:
+//!
+//! 1. [`assemble`]: mass, stiffness (with the tangent stiffness of the static preloads), damping
+//!    (with the gyroscopic and momentum terms), the holonomic and nonholonomic constraint
+//!    Jacobians, inputs and outputs;
+//! 2. [`reduce`]: structure-first symbolic-numeric elimination of the constraints, with pivots
+//!    chosen at the nominal point and recorded as validity checks; or [`reduce_robust`], the
+//!    orthonormal-complement reduction that is the independent numeric reference;
+//! 3. [`Linearizer`] reaches all of them in one call; [`compiled`] evaluates a symbolic state
+//!    space quickly at many points.
+//!
+//! The method and where eom deliberately differs from the EoM software are described in
+//! `docs/method.md` of the repository.
+//!
+//! ```
+//! use eom_model::*;
+//!
+//! // A swivel wheel (Schwab & Meijaard's shimmy): a body pulled at speed u, a lateral spring
+//! // ahead of its mass centre, a tyre that cannot slip sideways behind it.
+//! let mut m = Model::new("shimmy");
+//! let mass = m.param("m", 5.0).unwrap();
+//! let iz = m.param("I", 1.05).unwrap();
+//! let k = m.param("k", 1.5).unwrap();
+//! let a = m.param("a", 0.5).unwrap();
+//! let b = m.param("b", 0.5).unwrap();
+//! let u = m.param("u", 10.0).unwrap();
+//! m.add(Body::new("chassis").mass(mass).moments(vec3(0, 0, iz)).velocity(vec3(u, 0, 0)));
+//! m.add(FlexPoint::new("spring").between("chassis", "ground").at(vec3(b, 0, 0)).forces(1).axis(y_axis()).stiffness(k, 0));
+//! m.add(NhPoint::new("tyre").between("chassis", "ground").at(vec3(-a, 0, 0)).forces(1).axis(y_axis()));
+//! m.add(RigidPoint::new("road").between("chassis", "ground").forces(1).moments(2).axis(z_axis()));
+//! m.add(RigidPoint::new("speed").between("chassis", "ground").forces(1).axis(x_axis()));
+//!
+//! // Symbolic: the state matrix as expressions (3 states: y, ψ and the yaw rate — the four
+//! // pinned coordinates were removed before any algebra).
+//! let sym = Linearizer::new(&m).symbolic().unwrap();
+//! let ss = sym.state_space();
+//! assert_eq!(ss.a.nrows(), 3);
+//! assert_eq!(ss.a[(2, 2)], -(mass * a * u) / (iz + mass * a * a));
+//!
+//! // Numeric: evaluated at other parameter values.
+//! let at = m.scope.values_with(&[("u", 1.0)]).unwrap();
+//! let num = sym.evaluate(&at).unwrap();
+//! let eig = eom_num::modes::eigenvalues(&num.a).unwrap();
+//! // The characteristic polynomial (I + m a²)s³ + m a u s² + k l² s + k l u has the root
+//! // −1.0548225773209977 at these values (Schwab & Meijaard 2003; docs/references.md).
+//! assert!((eig[0].re + 1.0548225773209977).abs() < 1e-12);
+//! ```
 
+#![warn(missing_docs)]
+
+pub mod error;
 pub mod assemble;
 pub mod eliminate;
 pub mod geometry;
@@ -15,6 +66,7 @@ pub mod reduce;
 pub mod robust;
 
 pub use assemble::{Assembled, RowLabel, assemble};
+pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use reduce::{
@@ -23,12 +75,11 @@ pub use reduce::{
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 
-use crate::error::SymError;
-use crate::expr::Expr;
-use crate::pool::ParamInfo;
-use crate::scalar::Scalar;
-use crate::scope::Scope;
-use crate::tape::Tape;
+use eom_sym::expr::Expr;
+use eom_sym::pool::ParamInfo;
+use eom_sym::scalar::Scalar;
+use eom_sym::scope::Scope;
+use eom_sym::tape::Tape;
 use hashbrown::HashSet;
 
 /// Any item, for [`Model::add`].
@@ -459,9 +510,9 @@ impl<S: Scalar> Model<S> {
 
     /// Check names, references, geometry and values. Errors name the item and field.
     /// Warnings (physically dubious but computable input) are returned.
-    pub fn validate(&self) -> Result<Vec<String>, SymError> {
+    pub fn validate(&self) -> Result<Vec<String>, ModelError> {
         let mut warnings = Vec::new();
-        let err = |item: String, field: &str, problem: String| SymError::Model {
+        let err = |item: String, field: &str, problem: String| ModelError::Model {
             item,
             field: field.to_string(),
             problem,
@@ -566,7 +617,7 @@ impl<S: Scalar> Model<S> {
             v.push(GROUND.into());
             v.join(", ")
         };
-        let check_bodies = |kind: &str, n: &str, bs: &[Name]| -> Result<(), SymError> {
+        let check_bodies = |kind: &str, n: &str, bs: &[Name]| -> Result<(), ModelError> {
             for (k, b) in bs.iter().enumerate() {
                 if !known(b) {
                     return Err(err(
@@ -773,21 +824,21 @@ impl<S: Scalar> Model<S> {
 
 impl Model<Expr> {
     /// Declare a parameter of the model.
-    pub fn param(&mut self, name: &str, nominal: f64) -> Result<Expr, SymError> {
-        self.scope.declare(name, nominal)
+    pub fn param(&mut self, name: &str, nominal: f64) -> Result<Expr, ModelError> {
+        Ok(self.scope.declare(name, nominal)?)
     }
 
     /// Declare a parameter with full metadata.
-    pub fn param_info(&mut self, info: ParamInfo) -> Result<Expr, SymError> {
-        self.scope.declare_info(info)
+    pub fn param_info(&mut self, info: ParamInfo) -> Result<Expr, ModelError> {
+        Ok(self.scope.declare_info(info)?)
     }
 
     /// The numeric model at the given parameter values (in the order of `scope.params()`).
-    pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, SymError> {
+    pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, ModelError> {
         let fields: Vec<Expr> = self.fields().into_iter().map(|(_, e)| e).collect();
         let labels: Vec<String> = self.fields().into_iter().map(|(l, _)| l).collect();
         for (e, l) in fields.iter().zip(&labels) {
-            e.check().map_err(|x| SymError::Model {
+            e.check().map_err(|x| ModelError::Model {
                 item: l.split_once('.').map_or(l.clone(), |s| s.0.to_string()),
                 field: l.split_once('.').map_or(String::new(), |s| s.1.to_string()),
                 problem: x.to_string(),
@@ -799,7 +850,7 @@ impl Model<Expr> {
         tape.eval_into(values, &mut vals, &mut work)?;
         if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
             let l = &labels[k];
-            return Err(SymError::Model {
+            return Err(ModelError::Model {
                 item: l.split_once('.').map_or(l.clone(), |s| s.0.to_string()),
                 field: l.split_once('.').map_or(String::new(), |s| s.1.to_string()),
                 problem: format!("evaluates to {} at the given parameter values", vals[k]),
@@ -813,7 +864,7 @@ impl Model<Expr> {
     }
 
     /// The numeric model at the nominal parameter values.
-    pub fn nominal(&self) -> Result<Model<f64>, SymError> {
+    pub fn nominal(&self) -> Result<Model<f64>, ModelError> {
         self.evaluate(&self.scope.nominal_values())
     }
 }

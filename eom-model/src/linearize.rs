@@ -1,7 +1,7 @@
 //! [`Linearizer`]: one call from a model to a state-space model, by any of the three paths.
 //!
 //! ```
-//! use eom_sym::model::*;
+//! use eom_model::*;
 //! use eom_sym::Expr;
 //!
 //! let mut model = Model::new("mass on a spring");
@@ -24,10 +24,11 @@ use super::Model;
 use super::assemble::assemble;
 use super::reduce::{ReductionReport, SymbolicStateSpace, reduce};
 use super::robust::{RobustReport, reduce_robust};
-use crate::error::SymError;
-use crate::expr::Expr;
-use crate::scalar::Elementary;
-use crate::tape::eval_generic;
+use crate::error::ModelError;
+use eom_sym::SymError;
+use eom_sym::expr::Expr;
+use eom_sym::scalar::Elementary;
+use eom_sym::tape::eval_generic;
 use eom_num::StateSpace;
 
 /// How to reduce the model.
@@ -89,25 +90,25 @@ impl<'a> Linearizer<'a> {
     }
 
     /// Parameter values in scope order.
-    pub fn values(&self) -> Result<Vec<f64>, SymError> {
+    pub fn values(&self) -> Result<Vec<f64>, ModelError> {
         let o: Vec<(&str, f64)> = self
             .overrides
             .iter()
             .map(|(k, v)| (k.as_str(), *v))
             .collect();
-        self.model.scope.values_with(&o)
+        Ok(self.model.scope.values_with(&o)?)
     }
 
     /// The symbolic state-space model (independent of [`Linearizer::at`]): assembled and
     /// reduced with expressions, compiled for evaluation.
-    pub fn symbolic(&self) -> Result<SymbolicStateSpace, SymError> {
+    pub fn symbolic(&self) -> Result<SymbolicStateSpace, ModelError> {
         let a = assemble(self.model)?;
         let r = reduce(&a, None)?;
         SymbolicStateSpace::new(r, &self.model.scope.params())
     }
 
     /// Run the chosen method at the chosen point.
-    pub fn run(&self) -> Result<Linearization, SymError> {
+    pub fn run(&self) -> Result<Linearization, ModelError> {
         let values = self.values()?;
         match self.method {
             Method::Symbolic => {
@@ -153,7 +154,7 @@ impl<'a> Linearizer<'a> {
 impl Model<Expr> {
     /// The model with every field evaluated in another scalar type (e.g. double-double for
     /// reference computations), with parameter values given in that type in scope order.
-    pub fn evaluate_in<S: Elementary>(&self, values: &[S]) -> Result<Model<S>, SymError> {
+    pub fn evaluate_in<S: Elementary>(&self, values: &[S]) -> Result<Model<S>, ModelError> {
         let params = self.scope.params();
         if values.len() != params.len() {
             return Err(SymError::Dimension(format!(
@@ -161,7 +162,8 @@ impl Model<Expr> {
                 values.len(),
                 params.len(),
                 self.name
-            )));
+            ))
+            .into());
         }
         let fields: Vec<Expr> = self.fields().into_iter().map(|(_, e)| e).collect();
         let index: Vec<u32> = params

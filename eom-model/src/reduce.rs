@@ -27,11 +27,12 @@ use super::assemble::{Assembled, RowLabel};
 use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
-use crate::error::SymError;
-use crate::expr::Expr;
-use crate::matrix::{SparseMatrix, Triplets};
-use crate::scalar::Scalar;
-use crate::tape::{NativeTape, Tape};
+use crate::error::ModelError;
+use eom_sym::SymError;
+use eom_sym::expr::Expr;
+use eom_sym::matrix::{SparseMatrix, Triplets};
+use eom_sym::scalar::Scalar;
+use eom_sym::tape::{NativeTape, Tape};
 use eom_num::{SignalNames, StateSpace};
 use nalgebra::DMatrix;
 
@@ -264,21 +265,21 @@ fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> RowStore<S> {
 fn hstack<S: Scalar>(
     a: &SparseMatrix<S>,
     b: &SparseMatrix<S>,
-) -> Result<SparseMatrix<S>, SymError> {
-    SparseMatrix::hcat(&[a, b])
+) -> Result<SparseMatrix<S>, ModelError> {
+    Ok(SparseMatrix::hcat(&[a, b])?)
 }
 
 fn vstack<S: Scalar>(
     a: &SparseMatrix<S>,
     b: &SparseMatrix<S>,
-) -> Result<SparseMatrix<S>, SymError> {
+) -> Result<SparseMatrix<S>, ModelError> {
     if a.nrows() == 0 {
         return Ok(b.clone());
     }
     if b.nrows() == 0 {
         return Ok(a.clone());
     }
-    SparseMatrix::vcat(a, b)
+    Ok(SparseMatrix::vcat(a, b)?)
 }
 
 fn record_checks<S: Scalar>(
@@ -333,7 +334,7 @@ fn is_constant<S: Scalar>(v: &S) -> bool {
 pub fn reduce<S: Scalar>(
     a: &Assembled<S>,
     plan: Option<&ReductionPlan>,
-) -> Result<Reduction<S>, SymError> {
+) -> Result<Reduction<S>, ModelError> {
     let d = a.dim();
     let mut report = ReductionReport {
         coordinates: d,
@@ -553,7 +554,7 @@ pub fn reduce<S: Scalar>(
     );
     if !rm.plan.redundant.is_empty() {
         let names: Vec<String> = rm.plan.redundant.iter().map(|&r| vname(r)).collect();
-        return Err(SymError::Unsupported(format!(
+        return Err(ModelError::Unsupported(format!(
             "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
             names.join(", ")
         )));
@@ -647,7 +648,7 @@ pub fn reduce<S: Scalar>(
     if plan.is_none()
         && let Some(bad) = checks.iter().find(|c| !c.holds_nominal())
     {
-        return Err(SymError::Singular(format!(
+        return Err(ModelError::Singular(format!(
             "at the nominal point: {}",
             bad.what()
         )));
@@ -697,9 +698,9 @@ fn rate_check<S: Scalar>(
     cg: &SparseMatrix<S>,
     output: &str,
     inputs: &[(String, String)],
-) -> Result<(), SymError> {
+) -> Result<(), ModelError> {
     if let Some((_, j, _)) = cg.iter().find(|(_, _, v)| v.nominal() != 0.0) {
-        return Err(SymError::Unsupported(format!(
+        return Err(ModelError::Unsupported(format!(
             "acceleration sensor `{output}` responds to the rate of input `{}` instantly (its velocity jumps with the input): its acceleration contains the input's second derivative, which a state-space model cannot represent; measure the velocity instead, or remove the rate gain",
             inputs[j].0
         )));
@@ -764,7 +765,7 @@ struct Tier {
 impl SymbolicStateSpace {
     /// Compile a symbolic reduction for evaluation with parameter values in the order of
     /// `params`.
-    pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, SymError> {
+    pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, ModelError> {
         let ss = &reduction.state_space;
         let mut roots: Vec<Expr> = Vec::new();
         let mut shapes = [(0, 0); 5];
@@ -851,9 +852,9 @@ impl SymbolicStateSpace {
     }
 
     /// Evaluate at parameter values (in the order of [`SymbolicStateSpace::params`]). Returns
-    /// [`SymError::PivotBreakdown`] naming the first check that fails instead of numbers when
+    /// [`ModelError::PivotBreakdown`] naming the first check that fails instead of numbers when
     /// the point is outside the validity region.
-    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, SymError> {
+    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, ModelError> {
         self.compiled.evaluate(values)
     }
 }
@@ -877,7 +878,7 @@ impl CompiledStateSpace {
     }
 
     /// Evaluate at parameter values (see [`SymbolicStateSpace::evaluate`]).
-    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, SymError> {
+    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, ModelError> {
         self.evaluate_with(values, &mut EvalWorkspace::default())
     }
 
@@ -886,7 +887,7 @@ impl CompiledStateSpace {
         &self,
         values: &[f64],
         ws: &mut EvalWorkspace,
-    ) -> Result<StateSpace<f64>, SymError> {
+    ) -> Result<StateSpace<f64>, ModelError> {
         ws.out.resize(self.tape.n_outputs(), 0.0);
         ws.work.resize(self.tape.work_len(), 0.0);
         let calls = self
@@ -910,7 +911,7 @@ impl CompiledStateSpace {
             let v = out[*start];
             let others = &out[start + 1..start + len];
             if !ValidityCheck::<f64>::holds(v, others, *pivot) {
-                return Err(SymError::PivotBreakdown(format!(
+                return Err(ModelError::PivotBreakdown(format!(
                     "{label} (value {v:.3e}, largest entry of its row {:.3e})",
                     others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
                 )));
@@ -920,7 +921,8 @@ impl CompiledStateSpace {
             return Err(SymError::EvalNonFinite {
                 what: format!("state-space entry {k}"),
                 value: out[k],
-            });
+            }
+            .into());
         }
         let mut k = 0;
         let mut take = |(r, c): (usize, usize)| {
@@ -948,7 +950,7 @@ impl CompiledStateSpace {
         &self,
         values: &[f64],
         ws: &mut EvalWorkspace,
-    ) -> Result<DMatrix<f64>, SymError> {
+    ) -> Result<DMatrix<f64>, ModelError> {
         let ss = self.evaluate_with(values, ws)?;
         Ok(ss.a)
     }

@@ -10,8 +10,8 @@
 
 use super::assemble::Assembled;
 use super::items::{SensorFrame, SensorOrder};
-use crate::error::SymError;
-use crate::matrix::SparseMatrix;
+use crate::error::ModelError;
+use eom_sym::matrix::SparseMatrix;
 use eom_num::descriptor::{DescriptorOptions, DescriptorReport, descriptor_to_state_space};
 use eom_num::linalg::{Equilibrate, RankTolerance, nullspace_equilibrated};
 use eom_num::{Descriptor, SignalNames, StateSpace};
@@ -63,7 +63,7 @@ pub struct ConstrainedDescriptor {
 }
 
 /// Build the [`ConstrainedDescriptor`] of a numeric assembled model.
-pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescriptor, SymError> {
+pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescriptor, ModelError> {
     let d = a.dim();
     let m = a.inputs.len();
     let nz = 2 * d + m;
@@ -108,7 +108,7 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
         let nr = nullspace_equilibrated(&jr, RankTolerance::Default, Equilibrate::Both)?;
         let nl = nullspace_equilibrated(&jl, RankTolerance::Default, Equilibrate::Both)?;
         if nr.basis.ncols() != nl.basis.ncols() {
-            return Err(SymError::Singular(format!(
+            return Err(ModelError::Singular(format!(
                 "the position and velocity constraints have different ranks ({} and {}): a redundant constraint is inconsistent at the velocity level",
                 sc - nr.basis.ncols(),
                 sc - nl.basis.ncols()
@@ -142,7 +142,7 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
 }
 
 /// Reduce a numeric assembled model with orthonormal complements.
-pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustReport), SymError> {
+pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustReport), ModelError> {
     let cd = constrained_descriptor(a)?;
     let d = a.dim();
     let m = a.inputs.len();
@@ -240,7 +240,7 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
                 let dv = ss.d.rows(vel, 1).into_owned();
                 let scale = cv.abs().max() * ss.b.abs().max() + 1e-300;
                 if let Some(jj) = (0..m).find(|&jj| dv[(0, jj)].abs() > 1e-12 * scale) {
-                    return Err(SymError::Unsupported(format!(
+                    return Err(ModelError::Unsupported(format!(
                         "acceleration sensor `{}` responds to the rate of input `{}` instantly: its acceleration contains the input's second derivative, which a state-space model cannot represent",
                         a.outputs[o].0, a.inputs[jj].0
                     )));

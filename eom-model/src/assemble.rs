@@ -26,9 +26,9 @@ use super::Model;
 use super::eliminate::{Row, RowStore, rref};
 use super::geometry::{self, Mat3, cross, mat_mul, outer, scale, skew, sub, unit};
 use super::items::*;
-use crate::error::SymError;
-use crate::matrix::{SparseMatrix, Triplets};
-use crate::scalar::Scalar;
+use crate::error::ModelError;
+use eom_sym::matrix::{SparseMatrix, Triplets};
+use eom_sym::scalar::Scalar;
 
 /// Which row of an item a constraint or elastic row is (formatted only when displayed).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -377,7 +377,7 @@ fn add_rows_block<S: Scalar>(
     m: &mut Triplets<S>,
     rows: &[ItemRow<S>],
     props: &[Vec<S>],
-) -> Result<(), SymError> {
+) -> Result<(), ModelError> {
     // m += Rᵀ P R for the item's rows R and property block P.
     let n = rows.len();
     for a in 0..n {
@@ -409,7 +409,7 @@ fn diag<S: Scalar>(v: &[S]) -> Vec<Vec<S>> {
 }
 
 /// Assemble the linearized model.
-pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, SymError> {
+pub fn assemble<S: Scalar>(model: &Model<S>) -> Result<Assembled<S>, ModelError> {
     let mut warnings = model.validate()?;
     let cx = Ctx { model };
     let nb = model.bodies.len();
@@ -737,7 +737,7 @@ fn inertia_tensor<S: Scalar>(b: &Body<S>) -> Mat3<S> {
 
 /// A spinning body must spin about an axis of symmetry (at the nominal point): the
 /// linearization in the non-spinning (Resal) frame has constant coefficients only then.
-fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), SymError> {
+fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), ModelError> {
     let w: Vec<f64> = b.angular_velocity.iter().map(|x| x.nominal()).collect();
     let i: Vec<Vec<f64>> = inertia
         .iter()
@@ -765,7 +765,7 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), SymError>
     let cn = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
     let item = format!("body `{}`", b.name);
     if cn > 1e-9 * scale {
-        return Err(SymError::Model {
+        return Err(ModelError::Model {
             item,
             field: "angular_velocity".into(),
             problem: "the spin axis is not a principal axis of inertia: the linearization about a steady spin does not exist".into(),
@@ -792,7 +792,7 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), SymError>
         .map(|r| (0..3).map(|c| v1[r] * i[r][c] * v1[c]).sum::<f64>())
         .sum();
     if (q - half).abs() > 1e-9 * scale {
-        return Err(SymError::Model {
+        return Err(ModelError::Model {
             item,
             field: "angular_velocity".into(),
             problem: "spins about a principal axis that is not an axis of symmetry (unequal transverse inertias): the gyroscopic terms would be periodic, not constant (eom-method §13.12)".into(),
@@ -803,7 +803,7 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), SymError>
 
 /// The 8 rows of a beam and its stiffness and mass blocks.
 type BeamParts<S> = (Rows<S>, Vec<Vec<S>>, Vec<Vec<S>>);
-fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, SymError> {
+fn beam_rows<S: Scalar>(cx: &Ctx<'_, S>, bm: &Beam<S>) -> Result<BeamParts<S>, ModelError> {
     let b = [cx.idx(&bm.bodies[0]), cx.idx(&bm.bodies[1])];
     let t = sub(&bm.ends[1], &bm.ends[0]);
     let l = geometry::norm(&t);
@@ -940,7 +940,7 @@ fn line_tangent<S: Scalar>(
     if twist {
         // A preload torque about the line, carried by the mean frame of the two bodies.
         let g = mat_scale(
-            S::from_rational(&crate::rational::Rational::new(1, 2).expect("1/2")),
+            S::from_rational(&eom_sym::Rational::new(1, 2).expect("1/2")),
             &skew(&scale(t, u)),
         );
         add_block(k, b[0], 3, b[0], 3, &g, -1.0);
@@ -1048,7 +1048,7 @@ fn point_tangent<S: Scalar>(
         add_block(k, p2, 3, p2, 3, &g, 1.0);
     } else if p.moments == 1 {
         let g = mat_scale(
-            S::from_rational(&crate::rational::Rational::new(1, 2).expect("1/2")),
+            S::from_rational(&eom_sym::Rational::new(1, 2).expect("1/2")),
             &skew(mm),
         );
         add_block(k, p1, 3, p1, 3, &g, -1.0);
@@ -1073,7 +1073,7 @@ fn solve_statics<S: Scalar>(
     k_el: &SparseMatrix<S>,
     j_labels: &[RowLabel],
     bodies: &[Body<S>],
-) -> Result<StaticsResult<S>, SymError> {
+) -> Result<StaticsResult<S>, ModelError> {
     let q = j_rows.len();
     let s = h_rows.len();
     let zero_c = vec![S::zero(); q];
@@ -1175,7 +1175,7 @@ fn solve_statics<S: Scalar>(
             .collect();
         let tr = rref(RowStore::from_rows(&trows, n + 1), n, &[], None)?;
         if tr.plan.pivots.len() < n {
-            return Err(SymError::Singular(format!(
+            return Err(ModelError::Singular(format!(
                 "the model is statically indeterminate (rank {rank} of {nu} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",
                 j_labels
                     .iter()
@@ -1231,7 +1231,7 @@ fn solve_statics<S: Scalar>(
     }
     for (i, (&res, &mag)) in res.iter().zip(&mag).enumerate() {
         if res.is_nan() || res.abs() > 1e-9 * mag + 1e-300 {
-            return Err(SymError::Equilibrium(format!(
+            return Err(ModelError::Equilibrium(format!(
                 "{}: residual {res:.6e} (of terms summing to {mag:.6e} in magnitude). The given geometry is not an equilibrium with these constraints (eom uses the given geometry as the loaded equilibrium: add a support, or give spring preloads that balance the loads)",
                 coord_label(i)
             )));

@@ -10,7 +10,7 @@ cd "$(dirname "$0")"
 CFLAGS="-O2${MARCH:+ -march=$MARCH}"
 RSFLAGS="${MARCH:+-C target-cpu=$MARCH}"
 unset RUSTFLAGS   # the emitter runs with the workspace's flags; only rslib gets RSFLAGS
-EOM=${EOM:-../../..}
+EOM=${EOM:-../..}
 (cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- bicycle) > bicycle_f64.rs
 (cd "$EOM" && cargo run -q --release -p eom-codegen --example emit -- shimmy) > shimmy_f64.rs
 # The same, simplified: `--simplify` uses it for the shimmy; the bicycle needs
