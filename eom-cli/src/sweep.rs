@@ -10,14 +10,13 @@
 use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
-use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
 use eom_model::{Linearizer, Method, Model, ModelError};
+use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
 use eom_sym::{Assumption, Expr, SymError};
 use models::CatalogueError;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
-use std::cell::RefCell;
 use std::sync::Mutex;
 
 /// Absolute tolerance in the swept parameter to which boundaries are located.
@@ -87,45 +86,14 @@ fn ordered_map<S: Serializer>(v: &[(String, f64)], s: S) -> Result<S::Ok, S::Err
     s.collect_map(v.iter().map(|(k, x)| (k, x)))
 }
 
-/// How to rebuild the model inside a worker thread (expressions cannot cross threads).
-#[derive(Clone, Debug, PartialEq)]
-struct ModelRecipe {
-    name: String,
-    nominal: Vec<(String, f64)>,
-}
-
-thread_local! {
-    /// The model of this thread, for robust evaluations, built on first use.
-    static THREAD_MODEL: RefCell<Option<(ModelRecipe, Model<Expr>)>> = const { RefCell::new(None) };
-}
-
-impl ModelRecipe {
-    fn build(&self) -> Result<Model<Expr>, CatalogueError> {
-        let ov: Vec<(&str, f64)> = self.nominal.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        models::build(&self.name, &ov)
-    }
-
-    /// A at `param = x` by the robust path, with this thread's copy of the model.
-    fn robust_state_matrix(&self, param: &str, x: f64) -> Result<DMatrix<f64>, CliError> {
-        THREAD_MODEL.with(|cell| {
-            let mut slot = cell.try_borrow_mut().map_err(|_| {
-                CliError::Inconsistent("re-entrant robust evaluation in one thread".into())
-            })?;
-            if slot.as_ref().is_none_or(|(r, _)| r != self) {
-                *slot = Some((self.clone(), self.build()?));
-            }
-            match slot.as_ref() {
-                Some((_, model)) => {
-                    let lin = Linearizer::new(model)
-                        .at(&[(param, x)])
-                        .method(Method::Robust)
-                        .run()?;
-                    Ok(lin.state_space.a)
-                }
-                None => Err(CliError::Inconsistent("thread model missing".into())),
-            }
-        })
-    }
+/// A at `param = x` by the robust path. The model is shared by the sweep's worker threads
+/// (its expressions find their pool from any thread).
+fn robust_state_matrix(model: &Model<Expr>, param: &str, x: f64) -> Result<DMatrix<f64>, CliError> {
+    let lin = Linearizer::new(model)
+        .at(&[(param, x)])
+        .method(Method::Robust)
+        .run()?;
+    Ok(lin.state_space.a)
 }
 
 /// Checks every value of the range against the parameter's sign assumption, with the model
@@ -179,13 +147,9 @@ pub fn sweep(
     } else {
         0.5 * (lo + hi)
     };
-    let mut nominal = overrides.to_vec();
-    nominal.push((spec.name.clone(), pivots_at));
-    let recipe = ModelRecipe {
-        name: choice.name.clone(),
-        nominal,
-    };
-    let model = recipe.build()?;
+    let mut nominal: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    nominal.push((spec.name.as_str(), pivots_at));
+    let model = models::build(&choice.name, &nominal)?;
     let names = model.scope.names();
     let base = model.scope.nominal_values();
     let k = names
@@ -208,7 +172,7 @@ pub fn sweep(
     let result = grid
         .run(|x| -> Result<DMatrix<f64>, CliError> {
             let Some(c) = &compiled else {
-                return recipe.robust_state_matrix(&spec.name, x);
+                return robust_state_matrix(&model, &spec.name, x);
             };
             let mut v = base.clone();
             v[k] = x;
@@ -216,11 +180,11 @@ pub fn sweep(
                 Ok(ss) => Ok(ss.a),
                 Err(ModelError::PivotBreakdown(why)) => {
                     record(x, why);
-                    recipe.robust_state_matrix(&spec.name, x)
+                    robust_state_matrix(&model, &spec.name, x)
                 }
                 Err(e @ ModelError::Sym(SymError::EvalNonFinite { .. })) => {
                     record(x, e.to_string());
-                    recipe.robust_state_matrix(&spec.name, x)
+                    robust_state_matrix(&model, &spec.name, x)
                 }
                 Err(e) => Err(e.into()),
             }

@@ -56,9 +56,9 @@
 
 #![warn(missing_docs)]
 
-pub mod error;
 pub mod assemble;
 pub mod eliminate;
+pub mod error;
 pub mod geometry;
 pub mod items;
 pub mod linearize;
@@ -75,6 +75,7 @@ pub use reduce::{
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 
+use eom_sym::ExprPool;
 use eom_sym::expr::Expr;
 use eom_sym::pool::ParamInfo;
 use eom_sym::scalar::Scalar;
@@ -141,11 +142,20 @@ pub struct Model<S = Expr> {
 }
 
 impl<S: Scalar> Model<S> {
-    /// An empty model.
+    /// An empty model. A symbolic model gets a new expression pool of its own, made current on
+    /// this thread (so that the expressions built for it land there), and freed when the model
+    /// and everything built from it are dropped.
     pub fn new(name: &str) -> Self {
+        let scope = if S::SYMBOLIC {
+            let pool = ExprPool::new();
+            pool.make_current();
+            Scope::in_pool(pool)
+        } else {
+            Scope::new()
+        };
         Model {
             name: name.to_string(),
-            scope: Scope::new(),
+            scope,
             bodies: Vec::new(),
             loads: Vec::new(),
             links: Vec::new(),
@@ -823,6 +833,19 @@ impl<S: Scalar> Model<S> {
 }
 
 impl Model<Expr> {
+    /// The model's expression pool.
+    pub fn pool(&self) -> ExprPool {
+        self.scope.pool().cloned().unwrap_or_else(ExprPool::current)
+    }
+
+    /// Runs `f` with the model's pool current (new constants and parameters go there).
+    pub fn in_pool<R>(&self, f: impl FnOnce() -> R) -> R {
+        match self.scope.pool() {
+            Some(p) => p.enter(f),
+            None => f(),
+        }
+    }
+
     /// Declare a parameter of the model.
     pub fn param(&mut self, name: &str, nominal: f64) -> Result<Expr, ModelError> {
         Ok(self.scope.declare(name, nominal)?)

@@ -25,11 +25,11 @@ use super::assemble::assemble;
 use super::reduce::{ReductionReport, SymbolicStateSpace, reduce};
 use super::robust::{RobustReport, reduce_robust};
 use crate::error::ModelError;
+use eom_num::StateSpace;
 use eom_sym::SymError;
 use eom_sym::expr::Expr;
 use eom_sym::scalar::Elementary;
 use eom_sym::tape::eval_generic;
-use eom_num::StateSpace;
 
 /// How to reduce the model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -102,13 +102,19 @@ impl<'a> Linearizer<'a> {
     /// The symbolic state-space model (independent of [`Linearizer::at`]): assembled and
     /// reduced with expressions, compiled for evaluation.
     pub fn symbolic(&self) -> Result<SymbolicStateSpace, ModelError> {
-        let a = assemble(self.model)?;
-        let r = reduce(&a, None)?;
-        SymbolicStateSpace::new(r, &self.model.scope.params())
+        self.model.in_pool(|| {
+            let a = assemble(self.model)?;
+            let r = reduce(&a, None)?;
+            SymbolicStateSpace::new(r, &self.model.scope.params())
+        })
     }
 
     /// Run the chosen method at the chosen point.
     pub fn run(&self) -> Result<Linearization, ModelError> {
+        self.model.in_pool(|| self.run_in_pool())
+    }
+
+    fn run_in_pool(&self) -> Result<Linearization, ModelError> {
         let values = self.values()?;
         match self.method {
             Method::Symbolic => {

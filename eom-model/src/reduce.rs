@@ -28,12 +28,12 @@ use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref,
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
+use eom_num::{SignalNames, StateSpace};
 use eom_sym::SymError;
 use eom_sym::expr::Expr;
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
 use eom_sym::tape::{NativeTape, Tape};
-use eom_num::{SignalNames, StateSpace};
 use nalgebra::DMatrix;
 
 /// Pivot ratio below which a recorded pivot counts as broken down at an evaluation point:
@@ -716,6 +716,8 @@ pub struct SymbolicStateSpace {
     /// Parameters in the order values are given.
     pub params: Vec<Expr>,
     compiled: CompiledStateSpace,
+    /// Keeps the expressions' pool alive as long as they are.
+    pool: Option<eom_sym::ExprPool>,
 }
 
 /// Size of one symbolic matrix (see [`SymbolicStateSpace::sizes`]).
@@ -804,11 +806,23 @@ impl SymbolicStateSpace {
             names: ss.names.clone(),
             param_names: params.iter().map(|p| p.to_string()).collect(),
         };
+        let pool = roots
+            .iter()
+            .chain(params)
+            // 0, 1 and −1 have the same id (0, 1, 2) in every pool and name none.
+            .find(|e| e.id() > 2)
+            .and_then(|e| eom_sym::ExprPool::find(e.pool_serial()));
         Ok(SymbolicStateSpace {
             reduction,
             params: params.to_vec(),
             compiled,
+            pool,
         })
+    }
+
+    /// The pool of the expressions (`None` when every entry is a constant 0, 1 or −1).
+    pub fn pool(&self) -> Option<&eom_sym::ExprPool> {
+        self.pool.as_ref()
     }
 
     /// The expression state-space model.

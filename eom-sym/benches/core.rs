@@ -135,26 +135,22 @@ fn intern(c: &mut Criterion) {
     let mut g = c.benchmark_group("intern");
     g.measurement_time(Duration::from_secs(8));
 
-    // Fresh pool per iteration: a new thread has a new (thread-local) pool. Only the program
-    // run is timed.
+    // Fresh pool per iteration (dropped afterwards). Only the program run is timed.
     let fresh = |prog: &Program| -> (Duration, usize, u64) {
-        std::thread::scope(|s| {
-            s.spawn(|| {
-                let ps = params(20, 7, false);
-                let before = ExprPool::stats();
-                let t = Instant::now();
-                let v = run(prog, &ps);
-                let dt = t.elapsed();
-                black_box(v);
-                let after = ExprPool::stats();
-                (
-                    dt,
-                    after.nodes - before.nodes,
-                    after.interns - before.interns,
-                )
-            })
-            .join()
-            .expect("bench thread")
+        let pool = ExprPool::new();
+        pool.enter(|| {
+            let ps = params(20, 7, false);
+            let before = pool.stats();
+            let t = Instant::now();
+            let v = run(prog, &ps);
+            let dt = t.elapsed();
+            black_box(v);
+            let after = pool.stats();
+            (
+                dt,
+                after.nodes - before.nodes,
+                after.interns - before.interns,
+            )
         })
     };
     let (_, created, interns) = fresh(&prog);
@@ -171,9 +167,9 @@ fn intern(c: &mut Criterion) {
 
     let ps = params(20, 7, false);
     let first = run(&prog, &ps);
-    let before = ExprPool::stats();
+    let before = ExprPool::current().stats();
     let again = run(&prog, &ps);
-    let after = ExprPool::stats();
+    let after = ExprPool::current().stats();
     assert_eq!(first, again, "the program is deterministic");
     assert_eq!(
         after.nodes, before.nodes,

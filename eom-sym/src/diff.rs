@@ -30,11 +30,16 @@ impl Expr {
 
 /// Derivatives of several roots with respect to the parameter `p`, sharing work.
 pub fn diff_many(roots: &[Expr], p: Expr) -> Vec<Expr> {
-    let ids = reachable(roots);
+    crate::expr::in_pool_of(roots, || diff_in_pool(roots, p))
+}
+
+fn diff_in_pool(roots: &[Expr], p: Expr) -> Vec<Expr> {
+    let reach = reachable(roots);
+    let (serial, ids) = (reach.serial, &reach.ids);
     let mut d: HashMap<u32, Expr> = HashMap::with_capacity(ids.len());
     let zero = Expr::zero();
-    for &id in &ids {
-        let e = Expr::from_id(id);
+    for &id in ids {
+        let e = Expr::new(id, serial);
         let get = |x: Expr, d: &HashMap<u32, Expr>| d.get(&x.id()).copied().unwrap_or(zero);
         let de = match e.view() {
             ExprView::Rational(_) | ExprView::Float(_) | ExprView::Constant(_) => zero,
@@ -109,8 +114,9 @@ pub fn diff_many(roots: &[Expr], p: Expr) -> Vec<Expr> {
             d.insert(id, de);
         }
     }
-    roots
+    reach
+        .roots
         .iter()
-        .map(|r| d.get(&r.id()).copied().unwrap_or(zero))
+        .map(|r| d.get(r).copied().unwrap_or(zero))
         .collect()
 }

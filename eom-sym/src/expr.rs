@@ -1,23 +1,22 @@
-//! [`Expr`]: a handle to a node of the current thread's expression pool.
+//! [`Expr`]: a handle to a node of an expression pool.
 
+use crate::context::{unify, unify2, with_pool, with_serial};
 use crate::error::SymError;
 use crate::pool::{
-    Assumption, Constant, ExprPool, Func, Id, MINUS_ONE, Node, ONE, ParamInfo, Sign, ZERO,
-    with_pool,
+    Assumption, Constant, Func, Id, MINUS_ONE, Node, ONE, ParamInfo, PoolData, Sign, ZERO,
 };
 use crate::rational::Rational;
-use std::marker::PhantomData;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
-/// A symbolic expression: a 4-byte handle to a unique node of the expression pool of the
-/// current thread.
+/// A symbolic expression: an 8-byte handle to a unique node of an expression pool (the node's
+/// index and the pool's serial number).
 ///
 /// Expressions are built with ordinary operators and the methods below; the smart
 /// constructors keep every node in canonical form (see the [`pool`](crate::pool) module for the
-/// identities applied). Equal handles mean structurally equal expressions.
+/// identities applied). Within one pool, equal handles mean structurally equal expressions.
 ///
-/// An `Expr` belongs to the thread that created it (it is neither `Send` nor `Sync`); the
-/// compiled [`Tape`](crate::Tape) of an expression can be sent anywhere.
+/// An `Expr` is plain data (`Send + Sync`): operations find its pool wherever they run (see
+/// [`context`](crate::context), which also says how long a pool lives).
 ///
 /// ```
 /// use eom_sym::Expr;
@@ -26,10 +25,44 @@ use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssi
 /// let e = (m * k + k * m) / (Expr::int(2) * m);
 /// assert_eq!(e.nominal(), 8.0);
 /// ```
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy)]
 pub struct Expr {
     id: Id,
-    _thread_bound: PhantomData<*const ()>,
+    pool: u32,
+}
+
+impl Expr {
+    /// The pool part of the identity: the constants 0, 1 and −1 have the same id in every pool
+    /// and are equal whatever pool they were built in.
+    fn identity(self) -> (Id, u32) {
+        if self.id <= MINUS_ONE {
+            (self.id, 0)
+        } else {
+            (self.id, self.pool)
+        }
+    }
+}
+impl PartialEq for Expr {
+    fn eq(&self, o: &Expr) -> bool {
+        self.identity() == o.identity()
+    }
+}
+impl Eq for Expr {}
+impl std::hash::Hash for Expr {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        self.identity().hash(h)
+    }
+}
+impl PartialOrd for Expr {
+    fn partial_cmp(&self, o: &Expr) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+/// Ids first: within a pool, the order of creation (children before parents).
+impl Ord for Expr {
+    fn cmp(&self, o: &Expr) -> std::cmp::Ordering {
+        self.identity().cmp(&o.identity())
+    }
 }
 
 /// The structure of one node, for code that walks expressions (display, code generation,
@@ -69,11 +102,67 @@ pub enum ExprView {
 }
 
 impl Expr {
-    pub(crate) fn from_id(id: Id) -> Expr {
-        Expr {
-            id,
-            _thread_bound: PhantomData,
-        }
+    pub(crate) fn new(id: Id, pool: u32) -> Expr {
+        Expr { id, pool }
+    }
+    /// The serial number of the pool this expression belongs to
+    /// ([`ExprPool::find`](crate::ExprPool::find) gives the pool while it is alive).
+    pub fn pool_serial(self) -> u32 {
+        self.pool
+    }
+    /// Runs `f` on the data of this expression's pool.
+    pub(crate) fn with_pool<R>(self, f: impl FnOnce(&mut PoolData) -> R) -> R {
+        with_serial(self.pool, f)
+    }
+    /// Builds a node of this expression's pool from its id there.
+    fn build(self, f: impl FnOnce(&mut PoolData, Id) -> Id) -> Expr {
+        self.with_pool(|p| {
+            let id = f(p, self.id);
+            p.expr(id)
+        })
+    }
+    /// Builds a node from two operands, in their common pool.
+    fn build2(self, o: Expr, f: impl FnOnce(&mut PoolData, Id, Id) -> Id) -> Expr {
+        let (serial, a, b) = unify2(self, o);
+        with_serial(serial, |p| {
+            let id = f(p, a, b);
+            p.expr(id)
+        })
+    }
+    /// Builds a node from `n` operands, in their common pool.
+    fn build_n(items: &[Expr], f: impl FnOnce(&mut PoolData, &[Id]) -> Id) -> Expr {
+        let (serial, ids) = unify(items);
+        with_serial(serial, |p| {
+            let id = f(p, &ids);
+            p.expr(id)
+        })
+    }
+    /// A numeric constant or named constant (such nodes move between pools freely).
+    pub(crate) fn is_number_or_constant(self) -> bool {
+        self.with_pool(|p| {
+            matches!(
+                p.node(self.id),
+                Node::Num(_) | Node::Float(_) | Node::Const(_)
+            )
+        })
+    }
+    /// Node `id` of the current pool (for code that entered the pool it works in).
+    pub(crate) fn in_current(id: Id) -> Expr {
+        with_pool(|p| p.expr(id))
+    }
+    /// A named constant, in the current pool.
+    pub(crate) fn constant(c: Constant) -> Expr {
+        with_pool(|p| {
+            let id = p.constant(c);
+            p.expr(id)
+        })
+    }
+    /// An invalid node carrying `e`, in the current pool.
+    pub(crate) fn invalid(e: SymError) -> Expr {
+        with_pool(|p| {
+            let id = p.invalid(e);
+            p.expr(id)
+        })
     }
     /// The node id in the pool (ids are a topological order: children before parents).
     pub fn id(self) -> u32 {
@@ -84,11 +173,11 @@ impl Expr {
 
     /// The constant 0.
     pub fn zero() -> Expr {
-        Expr::from_id(ZERO)
+        with_pool(|p| p.expr(ZERO))
     }
     /// The constant 1.
     pub fn one() -> Expr {
-        Expr::from_id(ONE)
+        with_pool(|p| p.expr(ONE))
     }
     /// An integer constant.
     pub fn int(n: i64) -> Expr {
@@ -104,7 +193,10 @@ impl Expr {
     }
     /// An exact rational constant.
     pub fn from_rational(r: Rational) -> Expr {
-        Expr::from_id(with_pool(|p| p.rational(r)))
+        with_pool(|p| {
+            let id = p.rational(r);
+            p.expr(id)
+        })
     }
     /// A floating-point constant (measured data). Integers and short dyadic fractions such as
     /// 0.5 or 0.375 become exact rationals; other values stay floats. Non-finite values are an
@@ -115,18 +207,21 @@ impl Expr {
                 what: format!("the constant {x}"),
             });
         }
-        Ok(Expr::from_id(with_pool(|p| match crate::pool::dyadic(x) {
-            Some(r) => p.rational(r),
-            None => p.float(x),
-        })))
+        Ok(with_pool(|p| {
+            let id = match crate::pool::dyadic(x) {
+                Some(r) => p.rational(r),
+                None => p.float(x),
+            };
+            p.expr(id)
+        }))
     }
     /// π.
     pub fn pi() -> Expr {
-        Expr::from_id(with_pool(|p| p.constant(Constant::Pi)))
+        Expr::constant(Constant::Pi)
     }
     /// Euler's number.
     pub fn e() -> Expr {
-        Expr::from_id(with_pool(|p| p.constant(Constant::E)))
+        Expr::constant(Constant::E)
     }
 
     /// Declare a new parameter with a name and a nominal value (no unit, no assumption).
@@ -181,33 +276,36 @@ impl Expr {
                 name: info.name,
             });
         }
-        Ok(Expr::from_id(with_pool(|p| p.new_param(info))))
+        Ok(with_pool(|p| {
+            let id = p.new_param(info);
+            p.expr(id)
+        }))
     }
 
     /// `Σ items` as one n-ary sum (faster than repeated `+`).
     pub fn sum<I: IntoIterator<Item = Expr>>(items: I) -> Expr {
-        let ids: Vec<Id> = items.into_iter().map(|e| e.id).collect();
-        Expr::from_id(with_pool(|p| p.add_n(&ids)))
+        let items: Vec<Expr> = items.into_iter().collect();
+        Expr::build_n(&items, |p, ids| p.add_n(ids))
     }
     /// `Π items` as one n-ary product.
     pub fn product<I: IntoIterator<Item = Expr>>(items: I) -> Expr {
-        let ids: Vec<Id> = items.into_iter().map(|e| e.id).collect();
-        Expr::from_id(with_pool(|p| p.mul_n(&ids)))
+        let items: Vec<Expr> = items.into_iter().collect();
+        Expr::build_n(&items, |p, ids| p.mul_n(ids))
     }
 
     // ------------------------------------------------------------ operations
 
     /// `self ^ e`.
     pub fn pow(self, e: Expr) -> Expr {
-        Expr::from_id(with_pool(|p| p.pow(self.id, e.id)))
+        self.build2(e, |p, a, b| p.pow(a, b))
     }
     /// `self ^ n` for an integer `n`.
     pub fn powi(self, n: i64) -> Expr {
-        Expr::from_id(with_pool(|p| p.pow_rational(self.id, Rational::int(n))))
+        self.build(|p, a| p.pow_rational(a, Rational::int(n)))
     }
     /// `self ^ r` for a rational `r`.
     pub fn pow_rational(self, r: Rational) -> Expr {
-        Expr::from_id(with_pool(|p| p.pow_rational(self.id, r)))
+        self.build(|p, a| p.pow_rational(a, r))
     }
     /// `1 / self`.
     pub fn recip(self) -> Expr {
@@ -219,7 +317,7 @@ impl Expr {
     }
     /// Apply a function.
     pub fn apply(self, f: Func) -> Expr {
-        Expr::from_id(with_pool(|p| p.func(f, self.id)))
+        self.build(|p, a| p.func(f, a))
     }
     /// Sine.
     pub fn sin(self) -> Expr {
@@ -247,7 +345,7 @@ impl Expr {
     }
     /// `atan2(self, x)`.
     pub fn atan2(self, x: Expr) -> Expr {
-        Expr::from_id(with_pool(|p| p.atan2(self.id, x.id)))
+        self.build2(x, |p, a, b| p.atan2(a, b))
     }
 
     /// `self / o`, with division by a structural zero reported as an error.
@@ -259,7 +357,7 @@ impl Expr {
     /// the reason. Invalid nodes absorb every operation, so checking the final result of a
     /// computation is enough.
     pub fn check(self) -> Result<Expr, SymError> {
-        with_pool(|p| match p.invalid_of(self.id) {
+        self.with_pool(|p| match p.invalid_of(self.id) {
             Some(e) => Err(p.error(e).clone()),
             None => Ok(self),
         })
@@ -269,11 +367,11 @@ impl Expr {
 
     /// The value at the nominal point (computed once, when the node was created).
     pub fn nominal(self) -> f64 {
-        with_pool(|p| p.nominal(self.id))
+        self.with_pool(|p| p.nominal(self.id))
     }
     /// What is known about the sign.
     pub fn sign(self) -> Sign {
-        with_pool(|p| p.sign(self.id))
+        self.with_pool(|p| p.sign(self.id))
     }
     /// Is this the constant 0 (a structural zero)?
     pub fn is_zero(self) -> bool {
@@ -289,39 +387,39 @@ impl Expr {
     }
     /// Is this a numeric constant (rational or float)?
     pub fn is_number(self) -> bool {
-        with_pool(|p| p.is_number(self.id))
+        self.with_pool(|p| p.is_number(self.id))
     }
     /// The exact value, if this is a rational constant.
     pub fn as_rational(self) -> Option<Rational> {
-        with_pool(|p| p.rational_of(self.id).cloned())
+        self.with_pool(|p| p.rational_of(self.id).cloned())
     }
     /// The value, if this is a numeric constant (rational or float).
     pub fn as_f64(self) -> Option<f64> {
-        with_pool(|p| p.number(self.id).map(|n| n.to_f64()))
+        self.with_pool(|p| p.number(self.id).map(|n| n.to_f64()))
     }
     /// The parameter metadata, if this is a parameter.
     pub fn param_info(self) -> Option<ParamInfo> {
-        with_pool(|p| match p.node(self.id) {
+        self.with_pool(|p| match p.node(self.id) {
             Node::Param(i) => Some(p.param(*i).clone()),
             _ => None,
         })
     }
     /// The parameter index, if this is a parameter.
     pub fn param_index(self) -> Option<u32> {
-        with_pool(|p| match p.node(self.id) {
+        self.with_pool(|p| match p.node(self.id) {
             Node::Param(i) => Some(*i),
             _ => None,
         })
     }
     /// Is this an invalid node?
     pub fn is_invalid(self) -> bool {
-        with_pool(|p| p.invalid_of(self.id).is_some())
+        self.with_pool(|p| p.invalid_of(self.id).is_some())
     }
 
     /// The structure of this node.
     pub fn view(self) -> ExprView {
-        with_pool(|p| {
-            let e = Expr::from_id;
+        self.with_pool(|p| {
+            let e = |id: Id| p.expr(id);
             match p.node(self.id) {
                 Node::Num(r) => ExprView::Rational(r.clone()),
                 Node::Float(f) => ExprView::Float(*f),
@@ -354,9 +452,9 @@ impl Expr {
 
     /// The direct children (operands, coefficients and exponents included).
     pub fn children(self) -> Vec<Expr> {
-        with_pool(|p| {
+        self.with_pool(|p| {
             let mut v = Vec::new();
-            p.for_each_child(self.id, |c| v.push(Expr::from_id(c)));
+            p.for_each_child(self.id, |c| v.push(p.expr(c)));
             v
         })
     }
@@ -368,8 +466,8 @@ impl Expr {
 
     /// All parameters any of `roots` depends on, by pool parameter index, ascending.
     pub fn params_of(roots: &[Expr]) -> Vec<u32> {
-        let ids = reachable(roots);
-        with_pool(|p| {
+        let Reach { serial, ids, .. } = reachable(roots);
+        with_serial(serial, |p| {
             let mut v: Vec<u32> = ids
                 .iter()
                 .filter_map(|&i| match p.node(i) {
@@ -382,27 +480,22 @@ impl Expr {
         })
     }
 
-    /// The parameter with pool index `index` as an expression.
-    pub fn from_param_index(index: u32) -> Option<Expr> {
-        with_pool(|p| {
-            if (index as usize) < p.params_len() {
-                Some(Expr::from_id(p.param_node(index)))
-            } else {
-                None
-            }
-        })
+    /// The parameter with index `index` in the pool of this expression (see
+    /// [`Expr::params_of`]).
+    pub fn param_of_pool(self, index: u32) -> Option<Expr> {
+        param_in(self.pool, index)
     }
 
     /// Number of unique nodes reachable from `roots` (the DAG size).
     pub fn dag_size(roots: &[Expr]) -> usize {
-        reachable(roots).len()
+        reachable(roots).ids.len()
     }
 
     /// Counts of the arithmetic operations needed to evaluate `roots` with every unique node
     /// computed once (the cost of straight-line generated code).
     pub fn op_count(roots: &[Expr]) -> OpCount {
-        let ids = reachable(roots);
-        with_pool(|p| {
+        let Reach { serial, ids, .. } = reachable(roots);
+        with_serial(serial, |p| {
             let mut c = OpCount::default();
             for &i in &ids {
                 match p.node(i) {
@@ -480,12 +573,41 @@ fn pow_chain(k: u64) -> u32 {
     (63 - k.leading_zeros()) + k.count_ones() - 1
 }
 
-/// Ids of all nodes reachable from `roots`, ascending (a topological order).
-pub(crate) fn reachable(roots: &[Expr]) -> Vec<Id> {
-    with_pool(|p| reachable_in(p, roots.iter().map(|e| e.id)))
+/// The nodes reachable from some roots, in the roots' common pool.
+pub(crate) struct Reach {
+    /// The pool (see [`unify`]).
+    pub serial: u32,
+    /// The roots' ids in that pool, in the order given.
+    pub roots: Vec<Id>,
+    /// Every node reachable from them, ascending (a topological order).
+    pub ids: Vec<Id>,
 }
 
-pub(crate) fn reachable_in(p: &ExprPool, roots: impl Iterator<Item = Id>) -> Vec<Id> {
+/// The nodes reachable from `roots` in their common pool.
+pub(crate) fn reachable(roots: &[Expr]) -> Reach {
+    let (serial, root_ids) = unify(roots);
+    let ids = with_serial(serial, |p| reachable_in(p, root_ids.iter().copied()));
+    Reach {
+        serial,
+        roots: root_ids,
+        ids,
+    }
+}
+
+/// Runs `f` with the pool of `roots` current, so that the expressions `f` builds from them
+/// (constants included) are made in their pool.
+pub(crate) fn in_pool_of<R>(roots: &[Expr], f: impl FnOnce() -> R) -> R {
+    if roots.iter().all(|e| e.id <= MINUS_ONE) {
+        return f();
+    }
+    let (serial, _) = unify(roots);
+    match crate::ExprPool::find(serial) {
+        Some(pool) => pool.enter(f),
+        None => f(),
+    }
+}
+
+pub(crate) fn reachable_in(p: &PoolData, roots: impl Iterator<Item = Id>) -> Vec<Id> {
     let mut seen = hashbrown::HashSet::new();
     let mut stack: Vec<Id> = roots.collect();
     let mut out = Vec::new();
@@ -524,37 +646,37 @@ impl std::fmt::Debug for Expr {
 impl Add for Expr {
     type Output = Expr;
     fn add(self, o: Expr) -> Expr {
-        Expr::from_id(with_pool(|p| p.add_n(&[self.id, o.id])))
+        self.build2(o, |p, a, b| p.add_n(&[a, b]))
     }
 }
 impl Sub for Expr {
     type Output = Expr;
     fn sub(self, o: Expr) -> Expr {
-        Expr::from_id(with_pool(|p| {
-            let n = p.mul_n(&[MINUS_ONE, o.id]);
-            p.add_n(&[self.id, n])
-        }))
+        self.build2(o, |p, a, b| {
+            let n = p.mul_n(&[MINUS_ONE, b]);
+            p.add_n(&[a, n])
+        })
     }
 }
 impl Mul for Expr {
     type Output = Expr;
     fn mul(self, o: Expr) -> Expr {
-        Expr::from_id(with_pool(|p| p.mul_n(&[self.id, o.id])))
+        self.build2(o, |p, a, b| p.mul_n(&[a, b]))
     }
 }
 impl Div for Expr {
     type Output = Expr;
     fn div(self, o: Expr) -> Expr {
-        Expr::from_id(with_pool(|p| {
-            let r = p.pow_rational(o.id, Rational::MINUS_ONE);
-            p.mul_n(&[self.id, r])
-        }))
+        self.build2(o, |p, a, b| {
+            let r = p.pow_rational(b, Rational::MINUS_ONE);
+            p.mul_n(&[a, r])
+        })
     }
 }
 impl Neg for Expr {
     type Output = Expr;
     fn neg(self) -> Expr {
-        Expr::from_id(with_pool(|p| p.mul_n(&[MINUS_ONE, self.id])))
+        self.build(|p, a| p.mul_n(&[MINUS_ONE, a]))
     }
 }
 impl AddAssign for Expr {
@@ -579,59 +701,70 @@ impl DivAssign for Expr {
 }
 
 macro_rules! scalar_ops {
-    ($t:ty, $conv:expr) => {
+    ($t:ty) => {
         impl Add<$t> for Expr {
             type Output = Expr;
             fn add(self, o: $t) -> Expr {
-                self + $conv(o)
+                self + self.int_here(o as i64)
             }
         }
         impl Sub<$t> for Expr {
             type Output = Expr;
             fn sub(self, o: $t) -> Expr {
-                self - $conv(o)
+                self - self.int_here(o as i64)
             }
         }
         impl Mul<$t> for Expr {
             type Output = Expr;
             fn mul(self, o: $t) -> Expr {
-                self * $conv(o)
+                self * self.int_here(o as i64)
             }
         }
         impl Div<$t> for Expr {
             type Output = Expr;
             fn div(self, o: $t) -> Expr {
-                self / $conv(o)
+                self / self.int_here(o as i64)
             }
         }
         impl Add<Expr> for $t {
             type Output = Expr;
             fn add(self, o: Expr) -> Expr {
-                $conv(self) + o
+                o.int_here(self as i64) + o
             }
         }
         impl Sub<Expr> for $t {
             type Output = Expr;
             fn sub(self, o: Expr) -> Expr {
-                $conv(self) - o
+                o.int_here(self as i64) - o
             }
         }
         impl Mul<Expr> for $t {
             type Output = Expr;
             fn mul(self, o: Expr) -> Expr {
-                $conv(self) * o
+                o.int_here(self as i64) * o
             }
         }
         impl Div<Expr> for $t {
             type Output = Expr;
             fn div(self, o: Expr) -> Expr {
-                $conv(self) / o
+                o.int_here(self as i64) / o
             }
         }
     };
 }
-scalar_ops!(i64, Expr::int);
-scalar_ops!(i32, |x: i32| Expr::int(x as i64));
+scalar_ops!(i64);
+scalar_ops!(i32);
+
+impl Expr {
+    /// The integer `n` in this expression's pool (the scalar operators use it, so that `x * 2`
+    /// stays in `x`'s pool whatever pool is current).
+    fn int_here(self, n: i64) -> Expr {
+        self.with_pool(|p| {
+            let id = p.rational(Rational::int(n));
+            p.expr(id)
+        })
+    }
+}
 
 impl From<i32> for Expr {
     fn from(n: i32) -> Expr {
@@ -665,4 +798,11 @@ impl std::iter::Product for Expr {
     fn product<I: Iterator<Item = Expr>>(iter: I) -> Expr {
         Expr::product(iter)
     }
+}
+
+/// Parameter number `index` of the pool with serial `serial`.
+pub(crate) fn param_in(serial: u32, index: u32) -> Option<Expr> {
+    with_serial(serial, |p| {
+        ((index as usize) < p.params_len()).then(|| p.expr(p.param_node(index)))
+    })
 }

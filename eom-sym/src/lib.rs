@@ -18,8 +18,10 @@
 //!
 //! ## The pieces
 //!
-//! * **Expressions** ([`Expr`], [`pool`]): a hash-consed DAG in a thread-local pool; every
-//!   unique node is stored once and handles are 4-byte ids. Smart constructors keep sums and
+//! * **Expressions** ([`Expr`], [`pool`]): a hash-consed DAG in an [`ExprPool`]; every unique
+//!   node is stored once, and a handle is the node's id with its pool's serial number. Pools
+//!   are values ([`context`]): a model owns its pool and frees it when dropped, and
+//!   expressions work on any thread. Smart constructors keep sums and
 //!   products flattened, sorted and collected, fold exact rationals ([`Rational`]), and apply
 //!   only identities that are safe (the table in [`pool`]). Nothing is ever expanded.
 //!   [`parse`] reads expressions as people write them; [`display`] prints them back (plain
@@ -45,6 +47,7 @@
 
 #![warn(missing_docs)]
 
+pub mod context;
 pub mod dd;
 pub mod diff;
 pub mod display;
@@ -65,6 +68,7 @@ pub mod trig;
 pub mod tutorials;
 pub mod zero;
 
+pub use context::ExprPool;
 pub use dd::Dd;
 pub use diff::diff_many;
 pub use display::{ExprMatrix, Latex, display_matrix, latex_matrix};
@@ -72,7 +76,7 @@ pub use error::SymError;
 pub use expr::{Expr, ExprView, OpCount};
 pub use matrix::{SparseMatrix, Triplets};
 pub use parse::parse;
-pub use pool::{Assumption, Constant, ExprPool, Func, ParamInfo, PoolStats, Sign};
+pub use pool::{Assumption, Constant, Func, ParamInfo, PoolStats, Sign};
 pub use rational::Rational;
 pub use scalar::{Elementary, Scalar};
 pub use scope::Scope;

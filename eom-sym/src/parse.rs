@@ -57,9 +57,9 @@
 //! comes as it is). Nesting deeper than [`MAX_DEPTH`] levels is an error, not a stack
 //! overflow.
 
+use crate::context::with_pool;
 use crate::error::SymError;
 use crate::expr::Expr;
-use crate::pool::with_pool;
 use crate::rational::{MAX_BITS, Rational};
 use crate::scope::Scope;
 
@@ -681,7 +681,10 @@ impl<'a> Parser<'a> {
             format!("`)` to close the `float(` at column {col}")
         })?;
         // Straight into the pool's float constructor (finite by the check above).
-        Ok(Expr::from_id(with_pool(|p| p.float(x))))
+        Ok(with_pool(|p| {
+            let id = p.float(x);
+            p.expr(id)
+        }))
     }
 }
 

@@ -216,7 +216,7 @@ impl Scalar for Expr {
     }
     fn from_f64(x: f64) -> Expr {
         // Non-finite data is an invalid node: the error surfaces at `check`/evaluation.
-        Expr::float(x).unwrap_or_else(|e| crate::pool::with_pool(|p| Expr::from_id(p.invalid(e))))
+        Expr::float(x).unwrap_or_else(Expr::invalid)
     }
     fn pi() -> Expr {
         Expr::pi()

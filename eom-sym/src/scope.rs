@@ -1,30 +1,42 @@
 //! [`Scope`]: the parameters visible to the parser and to evaluation by name.
 
+use crate::context::ExprPool;
 use crate::error::SymError;
 use crate::expr::Expr;
-use crate::pool::{ExprPool, ParamInfo};
+use crate::pool::ParamInfo;
 use hashbrown::HashMap;
 
 /// An ordered set of named parameters (declaration order is kept: it is the order of values
 /// in evaluations and of fields in generated code).
 ///
-/// A scope stores parameter indices of the pool, not expressions, so it is plain data
-/// (`Send + Sync`): a numeric model that carries its scope can move between threads. The
-/// expressions it hands out belong to the thread whose pool declared the parameters.
+/// A scope holds a handle to the pool its parameters live in, so it is `Send + Sync` and keeps
+/// that pool alive: a model that carries its scope can move between threads.
 #[derive(Clone, Debug, Default)]
 pub struct Scope {
-    by_name: HashMap<String, u32>,
-    order: Vec<u32>,
-}
-
-fn expr_of(index: u32) -> Expr {
-    Expr::from_param_index(index).expect("a scope refers to parameters of this thread's pool")
+    by_name: HashMap<String, usize>,
+    order: Vec<Expr>,
+    pool: Option<ExprPool>,
 }
 
 impl Scope {
-    /// An empty scope.
+    /// An empty scope; its parameters will be declared in the pool current at the first
+    /// declaration.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty scope whose parameters are declared in `pool`.
+    pub fn in_pool(pool: ExprPool) -> Self {
+        Scope {
+            pool: Some(pool),
+            ..Self::default()
+        }
+    }
+
+    /// The pool of the parameters (`None` before the first declaration of a scope made with
+    /// [`Scope::new`]).
+    pub fn pool(&self) -> Option<&ExprPool> {
+        self.pool.as_ref()
     }
 
     /// Declare a new parameter with a nominal value. A duplicate name is an error.
@@ -47,10 +59,10 @@ impl Scope {
             });
         }
         let name = info.name.clone();
-        let e = Expr::new_param(info)?;
-        let index = e.param_index().expect("a new parameter");
-        self.by_name.insert(name, index);
-        self.order.push(index);
+        let pool = self.pool.get_or_insert_with(ExprPool::current).clone();
+        let e = pool.enter(|| Expr::new_param(info))?;
+        self.by_name.insert(name, self.order.len());
+        self.order.push(e);
         Ok(e)
     }
 
@@ -66,15 +78,17 @@ impl Scope {
                 problem: "declared twice".into(),
             });
         }
-        let index = p.param_index().expect("checked above");
-        self.by_name.insert(info.name, index);
-        self.order.push(index);
+        if self.pool.is_none() {
+            self.pool = ExprPool::find(p.pool_serial());
+        }
+        self.by_name.insert(info.name, self.order.len());
+        self.order.push(p);
         Ok(())
     }
 
     /// The parameter called `name`.
     pub fn get(&self, name: &str) -> Option<Expr> {
-        self.by_name.get(name).map(|&i| expr_of(i))
+        self.by_name.get(name).map(|&k| self.order[k])
     }
 
     /// The parameter called `name`, or an error listing the known names.
@@ -87,14 +101,14 @@ impl Scope {
 
     /// The parameters in declaration order.
     pub fn params(&self) -> Vec<Expr> {
-        self.order.iter().map(|&i| expr_of(i)).collect()
+        self.order.clone()
     }
 
     /// The names in declaration order.
     pub fn names(&self) -> Vec<String> {
         self.order
             .iter()
-            .filter_map(|&i| ExprPool::param_info(i).map(|p| p.name))
+            .filter_map(|p| p.param_info().map(|p| p.name))
             .collect()
     }
 
@@ -102,7 +116,7 @@ impl Scope {
     pub fn nominal_values(&self) -> Vec<f64> {
         self.order
             .iter()
-            .filter_map(|&i| ExprPool::param_info(i).map(|p| p.nominal))
+            .filter_map(|p| p.param_info().map(|p| p.nominal))
             .collect()
     }
 
@@ -122,12 +136,7 @@ impl Scope {
         let mut v = self.nominal_values();
         for &(name, x) in overrides {
             self.lookup(name)?;
-            let index = self.by_name[name];
-            let k = self
-                .order
-                .iter()
-                .position(|&q| q == index)
-                .expect("in scope");
+            let k = self.by_name[name];
             if !x.is_finite() {
                 return Err(SymError::BadParameter {
                     name: name.to_string(),

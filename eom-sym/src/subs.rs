@@ -34,12 +34,13 @@ pub fn subs_many(roots: &[Expr], map: &[(Expr, Expr)]) -> Result<Vec<Expr>, SymE
         })?;
         by_index.insert(idx, r);
     }
-    eval_generic::<Expr>(roots, |i| {
-        Some(
+    let (serial, _) = crate::context::unify(roots);
+    crate::expr::in_pool_of(roots, || {
+        eval_generic::<Expr>(roots, |i| {
             by_index
                 .get(&i)
                 .copied()
-                .unwrap_or_else(|| Expr::from_param_index(i).expect("param")),
-        )
+                .or_else(|| crate::expr::param_in(serial, i))
+        })
     })
 }

@@ -24,9 +24,10 @@
 //! for bit, about twice as fast; the interpreter remains for other platforms and for tapes
 //! evaluated too few times to repay the translation (about 0.25 µs per instruction).
 
+use crate::context::with_serial;
 use crate::error::SymError;
 use crate::expr::{Expr, reachable};
-use crate::pool::{Constant, Func, Id, Node, with_pool};
+use crate::pool::{Constant, Func, Id, Node};
 use crate::rational::Rational;
 use crate::scalar::Elementary;
 use hashbrown::{HashMap, HashSet};
@@ -757,7 +758,8 @@ impl Tape {
         for r in roots {
             r.check().map_err(|e| SymError::Invalid(Box::new(e)))?;
         }
-        let ids = reachable(roots);
+        let reach = reachable(roots);
+        let ids = &reach.ids;
         let mut b = Builder {
             consts: Vec::new(),
             const_at: HashMap::new(),
@@ -767,7 +769,7 @@ impl Tape {
             sums: ShareIndex::default(),
             prods: ShareIndex::default(),
         };
-        let outputs = with_pool(|p| {
+        let outputs = with_serial(reach.serial, |p| {
             // Node → reference; numbers get a constant slot only when an operation reads them
             // (most are coefficients and exponents, folded into the instructions).
             let mut at: HashMap<Id, u32> = HashMap::with_capacity(ids.len());
@@ -779,7 +781,7 @@ impl Tape {
                     b.konst(x)
                 }
             };
-            for &id in &ids {
+            for &id in ids {
                 let r = match p.node(id) {
                     Node::Num(r) => {
                         number.insert(id, r.to_f64());
@@ -862,11 +864,12 @@ impl Tape {
                 };
                 at.insert(id, r);
             }
-            Ok(roots
+            Ok(reach
+                .roots
                 .iter()
-                .map(|r| match at.get(&r.id()) {
+                .map(|r| match at.get(r) {
                     Some(&a) => a,
-                    None => b.konst(number[&r.id()]),
+                    None => b.konst(number[r]),
                 })
                 .collect::<Vec<u32>>())
         })?;
@@ -1180,7 +1183,8 @@ pub fn eval_generic<S: Elementary>(
     for r in roots {
         r.check().map_err(|e| SymError::Invalid(Box::new(e)))?;
     }
-    let ids = reachable(roots);
+    let reach = reachable(roots);
+    let ids = &reach.ids;
     // Gather node structure first (the pool must not be borrowed while scalar arithmetic runs,
     // since `S` may itself be `Expr`).
     enum G {
@@ -1194,7 +1198,7 @@ pub fn eval_generic<S: Elementary>(
         Func(Func, usize),
         Atan2(usize, usize),
     }
-    let nodes: Vec<G> = with_pool(|p| {
+    let nodes: Vec<G> = with_serial(reach.serial, |p| {
         let pos: HashMap<Id, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
         ids.iter()
             .map(|&id| match p.node(id) {
@@ -1296,14 +1300,15 @@ pub fn eval_generic<S: Elementary>(
         val.push(v);
     }
     let pos: HashMap<Id, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
-    Ok(roots.iter().map(|r| val[pos[&r.id()]]).collect())
+    Ok(reach.roots.iter().map(|r| val[pos[r]]).collect())
 }
 
 /// Evaluate `roots` at the nominal values of their parameters, in any [`Elementary`] scalar
 /// (parameter nominal values are converted from `f64`).
 pub fn eval_nominal<S: Elementary>(roots: &[Expr]) -> Result<Vec<S>, SymError> {
+    let (serial, _) = crate::context::unify(roots);
     eval_generic(roots, |i| {
-        crate::pool::ExprPool::param_info(i).map(|p| S::from_f64(p.nominal))
+        crate::expr::param_in(serial, i).map(|p| S::from_f64(p.nominal()))
     })
 }
 

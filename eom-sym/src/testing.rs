@@ -83,9 +83,9 @@ pub fn random_dag(params: &[Expr], n_nodes: usize, n_roots: usize, seed: u64) ->
     for k in 1..=4 {
         pool.push(Expr::int(k));
     }
-    let start = crate::pool::ExprPool::stats().nodes;
+    let start = crate::ExprPool::current().stats().nodes;
     let mut guard = 0;
-    while crate::pool::ExprPool::stats().nodes < start + n_nodes && guard < 20 * n_nodes {
+    while crate::ExprPool::current().stats().nodes < start + n_nodes && guard < 20 * n_nodes {
         guard += 1;
         let e = random_node(&mut rng, &pool);
         if e.check().is_ok() && !e.is_number() {

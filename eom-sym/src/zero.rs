@@ -12,15 +12,14 @@
 //! zero. A nonzero analytic function vanishes on a set of measure zero, so an accidental
 //! agreement at two independent random points to 24 digits does not happen in practice
 //! (the Schwartz–Zippel argument for rational functions). The double-double values of every
-//! node are memoised per thread, so testing many entries of one DAG costs one evaluation of
+//! node are memoised in its pool, so testing many entries of one DAG costs one evaluation of
 //! the DAG per probe point.
 
 use crate::dd::Dd;
 use crate::expr::Expr;
-use crate::pool::{Constant, Func, Node, with_pool};
+use crate::pool::{Constant, Func, Node, PoolData};
 use crate::rational::Rational;
 use hashbrown::HashMap;
-use std::cell::RefCell;
 
 const PROBES: usize = 2;
 
@@ -29,7 +28,8 @@ const CANDIDATE: f64 = 1e-9;
 /// Decision: zero when `|value| ≤ DECIDE · Σ|terms|` at every probe point (double-double).
 const DECIDE: f64 = 1e-24;
 
-struct Probe {
+/// The memo of the probe evaluations of one pool.
+pub(crate) struct Probe {
     /// Random relative perturbation per parameter index and probe.
     factors: HashMap<u32, [f64; PROBES]>,
     /// (value, Σ|terms| for sums) per node and probe.
@@ -37,8 +37,14 @@ struct Probe {
     state: u64,
 }
 
-thread_local! {
-    static PROBE: RefCell<Probe> = RefCell::new(Probe { factors: HashMap::new(), values: HashMap::new(), state: 0x5eed_1234_abcd_9876 });
+impl Default for Probe {
+    fn default() -> Self {
+        Probe {
+            factors: HashMap::new(),
+            values: HashMap::new(),
+            state: 0x5eed_1234_abcd_9876,
+        }
+    }
 }
 
 impl Probe {
@@ -74,7 +80,7 @@ fn rational_dd(r: &Rational) -> Dd {
 }
 
 /// Evaluate node `id` at probe `k` in double-double (memoised), returning (value, Σ|terms|).
-fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
+fn value(pool: &PoolData, p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
     if let Some(v) = p.values.get(&id)
         && !v[k].0.hi.is_nan()
     {
@@ -86,11 +92,8 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
         if p.values.get(&n).is_some_and(|v| !v[k].0.hi.is_nan()) {
             continue;
         }
-        let children: Vec<u32> = with_pool(|pool| {
-            let mut c = Vec::new();
-            pool.for_each_child(n, |x| c.push(x));
-            c
-        });
+        let mut children: Vec<u32> = Vec::new();
+        pool.for_each_child(n, |x| children.push(x));
         if !ready {
             stack.push((n, true));
             for c in children {
@@ -101,7 +104,7 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
             continue;
         }
         let get = |p: &Probe, c: u32| p.values[&c][k];
-        let node = with_pool(|pool| pool.node(n).clone());
+        let node = pool.node(n).clone();
         let res: (Dd, f64) = match node {
             Node::Num(r) => {
                 let v = rational_dd(&r);
@@ -111,21 +114,16 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
             Node::Const(Constant::Pi) => (Dd::PI, std::f64::consts::PI),
             Node::Const(Constant::E) => (Dd::E, std::f64::consts::E),
             Node::Param(i) => {
-                let (nominal, positive) = with_pool(|pool| {
-                    let info = pool.param(i);
-                    (
-                        info.nominal,
-                        matches!(info.assume, crate::pool::Assumption::Positive),
-                    )
-                });
+                let info = pool.param(i);
+                let (nominal, positive) = (
+                    info.nominal,
+                    matches!(info.assume, crate::pool::Assumption::Positive),
+                );
                 let v = p.param_value(i, nominal, positive, k);
                 (v, v.abs().to_f64())
             }
             Node::Add(..) => {
-                let (c0, pairs) = with_pool(|pool| {
-                    let (c0, pairs) = pool.add_parts(n).expect("sum");
-                    (c0, pairs.to_vec())
-                });
+                let (c0, pairs) = pool.add_parts(n).expect("sum");
                 let mut s = get(p, c0).0;
                 let mut mag = s.abs().to_f64();
                 for t in pairs.chunks_exact(2) {
@@ -136,14 +134,11 @@ fn value(p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
                 (s, mag)
             }
             Node::Mul(..) => {
-                let (c, pairs) = with_pool(|pool| {
-                    let (c, pairs) = pool.mul_parts(n).expect("product");
-                    let v: Vec<(u32, Rational)> = pairs
-                        .chunks_exact(2)
-                        .map(|t| (t[0], pool.rational_of(t[1]).expect("exp").clone()))
-                        .collect();
-                    (c, v)
-                });
+                let (c, pairs) = pool.mul_parts(n).expect("product");
+                let pairs: Vec<(u32, Rational)> = pairs
+                    .chunks_exact(2)
+                    .map(|t| (t[0], pool.rational_of(t[1]).expect("exp").clone()))
+                    .collect();
                 let mut acc = get(p, c).0;
                 for (b, e) in pairs {
                     let x = get(p, b).0;
@@ -195,7 +190,7 @@ pub fn is_identically_zero(e: Expr) -> bool {
         return true;
     }
     let id = e.id();
-    let candidate = with_pool(|pool| {
+    e.with_pool(|pool| {
         let Some((c0, pairs)) = pool.add_parts(id) else {
             return false;
         };
@@ -205,17 +200,16 @@ pub fn is_identically_zero(e: Expr) -> bool {
                 .chunks_exact(2)
                 .map(|t| (pool.nominal(t[0]) * pool.nominal(t[1])).abs())
                 .sum::<f64>();
-        v.is_finite() && mag.is_finite() && v.abs() <= CANDIDATE * mag
-    });
-    if !candidate {
-        return false;
-    }
-    PROBE.with(|p| {
-        let p = &mut p.borrow_mut();
-        (0..PROBES).all(|k| {
-            let (v, mag) = value(p, id, k);
+        if !(v.is_finite() && mag.is_finite() && v.abs() <= CANDIDATE * mag) {
+            return false;
+        }
+        let mut probe = pool.take_probe();
+        let zero = (0..PROBES).all(|k| {
+            let (v, mag) = value(pool, &mut probe, id, k);
             v.is_finite() && mag.is_finite() && v.abs().to_f64() <= DECIDE * mag
-        })
+        });
+        pool.put_probe(probe);
+        zero
     })
 }
 

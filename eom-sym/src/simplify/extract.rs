@@ -23,8 +23,9 @@
 
 use super::CostModel;
 use super::lang::{Graph, Math};
+use crate::context::with_pool;
 use crate::expr::{Expr, OpCount, reachable};
-use crate::pool::{ExprPool, MINUS_ONE, Node, ONE, ZERO, with_pool};
+use crate::pool::{MINUS_ONE, Node, ONE, PoolData, ZERO};
 use crate::rational::Rational;
 use egg::Id;
 use hashbrown::{HashMap, HashSet};
@@ -218,7 +219,7 @@ impl Index {
 pub(crate) fn build(node: &Math, get: impl Fn(&Id) -> Option<Expr>) -> Option<Expr> {
     Some(match node {
         Math::Rat(r) => Expr::from_rational(r.clone()),
-        Math::Atom(id) => Expr::from_id(*id),
+        Math::Atom(id) => Expr::in_current(*id),
         Math::Add(ch) => Expr::sum(ch.iter().map(&get).collect::<Option<Vec<_>>>()?),
         Math::Mul(ch) => Expr::product(ch.iter().map(&get).collect::<Option<Vec<_>>>()?),
         Math::Pow([b, e]) => {
@@ -278,7 +279,7 @@ impl TreeCost<'_> {
 
 /// Pool nodes with two or more parents in the DAG of `roots`, and the roots themselves.
 pub(crate) fn shared_nodes(roots: &[Expr]) -> HashSet<u32> {
-    let ids = reachable(roots);
+    let ids = reachable(roots).ids;
     let mut parents: HashMap<u32, u32> = HashMap::with_capacity(ids.len());
     with_pool(|p| {
         for &i in &ids {
@@ -302,7 +303,7 @@ pub(crate) fn shared_nodes(roots: &[Expr]) -> HashSet<u32> {
 
 /// The operations of one pool node alone, counted exactly as [`Expr::op_count`] counts them
 /// (a test checks that the two agree on random DAGs).
-pub(crate) fn node_ops(p: &ExprPool, i: u32) -> OpCount {
+pub(crate) fn node_ops(p: &PoolData, i: u32) -> OpCount {
     let mut c = OpCount::default();
     match p.node(i) {
         Node::Add(..) => {
@@ -373,8 +374,9 @@ mod tests {
         for seed in 0..4 {
             let p = params(6, seed, seed % 2 == 0);
             let roots = random_dag(&p, 600, 12, seed);
-            let ids = reachable(&roots);
-            let total = with_pool(|pool| {
+            let reach = reachable(&roots);
+            let ids = reach.ids;
+            let total = crate::context::with_serial(reach.serial, |pool| {
                 ids.iter().fold(OpCount::default(), |mut acc, &i| {
                     let o = node_ops(pool, i);
                     acc.add += o.add;

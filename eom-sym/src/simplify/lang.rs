@@ -229,7 +229,7 @@ pub(crate) struct Data {
 }
 
 /// The e-class analysis. `atom_info` is filled by the converter with the numeric flag and
-/// sign of each pool leaf, so that `make` needs no access to the thread-local pool.
+/// sign of each pool leaf, so that `make` needs no access to the pool.
 #[derive(Default)]
 pub(crate) struct Meta {
     pub atom_info: hashbrown::HashMap<u32, (bool, Signs)>,

@@ -76,10 +76,11 @@ pub use rational_fn::{
     Normalized, RationalForm, RationalNormalizer, WorkLimit, normalize_rational,
 };
 
+use crate::context::with_pool;
 use crate::error::SymError;
 use crate::expr::{Expr, ExprView, OpCount, reachable};
 use crate::matrix::SparseMatrix;
-use crate::pool::{Node, with_pool};
+use crate::pool::Node;
 use egg::{BackoffScheduler, Id, Runner};
 use extract::Index;
 use hashbrown::HashSet;
@@ -279,6 +280,17 @@ impl Simplifier {
     /// Simplify `roots` together. Invalid roots (operations without a value) are an error;
     /// nothing else is: limits end the rewriting and the best result found so far is used.
     pub fn run(&self, roots: &[Expr]) -> Result<SimplifyOutcome, SymError> {
+        // Everything below reads and builds nodes of the roots' pool, entered as the current
+        // one (the e-graph's atoms are node ids of that pool).
+        let (serial, ids) = crate::context::unify(roots);
+        let roots: Vec<Expr> = ids.iter().map(|&i| Expr::new(i, serial)).collect();
+        match crate::ExprPool::find(serial) {
+            Some(pool) => pool.enter(|| self.run_in_pool(&roots)),
+            None => self.run_in_pool(&roots),
+        }
+    }
+
+    fn run_in_pool(&self, roots: &[Expr]) -> Result<SimplifyOutcome, SymError> {
         let start = Instant::now();
         for r in roots {
             r.check().map_err(|e| SymError::Invalid(Box::new(e)))?;
@@ -379,7 +391,7 @@ impl Simplifier {
 /// The pool DAG as an e-graph: the e-graph, the root classes, the number of e-nodes, and the
 /// input expression of each class.
 fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, usize, Vec<(Id, Expr)>) {
-    let ids = reachable(roots);
+    let ids = reachable(roots).ids;
     let mut eg = Graph::new(Meta::default());
     // Leaf metadata first: the analysis reads it when the leaves are added.
     with_pool(|p| {
@@ -395,7 +407,7 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, usize, Vec<(Id, Expr)>) {
     let mut map: hashbrown::HashMap<u32, Id> = hashbrown::HashMap::with_capacity(ids.len());
     let mut originals: Vec<(Id, Expr)> = Vec::with_capacity(ids.len() * 2);
     for &id in &ids {
-        let e = Expr::from_id(id);
+        let e = Expr::in_current(id);
         let node = match e.view() {
             ExprView::Rational(r) => Math::Rat(r),
             ExprView::Float(_)
