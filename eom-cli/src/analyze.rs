@@ -2,7 +2,7 @@
 //! realization with every removed mode accounted for, steady-state gains, transmission zeros
 //! and, on request, the frequency response.
 //!
-//! Where this differs from EoM.jl's `analyze` (eom-method §7, §13.5–13.7): the mode table is
+//! Where this differs from the EoM software's `analyze` (docs/method.md §9): the mode table is
 //! that of the whole state-space model, not of its minimal realization, so no mode is hidden;
 //! every mode the minimal realization removes is listed with the reason (uncontrollable or
 //! unobservable) and its stability; a real pole shows its corner frequency instead of 0 Hz;

@@ -1,6 +1,6 @@
 //! Minimal realization: constructed systems with known minimal order and known removed modes,
 //! transfer-function preservation against an independent evaluation, and cases where
-//! EoM.jl's absolute-tolerance Mayne elimination (eom-method §6.2, re-implemented below from
+//! the EoM software's absolute-tolerance Mayne elimination (re-implemented below from
 //! its specification as a foil) goes wrong.
 
 mod analysis_support;
@@ -518,7 +518,7 @@ fn no_inputs_or_no_outputs_leave_nothing() {
     assert_eq!(min, empty);
 }
 
-// --- The foil: EoM.jl's minreal as specified in eom-method §6.2 (absolute tolerance 1e-7,
+// --- The foil: the EoM software's minreal, Mayne (1973), as it works (absolute tolerance 1e-7,
 // --- Mayne's elementary similarity eliminations, no scaling).
 
 fn mayne_cont_part(

@@ -13,7 +13,7 @@ use eom_sym::Expr;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-/// The shimmy is stable exactly for 0.3 < a/l < 0.7 (reference-cases §B: the range depends only
+/// The shimmy is stable exactly for 0.3 < a/l < 0.7 (docs/references.md §B: the range depends only
 /// on Iz/(m l²) = 0.21), at u = 10 and u = 1. The sweep evaluates the compiled symbolic model.
 #[test]
 fn shimmy_stable_interval_is_exact() {
@@ -55,7 +55,7 @@ fn shimmy_stable_interval_is_exact() {
 
 /// Weave and capsize speeds of the benchmark bicycle: published 4.29238253634111 and
 /// 6.02426201538837 m/s (Meijaard et al. 2007, Table 2a; exact values 4.2923825363411040 and
-/// 6.0242620153883589, reference-cases §A.3). The sweep follows the eigenvalues of the minimal
+/// 6.0242620153883589, docs/references.md §A). The sweep follows the eigenvalues of the minimal
 /// realization (the lean/steer dynamics): the heading/lateral Jordan block at zero, which
 /// makes the capsize root ill-conditioned in the full model near v_c, is split off exactly.
 #[test]
@@ -195,7 +195,7 @@ fn quarter_car_frequency_response_matches_transfer_functions() {
 /// gyroscopic coupling vanishes and part of the model decouples from the chosen input and
 /// output. The minimal realization must remove exactly the decoupled modes, keep the transfer
 /// function, and not invent poles (the reference's Mayne elimination with an absolute 1e-7
-/// tolerance kept a spurious pole at −7.29 here, eom-method §13.4).
+/// tolerance kept a spurious pole at −7.29 here; docs/method.md §9, difference 10).
 #[test]
 fn rotor_at_zero_spin_has_no_spurious_poles() {
     for spin in [0.0, 1e-3, 1.0] {

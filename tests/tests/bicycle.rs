@@ -92,7 +92,7 @@ const PUBLISHED: [[f64; 5]; 10] = [
 ];
 
 /// The same quantities computed exactly (mpmath, 60 digits) and printed to 17 digits
-/// (reference-cases.md §A.4, [OWN]).
+/// (docs/references.md §A, computed for this project in 60-digit arithmetic).
 const EXACT: [[f64; 5]; 10] = [
     [
         1.0,
@@ -304,7 +304,7 @@ fn exact_dd(x: f64) -> Dd {
 /// The double-double path: the model evaluated, assembled and reduced in double-double, then
 /// each eigenvalue refined by Newton's method in double-double. It reproduces the exact values
 /// to ~1e-16, and therefore the published table to its printed accuracy — except one entry
-/// (v = 7, castor), which is off by 6.0e-13 in the publication (reference-cases §A.4).
+/// (v = 7, castor), which is off by 6.0e-13 in the publication (docs/references.md §A).
 #[test]
 fn double_double_reproduces_exact_and_published_digits() {
     let model = models::build("bicycle", &[]).unwrap();
@@ -344,7 +344,7 @@ fn double_double_reproduces_exact_and_published_digits() {
             "v = {}: double-double vs exact {err:e}",
             row[0]
         );
-        // Against the published digits: within their printed accuracy (~1e-13, §A.4) …
+        // Against the published digits: within their printed accuracy (~1e-13, docs/references.md §A) …
         for (g, e) in tests::match_eigenvalues(&got, &expected(publ)) {
             // Per component, as the table prints real and imaginary parts separately.
             let d = (g.re - e.re).abs().max((g.im - e.im).abs());
@@ -380,7 +380,7 @@ fn structure_is_reported() {
             .copied()
             .collect();
     let ops = eom_sym::Expr::op_count(&roots).total();
-    // PyDy needs 734 operations after common-subexpression elimination (notes/peers.md).
+    // PyDy needs 734 operations after common-subexpression elimination (bench/pydy/README.md).
     assert!(ops < 734, "{ops} operations");
     let _ = Dd::zero();
 }

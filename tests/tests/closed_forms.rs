@@ -1,4 +1,4 @@
-//! Built-in models against closed-form results (eom-method §11–12, reference-cases §D, §E2),
+//! Built-in models against closed-form results (docs/references.md §D, §E),
 //! at the defaults and at other parameter values, by the symbolic, numeric and robust paths.
 
 // Reference values are transcribed digit for digit from their sources.
@@ -29,7 +29,7 @@ fn c(re: f64, im: f64) -> Complex64 {
     Complex64::new(re, im)
 }
 
-/// m z'' + c z' + k z = f: s = −c/2m ± i√(k/m − c²/4m²) (eom-method §11, test/input_ex_smd).
+/// m z'' + c z' + k z = f: s = −c/2m ± i√(k/m − c²/4m²) (docs/references.md §E; the EoM sample `input_ex_smd`).
 #[test]
 fn spring_mass_damper() {
     for &(m, k, cc) in &[
@@ -47,7 +47,7 @@ fn spring_mass_damper() {
             assert!(err < 1e-13, "m {m} k {k} c {cc} {method:?}: {err:e}");
         }
     }
-    // The defaults reproduce eom-method §11: −0.05 ± 3.1618823507524754i.
+    // The defaults of the EoM sample give −0.05 ± 3.1618823507524754i.
     let e = eig(&state_space("smd", &[], Method::Symbolic));
     assert!(
         max_abs_error(
@@ -57,7 +57,7 @@ fn spring_mass_damper() {
     );
 }
 
-/// (Ix + m r²) φ'' + m g r φ = … : s = ±i √(m g r/(Ix + m r²)) (reference-cases §E2). The
+/// (Ix + m r²) φ'' + m g r φ = … : s = ±i √(m g r/(Ix + m r²)) (docs/references.md §E). The
 /// EoM sample's defaults (Ix = 5.5 − m r² = −4.5, unphysical as a centroidal inertia) give
 /// ±4.2226661117011242i, and are accepted with a warning.
 #[test]
@@ -99,7 +99,7 @@ fn pendulum() {
 
 /// Heavy symmetric top on a fixed point: (I_p s² − m g h)² + (I_a r s)² = 0 with
 /// I_p = I_t + m h², plus two zero eigenvalues (rotation about the vertical and its rate).
-/// Stable (purely imaginary) above r = 2√(I_p m g h)/I_a (eom-method §12.3: 5.568 rad/s).
+/// Stable (purely imaginary) above r = 2√(I_p m g h)/I_a (5.568 rad/s at the defaults).
 #[test]
 fn spinning_top() {
     let (m, h, it, ia, g) = (0.01, 0.04, 3e-4, 4e-4, 9.81);
@@ -124,7 +124,7 @@ fn spinning_top() {
             assert!(err < 1e-12, "r {r} {method:?}: {err:e}");
         }
     }
-    // eom-method §12.3 at r = 1: ±3.46658 ± 0.632911i.
+    // At r = 1 (closed form): ±3.46658 ± 0.632911i.
     let e = nonzero(&eig(&state_space("top", &[], Method::Symbolic)), 1e-6);
     assert!(
         e.iter()
@@ -134,7 +134,7 @@ fn spinning_top() {
 
 /// Uniform disk rolling upright: eliminating the yaw rate from the linearized equations gives
 /// (A + m r²) φ'' + (3 m u² − m g r) φ = 0 with A = m r²/4, i.e. s² = 4(g r − 3u²)/(5 r²):
-/// stable above u = √(g r/3) (eom-method §11: 1.2787 m/s for r = 0.5). The other four
+/// stable above u = √(g r/3) (1.2787 m/s for r = 0.5). The other four
 /// eigenvalues are zero (heading, rolling angle, lateral and longitudinal position).
 #[test]
 fn rolling_disk() {
@@ -153,7 +153,7 @@ fn rolling_disk() {
             assert!(err < 1e-12, "u {u} {method:?}: {err:e}");
         }
     }
-    // eom-method §11 at the defaults: ±3.94968.
+    // At the defaults (closed form): ±3.94968.
     let e = nonzero(&eig(&state_space("disk", &[], Method::Numeric)), 1e-6);
     assert!(e.iter().all(|z| (z.re.abs() - 3.94968).abs() < 5e-6));
 }
@@ -241,7 +241,7 @@ fn quarter_car_eigenvalues() {
     }
 }
 
-/// The shimmy's steady-state gains (eom-method §12.3): [0.5, 0.333333] at the defaults with u = 1.
+/// The shimmy's steady-state gains (from the closed-form transfer functions): [0.5, 0.333333] at the defaults with u = 1.
 #[test]
 fn shimmy_static_gain_matches_reference() {
     let ss = state_space("shimmy", &[("u", 1.0)], Method::Symbolic);

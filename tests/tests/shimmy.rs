@@ -62,7 +62,7 @@ fn shimmy_u1_matches_closed_form_cubic() {
     check(include_str!("../data/shimmy_eigs_u1.csv"), 1.0);
 }
 
-/// At a/l = 0.3 and 0.7 the roots are exactly −u/l and ±i√(k l/(m a)) (reference-cases B).
+/// At a/l = 0.3 and 0.7 the roots are exactly −u/l and ±i√(k l/(m a)) (docs/references.md §B).
 #[test]
 fn shimmy_stability_boundaries_are_exact() {
     let model = models::build("shimmy", &[]).unwrap();
