@@ -47,6 +47,7 @@
 
 #![warn(missing_docs)]
 
+pub mod closed;
 pub mod context;
 pub mod dd;
 pub mod diff;

@@ -68,8 +68,8 @@
 
 mod extract;
 mod lang;
-mod poly;
-mod rational_fn;
+pub(crate) mod poly;
+pub(crate) mod rational_fn;
 mod rules;
 
 pub use rational_fn::{

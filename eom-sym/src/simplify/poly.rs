@@ -27,16 +27,24 @@ pub(crate) struct Budget {
     pub max_degree: u32,
     pub max_work: u64,
     pub work: u64,
+    /// A wall-clock bound, checked every few thousand term operations (the term count alone
+    /// under-weights gcds of large polynomials).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl Budget {
     fn tick(&mut self, n: usize) -> Result<(), WorkLimit> {
+        let before = self.work;
         self.work = self.work.saturating_add(n as u64);
         if self.work > self.max_work {
-            Err(WorkLimit::Work)
-        } else {
-            Ok(())
+            return Err(WorkLimit::Work);
         }
+        if self.work >> 12 != before >> 12
+            && self.deadline.is_some_and(|d| std::time::Instant::now() > d)
+        {
+            return Err(WorkLimit::Time);
+        }
+        Ok(())
     }
     fn check(&self, p: &Poly) -> Result<(), WorkLimit> {
         if p.terms.len() > self.max_terms {
@@ -259,7 +267,7 @@ impl Poly {
     }
 
     /// Which variables occur.
-    fn vars(&self) -> Vec<bool> {
+    pub(crate) fn vars(&self) -> Vec<bool> {
         let mut seen = vec![false; self.nvars];
         for (e, _) in &self.terms {
             for (s, &k) in seen.iter_mut().zip(e.iter()) {
@@ -270,7 +278,7 @@ impl Poly {
     }
 
     /// Coefficients in variable `v` (index = degree; each has `v`'s exponent zeroed).
-    fn coeffs_in(&self, v: usize) -> Vec<Poly> {
+    pub(crate) fn coeffs_in(&self, v: usize) -> Vec<Poly> {
         let d = self.deg_in(v) as usize;
         let mut out: Vec<Vec<(Exps, Rational)>> = vec![Vec::new(); d + 1];
         for (e, c) in &self.terms {
@@ -428,7 +436,7 @@ pub(crate) fn gcd(a: &Poly, b: &Poly, bud: &mut Budget) -> Result<Poly, WorkLimi
 }
 
 /// The gcd of the coefficients with respect to `v`, monic.
-fn content_in(p: &Poly, v: usize, bud: &mut Budget) -> Result<Poly, WorkLimit> {
+pub(crate) fn content_in(p: &Poly, v: usize, bud: &mut Budget) -> Result<Poly, WorkLimit> {
     let mut g: Option<Poly> = None;
     for c in p.coeffs_in(v).into_iter().rev().filter(|c| !c.is_zero()) {
         let next = match &g {
@@ -497,6 +505,7 @@ mod tests {
             max_degree: 100,
             max_work: 10_000_000,
             work: 0,
+            deadline: None,
         }
     }
     fn q(n: i64) -> Rational {
@@ -538,6 +547,7 @@ mod tests {
             max_degree: 100,
             max_work: 1_000_000,
             work: 0,
+            deadline: None,
         };
         let s = (0..4).fold(Poly::zero(4), |acc, i| {
             acc.add(&Poly::var(4, i), &mut b).unwrap()

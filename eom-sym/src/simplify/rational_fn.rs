@@ -17,6 +17,8 @@ pub enum WorkLimit {
     Work,
     /// An exact coefficient grew wider than [`MAX_BITS`](crate::rational::MAX_BITS).
     Coefficients,
+    /// The time limit was reached.
+    Time,
     /// The expression has more atoms (parameters and opaque subterms) than allowed.
     Atoms,
 }
@@ -81,6 +83,7 @@ pub struct RationalNormalizer {
     max_degree: u32,
     max_work: u64,
     max_atoms: usize,
+    max_time: Option<std::time::Duration>,
 }
 
 impl Default for RationalNormalizer {
@@ -91,6 +94,7 @@ impl Default for RationalNormalizer {
             max_degree: 64,
             max_work: 5_000_000,
             max_atoms: 64,
+            max_time: None,
         }
     }
 }
@@ -116,63 +120,59 @@ impl RationalNormalizer {
         self.max_atoms = n;
         self
     }
+    /// A wall-clock bound on one normalisation (none by default).
+    pub fn with_time_limit(mut self, t: std::time::Duration) -> Self {
+        self.max_time = Some(t);
+        self
+    }
 
     /// The normal form of `e`. Errors: `e` is invalid, or a denominator is identically zero as
     /// a rational function (e.g. `1/((a+b)² − a² − 2ab − b²)`), which means the input is
     /// nowhere defined.
     pub fn normalize(&self, e: Expr) -> Result<Normalized, SymError> {
-        e.check().map_err(|err| SymError::Invalid(Box::new(err)))?;
-        // 1. Walk the rational structure: inner nodes (sums, products), opaque atoms, and for
-        //    every atom the lcm of the denominators of the rational exponents it carries.
-        let mut inner: HashSet<Expr> = HashSet::new();
-        let mut opaque: HashSet<Expr> = HashSet::new();
-        let mut lcm: HashMap<Expr, i64> = HashMap::new();
-        let mut stack = vec![e];
-        while let Some(x) = stack.pop() {
-            if inner.contains(&x) || opaque.contains(&x) {
-                continue;
-            }
-            match x.view() {
-                ExprView::Rational(_) => {}
-                ExprView::Sum { constant, terms } => {
-                    inner.insert(x);
-                    stack.push(constant);
-                    for (t, c) in terms {
-                        stack.push(t);
-                        stack.push(c);
-                    }
-                }
-                ExprView::Product { coef, factors } => {
-                    inner.insert(x);
-                    stack.push(coef);
-                    for (b, r) in factors {
-                        let q = match r.as_small() {
-                            Some((_, q)) => q,
-                            None => return Ok(Normalized::TooLarge(WorkLimit::Degree)),
-                        };
-                        if q > 1 && !is_opaque(b) {
-                            // A sum, product or number under a root: the root is the atom.
-                            opaque.insert(root(b, q));
-                        } else {
-                            stack.push(b);
-                        }
-                        if q > 1 && is_opaque(b) {
-                            let l = lcm.entry(b).or_insert(1);
-                            *l = num_integer::lcm(*l, q);
-                            if *l > i64::from(self.max_degree) {
-                                return Ok(Normalized::TooLarge(WorkLimit::Degree));
-                            }
-                        }
-                    }
-                }
-                _ => {
-                    opaque.insert(x);
-                }
-            }
-            if opaque.len() > self.max_atoms {
-                return Ok(Normalized::TooLarge(WorkLimit::Atoms));
-            }
+        let field = match RationalField::new(&[e], self)? {
+            Ok(f) => f,
+            Err(l) => return Ok(Normalized::TooLarge(l)),
+        };
+        let mut field = field;
+        let rf = match field.value(e) {
+            Ok(r) => r,
+            Err(Fail::Limit(l)) => return Ok(Normalized::TooLarge(l)),
+            Err(Fail::ZeroDenominator) => return Err(zero_denominator()),
+        };
+        Ok(match field.render(&rf) {
+            Ok(f) => Normalized::Form(f),
+            Err(l) => Normalized::TooLarge(l),
+        })
+    }
+}
+
+/// Expressions as rational functions over one shared set of atoms: every sum and product
+/// reachable from the roots is converted once (bottom-up), so that several results (the
+/// coefficients of a polynomial, the entries of a matrix) can be combined exactly.
+pub(crate) struct RationalField {
+    atoms: Vec<Expr>,
+    var: HashMap<Expr, usize>,
+    lcm: HashMap<Expr, i64>,
+    opaque: HashSet<Expr>,
+    memo: HashMap<Expr, Rf>,
+    pub(crate) budget: Budget,
+}
+
+impl RationalField {
+    /// The atoms of `roots` and the values of all their inner nodes. The outer error is an
+    /// invalid root or a denominator that is identically zero; the inner one a bound.
+    pub(crate) fn new(
+        roots: &[Expr],
+        limits: &RationalNormalizer,
+    ) -> Result<Result<RationalField, WorkLimit>, SymError> {
+        for e in roots {
+            e.check().map_err(|err| SymError::Invalid(Box::new(err)))?;
         }
+        let (inner, opaque, lcm) = match walk(roots, limits) {
+            Ok(w) => w,
+            Err(l) => return Ok(Err(l)),
+        };
         // An opaque x that also appears as x^(p/q) is written (x^(1/L))^L, L the lcm of those q:
         // x ≥ 0 wherever the input is defined (a rational power of a negative number has no
         // real value in the pool's evaluation), and there the identity holds.
@@ -182,101 +182,177 @@ impl RationalNormalizer {
             .collect();
         atoms.sort();
         atoms.dedup();
-        let n = atoms.len();
         let var: HashMap<Expr, usize> = atoms.iter().enumerate().map(|(i, &a)| (a, i)).collect();
-        let mut budget = Budget {
-            max_terms: self.max_terms,
-            max_degree: self.max_degree,
-            max_work: self.max_work,
-            work: 0,
+        let mut field = RationalField {
+            atoms,
+            var,
+            lcm,
+            opaque,
+            memo: HashMap::new(),
+            budget: Budget {
+                max_terms: limits.max_terms,
+                max_degree: limits.max_degree,
+                max_work: limits.max_work,
+                work: 0,
+                deadline: limits.max_time.map(|t| std::time::Instant::now() + t),
+            },
         };
-        // `x^(p/q)` for an opaque `x`: `(x^(1/L))^(p·L/q)` when x carries root denominators
-        // (q divides L), the atom `x^(1/q)` to the `p` otherwise (only for q = 1 or a
-        // non-opaque base under a root, which is its own atom).
-        let atom_power = |x: Expr, p: i64, q: i64, budget: &mut Budget| -> Result<Rf, Fail> {
-            let (a, k) = match lcm.get(&x) {
-                Some(&l) => (
-                    root(x, l),
-                    p.checked_mul(l / q).ok_or(Fail::Limit(WorkLimit::Degree))?,
-                ),
-                None => (root(x, q), p),
-            };
-            let i = *var.get(&a).ok_or(Fail::Limit(WorkLimit::Atoms))?;
-            Rf {
-                num: Poly::var(n, i),
-                den: Poly::one(n),
-            }
-            .powi(k, budget)
-        };
-
         // 2. Bottom-up in pool order (children before parents).
         let mut order: Vec<Expr> = inner.into_iter().collect();
         order.sort();
-        let mut memo: HashMap<Expr, Rf> = HashMap::with_capacity(order.len());
-        let value = |x: Expr, memo: &HashMap<Expr, Rf>, budget: &mut Budget| -> Result<Rf, Fail> {
-            if let Some(r) = memo.get(&x) {
-                return Ok(r.clone());
-            }
-            if let Some(r) = x.as_rational() {
-                return Ok(Rf {
-                    num: Poly::constant(n, r),
-                    den: Poly::one(n),
-                });
-            }
-            if opaque.contains(&x) {
-                return atom_power(x, 1, 1, budget);
-            }
-            // Every inner node is evaluated after its children (pool ids are topological).
-            Err(Fail::Limit(WorkLimit::Work))
-        };
         for x in order {
-            let step = |memo: &HashMap<Expr, Rf>, budget: &mut Budget| -> Result<Rf, Fail> {
-                match x.view() {
-                    ExprView::Sum { constant, terms } => {
-                        let mut acc = value(constant, memo, budget)?;
-                        for (t, c) in terms {
-                            let term =
-                                value(t, memo, budget)?.mul(&value(c, memo, budget)?, budget)?;
-                            acc = acc.add(&term, budget)?;
-                        }
-                        Ok(acc)
-                    }
-                    ExprView::Product { coef, factors } => {
-                        let mut acc = value(coef, memo, budget)?;
-                        for (b, r) in factors {
-                            let (p, q) = r.as_small().ok_or(Fail::Limit(WorkLimit::Degree))?;
-                            let f = if is_opaque(b) {
-                                atom_power(b, p, q, budget)?
-                            } else if q == 1 {
-                                value(b, memo, budget)?.powi(p, budget)?
-                            } else {
-                                atom_power(root(b, q), p, 1, budget)?
-                            };
-                            acc = acc.mul(&f, budget)?;
-                        }
-                        Ok(acc)
-                    }
-                    _ => Err(Fail::Limit(WorkLimit::Work)),
-                }
-            };
-            match step(&memo, &mut budget) {
+            match field.step(x) {
                 Ok(r) => {
-                    memo.insert(x, r);
+                    field.memo.insert(x, r);
                 }
-                Err(Fail::Limit(l)) => return Ok(Normalized::TooLarge(l)),
+                Err(Fail::Limit(l)) => return Ok(Err(l)),
                 Err(Fail::ZeroDenominator) => return Err(zero_denominator()),
             }
         }
-        let rf = match value(e, &memo, &mut budget) {
-            Ok(r) => r,
-            Err(Fail::Limit(l)) => return Ok(Normalized::TooLarge(l)),
-            Err(Fail::ZeroDenominator) => return Err(zero_denominator()),
-        };
-        Ok(match rf.to_form(&atoms, &mut budget) {
-            Ok(f) => Normalized::Form(f),
-            Err(l) => Normalized::TooLarge(l),
-        })
+        Ok(Ok(field))
     }
+
+    /// The atoms, in variable order.
+    pub(crate) fn atoms(&self) -> &[Expr] {
+        &self.atoms
+    }
+
+    /// `x^(p/q)` for an opaque `x`: `(x^(1/L))^(p·L/q)` when x carries root denominators
+    /// (q divides L), the atom `x^(1/q)` to the `p` otherwise (only for q = 1 or a
+    /// non-opaque base under a root, which is its own atom).
+    fn atom_power(&mut self, x: Expr, p: i64, q: i64) -> Result<Rf, Fail> {
+        let (a, k) = match self.lcm.get(&x) {
+            Some(&l) => (
+                root(x, l),
+                p.checked_mul(l / q).ok_or(Fail::Limit(WorkLimit::Degree))?,
+            ),
+            None => (root(x, q), p),
+        };
+        let n = self.atoms.len();
+        let i = *self.var.get(&a).ok_or(Fail::Limit(WorkLimit::Atoms))?;
+        Rf {
+            num: Poly::var(n, i),
+            den: Poly::one(n),
+        }
+        .powi(k, &mut self.budget)
+    }
+
+    /// The value of `x`: a number, an atom, or an inner node already converted.
+    pub(crate) fn value(&mut self, x: Expr) -> Result<Rf, Fail> {
+        let n = self.atoms.len();
+        if let Some(r) = self.memo.get(&x) {
+            return Ok(r.clone());
+        }
+        if let Some(r) = x.as_rational() {
+            return Ok(Rf {
+                num: Poly::constant(n, r),
+                den: Poly::one(n),
+            });
+        }
+        if self.opaque.contains(&x) {
+            return self.atom_power(x, 1, 1);
+        }
+        // Every inner node is evaluated after its children (pool ids are topological).
+        Err(Fail::Limit(WorkLimit::Work))
+    }
+
+    fn step(&mut self, x: Expr) -> Result<Rf, Fail> {
+        match x.view() {
+            ExprView::Sum { constant, terms } => {
+                let mut acc = self.value(constant)?;
+                for (t, c) in terms {
+                    let term = self.value(t)?.mul(&self.value(c)?, &mut self.budget)?;
+                    acc = acc.add(&term, &mut self.budget)?;
+                }
+                Ok(acc)
+            }
+            ExprView::Product { coef, factors } => {
+                let mut acc = self.value(coef)?;
+                for (b, r) in factors {
+                    let (p, q) = r.as_small().ok_or(Fail::Limit(WorkLimit::Degree))?;
+                    let f = if is_opaque(b) {
+                        self.atom_power(b, p, q)?
+                    } else if q == 1 {
+                        self.value(b)?.powi(p, &mut self.budget)?
+                    } else {
+                        self.atom_power(root(b, q), p, 1)?
+                    };
+                    acc = acc.mul(&f, &mut self.budget)?;
+                }
+                Ok(acc)
+            }
+            _ => Err(Fail::Limit(WorkLimit::Work)),
+        }
+    }
+
+    /// `rf` as a [`RationalForm`] through the pool.
+    pub(crate) fn render(&mut self, rf: &Rf) -> Result<RationalForm, WorkLimit> {
+        rf.to_form(&self.atoms, &mut self.budget)
+    }
+
+    /// A polynomial of the field as an expression.
+    pub(crate) fn poly_expr(&self, p: &Poly) -> Expr {
+        poly_expr(p, &self.atoms)
+    }
+}
+
+/// 1. The rational structure of `roots`: inner nodes (sums, products), opaque atoms, and for
+///    every atom the lcm of the denominators of the rational exponents it carries.
+#[allow(clippy::type_complexity)]
+fn walk(
+    roots: &[Expr],
+    limits: &RationalNormalizer,
+) -> Result<(HashSet<Expr>, HashSet<Expr>, HashMap<Expr, i64>), WorkLimit> {
+    let mut inner: HashSet<Expr> = HashSet::new();
+    let mut opaque: HashSet<Expr> = HashSet::new();
+    let mut lcm: HashMap<Expr, i64> = HashMap::new();
+    let mut stack = roots.to_vec();
+    while let Some(x) = stack.pop() {
+        if inner.contains(&x) || opaque.contains(&x) {
+            continue;
+        }
+        match x.view() {
+            ExprView::Rational(_) => {}
+            ExprView::Sum { constant, terms } => {
+                inner.insert(x);
+                stack.push(constant);
+                for (t, c) in terms {
+                    stack.push(t);
+                    stack.push(c);
+                }
+            }
+            ExprView::Product { coef, factors } => {
+                inner.insert(x);
+                stack.push(coef);
+                for (b, r) in factors {
+                    let q = match r.as_small() {
+                        Some((_, q)) => q,
+                        None => return Err(WorkLimit::Degree),
+                    };
+                    if q > 1 && !is_opaque(b) {
+                        // A sum, product or number under a root: the root is the atom.
+                        opaque.insert(root(b, q));
+                    } else {
+                        stack.push(b);
+                    }
+                    if q > 1 && is_opaque(b) {
+                        let l = lcm.entry(b).or_insert(1);
+                        *l = num_integer::lcm(*l, q);
+                        if *l > i64::from(limits.max_degree) {
+                            return Err(WorkLimit::Degree);
+                        }
+                    }
+                }
+            }
+            _ => {
+                opaque.insert(x);
+            }
+        }
+        if opaque.len() > limits.max_atoms {
+            return Err(WorkLimit::Atoms);
+        }
+    }
+    Ok((inner, opaque, lcm))
 }
 
 /// Parameters, constants, floats, functions, `atan2` and general powers: the symbols of the
@@ -320,7 +396,7 @@ pub fn normalize_rational(e: Expr) -> Result<Expr, SymError> {
     }
 }
 
-enum Fail {
+pub(crate) enum Fail {
     Limit(WorkLimit),
     ZeroDenominator,
 }
@@ -333,13 +409,30 @@ impl From<WorkLimit> for Fail {
 
 /// `num/den`, coprime, `den` monic.
 #[derive(Clone, Debug)]
-struct Rf {
-    num: Poly,
-    den: Poly,
+pub(crate) struct Rf {
+    pub(crate) num: Poly,
+    pub(crate) den: Poly,
 }
 
 impl Rf {
-    fn zero(n: usize) -> Rf {
+    /// A polynomial as a rational function.
+    pub(crate) fn of(p: Poly) -> Rf {
+        let n = p.nvars;
+        Rf {
+            num: p,
+            den: Poly::one(n),
+        }
+    }
+
+    /// `−self`.
+    pub(crate) fn neg(&self) -> Rf {
+        Rf {
+            num: self.num.neg(),
+            den: self.den.clone(),
+        }
+    }
+
+    pub(crate) fn zero(n: usize) -> Rf {
         Rf {
             num: Poly::zero(n),
             den: Poly::one(n),
@@ -357,7 +450,7 @@ impl Rf {
 
     /// Henrici: with `g = gcd(q₁, q₂)`, `n = p₁·(q₂/g) + p₂·(q₁/g)`, the only common factor
     /// of `n` and `q₁q₂/g` divides `g`.
-    fn add(&self, o: &Rf, b: &mut Budget) -> Result<Rf, Fail> {
+    pub(crate) fn add(&self, o: &Rf, b: &mut Budget) -> Result<Rf, Fail> {
         if self.num.is_zero() {
             return Ok(o.clone());
         }
@@ -378,7 +471,7 @@ impl Rf {
     }
 
     /// Cross-cancellation: `(p₁/q₁)(p₂/q₂)` with `gcd(p₁, q₂)` and `gcd(p₂, q₁)` removed.
-    fn mul(&self, o: &Rf, b: &mut Budget) -> Result<Rf, Fail> {
+    pub(crate) fn mul(&self, o: &Rf, b: &mut Budget) -> Result<Rf, Fail> {
         let n = self.num.nvars;
         if self.num.is_zero() || o.num.is_zero() {
             return Ok(Rf::zero(n));
@@ -390,7 +483,7 @@ impl Rf {
         Rf { num, den }.normalised(b)
     }
 
-    fn powi(&self, k: i64, b: &mut Budget) -> Result<Rf, Fail> {
+    pub(crate) fn powi(&self, k: i64, b: &mut Budget) -> Result<Rf, Fail> {
         let base = if k < 0 {
             if self.num.is_zero() {
                 return Err(Fail::ZeroDenominator);
@@ -436,21 +529,8 @@ impl Rf {
                 denominator: Expr::one(),
             });
         }
-        let mono = |m: &[u32]| -> Expr {
-            Expr::product(
-                m.iter()
-                    .zip(atoms)
-                    .filter(|(k, _)| **k > 0)
-                    .map(|(k, a)| a.powi(*k as i64)),
-            )
-        };
-        let poly = |p: &Poly| -> Expr {
-            Expr::sum(
-                p.terms
-                    .iter()
-                    .map(|(e, k)| Expr::from_rational(k.clone()) * mono(e)),
-            )
-        };
+        let mono = |m: &[u32]| monomial_expr(m, atoms);
+        let poly = |p: &Poly| poly_expr(p, atoms);
         let c = self.num.lc();
         let num = self.num.monic(b)?;
         let mn = num.monomial_content();
@@ -466,4 +546,23 @@ impl Rf {
             denominator,
         })
     }
+}
+
+/// `Π atomᵢ^mᵢ` through the pool.
+pub(crate) fn monomial_expr(m: &[u32], atoms: &[Expr]) -> Expr {
+    Expr::product(
+        m.iter()
+            .zip(atoms)
+            .filter(|(k, _)| **k > 0)
+            .map(|(k, a)| a.powi(*k as i64)),
+    )
+}
+
+/// A polynomial in `atoms` through the pool.
+pub(crate) fn poly_expr(p: &Poly, atoms: &[Expr]) -> Expr {
+    Expr::sum(
+        p.terms
+            .iter()
+            .map(|(e, k)| Expr::from_rational(k.clone()) * monomial_expr(e, atoms)),
+    )
 }
