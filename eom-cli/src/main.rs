@@ -16,6 +16,7 @@ mod list;
 mod params;
 mod plot;
 mod sweep;
+mod symbolic;
 
 use crate::analyze::{AnalyzeOptions, FreqRequest};
 use crate::codegen::CodegenRequest;
@@ -94,6 +95,18 @@ enum Command {
         include it with `include!`."
     )]
     Codegen(CodegenArgs),
+    /// Show the model in closed form: A, B, C, D, the characteristic polynomial, stability
+    /// conditions and transfer functions
+    #[command(long_about = "Show the model in closed form.\n\n\
+        Prints A, B, C, D as simplified expressions of the parameters (structural zeros as \
+        zeros), the characteristic polynomial det(sI − A) with its exact common factors divided \
+        out, and for two-state models the natural frequency and damping ratio. --stability adds \
+        the Hurwitz (Liénard–Chipart) conditions, each as `expression > 0` with the factors \
+        whose sign the parameters' declared ranges fix divided out; --solve-for NAME solves \
+        them for a parameter where they are of degree ≤ 2 in it; --transfer adds the transfer \
+        function of every output/input pair. --set NAME=VALUE substitutes exact values first, \
+        so that only the parameters being explored stay symbolic.")]
+    Symbolic(SymbolicArgs),
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -218,6 +231,41 @@ struct CodegenArgs {
     module: Option<String>,
 }
 
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum SymbolicFormat {
+    /// Plain text for a terminal
+    Text,
+    /// LaTeX (an align* block)
+    Latex,
+    /// JSON, with expressions in the syntax `eom` parses
+    Json,
+}
+
+#[derive(Args, Debug)]
+struct SymbolicArgs {
+    /// Model name (see `eom list`)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// Substitute a parameter by an exact value (repeatable; `0.21` is 21/100)
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = SymbolicFormat::Text)]
+    format: SymbolicFormat,
+    /// Add the stability conditions
+    #[arg(long)]
+    stability: bool,
+    /// Solve the stability conditions for this parameter (implies --stability)
+    #[arg(long, value_name = "NAME")]
+    solve_for: Option<String>,
+    /// Add the transfer function of every output/input pair
+    #[arg(long)]
+    transfer: bool,
+    /// Largest number of states for the closed forms (default 8; the work grows as n·2ⁿ)
+    #[arg(long, value_name = "N")]
+    max_states: Option<usize>,
+}
+
 /// Where the output goes: standard output, or a note on standard error.
 struct Output {
     stdout: String,
@@ -312,6 +360,32 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 module: c.module,
             };
             codegen::codegen(&choice, &overrides, &req, &c.output)?
+        }
+        Command::Symbolic(a) => {
+            let choice = ModelChoice::resolve(&a.model)?;
+            // Checked as numbers (names, finiteness), kept as text for exact substitution.
+            choice.parse_sets(&a.set)?;
+            let texts: Vec<(String, String)> = a
+                .set
+                .iter()
+                .filter_map(|s| s.split_once('='))
+                .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
+                .collect();
+            let req = symbolic::SymbolicRequest {
+                stability: a.stability,
+                solve_for: a.solve_for,
+                transfer: a.transfer,
+                max_states: a.max_states,
+            };
+            if let Some(name) = &req.solve_for {
+                choice.param(name)?;
+            }
+            let r = symbolic::symbolic(&choice, &texts, &req)?;
+            match a.format {
+                SymbolicFormat::Text => r.to_text(),
+                SymbolicFormat::Latex => r.to_latex(),
+                SymbolicFormat::Json => json(&r)?,
+            }
         }
     };
     Ok(Output { stdout, stderr })

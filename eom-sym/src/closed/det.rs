@@ -75,7 +75,11 @@ fn minor(m: &[Vec<Linear>], used: u64, memo: &mut HashMap<u64, Vec<Expr>>) -> Ve
         let (c0, c1) = m[k][j];
         if !(c0.is_zero() && c1.is_zero()) {
             let sub = minor(m, used | (1 << j), memo);
-            let sign = if position.is_multiple_of(2) { 1i64 } else { -1i64 };
+            let sign = if position.is_multiple_of(2) {
+                1i64
+            } else {
+                -1i64
+            };
             for (d, &x) in sub.iter().enumerate() {
                 if x.is_zero() {
                     continue;
