@@ -37,6 +37,8 @@ pub struct AnalyzeOptions {
     pub method: Method,
     /// Frequency response, when asked for.
     pub freq: Option<FreqRequest>,
+    /// Eigenvalue sensitivities to every parameter.
+    pub sensitivity: bool,
 }
 
 /// The frequency grid asked for on the command line.
@@ -90,6 +92,54 @@ pub struct Analysis {
     /// The frequency response (only with `--freq`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frequency_response: Option<FreqReport>,
+    /// `∂λ/∂p` of every eigenvalue (only with `--sensitivity`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensitivity: Option<Vec<SensitivityReport>>,
+}
+
+/// The sensitivities of one eigenvalue.
+#[derive(Clone, Debug, Serialize)]
+pub struct SensitivityReport {
+    /// The eigenvalue.
+    pub eigenvalue: ReIm,
+    /// Its condition number (large: nearly defective).
+    pub condition: f64,
+    /// `∂λ/∂p` by parameter, in catalogue order; `null` when the eigenvalue is defective or
+    /// nearly so (the derivative is then unbounded).
+    #[serde(serialize_with = "ordered_map_opt")]
+    pub derivatives: Option<Vec<(String, ReIm)>>,
+}
+
+fn ordered_map_opt<S: serde::Serializer>(
+    v: &Option<Vec<(String, ReIm)>>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(v) => s.collect_map(v.iter().map(|(k, x)| (k, x))),
+        None => s.serialize_none(),
+    }
+}
+
+/// `∂λ/∂p` at the point, by the symbolic model reduced there (exact `∂A/∂p`).
+fn sensitivity_report(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+) -> Result<Vec<SensitivityReport>, CliError> {
+    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    let model = models::build(&choice.name, &ov)?;
+    let sym = Linearizer::new(&model).symbolic()?;
+    let s = eom_model::sensitivities(&sym, &model.scope.nominal_values())?;
+    Ok(s.eigenvalues
+        .iter()
+        .map(|e| SensitivityReport {
+            eigenvalue: re_im(&[e.eigenvalue])[0].clone(),
+            condition: e.condition,
+            derivatives: e
+                .derivatives
+                .as_ref()
+                .map(|d| s.params.iter().cloned().zip(re_im(d)).collect()),
+        })
+        .collect())
 }
 
 /// An input or output signal.
@@ -332,6 +382,9 @@ pub fn analyze(
         .iter()
         .map(|p| (p.name.to_string(), p.unit.to_string()))
         .collect();
+    if opts.sensitivity {
+        r.sensitivity = Some(sensitivity_report(choice, overrides)?);
+    }
     Ok(r)
 }
 
@@ -398,6 +451,7 @@ fn analyze_state_space(
         zeros,
         warnings,
         frequency_response,
+        sensitivity: None,
     })
 }
 

@@ -238,6 +238,10 @@ impl Analysis {
             t.push('\n');
         }
 
+        if let Some(sens) = &self.sensitivity {
+            t.push_str(&sensitivity_text(sens));
+        }
+
         t.push_str("Warnings\n");
         if self.warnings.is_empty() {
             t.push_str("  none\n");
@@ -247,4 +251,32 @@ impl Analysis {
         }
         t
     }
+}
+
+/// The sensitivities as one table per eigenvalue of each conjugate pair (upper member).
+fn sensitivity_text(sens: &[crate::analyze::SensitivityReport]) -> String {
+    let mut t =
+        String::from("Eigenvalue sensitivities ∂λ/∂p (exact ∂A/∂p, numeric eigenvectors)\n");
+    for s in sens.iter().filter(|s| s.eigenvalue.im >= 0.0) {
+        let l = Complex64::new(s.eigenvalue.re, s.eigenvalue.im);
+        t.push_str(&format!(
+            "  λ = {}\n",
+            eigenvalue(l, SIG, s.eigenvalue.im > 0.0)
+        ));
+        match &s.derivatives {
+            None => t.push_str(&format!(
+                "    defective or nearly so (condition number {}): the derivative is unbounded\n",
+                g(s.condition, 3)
+            )),
+            Some(d) => {
+                let rows: Vec<Vec<String>> = d
+                    .iter()
+                    .map(|(p, z)| vec![format!("    {p}"), g(z.re, SIG), g(z.im, SIG)])
+                    .collect();
+                t.push_str(&table(&["    parameter", "Re ∂λ/∂p", "Im ∂λ/∂p"], &rows, 2));
+            }
+        }
+    }
+    t.push('\n');
+    t
 }

@@ -178,6 +178,10 @@ struct AnalyzeArgs {
     /// Draw the poles and transmission zeros in the complex plane into an SVG file
     #[arg(long, value_name = "FILE.svg")]
     plot_poles: Option<PathBuf>,
+    /// Eigenvalue sensitivities ∂λ/∂p to every parameter (exact ∂A/∂p from the symbolic
+    /// model, numeric eigenvectors; defective eigenvalues are flagged, not given a number)
+    #[arg(long)]
+    sensitivity: bool,
 }
 
 #[derive(Args, Debug)]
@@ -308,6 +312,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             let opts = AnalyzeOptions {
                 method: a.method.into(),
                 freq,
+                sensitivity: a.sensitivity,
             };
             let r = analyze::analyze(&choice, &overrides, &opts)?;
             for (option, path) in plots {

@@ -64,6 +64,7 @@ pub mod items;
 pub mod linearize;
 pub mod reduce;
 pub mod robust;
+pub mod sensitivity;
 
 pub use assemble::{Assembled, RowLabel, assemble};
 pub use error::ModelError;
@@ -74,6 +75,7 @@ pub use reduce::{
     ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
+pub use sensitivity::{Sensitivities, sensitivities};
 
 use eom_sym::ExprPool;
 use eom_sym::expr::Expr;

@@ -123,6 +123,7 @@ pub mod gain;
 pub mod linalg;
 pub mod minreal;
 pub mod modes;
+pub mod sensitivity;
 pub mod statespace;
 pub mod sweep;
 pub mod time;

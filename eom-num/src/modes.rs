@@ -186,6 +186,8 @@ pub(crate) struct Eigen {
     pub values: Vec<Complex64>,
     /// Right eigenvectors (columns, original coordinates, unit 2-norm).
     pub right: DMatrix<Complex64>,
+    /// Left eigenvectors (columns `y` with `yᴴA = λyᴴ`, original coordinates, unit 2-norm).
+    pub left: DMatrix<Complex64>,
     /// Eigenvalue condition numbers κᵢ (computed on the balanced matrix).
     pub condition: Vec<f64>,
     /// Frobenius norm of the balanced matrix.
@@ -262,11 +264,19 @@ pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumEr
             1.0 / f64::EPSILON
         };
     }
-    // Back to original coordinates x = D x̃, unit 2-norm.
+    // Back to original coordinates x = D x̃, y = D⁻¹ ỹ, unit 2-norm.
     for k in 0..n {
         let mut col = xr.column_mut(k);
         for i in 0..n {
             col[i] *= scale[i];
+        }
+        let nn = col.norm();
+        if nn > 0.0 {
+            col.unscale_mut(nn);
+        }
+        let mut col = yl.column_mut(k);
+        for i in 0..n {
+            col[i] /= scale[i];
         }
         let nn = col.norm();
         if nn > 0.0 {
@@ -278,6 +288,7 @@ pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumEr
     Ok(Eigen {
         values: order.iter().map(|&k| values[k]).collect(),
         right: DMatrix::from_fn(n, n, |i, j| xr[(i, order[j])]),
+        left: DMatrix::from_fn(n, n, |i, j| yl[(i, order[j])]),
         condition: order.iter().map(|&k| condition[k]).collect(),
         norm,
     })
