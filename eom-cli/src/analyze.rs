@@ -132,7 +132,7 @@ fn sensitivity_report(
     Ok(s.eigenvalues
         .iter()
         .map(|e| SensitivityReport {
-            eigenvalue: re_im(&[e.eigenvalue])[0].clone(),
+            eigenvalue: e.eigenvalue.into(),
             condition: e.condition,
             derivatives: e
                 .derivatives
