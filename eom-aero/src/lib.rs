@@ -1,0 +1,22 @@
+//! # eom-aero — quasi-steady wing aerodynamics
+//!
+//! (crate docs written below)
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod derivatives;
+pub mod error;
+pub mod geometry;
+mod kernel;
+mod lattice;
+pub mod solver;
+pub mod spacing;
+pub mod stability;
+
+pub use derivatives::{Derivatives, Reference, StabilityDerivatives};
+pub use error::{AeroError, Result};
+pub use geometry::{Configuration, Section, Surface, Symmetry};
+pub use solver::{LatticeSize, Solution, SolverOptions, Totals, solve};
+pub use spacing::Spacing;
+pub use stability::BodyFromStability;
