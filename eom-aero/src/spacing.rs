@@ -119,9 +119,11 @@ pub(crate) struct ChordStations {
 ///   the exact 2-D flat-plate lift and moment for every N and converge fastest in 3-D.
 /// * Sine spacing: the ¼–¾ rule applied in the sine-stretched parameter.
 ///
-/// Intermediate parameters blend the stations with the weights of the spacing blend.
+/// Intermediate parameters blend the stations with the weights of the spacing blend. A
+/// single panel has nothing to distribute: it is the ¼–¾ (Weissinger) panel whatever the
+/// parameter, so that the load of a one-panel lattice acts at the quarter chord.
 pub(crate) fn chord_stations(s: Spacing) -> ChordStations {
-    let b = blend(s.parameter);
+    let b = blend(if s.count == 1 { 0.0 } else { s.parameter });
     let n = s.count as f64;
     let mut vortex = Vec::with_capacity(s.count);
     let mut control = Vec::with_capacity(s.count);

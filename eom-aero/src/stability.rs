@@ -71,7 +71,7 @@ pub(crate) fn from_body(d: &Derivatives, alpha_deg: f64, totals: [f64; 6]) -> St
 
 /// Body-axis derivatives recovered from stability-axis ones, as far as they determine them.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct BodyFromStability {
+pub struct BodyDerivatives {
     /// The body-axis derivatives; entries that cannot be recovered are 0.
     pub derivatives: Derivatives,
     /// `known[i][j]` tells whether entry (i, j) was recovered.
@@ -87,7 +87,7 @@ pub(crate) fn to_body(
     st: &StabilityDerivatives,
     has_drag_rows: bool,
     totals: Option<[f64; 6]>,
-) -> BodyFromStability {
+) -> BodyDerivatives {
     let alpha = st.alpha_deg.to_radians();
     let (s, c) = alpha.sin_cos();
     let a = &st.coefficients;
@@ -163,7 +163,7 @@ pub(crate) fn to_body(
             }
         }
     }
-    BodyFromStability {
+    BodyDerivatives {
         derivatives: Derivatives {
             reference: st.reference,
             coefficients: b,
