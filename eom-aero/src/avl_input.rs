@@ -56,13 +56,12 @@ pub fn parse_avl(text: &str, file: &str) -> Result<Configuration> {
     }
     let r = lines.numbers("Sref Cref Bref", &["Sref", "Cref", "Bref"], 3)?;
     let p = lines.numbers("Xref Yref Zref", &["Xref", "Yref", "Zref"], 3)?;
-    let mut config = Configuration::new(title, Reference::new(r[0], r[1], r[2], [p[0], p[1], p[2]]));
+    let mut config =
+        Configuration::new(title, Reference::new(r[0], r[1], r[2], [p[0], p[1], p[2]]));
     config.mach = mach;
     config.symmetry = symmetry;
-    if let Some((_, t)) = lines.peek() {
-        if first_number(t).is_some() {
-            config.cdp = lines.numbers("CDp", &["CDp"], 1)?[0];
-        }
+    if lines.peek().is_some_and(|(_, t)| first_number(t).is_some()) {
+        config.cdp = lines.numbers("CDp", &["CDp"], 1)?[0];
     }
     let mut reader = SurfaceReader::default();
     while let Some((line, text)) = lines.next_line() {
@@ -157,13 +156,20 @@ impl<'a> Lines<'a> {
 
     /// The next line's numbers: the `required` first ones must be there; further ones up to
     /// `names.len()` are read while they are numbers (text after them is a remark).
-    fn numbers_at(&mut self, what: &str, names: &[&str], required: usize) -> Result<(usize, Vec<f64>)> {
+    fn numbers_at(
+        &mut self,
+        what: &str,
+        names: &[&str],
+        required: usize,
+    ) -> Result<(usize, Vec<f64>)> {
         let (line, text) = self.next_data(what)?;
         let mut out = Vec::new();
         let mut toks = tokens(text);
         for (k, name) in names.iter().enumerate() {
             let tok = toks.next();
-            let value = tok.and_then(|t| t.parse::<f64>().ok()).filter(|v| v.is_finite());
+            let value = tok
+                .and_then(|t| t.parse::<f64>().ok())
+                .filter(|v| v.is_finite());
             match (value, k < required) {
                 (Some(v), _) => out.push(v),
                 (None, false) => break,
@@ -209,7 +215,13 @@ impl SurfaceReader {
         }
     }
 
-    fn keyword(&mut self, lines: &mut Lines, config: &mut Configuration, line: usize, text: &str) -> Result<()> {
+    fn keyword(
+        &mut self,
+        lines: &mut Lines,
+        config: &mut Configuration,
+        line: usize,
+        text: &str,
+    ) -> Result<()> {
         let word = tokens(text).next().unwrap_or("");
         let key: String = word.to_ascii_uppercase().chars().take(4).collect();
         let file = lines.file;
@@ -285,12 +297,20 @@ impl SurfaceReader {
                 self.surface(lines, line, word)?;
                 let (_, text) = lines.next_data("the NACA digits")?;
                 let digits = tokens(text).next().unwrap_or("");
-                if digits.len() == 4 && digits.starts_with('0') && digits.chars().all(|c| c.is_ascii_digit()) {
+                if digits.len() == 4
+                    && digits.starts_with('0')
+                    && digits.chars().all(|c| c.is_ascii_digit())
+                {
                     Ok(())
                 } else {
-                    Err(unsupported(file, line, word, &format!(
-                        "NACA {digits} has camber; only symmetric sections (0xxx, a flat camber line) are supported"
-                    )))
+                    Err(unsupported(
+                        file,
+                        line,
+                        word,
+                        &format!(
+                            "NACA {digits} has camber; only symmetric sections (0xxx, a flat camber line) are supported"
+                        ),
+                    ))
                 }
             }
             "CLAF" => {
@@ -299,14 +319,44 @@ impl SurfaceReader {
                 if v[0] == 1.0 {
                     Ok(())
                 } else {
-                    Err(unsupported(file, line, word, "a lift-slope factor other than 1 is not supported"))
+                    Err(unsupported(
+                        file,
+                        line,
+                        word,
+                        "a lift-slope factor other than 1 is not supported",
+                    ))
                 }
             }
-            "AIRF" | "AFIL" => Err(unsupported(file, line, word, "camber lines are not supported (flat-plate lattice)")),
-            "BODY" | "BFIL" => Err(unsupported(file, line, word, "slender bodies are not supported")),
-            "CDCL" => Err(unsupported(file, line, word, "the lattice is inviscid: no profile-drag polar")),
-            "CONT" | "DESI" => Err(unsupported(file, line, word, "control and design variables are not supported")),
-            "NOWA" => Err(unsupported(file, line, word, "surfaces without a wake (no Kutta condition) are not supported")),
+            "AIRF" | "AFIL" => Err(unsupported(
+                file,
+                line,
+                word,
+                "camber lines are not supported (flat-plate lattice)",
+            )),
+            "BODY" | "BFIL" => Err(unsupported(
+                file,
+                line,
+                word,
+                "slender bodies are not supported",
+            )),
+            "CDCL" => Err(unsupported(
+                file,
+                line,
+                word,
+                "the lattice is inviscid: no profile-drag polar",
+            )),
+            "CONT" | "DESI" => Err(unsupported(
+                file,
+                line,
+                word,
+                "control and design variables are not supported",
+            )),
+            "NOWA" => Err(unsupported(
+                file,
+                line,
+                word,
+                "surfaces without a wake (no Kutta condition) are not supported",
+            )),
             _ => Err(lines.err(line, format!("unknown keyword `{word}`"))),
         }
     }
@@ -319,7 +369,9 @@ impl SurfaceReader {
         };
         if let Err(e) = surface.validate() {
             let at = match &e {
-                AeroError::Geometry { section: Some(k), .. } => sec_lines.get(*k).copied().unwrap_or(line),
+                AeroError::Geometry {
+                    section: Some(k), ..
+                } => sec_lines.get(*k).copied().unwrap_or(line),
                 _ => line,
             };
             return Err(AeroError::Parse {

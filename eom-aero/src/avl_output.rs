@@ -74,7 +74,11 @@ impl AvlOutput {
     /// for [`AvlOutput::derivatives`] are checked here.
     pub fn parse(text: &str, file: &str) -> Result<Self> {
         let scan = Scan::new(text);
-        let kind = match (scan.find_line("Geometry-axis derivatives"), scan.find_line("Body-axis derivatives"), scan.find_line("Stability-axis derivatives")) {
+        let kind = match (
+            scan.find_line("Geometry-axis derivatives"),
+            scan.find_line("Body-axis derivatives"),
+            scan.find_line("Stability-axis derivatives"),
+        ) {
             (Some(_), _, _) | (_, Some(_), _) => AvlOutputKind::Body,
             (_, _, Some(_)) => AvlOutputKind::Stability,
             _ => {
@@ -99,7 +103,12 @@ impl AvlOutput {
             entries: scan.entries,
         };
         let g = |name: &str| out.required(name);
-        let reference = Reference::new(g("Sref")?, g("Cref")?, g("Bref")?, [g("Xref")?, g("Yref")?, g("Zref")?]);
+        let reference = Reference::new(
+            g("Sref")?,
+            g("Cref")?,
+            g("Bref")?,
+            [g("Xref")?, g("Yref")?, g("Zref")?],
+        );
         let (alpha, beta, mach) = (g("Alpha")?, g("Beta")?, g("Mach")?);
         out.reference = reference;
         (out.alpha_deg, out.beta_deg, out.mach) = (alpha, beta, mach);
@@ -199,7 +208,10 @@ impl AvlOutput {
     /// are present.
     pub fn totals(&self) -> Result<Option<[f64; 6]>> {
         let mut t = [0.0; 6];
-        for (k, name) in ["CXtot", "CYtot", "CZtot", "Cltot", "Cmtot", "Cntot"].iter().enumerate() {
+        for (k, name) in ["CXtot", "CYtot", "CZtot", "Cltot", "Cmtot", "Cntot"]
+            .iter()
+            .enumerate()
+        {
             match self.value(name)? {
                 Some(v) => t[k] = v,
                 None => return Ok(None),
@@ -225,7 +237,10 @@ impl AvlOutput {
                     return Err(AeroError::Parse {
                         file: self.file.clone(),
                         line,
-                        message: format!("Beta = {}: stability-axis files are converted at zero sideslip only", self.beta_deg),
+                        message: format!(
+                            "Beta = {}: stability-axis files are converted at zero sideslip only",
+                            self.beta_deg
+                        ),
                     });
                 }
                 let (st, has_drag) = self.stability_table()?;
@@ -278,7 +293,11 @@ impl<'a> Scan<'a> {
             }
             for (name, text) in pairs(line) {
                 if !entries.iter().any(|e| e.name == name) {
-                    entries.push(Entry { name, line: i + 1, text });
+                    entries.push(Entry {
+                        name,
+                        line: i + 1,
+                        text,
+                    });
                 }
             }
         }
@@ -307,7 +326,9 @@ impl<'a> Scan<'a> {
             let toks: Vec<&str> = l.split_whitespace().collect();
             for w in toks.windows(2) {
                 let tag = w[1];
-                let numbered = tag.len() > 1 && tag.starts_with('d') && tag[1..].chars().all(|c| c.is_ascii_digit());
+                let numbered = tag.len() > 1
+                    && tag.starts_with('d')
+                    && tag[1..].chars().all(|c| c.is_ascii_digit());
                 if numbered {
                     let index: usize = tag[1..].parse().unwrap_or(0);
                     if !out.iter().any(|(k, _)| *k == index) {
@@ -356,7 +377,9 @@ mod tests {
         let names: Vec<_> = p.iter().map(|(n, _)| n.as_str()).collect();
         assert_eq!(names, ["Alpha", "pb/2V", "p'b/2V"]);
         assert_eq!(p[0].1, "5.00000");
-        assert!(pairs(" Clb Cnr / Clr Cnb  =  -3.108476    (  > 1 if spirally stable )").is_empty());
+        assert!(
+            pairs(" Clb Cnr / Clr Cnb  =  -3.108476    (  > 1 if spirally stable )").is_empty()
+        );
         assert_eq!(pairs(" CYu =")[0].1, "");
     }
 }

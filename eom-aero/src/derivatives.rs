@@ -85,11 +85,10 @@ impl Derivatives {
     /// The row and column of an AVL derivative name (`"CXu"` … `"Cnr"`), case-sensitive
     /// because AVL's CL (lift) and Cl (roll) differ only in case.
     pub fn index_of(name: &str) -> Option<(usize, usize)> {
-        NAMES.iter().enumerate().find_map(|(i, row)| {
-            row.iter()
-                .position(|&n| n == name)
-                .map(|j| (i, j))
-        })
+        NAMES
+            .iter()
+            .enumerate()
+            .find_map(|(i, row)| row.iter().position(|&n| n == name).map(|j| (i, j)))
     }
 
     /// The value of an AVL-named derivative, e.g. `get("Cnr")`.

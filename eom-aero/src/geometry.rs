@@ -232,7 +232,7 @@ impl Surface {
             return Err(self.err(None, "Nspan/Sspace", r));
         }
         check_finite(self, None, "scale", &self.scale)?;
-        if self.scale.iter().any(|&s| s == 0.0) {
+        if self.scale.contains(&0.0) {
             return Err(self.err(None, "scale", "factors must be nonzero".into()));
         }
         check_finite(self, None, "translate", &self.translate)?;
@@ -279,8 +279,7 @@ impl Surface {
                     return Err(self.err(
                         Some(k + 1),
                         "leading edge",
-                        "coincides with the previous section in the y-z plane (zero span)"
-                            .into(),
+                        "coincides with the previous section in the y-z plane (zero span)".into(),
                     ));
                 }
             }

@@ -82,7 +82,11 @@ pub(crate) fn horseshoe(p: Vec3, a: Vec3, b: Vec3) -> Vec3 {
     let s = segment(p, a, b);
     let la = trailing_leg(p, a);
     let lb = trailing_leg(p, b);
-    [s[0] + lb[0] - la[0], s[1] + lb[1] - la[1], s[2] + lb[2] - la[2]]
+    [
+        s[0] + lb[0] - la[0],
+        s[1] + lb[1] - la[1],
+        s[2] + lb[2] - la[2],
+    ]
 }
 
 #[cfg(test)]
@@ -111,8 +115,14 @@ mod tests {
 
     #[test]
     fn points_on_the_line_get_zero() {
-        assert_eq!(segment([0.5, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]), [0.0; 3]);
-        assert_eq!(segment([2.0, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]), [0.0; 3]);
+        assert_eq!(
+            segment([0.5, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]),
+            [0.0; 3]
+        );
+        assert_eq!(
+            segment([2.0, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]),
+            [0.0; 3]
+        );
         assert_eq!(trailing_leg([3.0, 0.0, 0.0], [0.0; 3]), [0.0; 3]);
         assert_eq!(trailing_leg([0.0; 3], [0.0; 3]), [0.0; 3]);
     }

@@ -132,7 +132,12 @@ fn strips(surface: &Surface, placed: &[Placed]) -> Result<Vec<Strip>> {
 /// Strips distributed over the whole surface: the nodes nearest the interior sections are
 /// moved onto them, so that every strip lies within one section interval, and the stations
 /// in between are stretched linearly.
-fn surface_strips(surface: &Surface, placed: &[Placed], sp: Spacing, out: &mut Vec<Strip>) -> Result<()> {
+fn surface_strips(
+    surface: &Surface,
+    placed: &[Placed],
+    sp: Spacing,
+    out: &mut Vec<Strip>,
+) -> Result<()> {
     let intervals = placed.len() - 1;
     if sp.count < intervals {
         return Err(AeroError::Geometry {
@@ -153,7 +158,11 @@ fn surface_strips(surface: &Surface, placed: &[Placed], sp: Spacing, out: &mut V
     for k in 1..intervals {
         let target = pos[k] / total;
         let nearest = (0..=sp.count)
-            .min_by(|&i, &j| (nodes[i] - target).abs().total_cmp(&(nodes[j] - target).abs()))
+            .min_by(|&i, &j| {
+                (nodes[i] - target)
+                    .abs()
+                    .total_cmp(&(nodes[j] - target).abs())
+            })
             .unwrap_or(0);
         snapped[k] = nearest.clamp(snapped[k - 1] + 1, sp.count - (intervals - k));
     }
@@ -179,22 +188,34 @@ fn add_strip(panels: &mut Vec<Panel>, surface: &Surface, placed: &[Placed], stri
     let chord = |t: f64| s0.chord + (s1.chord - s0.chord) * t;
     let (l0, l1, lc) = (le(strip.t0), le(strip.t1), le(strip.tc));
     let (c0, c1, cc) = (chord(strip.t0), chord(strip.t1), chord(strip.tc));
-    // the strip is a planar trapezoid (both edges along x), so its normal is x̂ × span
+    // The section chord lines are tilted nose up by their incidence about the strip's
+    // spanwise direction in the y-z plane, and interpolated linearly between sections
+    // (leading and trailing edges alike, so the incidence is chord-weighted). The normal of
+    // flow tangency of a panel is perpendicular to that chord line and to the panel's bound
+    // vortex: on a swept panel with incidence it gains a spanwise component (sideslip then
+    // changes the flow through the panel), and on a tapered strip each chordwise row has
+    // its own sweep.
     let x_hat = [1.0, 0.0, 0.0];
-    let n = cross(x_hat, sub(l1, l0));
-    let n = scale(n, 1.0 / norm(n));
-    // incidence tilts the normal in the streamwise plane: flow tangency sees sin(α + Ainc)
-    let inc = s0.incidence + (s1.incidence - s0.incidence) * strip.tc;
-    let normal = add(scale(n, inc.cos()), scale(x_hat, inc.sin()));
+    let span = sub(l1, l0);
+    let span_yz = [0.0, span[1], span[2]];
+    let nose_down = cross(scale(span_yz, 1.0 / norm(span_yz)), x_hat);
+    let tilted = |a: f64| add(scale(x_hat, a.cos()), scale(nose_down, a.sin()));
+    let t = strip.tc;
+    let chord_line = add(
+        scale(tilted(s0.incidence), (1.0 - t) * s0.chord),
+        scale(tilted(s1.incidence), t * s1.chord),
+    );
     let along = |p: Vec3, c: f64, f: f64| [p[0] + c * f, p[1], p[2]];
     let stations = chord_stations(surface.chordwise);
     for (&xv, &xc) in stations.vortex.iter().zip(&stations.control) {
+        let (a, b) = (along(l0, c0, xv), along(l1, c1, xv));
+        let n = cross(chord_line, sub(b, a));
         panels.push(Panel {
-            a: along(l0, c0, xv),
-            b: along(l1, c1, xv),
+            a,
+            b,
             control: along(lc, cc, xc),
             force_point: along(lc, cc, xv),
-            normal,
+            normal: scale(n, 1.0 / norm(n)),
             te_a: l0[0] + c0,
             te_b: l1[0] + c1,
             loaded: !surface.no_load,

@@ -141,7 +141,10 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
     check_options(options)?;
     let lattice = lattice::build(config)?;
     let n = lattice.panels.len();
-    let (alpha, beta) = (options.alpha_deg.to_radians(), options.beta_deg.to_radians());
+    let (alpha, beta) = (
+        options.alpha_deg.to_radians(),
+        options.beta_deg.to_radians(),
+    );
     let trim = [
         alpha.cos() * beta.cos(),
         beta.sin(),
@@ -153,11 +156,17 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
     let field = Field::new(&lattice, config.mach);
     let reference = config.reference.point;
     let influence = Mat::<f64>::from_fn(n, n, |i, j| {
-        dot(lattice.panels[i].normal, field.induced(lattice.panels[i].control, j))
+        dot(
+            lattice.panels[i].normal,
+            field.induced(lattice.panels[i].control, j),
+        )
     });
     let rhs = Mat::<f64>::from_fn(n, 7, |i, s| {
         let p = &lattice.panels[i];
-        -dot(velocities(sub(p.control, reference), &trim, p.sees_flow_angles)[s], p.normal)
+        -dot(
+            velocities(sub(p.control, reference), &trim, p.sees_flow_angles)[s],
+            p.normal,
+        )
     });
     let lu = influence.partial_piv_lu();
     check_pivots(lu.U(), n)?;
@@ -285,7 +294,12 @@ impl Loads {
     }
 }
 
-fn finish(config: &Configuration, options: &SolverOptions, lattice: &Lattice, loads: &Loads) -> Solution {
+fn finish(
+    config: &Configuration,
+    options: &SolverOptions,
+    lattice: &Lattice,
+    loads: &Loads,
+) -> Solution {
     let r = config.reference;
     let q_s = 0.5 * r.sref;
     let rows = r.row_lengths();
@@ -301,7 +315,10 @@ fn finish(config: &Configuration, options: &SolverOptions, lattice: &Lattice, lo
     }
     let fm = standard(loads.force[6], loads.moment[6]);
     let body: [f64; 6] = std::array::from_fn(|i| fm[i] / (q_s * rows[i]));
-    let (alpha, beta) = (options.alpha_deg.to_radians(), options.beta_deg.to_radians());
+    let (alpha, beta) = (
+        options.alpha_deg.to_radians(),
+        options.beta_deg.to_radians(),
+    );
     let (sa, ca) = alpha.sin_cos();
     let (sb, cb) = beta.sin_cos();
     let totals = Totals {

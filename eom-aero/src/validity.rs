@@ -24,7 +24,11 @@ pub const YAW_RATE_LIMIT: f64 = 0.25;
 /// zero airspeed with nonzero frequency, NaN never: zero frequency gives 0.
 pub fn reduced_frequency(eigen_imag: f64, chord: f64, speed: f64) -> f64 {
     let w = eigen_imag.abs();
-    if w == 0.0 { 0.0 } else { w * chord / speed.abs() }
+    if w == 0.0 {
+        0.0
+    } else {
+        w * chord / speed.abs()
+    }
 }
 
 /// Whether a reduced frequency exceeds [`REDUCED_FREQUENCY_LIMIT`].
@@ -56,7 +60,10 @@ pub fn check_rates(p: f64, q: f64, r: f64, span: f64, chord: f64, speed: f64) ->
     let v2 = 2.0 * speed.abs();
     let normalised = [p * span / v2, q * chord / v2, r * span / v2];
     let limits = [ROLL_RATE_LIMIT, PITCH_RATE_LIMIT, YAW_RATE_LIMIT];
-    let exceeded = std::array::from_fn(|k| !(normalised[k].abs() < limits[k]));
+    // NaN rates count as exceeded
+    let exceeded = std::array::from_fn(|k| {
+        normalised[k].abs().partial_cmp(&limits[k]) != Some(std::cmp::Ordering::Less)
+    });
     RateCheck {
         normalised,
         limits,
@@ -74,7 +81,9 @@ mod tests {
         let b = reduced_frequency(-2.3, 0.5, 10.0);
         assert!((b - 0.115).abs() < 1e-12);
         assert!(reduced_frequency_too_high(b));
-        assert!(!reduced_frequency_too_high(reduced_frequency(1.0, 0.5, 10.0)));
+        assert!(!reduced_frequency_too_high(reduced_frequency(
+            1.0, 0.5, 10.0
+        )));
         assert!(reduced_frequency(1.0, 0.5, 0.0).is_infinite());
     }
 

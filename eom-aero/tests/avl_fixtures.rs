@@ -9,6 +9,9 @@
 //! difference of a lift times a short arm, and the lattice's chordwise stations shift that
 //! arm by 1e-4 chords).
 
+// matrices are compared entry by entry, by (row, column)
+#![allow(clippy::needless_range_loop)]
+
 use eom_aero::{AvlOutput, Derivatives, SolverOptions, read_avl, solve};
 
 fn data(name: &str) -> String {
@@ -32,7 +35,11 @@ fn compare(ours: &[[f64; 6]; 6], avl: &[[f64; 6]; 6], what: &str) {
             }
         }
     }
-    println!("{what}: largest relative deviation {:.3} % ({})", 100.0 * worst.0, worst.1);
+    println!(
+        "{what}: largest relative deviation {:.3} % ({})",
+        100.0 * worst.0,
+        worst.1
+    );
 }
 
 #[test]
@@ -44,7 +51,11 @@ fn seed_fin_matches_avl_sb() {
     assert_eq!(sol.lattice.strips, 16);
     let avl = avl.derivatives().unwrap().derivatives;
     assert_eq!(avl.reference, sol.derivatives.reference);
-    compare(&sol.derivatives.coefficients, &avl.coefficients, "seed fin (SB)");
+    compare(
+        &sol.derivatives.coefficients,
+        &avl.coefficients,
+        "seed fin (SB)",
+    );
     // the five nonzero values of the seed paper's fin, each to 0.2 %
     for (name, value) in [
         ("CYv", -2.474202),
@@ -68,13 +79,27 @@ fn dihedral_wing_at_five_degrees_matches_avl_sb() {
         ..SolverOptions::default()
     };
     let sol = solve(&config, &options).unwrap();
-    assert_eq!((sol.lattice.surfaces, sol.lattice.strips, sol.lattice.vortices), (2, 32, 256));
+    assert_eq!(
+        (
+            sol.lattice.surfaces,
+            sol.lattice.strips,
+            sol.lattice.vortices
+        ),
+        (2, 32, 256)
+    );
     let avl_d = avl.derivatives().unwrap().derivatives;
-    compare(&sol.derivatives.coefficients, &avl_d.coefficients, "AR-6 dihedral, α = 5° (SB)");
+    compare(
+        &sol.derivatives.coefficients,
+        &avl_d.coefficients,
+        "AR-6 dihedral, α = 5° (SB)",
+    );
     // trim totals, printed by AVL with 5 decimals
     let t = avl.totals().unwrap().unwrap();
     for k in 0..6 {
-        assert!((sol.totals.body[k] - t[k]).abs() < 0.002 * 0.365 + 5e-6, "total {k}");
+        assert!(
+            (sol.totals.body[k] - t[k]).abs() < 0.002 * 0.365 + 5e-6,
+            "total {k}"
+        );
     }
     let cl = avl.value("CLtot").unwrap().unwrap();
     let cd = avl.value("CDind").unwrap().unwrap();
@@ -139,8 +164,17 @@ fn seed_wing_horizontal_matches_avl_st() {
     let sol = solve(&config, &SolverOptions::default()).unwrap();
     let st = sol.stability_derivatives().unwrap();
     let avl_st = avl.stability_derivatives().unwrap().unwrap();
-    st_compare(&st.coefficients, &avl_st.coefficients, "seed wing, horizontal (ST)");
-    for (name, value) in [("CLa", 2.474168), ("CLq", 2.674873), ("Cma", 0.100354), ("Cmq", -0.584575)] {
+    st_compare(
+        &st.coefficients,
+        &avl_st.coefficients,
+        "seed wing, horizontal (ST)",
+    );
+    for (name, value) in [
+        ("CLa", 2.474168),
+        ("CLq", 2.674873),
+        ("Cma", 0.100354),
+        ("Cmq", -0.584575),
+    ] {
         let x = st.get(name).unwrap();
         assert!((x / value - 1.0).abs() < 0.002, "{name}: {x} vs {value}");
     }

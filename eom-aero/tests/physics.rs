@@ -2,6 +2,9 @@
 //! has: mesh convergence, invariance under rotation, mirror symmetry, the 2-D limit,
 //! Weissinger's one-panel lattice, compressibility by Göthert's rule.
 
+// matrices are compared entry by entry, by (row, column)
+#![allow(clippy::needless_range_loop)]
+
 use eom_aero::{Configuration, Derivatives, Reference, Section, SolverOptions, Surface, solve};
 use std::f64::consts::PI;
 
@@ -48,7 +51,12 @@ fn seed_fin_dimensional_matches_mesh_converged_avl() {
     for (nc, ns) in [(8, 16), (16, 32)] {
         let l = seed_l(&derivs(&seed_fin(nc, ns)));
         for k in 0..4 {
-            assert!((l[k] / avl[k] - 1.0).abs() < 0.002, "{nc}x{ns} entry {k}: {} vs {}", l[k], avl[k]);
+            assert!(
+                (l[k] / avl[k] - 1.0).abs() < 0.002,
+                "{nc}x{ns} entry {k}: {} vs {}",
+                l[k],
+                avl[k]
+            );
         }
     }
 }
@@ -69,12 +77,25 @@ fn flat_plate_table() {
         let d = derivs(&plate(ar, 8, 16));
         let ours_cla = -d.get("CZw").unwrap();
         let ours_xac = 0.25 - d.get("Cmw").unwrap() / ours_cla;
-        let ours = [ours_cla, -d.get("CZq").unwrap(), d.get("Cmq").unwrap(), d.get("Clp").unwrap()];
-        for (x, a, name) in [(ours[0], cla, "CLa"), (ours[1], clq, "CLq"), (ours[2], cmq, "Cmq"), (ours[3], clp, "Clp")] {
+        let ours = [
+            ours_cla,
+            -d.get("CZq").unwrap(),
+            d.get("Cmq").unwrap(),
+            d.get("Clp").unwrap(),
+        ];
+        for (x, a, name) in [
+            (ours[0], cla, "CLa"),
+            (ours[1], clq, "CLq"),
+            (ours[2], cmq, "Cmq"),
+            (ours[3], clp, "Clp"),
+        ] {
             assert!((x / a - 1.0).abs() < 0.002, "AR {ar} {name}: {x} vs {a}");
         }
         // x_ac is tabulated to 3 decimals
-        assert!((ours_xac - xac).abs() <= 0.0005 + 0.002 * xac, "AR {ar} x_ac {ours_xac}");
+        assert!(
+            (ours_xac - xac).abs() <= 0.0005 + 0.002 * xac,
+            "AR {ar} x_ac {ours_xac}"
+        );
     }
 }
 
@@ -89,7 +110,9 @@ fn mesh_convergence() {
     let converged = loop {
         (nc, ns) = (2 * nc, 2 * ns);
         let now = values(&derivs(&seed_fin(nc, ns)));
-        let change = (0..5).map(|k| (now[k] / last[k] - 1.0).abs()).fold(0.0, f64::max);
+        let change = (0..5)
+            .map(|k| (now[k] / last[k] - 1.0).abs())
+            .fold(0.0, f64::max);
         last = now;
         if change < 0.001 {
             break (nc, ns);
@@ -101,7 +124,12 @@ fn mesh_convergence() {
     let l = seed_l(&derivs(&seed_fin(converged.0, converged.1)));
     let avl = [7.57725, -2.04804, 0.1538, 0.223803];
     for k in 0..4 {
-        assert!((l[k] / avl[k] - 1.0).abs() < 0.002, "{k}: {} vs {}", l[k], avl[k]);
+        assert!(
+            (l[k] / avl[k] - 1.0).abs() < 0.002,
+            "{k}: {} vs {}",
+            l[k],
+            avl[k]
+        );
     }
 }
 
@@ -124,14 +152,22 @@ fn horizontal_wing_and_vertical_fin_give_the_same_dimensional_numbers() {
 
 fn assert_decoupled(d: &Derivatives, what: &str) {
     // longitudinal rows (CX, CZ, Cm) × lateral columns (v, p, r) and the converse
-    let scale = d.coefficients.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = d
+        .coefficients
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
     for i in 0..6 {
         for j in 0..6 {
             let row_lat = matches!(i, 1 | 3 | 5);
             let col_lat = matches!(j, 1 | 3 | 5);
             if row_lat != col_lat {
                 let x = d.coefficients[i][j];
-                assert!(x.abs() < 1e-12 * scale, "{what} {}: {x}", Derivatives::names()[i][j]);
+                assert!(
+                    x.abs() < 1e-12 * scale,
+                    "{what} {}: {x}",
+                    Derivatives::names()[i][j]
+                );
             }
         }
     }
@@ -143,7 +179,14 @@ fn symmetric_configurations_decouple_at_zero_sideslip() {
         .surface(Surface::wing("W", 3.0, 1.0, 0.5, 30.0, 5.0).lattice(6, 1.0, 12, -2.0))
         .surface(Surface::fin("F", 1.0, 0.8, 0.4, 40.0).translated([3.0, 0.0, 0.0]));
     for alpha in [0.0, 5.0] {
-        let s = solve(&swept, &SolverOptions { alpha_deg: alpha, ..Default::default() }).unwrap();
+        let s = solve(
+            &swept,
+            &SolverOptions {
+                alpha_deg: alpha,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         assert_decoupled(&s.derivatives, &format!("swept wing and fin, α = {alpha}"));
         // the lateral derivatives are nonzero: the test can fail on a wrong mirror
         assert!(s.derivatives.get("Clp").unwrap() < -0.1);
@@ -158,7 +201,10 @@ fn large_aspect_ratio_approaches_two_pi() {
         assert!(cla > last && cla < 2.0 * PI, "AR {ar}: {cla}");
         // Jones' edge-corrected lifting line 2πA/(E·A + 2), E = 1 + 1/A for a rectangle
         let jones = 2.0 * PI * ar / ((1.0 + 1.0 / ar) * ar + 2.0);
-        assert!((cla / jones - 1.0).abs() < 0.015, "AR {ar}: {cla} vs Jones {jones}");
+        assert!(
+            (cla / jones - 1.0).abs() < 0.015,
+            "AR {ar}: {cla} vs Jones {jones}"
+        );
         last = cla;
     }
     assert!((last / (2.0 * PI) - 1.0).abs() < 0.01, "AR 500: {last}");
@@ -168,12 +214,13 @@ fn large_aspect_ratio_approaches_two_pi() {
 fn one_chordwise_panel_loads_the_quarter_chord() {
     // Weissinger's lattice: all load at c/4, so no yaw moment about c/4 from v or r
     for cspace in [0.0, 1.0] {
-        let c = Configuration::new("fin", Reference::new(0.5, 0.5, 1.0, [0.125, 0.0, 0.0])).surface(
-            Surface::new("Fin")
-                .lattice(1, cspace, 16, 1.0)
-                .section(Section::new([0.0, 0.0, -0.5], 0.5))
-                .section(Section::new([0.0, 0.0, 0.5], 0.5)),
-        );
+        let c = Configuration::new("fin", Reference::new(0.5, 0.5, 1.0, [0.125, 0.0, 0.0]))
+            .surface(
+                Surface::new("Fin")
+                    .lattice(1, cspace, 16, 1.0)
+                    .section(Section::new([0.0, 0.0, -0.5], 0.5))
+                    .section(Section::new([0.0, 0.0, 0.5], 0.5)),
+            );
         let l = seed_l(&derivs(&c));
         assert!(l[2].abs() < 1e-12 && l[3].abs() < 1e-12, "{l:?}");
         assert!(l[0] > 7.0);
@@ -219,14 +266,22 @@ fn surfaces_far_apart_add_up() {
     r_far.point = far;
     let alone_b = derivs(&Configuration::new("b", r_far).surface(b.clone().translated(far)));
     // both together, moments about each one's own point are not comparable: use forces
-    let both = derivs(&Configuration::new("ab", r).surface(a).surface(b.translated(far)));
+    let both = derivs(
+        &Configuration::new("ab", r)
+            .surface(a)
+            .surface(b.translated(far)),
+    );
     for j in 0..6 {
         if j >= 3 {
             continue; // rate columns move the far surface by ω × 1e5
         }
         for i in 0..3 {
             let sum = alone_a.coefficients[i][j] + alone_b.coefficients[i][j];
-            assert!((both.coefficients[i][j] - sum).abs() < 1e-6, "({i},{j}) {} vs {sum}", both.coefficients[i][j]);
+            assert!(
+                (both.coefficients[i][j] - sum).abs() < 1e-6,
+                "({i},{j}) {} vs {sum}",
+                both.coefficients[i][j]
+            );
         }
     }
 }
@@ -253,21 +308,36 @@ fn splitting_a_surface_at_a_node_changes_nothing() {
 #[test]
 fn mirrored_half_equals_two_explicit_halves() {
     let mirrored = plate(6.0, 6, 10);
-    let right = Surface::new("R").lattice(6, 1.0, 10, 1.0)
+    let right = Surface::new("R")
+        .lattice(6, 1.0, 10, 1.0)
         .section(Section::new([0.0; 3], 1.0))
         .section(Section::new([0.0, 3.0, 0.0], 1.0));
-    let left = Surface::new("L").lattice(6, 1.0, 10, 1.0)
+    let left = Surface::new("L")
+        .lattice(6, 1.0, 10, 1.0)
         .section(Section::new([0.0, -3.0, 0.0], 1.0))
         .section(Section::new([0.0; 3], 1.0));
     // the left half's cosine spacing runs from its tip: the same nodes as the mirror
-    let explicit = Configuration::new("two", mirrored.reference).surface(right).surface(left);
-    let options = SolverOptions { alpha_deg: 4.0, beta_deg: 2.0, ..Default::default() };
+    let explicit = Configuration::new("two", mirrored.reference)
+        .surface(right)
+        .surface(left);
+    let options = SolverOptions {
+        alpha_deg: 4.0,
+        beta_deg: 2.0,
+        ..Default::default()
+    };
     let a = solve(&mirrored, &options).unwrap();
     let b = solve(&explicit, &options).unwrap();
     for i in 0..6 {
         for j in 0..6 {
-            let (x, y) = (a.derivatives.coefficients[i][j], b.derivatives.coefficients[i][j]);
-            assert!((x - y).abs() < 1e-10, "{}: {x} vs {y}", Derivatives::names()[i][j]);
+            let (x, y) = (
+                a.derivatives.coefficients[i][j],
+                b.derivatives.coefficients[i][j],
+            );
+            assert!(
+                (x - y).abs() < 1e-10,
+                "{}: {x} vs {y}",
+                Derivatives::names()[i][j]
+            );
         }
         assert!((a.totals.body[i] - b.totals.body[i]).abs() < 1e-12);
     }
@@ -282,7 +352,10 @@ fn scale_and_translate_keep_coefficients() {
     let mut scaled = base.clone();
     scaled.surfaces[0].scale = [2.0, 2.0, 2.0];
     scaled.reference = Reference::new(16.0, 2.0, 8.0, [0.5, 0.0, 0.0]);
-    let options = SolverOptions { alpha_deg: 3.0, ..Default::default() };
+    let options = SolverOptions {
+        alpha_deg: 3.0,
+        ..Default::default()
+    };
     let d0 = solve(&base, &options).unwrap().derivatives;
     for c in [moved, scaled] {
         let d = solve(&c, &options).unwrap().derivatives;
@@ -298,7 +371,9 @@ fn scale_and_translate_keep_coefficients() {
 fn noload_surface_far_away_is_not_counted() {
     let wing = plate(6.0, 6, 8);
     let mut with = wing.clone();
-    let mut ghost = Surface::wing("G", 3.0, 1.0, 1.0, 0.0, 0.0).lattice(6, 1.0, 8, 1.0).translated([0.0, 0.0, 1e6]);
+    let mut ghost = Surface::wing("G", 3.0, 1.0, 1.0, 0.0, 0.0)
+        .lattice(6, 1.0, 8, 1.0)
+        .translated([0.0, 0.0, 1e6]);
     ghost.no_load = true;
     with.surfaces.push(ghost);
     let (a, b) = (derivs(&wing), derivs(&with));
