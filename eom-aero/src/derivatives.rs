@@ -72,7 +72,7 @@ const NAMES: [[&str; 6]; 6] = [
 pub struct Derivatives {
     /// Reference quantities of the normalisation.
     pub reference: Reference,
-    /// coefficients[i][j] = ∂C_i/∂x̂_j; rows CX, CY, CZ, Cl, Cm, Cn; columns û, v̂, ŵ, p̂, q̂, r̂.
+    /// `coefficients[i][j]` = ∂C_i/∂x̂_j; rows CX, CY, CZ, Cl, Cm, Cn; columns û, v̂, ŵ, p̂, q̂, r̂.
     pub coefficients: [[f64; 6]; 6],
 }
 
@@ -132,7 +132,7 @@ pub struct StabilityDerivatives {
     pub alpha_deg: f64,
     /// Reference quantities.
     pub reference: Reference,
-    /// coefficients[i][j]: rows CL, CY, Cl', Cm, Cn', CD; columns α, β, p', q', r'.
+    /// `coefficients[i][j]`: rows CL, CY, Cl', Cm, Cn', CD; columns α, β, p', q', r'.
     pub coefficients: [[f64; 5]; 6],
 }
 

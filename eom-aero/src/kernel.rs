@@ -78,6 +78,8 @@ pub(crate) fn trailing_leg(p: Vec3, a: Vec3) -> Vec3 {
 
 /// Velocity at `p` induced by the horseshoe vortex of unit circulation: from x = +∞ along
 /// the leg into `a`, the bound segment a → b, and out along the leg from `b` to x = +∞.
+/// (The solver assembles the same sum with legs shared between neighbours.)
+#[cfg(test)]
 pub(crate) fn horseshoe(p: Vec3, a: Vec3, b: Vec3) -> Vec3 {
     let s = segment(p, a, b);
     let la = trailing_leg(p, a);

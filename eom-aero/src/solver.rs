@@ -4,11 +4,12 @@
 use crate::derivatives::{Derivatives, StabilityDerivatives};
 use crate::error::{AeroError, Result};
 use crate::geometry::Configuration;
-use crate::kernel::{Vec3, add, cross, dot, horseshoe, scale, sub};
+use crate::kernel::{Vec3, add, cross, dot, scale, segment, sub, trailing_leg};
 use crate::lattice::{self, Lattice, Panel};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// How to solve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -155,12 +156,14 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
     ];
     let field = Field::new(&lattice, config.mach);
     let reference = config.reference.point;
-    let influence = Mat::<f64>::from_fn(n, n, |i, j| {
-        dot(
-            lattice.panels[i].normal,
-            field.induced(lattice.panels[i].control, j),
-        )
-    });
+    let mut influence = Mat::<f64>::zeros(n, n);
+    let (mut legs, mut v) = (Vec::new(), Vec::new());
+    for (i, p) in lattice.panels.iter().enumerate() {
+        field.induced_all(p.control, &mut legs, &mut v);
+        for (j, vj) in v.iter().enumerate() {
+            influence[(i, j)] = dot(p.normal, *vj);
+        }
+    }
     let rhs = Mat::<f64>::from_fn(n, 7, |i, s| {
         let p = &lattice.panels[i];
         -dot(
@@ -201,28 +204,54 @@ fn check_pivots(u: faer::MatRef<'_, f64>, n: usize) -> Result<()> {
 
 /// The induced-velocity field of the lattice, with the Prandtl–Glauert stretch x' = x/β
 /// applied to the geometry and 1/β to the induced x velocity (Göthert's rule: the
-/// perturbation potential of the stretched geometry is incompressible).
+/// perturbation potential of the stretched geometry is incompressible). Adjacent strips
+/// share the end points of their bound segments, so each trailing leg is evaluated once per
+/// field point and used by both horseshoes that start or end there.
 struct Field {
     beta: f64,
-    a: Vec<Vec3>,
-    b: Vec<Vec3>,
+    nodes: Vec<Vec3>,
+    a: Vec<usize>,
+    b: Vec<usize>,
 }
 
 impl Field {
     fn new(lattice: &Lattice, mach: f64) -> Self {
         let beta = (1.0 - mach * mach).sqrt();
-        let stretch = |v: Vec3| [v[0] / beta, v[1], v[2]];
-        Field {
-            beta,
-            a: lattice.panels.iter().map(|p| stretch(p.a)).collect(),
-            b: lattice.panels.iter().map(|p| stretch(p.b)).collect(),
-        }
+        // + 0.0 turns −0.0 into 0.0, so that mirrored root points meet their originals
+        let stretch = |v: Vec3| [v[0] / beta + 0.0, v[1] + 0.0, v[2] + 0.0];
+        let mut index: HashMap<[u64; 3], usize> = HashMap::new();
+        let mut nodes = Vec::new();
+        let mut intern = |v: Vec3| {
+            let v = stretch(v);
+            *index.entry(v.map(f64::to_bits)).or_insert_with(|| {
+                nodes.push(v);
+                nodes.len() - 1
+            })
+        };
+        let (a, b) = lattice
+            .panels
+            .iter()
+            .map(|p| (intern(p.a), intern(p.b)))
+            .unzip();
+        Field { beta, nodes, a, b }
     }
 
-    /// Velocity at `p` (physical coordinates) induced by horseshoe `j` of unit circulation.
-    fn induced(&self, p: Vec3, j: usize) -> Vec3 {
-        let v = horseshoe([p[0] / self.beta, p[1], p[2]], self.a[j], self.b[j]);
-        [v[0] / self.beta, v[1], v[2]]
+    /// Velocities at `p` (physical coordinates) induced by every horseshoe of unit
+    /// circulation, into `out`; `legs` is scratch space.
+    fn induced_all(&self, p: Vec3, legs: &mut Vec<Vec3>, out: &mut Vec<Vec3>) {
+        let ps = [p[0] / self.beta, p[1], p[2]];
+        legs.clear();
+        legs.extend(self.nodes.iter().map(|&n| trailing_leg(ps, n)));
+        out.clear();
+        out.extend(self.a.iter().zip(&self.b).map(|(&ia, &ib)| {
+            let s = segment(ps, self.nodes[ia], self.nodes[ib]);
+            let (la, lb) = (legs[ia], legs[ib]);
+            [
+                (s[0] + lb[0] - la[0]) / self.beta,
+                s[1] + lb[1] - la[1],
+                s[2] + lb[2] - la[2],
+            ]
+        }));
     }
 }
 
@@ -247,16 +276,17 @@ impl Loads {
             force: [[0.0; 3]; 7],
             moment: [[0.0; 3]; 7],
         };
+        let (mut legs, mut v) = (Vec::new(), Vec::new());
         for (k, p) in lattice.panels.iter().enumerate() {
             if !p.loaded {
                 continue;
             }
             let arm = sub(p.force_point, reference);
             let mut w = velocities(arm, trim, p.sees_flow_angles);
-            for (j, gj) in g.iter().enumerate() {
-                let v = field.induced(p.force_point, j);
+            field.induced_all(p.force_point, &mut legs, &mut v);
+            for (vj, gj) in v.iter().zip(g) {
                 for s in 0..7 {
-                    w[s] = add(w[s], scale(v, gj[s]));
+                    w[s] = add(w[s], scale(*vj, gj[s]));
                 }
             }
             loads.add_segment(arm, sub(p.b, p.a), &g[k], &w);
@@ -340,5 +370,35 @@ fn finish(
             strips: lattice.strips,
             vortices: lattice.panels.len(),
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::horseshoe;
+    use crate::{Reference, Surface};
+
+    #[test]
+    fn shared_legs_give_the_plain_horseshoe_sum() {
+        let c = Configuration::new("c", Reference::new(1.0, 1.0, 1.0, [0.0; 3]))
+            .surface(Surface::wing("W", 2.0, 1.0, 0.5, 20.0, 5.0).lattice(3, 1.0, 4, 1.0));
+        let lattice = lattice::build(&c).unwrap();
+        let mach: f64 = 0.5;
+        let beta = (1.0 - mach * mach).sqrt();
+        let field = Field::new(&lattice, mach);
+        // the mirror shares the root nodes: fewer nodes than 2 per panel
+        assert!(field.nodes.len() < lattice.panels.len() + 3 * 3);
+        let p = [0.3, 0.7, 0.2];
+        let (mut legs, mut v) = (Vec::new(), Vec::new());
+        field.induced_all(p, &mut legs, &mut v);
+        let s = |q: Vec3| [q[0] / beta, q[1], q[2]];
+        for (j, panel) in lattice.panels.iter().enumerate() {
+            let h = horseshoe(s(p), s(panel.a), s(panel.b));
+            let h = [h[0] / beta, h[1], h[2]];
+            for k in 0..3 {
+                assert!((h[k] - v[j][k]).abs() < 1e-14, "{j} {k}");
+            }
+        }
     }
 }

@@ -20,7 +20,7 @@ pub const PITCH_RATE_LIMIT: f64 = 0.03;
 pub const YAW_RATE_LIMIT: f64 = 0.25;
 
 /// Reduced frequency β = |Im λ| · c / V of an eigenvalue λ with imaginary part
-/// `eigen_imag` [rad/s], for chord `chord` [m] and airspeed `speed` [m/s]. Infinite for
+/// `eigen_imag` (rad/s), for chord `chord` (m) and airspeed `speed` (m/s). Infinite for
 /// zero airspeed with nonzero frequency, NaN never: zero frequency gives 0.
 pub fn reduced_frequency(eigen_imag: f64, chord: f64, speed: f64) -> f64 {
     let w = eigen_imag.abs();
@@ -43,7 +43,7 @@ pub struct RateCheck {
     pub normalised: [f64; 3],
     /// Limits 0.10, 0.03, 0.25.
     pub limits: [f64; 3],
-    /// `exceeded[k]` is true if |normalised[k]| ≥ limits[k].
+    /// `exceeded[k]` is true if `|normalised[k]| ≥ limits[k]` (or it is NaN).
     pub exceeded: [bool; 3],
 }
 
@@ -54,7 +54,7 @@ impl RateCheck {
     }
 }
 
-/// Normalises body rates `p, q, r` [rad/s] with span `span`, chord `chord` and airspeed
+/// Normalises body rates `p, q, r` (rad/s) with span `span`, chord `chord` and airspeed
 /// `speed`, and compares them with the limits.
 pub fn check_rates(p: f64, q: f64, r: f64, span: f64, chord: f64, speed: f64) -> RateCheck {
     let v2 = 2.0 * speed.abs();

@@ -25,7 +25,7 @@ fn matches_optvl_on_tapered_swept_cranked_and_multi_surface_configurations() {
     let text = std::fs::read_to_string(data("optvl_reference.json")).unwrap();
     let json: Value = serde_json::from_str(&text).unwrap();
     let cases = json["cases"].as_array().unwrap();
-    assert_eq!(cases.len(), 7);
+    assert_eq!(cases.len(), 8);
     let names = Derivatives::names();
     for case in cases {
         let file = case["file"].as_str().unwrap();
