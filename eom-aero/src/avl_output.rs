@@ -53,6 +53,7 @@ pub struct AvlOutput {
     pub mach: f64,
     /// Control variables in the order of their columns (d01, d02, …): their names.
     pub controls: Vec<String>,
+    #[serde(skip)]
     entries: Vec<Entry>,
 }
 

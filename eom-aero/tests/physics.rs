@@ -383,3 +383,79 @@ fn noload_surface_far_away_is_not_counted() {
         }
     }
 }
+
+#[test]
+fn derivatives_agree_with_finite_differences_of_the_trim_loads() {
+    // the analytic linearisation against central differences of the totals in α and β,
+    // on a lifting, swept, dihedral wing with a fin, trailing-leg forces on and off
+    let config = Configuration::new("c", Reference::new(4.5, 1.0, 6.0, [0.5, 0.0, 0.1]))
+        .surface(
+            Surface::wing("W", 3.0, 1.0, 0.5, 25.0, 6.0)
+                .lattice(6, 1.0, 10, 1.0)
+                .angle_deg(1.5),
+        )
+        .surface(
+            Surface::fin("F", 1.0, 0.8, 0.4, 30.0)
+                .lattice(6, 1.0, 8, 1.0)
+                .translated([3.0, 0.0, 0.2]),
+        );
+    for legs in [true, false] {
+        let at = |alpha: f64, beta: f64| {
+            let o = SolverOptions {
+                alpha_deg: alpha,
+                beta_deg: beta,
+                trailing_leg_forces: legs,
+            };
+            solve(&config, &o).unwrap()
+        };
+        let (alpha, h) = (4.0f64, 1e-3f64);
+        let base = at(alpha, 0.0);
+        let d = &base.derivatives.coefficients;
+        let (sa, ca) = alpha.to_radians().sin_cos();
+        let (ap, am) = (at(alpha + h, 0.0), at(alpha - h, 0.0));
+        let (bp, bm) = (at(alpha, h), at(alpha, -h));
+        let step = 2.0 * h.to_radians();
+        for i in 0..6 {
+            // at constant speed: ∂/∂α = −sin α ∂/∂û + cos α ∂/∂ŵ, ∂/∂β = ∂/∂v̂ at β = 0
+            let fd_alpha = (ap.totals.body[i] - am.totals.body[i]) / step;
+            let fd_beta = (bp.totals.body[i] - bm.totals.body[i]) / step;
+            let an_alpha = -sa * d[i][0] + ca * d[i][2];
+            let an_beta = d[i][1];
+            let tol = 1e-6 * (1.0 + an_alpha.abs().max(an_beta.abs()));
+            assert!(
+                (fd_alpha - an_alpha).abs() < tol,
+                "legs {legs} row {i} α: {fd_alpha} vs {an_alpha}"
+            );
+            assert!(
+                (fd_beta - an_beta).abs() < tol,
+                "legs {legs} row {i} β: {fd_beta} vs {an_beta}"
+            );
+        }
+    }
+}
+
+#[test]
+fn sideslip_trim_gives_the_side_force_of_the_derivative() {
+    let fin = seed_fin(8, 16);
+    let cyv = derivs(&fin).get("CYv").unwrap();
+    let beta = 2.0f64;
+    let s = solve(
+        &fin,
+        &SolverOptions {
+            beta_deg: beta,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    // CY = CYv sin β cos β for a flat plate in linear theory
+    let expected = cyv * beta.to_radians().sin() * beta.to_radians().cos();
+    assert!(
+        (s.totals.body[1] / expected - 1.0).abs() < 1e-9,
+        "{} vs {expected}",
+        s.totals.body[1]
+    );
+    assert!(
+        s.totals.body[1] < 0.0,
+        "wind from the right pushes the fin left"
+    );
+}
