@@ -13,7 +13,8 @@
 //! Refused with an error naming the file, line and keyword, because the flat-plate lattice
 //! cannot honour them: `BODY`/`BFILE` (slender bodies), cambered `NACA`, `AIRFOIL`, `AFILE`
 //! (camber lines), `CLAF` ≠ 1, `CDCL` (viscous polar), `CONTROL`, `DESIGN`, `NOWAKE` (a
-//! surface without a Kutta condition), and nonzero `iYsym`/`iZsym` flow images.
+//! surface without a Kutta condition), and a nonzero `iYsym` (the y image; `iZsym`, the z
+//! image of ground effect, is supported).
 
 use crate::derivatives::Reference;
 use crate::error::{AeroError, Result};
@@ -44,15 +45,19 @@ pub fn parse_avl(text: &str, file: &str) -> Result<Configuration> {
         izsym: lines.integer(line, "iZsym", sym[1])? as i32,
         zsym: sym[2],
     };
-    for (flag, v) in [("iYsym", symmetry.iysym), ("iZsym", symmetry.izsym)] {
-        if v != 0 {
-            return Err(unsupported(
-                file,
-                line,
-                flag,
-                "flow images are not supported: model both halves with YDUPLICATE",
-            ));
-        }
+    if symmetry.iysym != 0 {
+        return Err(unsupported(
+            file,
+            line,
+            "iYsym",
+            "the y image is not supported: model both halves with YDUPLICATE",
+        ));
+    }
+    if !(-1..=1).contains(&symmetry.izsym) {
+        return Err(lines.err(
+            line,
+            format!("iZsym must be -1, 0 or 1, found {}", symmetry.izsym),
+        ));
     }
     let r = lines.numbers("Sref Cref Bref", &["Sref", "Cref", "Bref"], 3)?;
     let p = lines.numbers("Xref Yref Zref", &["Xref", "Yref", "Zref"], 3)?;

@@ -19,8 +19,8 @@ pub struct Configuration {
     pub mach: f64,
     /// Reference area, chord, span and the moment reference point (geometry axes).
     pub reference: Reference,
-    /// Mirror-image flags of the flow (AVL's iYsym, iZsym, Zsym). Only "none" is supported by
-    /// the solver; use [`Surface::y_duplicate`] for a mirrored real surface instead.
+    /// Image planes of the flow (AVL's iYsym, iZsym, Zsym): the z plane (ground effect, a
+    /// free surface) is supported, the y plane is not (use [`Surface::y_duplicate`]).
     pub symmetry: Symmetry,
     /// Profile drag coefficient CDp of the `.avl` header (read, not used by the lattice).
     pub cdp: f64,
@@ -29,7 +29,7 @@ pub struct Configuration {
 }
 
 /// AVL's flow-symmetry flags: image planes y = 0 (`iysym`) and z = `zsym` (`izsym`),
-/// +1 a solid wall, −1 a constant-pressure plane, 0 none.
+/// +1 a solid wall (e.g. the ground), −1 a constant-pressure plane, 0 none.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Symmetry {
     /// Image about y = 0.
@@ -315,6 +315,14 @@ impl Configuration {
         self
     }
 
+    /// Puts a solid wall (the ground) at z = `z`: the lattice gains a mirror image that
+    /// cancels the normal velocity there (AVL's iZsym = 1).
+    pub fn ground_at(mut self, z: f64) -> Self {
+        self.symmetry.izsym = 1;
+        self.symmetry.zsym = z;
+        self
+    }
+
     /// Sets the Mach number.
     pub fn mach(mut self, mach: f64) -> Self {
         self.mach = mach;
@@ -352,10 +360,19 @@ impl Configuration {
                 ),
             ));
         }
-        if self.symmetry.iysym != 0 || self.symmetry.izsym != 0 {
+        if self.symmetry.iysym != 0 {
             return Err(self.err(
-                "iYsym/iZsym",
-                "flow images are not supported: model both halves (YDUPLICATE) instead".into(),
+                "iYsym",
+                "the y image is not supported: model both halves (YDUPLICATE) instead".into(),
+            ));
+        }
+        if !(-1..=1).contains(&self.symmetry.izsym) || !self.symmetry.zsym.is_finite() {
+            return Err(self.err(
+                "iZsym/Zsym",
+                format!(
+                    "iZsym must be -1, 0 or 1 and Zsym finite, are {} and {}",
+                    self.symmetry.izsym, self.symmetry.zsym
+                ),
             ));
         }
         if self.surfaces.is_empty() {

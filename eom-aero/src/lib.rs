@@ -80,7 +80,10 @@
 //!    (roll, yaw) and q·S·c (pitch); the state by V (velocities), 2V/b and 2V/c (rates).
 //!
 //! Compressibility follows the Prandtl–Glauert rule in Göthert's form: the induced
-//! velocities are those of the geometry stretched by 1/√(1 − M²) along x.
+//! velocities are those of the geometry stretched by 1/√(1 − M²) along x. Ground effect
+//! ([`Configuration::ground_at`], AVL's iZsym = 1) adds the mirror image of every horseshoe
+//! below the ground plane with reversed circulation, so that no air flows through the
+//! ground; iZsym = −1 (a constant-pressure plane) keeps the image's circulation.
 //!
 //! ## Conventions
 //!
@@ -103,8 +106,8 @@
 //!
 //! ## Not covered
 //!
-//! Camber lines, slender bodies, control surfaces, viscous drag, flow images (iYsym,
-//! iZsym), surfaces without a wake (NOWAKE), and a finite vortex core: where one surface
+//! Camber lines, slender bodies, control surfaces, viscous drag, the y image plane
+//! (iYsym; model both halves instead), surfaces without a wake (NOWAKE), and a finite vortex core: where one surface
 //! lies within about a chord of another surface's wake, AVL softens the wake's discrete
 //! vortex lines and this lattice does not.
 

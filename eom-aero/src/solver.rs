@@ -3,7 +3,7 @@
 
 use crate::derivatives::{Derivatives, StabilityDerivatives};
 use crate::error::{AeroError, Result};
-use crate::geometry::Configuration;
+use crate::geometry::{Configuration, Symmetry};
 use crate::kernel::{Vec3, add, cross, dot, scale, segment, sub, trailing_leg};
 use crate::lattice::{self, Lattice, Panel};
 use faer::Mat;
@@ -154,7 +154,7 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
         0.0,
         0.0,
     ];
-    let field = Field::new(&lattice, config.mach);
+    let field = Field::new(&lattice, config.mach, &config.symmetry);
     let reference = config.reference.point;
     let mut influence = Mat::<f64>::zeros(n, n);
     let (mut legs, mut v) = (Vec::new(), Vec::new());
@@ -207,15 +207,21 @@ fn check_pivots(u: faer::MatRef<'_, f64>, n: usize) -> Result<()> {
 /// perturbation potential of the stretched geometry is incompressible). Adjacent strips
 /// share the end points of their bound segments, so each trailing leg is evaluated once per
 /// field point and used by both horseshoes that start or end there.
+///
+/// A z image plane adds to every horseshoe its mirror image about z = zsym: with the
+/// circulation reversed for a solid wall (iZsym = +1: the normal velocity cancels on the
+/// plane, ground effect), kept for a constant-pressure plane (iZsym = −1).
 struct Field {
     beta: f64,
     nodes: Vec<Vec3>,
     a: Vec<usize>,
     b: Vec<usize>,
+    /// Image horseshoes (node indices) and the sign of their circulation, if any.
+    image: Option<(Vec<usize>, Vec<usize>, f64)>,
 }
 
 impl Field {
-    fn new(lattice: &Lattice, mach: f64) -> Self {
+    fn new(lattice: &Lattice, mach: f64, symmetry: &Symmetry) -> Self {
         let beta = (1.0 - mach * mach).sqrt();
         // + 0.0 turns −0.0 into 0.0, so that mirrored root points meet their originals
         let stretch = |v: Vec3| [v[0] / beta + 0.0, v[1] + 0.0, v[2] + 0.0];
@@ -233,25 +239,55 @@ impl Field {
             .iter()
             .map(|p| (intern(p.a), intern(p.b)))
             .unzip();
-        Field { beta, nodes, a, b }
+        let image = (symmetry.izsym != 0).then(|| {
+            let z0 = symmetry.zsym;
+            let reflect = |v: Vec3| [v[0], v[1], 2.0 * z0 - v[2]];
+            let (ia, ib) = lattice
+                .panels
+                .iter()
+                .map(|p| (intern(reflect(p.a)), intern(reflect(p.b))))
+                .unzip();
+            (ia, ib, -f64::from(symmetry.izsym.signum()))
+        });
+        Field {
+            beta,
+            nodes,
+            a,
+            b,
+            image,
+        }
     }
 
     /// Velocities at `p` (physical coordinates) induced by every horseshoe of unit
-    /// circulation, into `out`; `legs` is scratch space.
+    /// circulation (with its image), into `out`; `legs` is scratch space.
     fn induced_all(&self, p: Vec3, legs: &mut Vec<Vec3>, out: &mut Vec<Vec3>) {
         let ps = [p[0] / self.beta, p[1], p[2]];
         legs.clear();
         legs.extend(self.nodes.iter().map(|&n| trailing_leg(ps, n)));
-        out.clear();
-        out.extend(self.a.iter().zip(&self.b).map(|(&ia, &ib)| {
+        let horseshoe = |ia: usize, ib: usize| {
             let s = segment(ps, self.nodes[ia], self.nodes[ib]);
             let (la, lb) = (legs[ia], legs[ib]);
             [
-                (s[0] + lb[0] - la[0]) / self.beta,
+                s[0] + lb[0] - la[0],
                 s[1] + lb[1] - la[1],
                 s[2] + lb[2] - la[2],
             ]
-        }));
+        };
+        out.clear();
+        out.extend(
+            self.a
+                .iter()
+                .zip(&self.b)
+                .map(|(&ia, &ib)| horseshoe(ia, ib)),
+        );
+        if let Some((ia, ib, sign)) = &self.image {
+            for (k, v) in out.iter_mut().enumerate() {
+                *v = add(*v, scale(horseshoe(ia[k], ib[k]), *sign));
+            }
+        }
+        for v in out.iter_mut() {
+            v[0] /= self.beta;
+        }
     }
 }
 
@@ -386,7 +422,7 @@ mod tests {
         let lattice = lattice::build(&c).unwrap();
         let mach: f64 = 0.5;
         let beta = (1.0 - mach * mach).sqrt();
-        let field = Field::new(&lattice, mach);
+        let field = Field::new(&lattice, mach, &Symmetry::default());
         // the mirror shares the root nodes: fewer nodes than 2 per panel
         assert!(field.nodes.len() < lattice.panels.len() + 3 * 3);
         let p = [0.3, 0.7, 0.2];

@@ -1,7 +1,8 @@
 //! The solver against OptVL 2.5.0 (an AVL 3.52-derived core) on planforms the AVL 3.32
 //! fixtures do not cover: taper, sweep with dihedral and washout, Mach 0.5, a cranked wing
-//! with strips per section and uniform chordwise panels, and a wing–tail–fin
-//! configuration. Data and script: tests/data/optvl (see the README there). OptVL loads no
+//! with strips per section and uniform chordwise panels, a wing–tail–fins configuration,
+//! and a wing in ground effect (iZsym = 1) and under a constant-pressure plane
+//! (iZsym = −1). Data and script: tests/data/optvl (see the README there). OptVL loads no
 //! trailing legs, so neither do we here.
 //!
 //! Tolerance: 0.2 % of the entry, or 0.2 % of the largest entry of its row (as in
@@ -25,7 +26,7 @@ fn matches_optvl_on_tapered_swept_cranked_and_multi_surface_configurations() {
     let text = std::fs::read_to_string(data("optvl_reference.json")).unwrap();
     let json: Value = serde_json::from_str(&text).unwrap();
     let cases = json["cases"].as_array().unwrap();
-    assert_eq!(cases.len(), 8);
+    assert_eq!(cases.len(), 10);
     let names = Derivatives::names();
     for case in cases {
         let file = case["file"].as_str().unwrap();

@@ -459,3 +459,21 @@ fn sideslip_trim_gives_the_side_force_of_the_derivative() {
         "wind from the right pushes the fin left"
     );
 }
+
+#[test]
+fn ground_effect_raises_the_lift_slope_and_vanishes_far_away() {
+    let cla = |ground: Option<f64>| {
+        let mut c = plate(6.0, 6, 12);
+        if let Some(z) = ground {
+            c = c.ground_at(z);
+        }
+        -derivs(&c).get("CZw").unwrap()
+    };
+    let free = cla(None);
+    let far = cla(Some(-1e4));
+    assert!((far / free - 1.0).abs() < 1e-6, "{far} vs {free}");
+    let heights = [2.0, 1.0, 0.5, 0.25];
+    let slopes: Vec<f64> = heights.iter().map(|h| cla(Some(-h))).collect();
+    assert!(slopes[0] > free);
+    assert!(slopes.windows(2).all(|w| w[1] > w[0]), "{slopes:?}");
+}

@@ -14,7 +14,7 @@ HEADER = """{title}
 #Mach
 {mach}
 #IYsym  IZsym  Zsym
-0       0      0.0
+0       {izsym}      {zsym}
 #Sref   Cref   Bref
 {sref}  {cref}  {bref}
 #Xref   Yref   Zref
@@ -25,7 +25,7 @@ GEOMETRIES = {
     # the AVL 3.32 fixture ../dihedral10_ar6.avl, for the AVL 3.32 / 3.52 comparison
     "dihedral10_ar6.avl": open("../dihedral10_ar6.avl").read(),
     # AR 8, taper 0.5, unswept leading edge, cosine/cosine 8 x 16 per half
-    "tapered_ar8.avl": HEADER.format(title="Tapered wing AR 8, taper 0.5", mach=0.0,
+    "tapered_ar8.avl": HEADER.format(izsym=0, zsym=0.0, title="Tapered wing AR 8, taper 0.5", mach=0.0,
                                      sref=6.0, cref=0.75, bref=6.0, xref=0.1875) + """
 SURFACE
 Wing
@@ -38,7 +38,7 @@ SECTION
 0.0 3.0 0.0 0.5 0.0
 """,
     # 30 deg leading-edge sweep, taper 0.5, 5 deg dihedral, 2 deg washout, AR 6
-    "swept30.avl": HEADER.format(title="Swept wing 30 deg, taper 0.5, dihedral 5 deg", mach=0.0,
+    "swept30.avl": HEADER.format(izsym=0, zsym=0.0, title="Swept wing 30 deg, taper 0.5, dihedral 5 deg", mach=0.0,
                                  sref=6.0, cref=1.0, bref=6.0, xref=0.6) + """
 SURFACE
 Wing
@@ -53,7 +53,7 @@ SECTION
 1.7320508076 3.0 0.2624579597 0.6666666667 -2.0
 """,
     # a cranked wing with strips per section (-sine toward the tip), uniform chordwise panels
-    "cranked_sections.avl": HEADER.format(title="Cranked wing, strips per section", mach=0.0,
+    "cranked_sections.avl": HEADER.format(izsym=0, zsym=0.0, title="Cranked wing, strips per section", mach=0.0,
                                           sref=5.0, cref=1.0, bref=5.0, xref=0.3) + """
 SURFACE
 Wing
@@ -72,7 +72,7 @@ SECTION
     # the wing's wake. Closer to a wake, AVL softens the wake's discrete vortex lines with a
     # finite core and a coreless lattice does not: with the tail 1 chord above the wake
     # CXq differs by 0.7 %, in the wake plane Cmw by 15 %.
-    "wing_tail_fins.avl": HEADER.format(title="Wing, tail and twin fins", mach=0.0,
+    "wing_tail_fins.avl": HEADER.format(izsym=0, zsym=0.0, title="Wing, tail and twin fins", mach=0.0,
                                         sref=4.0, cref=0.8, bref=5.0, xref=0.3) + """
 SURFACE
 Wing
@@ -106,6 +106,32 @@ SECTION
 SECTION
 0.4 0.0 0.8 0.4 0.0
 """,
+    # a tapered, swept wing half a chord above the ground (a solid wall: iZsym = 1), and
+    # the same wing under a constant-pressure plane (iZsym = -1)
+    "ground_effect.avl": HEADER.format(izsym=1, zsym=-0.5, title="Wing in ground effect", mach=0.0,
+                                       sref=6.0, cref=1.0, bref=6.0, xref=0.25) + """
+SURFACE
+Wing
+8 1.0 16 1.0
+YDUPLICATE
+0.0
+SECTION
+0.0 0.0 0.0 1.0 0.0
+SECTION
+0.3 3.0 0.1 0.7 0.0
+""",
+    "free_surface.avl": HEADER.format(izsym=-1, zsym=-0.5, title="Wing under a free surface", mach=0.0,
+                                      sref=6.0, cref=1.0, bref=6.0, xref=0.25) + """
+SURFACE
+Wing
+8 1.0 16 1.0
+YDUPLICATE
+0.0
+SECTION
+0.0 0.0 0.0 1.0 0.0
+SECTION
+0.3 3.0 0.1 0.7 0.0
+""",
 }
 
 # (file, alpha in degrees, Mach)
@@ -118,6 +144,8 @@ CASES = [
     ("swept30.avl", 5.0, 0.5),
     ("cranked_sections.avl", 4.0, 0.0),
     ("wing_tail_fins.avl", 3.0, 0.0),
+    ("ground_effect.avl", 3.0, 0.0),
+    ("free_surface.avl", 3.0, 0.0),
 ]
 
 ROWS = ["CX", "CY", "CZ", "Cl", "Cm", "Cn"]
