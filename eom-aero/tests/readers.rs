@@ -410,4 +410,11 @@ fn avl_keywords_and_errors() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("s.avl:3: keyword `iYsym`"), "{e}");
+    let e = parse_avl("T\n0\n0 2 0\n1 1 1\n0 0 0\n", "s.avl")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("s.avl:3: iZsym must be -1, 0 or 1"), "{e}");
+    let ground = format!("T\n0\n0 1 -0.5\n1 1 2\n0.25 0 0\n{surface}");
+    let c = parse_avl(&ground, "g.avl").unwrap();
+    assert_eq!((c.symmetry.izsym, c.symmetry.zsym), (1, -0.5));
 }
