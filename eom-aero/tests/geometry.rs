@@ -102,6 +102,20 @@ fn configuration_and_option_errors() {
             .to_string()
             .contains("Mach must be in 0 ... < 1")
     );
+    let mut images = Configuration::new("c", reference()).surface(s.clone());
+    images.symmetry.iysym = 1;
+    assert!(
+        error_of(&images)
+            .to_string()
+            .contains("iYsym the y image is not supported")
+    );
+    images.symmetry.iysym = 0;
+    images.symmetry.izsym = 2;
+    assert!(
+        error_of(&images)
+            .to_string()
+            .contains("iZsym must be -1, 0 or 1")
+    );
     let empty = Configuration::new("c", reference());
     assert!(error_of(&empty).to_string().contains("surfaces none given"));
     let c = Configuration::new("c", reference()).surface(s);
