@@ -69,9 +69,8 @@ SECTION
 """,
     # wing, horizontal tail with incidence, and twin fins outboard of the tail: three
     # surfaces (six with the mirror images) in one lattice, tail and fins 3 chords above
-    # the wing's wake. Closer to a wake, AVL softens the wake's discrete vortex lines with a
-    # finite core and a coreless lattice does not: with the tail 1 chord above the wake
-    # CXq differs by 0.7 %, in the wake plane Cmw by 15 %.
+    # the wing's wake. Closer to a wake, AVL's finite vortex core changes its result on a
+    # coarse lattice (see INTERFERENCE below).
     "wing_tail_fins.avl": HEADER.format(izsym=0, zsym=0.0, title="Wing, tail and twin fins", mach=0.0,
                                         sref=4.0, cref=0.8, bref=5.0, xref=0.3) + """
 SURFACE
@@ -148,32 +147,51 @@ CASES = [
     ("free_surface.avl", 3.0, 0.0),
 ]
 
+# The wing-tail-fins configuration with the tail and fins in the wing's wake plane
+# (z = 0.3), on the lattice above and on one with three times the panels each way, written to
+# optvl_interference.json: AVL's finite vortex core makes its coarse-lattice interference
+# differ from a coreless lattice, and refining the lattice removes the difference.
+INTERFERENCE = {
+    "wake_tail_coarse.avl": GEOMETRIES["wing_tail_fins.avl"]
+    .replace("3.0 0.0 3.0", "3.0 0.0 0.3").replace("3.0 1.2 3.0", "3.0 1.2 0.3"),
+}
+INTERFERENCE["wake_tail_fine.avl"] = (
+    INTERFERENCE["wake_tail_coarse.avl"].replace("8 1.0 14 1.0", "24 1.0 42 1.0")
+    .replace("6 1.0 8 1.0", "18 1.0 24 1.0")
+)
+
 ROWS = ["CX", "CY", "CZ", "Cl", "Cm", "Cn"]
 COLS = ["u", "v", "w", "p", "q", "r"]
 
 
+def run(geo, alpha, mach):
+    solver = OVLSolver(geo_file=geo)
+    solver.set_variable("alpha", alpha)
+    solver.set_variable("beta", 0.0)
+    solver.set_parameter("Mach", mach)
+    solver.execute_run()
+    body = solver.get_body_axis_derivs()
+    totals = solver.get_total_forces()
+    return {
+        "file": geo,
+        "alpha_deg": alpha,
+        "mach": mach,
+        "derivatives": {r + c: float(body[f"d{r}/d{c}"]) for r in ROWS for c in COLS},
+        "totals": {k: float(totals[k]) for k in ["CX", "CY", "CZ", "Cl", "Cm", "Cn", "CL", "CD"]},
+    }
+
+
 def main():
-    for name, text in GEOMETRIES.items():
+    for name, text in {**GEOMETRIES, **INTERFERENCE}.items():
         with open(name, "w") as f:
             f.write(text.lstrip())
-    out = []
-    for geo, alpha, mach in CASES:
-        solver = OVLSolver(geo_file=geo)
-        solver.set_variable("alpha", alpha)
-        solver.set_variable("beta", 0.0)
-        solver.set_parameter("Mach", mach)
-        solver.execute_run()
-        body = solver.get_body_axis_derivs()
-        totals = solver.get_total_forces()
-        out.append({
-            "file": geo,
-            "alpha_deg": alpha,
-            "mach": mach,
-            "derivatives": {r + c: float(body[f"d{r}/d{c}"]) for r in ROWS for c in COLS},
-            "totals": {k: float(totals[k]) for k in ["CX", "CY", "CZ", "Cl", "Cm", "Cn", "CL", "CD"]},
-        })
+    source = "OptVL 2.5.0 (AVL 3.52-derived core), generate.py"
+    cases = [run(geo, alpha, mach) for geo, alpha, mach in CASES]
     with open("optvl_reference.json", "w") as f:
-        json.dump({"source": "OptVL 2.5.0 (AVL 3.52-derived core), generate.py", "cases": out}, f, indent=1)
+        json.dump({"source": source, "cases": cases}, f, indent=1)
+    cases = [run(geo, 3.0, 0.0) for geo in INTERFERENCE]
+    with open("optvl_interference.json", "w") as f:
+        json.dump({"source": source, "cases": cases}, f, indent=1)
 
 
 if __name__ == "__main__":
