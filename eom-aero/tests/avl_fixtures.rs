@@ -179,3 +179,19 @@ fn seed_wing_horizontal_matches_avl_st() {
         assert!((x / value - 1.0).abs() < 0.002, "{name}: {x} vs {value}");
     }
 }
+
+#[test]
+fn results_serialize_to_json() {
+    let config = read_avl(data("seed_fin.avl")).unwrap();
+    let sol = solve(&config, &SolverOptions::default()).unwrap();
+    let v = serde_json::to_value(sol).unwrap();
+    let cyv = v["derivatives"]["coefficients"][1][1].as_f64().unwrap();
+    assert_eq!(cyv, sol.derivatives.get("CYv").unwrap());
+    assert_eq!(v["derivatives"]["reference"]["bref"].as_f64(), Some(1.0));
+    assert!(v["totals"]["lift"].is_number());
+    let out = AvlOutput::read(data("seed_fin_a0_avl332.sb")).unwrap();
+    let j = serde_json::to_value(&out).unwrap();
+    assert_eq!(j["kind"], "Body");
+    assert_eq!(j["run_case"], "-unnamed-");
+    assert!(j.get("entries").is_none());
+}
