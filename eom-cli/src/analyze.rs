@@ -125,8 +125,7 @@ fn sensitivity_report(
     choice: &ModelChoice,
     overrides: &[(String, f64)],
 ) -> Result<Vec<SensitivityReport>, CliError> {
-    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    let model = models::build(&choice.name, &ov)?;
+    let model = choice.build(overrides)?;
     let sym = Linearizer::new(&model).symbolic()?;
     let s = eom_model::sensitivities(&sym, &model.scope.nominal_values())?;
     Ok(s.eigenvalues
@@ -352,10 +351,10 @@ pub fn analyze(
 ) -> Result<Analysis, CliError> {
     let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     // Building at the point validates the names and values (positive masses, …).
-    let at_point = models::build(&choice.name, &ov)?;
+    let at_point = choice.build(overrides)?;
     let lin = match opts.method {
         Method::Symbolic => {
-            let nominal = models::build(&choice.name, &[])?;
+            let nominal = choice.build(&[])?;
             Linearizer::new(&nominal)
                 .at(&ov)
                 .method(Method::Symbolic)
@@ -377,10 +376,9 @@ pub fn analyze(
     r.method = method_name(lin.method);
     r.parameters = choice.values(overrides);
     r.parameter_units = choice
-        .info
         .params
         .iter()
-        .map(|p| (p.name.to_string(), p.unit.to_string()))
+        .map(|p| (p.name.clone(), p.unit.clone()))
         .collect();
     if opts.sensitivity {
         r.sensitivity = Some(sensitivity_report(choice, overrides)?);

@@ -33,8 +33,7 @@ pub fn codegen(
     path: &Path,
 ) -> Result<String, CliError> {
     use eom_codegen::EmitOptions;
-    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    let model = models::build(&choice.name, &ov)?;
+    let model = choice.build(overrides)?;
     let mut opts = EmitOptions::default()
         .simplify(req.simplify)
         .simplify_always(req.simplify_always);
@@ -61,8 +60,7 @@ pub fn codegen(
     _req: &CodegenRequest,
     path: &Path,
 ) -> Result<String, CliError> {
-    let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    models::build(&choice.name, &ov)?;
+    choice.build(overrides)?;
     Err(CliError::Unavailable(format!(
         "code generation is not available in this build of eom (built without the cargo \
          feature `codegen`, which links the eom-codegen crate); nothing was written to {}. \

@@ -99,7 +99,8 @@ impl CliError {
                 | CatalogueError::UnknownParameter { .. }
                 | CatalogueError::BadValue { .. },
             )
-            | CliError::BadArgument { .. } => EXIT_USAGE,
+            | CliError::BadArgument { .. }
+            | CliError::Model(eom_model::ModelError::File { .. }) => EXIT_USAGE,
             _ => EXIT_FAILURE,
         }
     }

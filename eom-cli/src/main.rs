@@ -9,6 +9,7 @@
 
 mod analyze;
 mod analyze_text;
+mod check;
 mod codegen;
 mod error;
 mod format;
@@ -107,6 +108,22 @@ enum Command {
         function of every output/input pair. --set NAME=VALUE substitutes exact values first, \
         so that only the parameters being explored stay symbolic.")]
     Symbolic(SymbolicArgs),
+    /// Validate a model (a file, or a built-in) and summarise it: bodies, items, degrees of
+    /// freedom, constraints, states
+    Check {
+        /// Model file (or built-in model name)
+        #[arg(value_name = "FILE")]
+        model: String,
+        /// Output format
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+    /// Print a commented starter model file (redirect it into NAME.toml)
+    New {
+        /// The model's name
+        #[arg(value_name = "NAME")]
+        name: String,
+    },
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -150,7 +167,7 @@ impl From<MethodArg> for Method {
 
 #[derive(Args, Debug)]
 struct AnalyzeArgs {
-    /// Model name (see `eom list`; chains as chainN, e.g. chain50)
+    /// Model name (see `eom list`; chains as chainN, e.g. chain50) or model file (.toml)
     #[arg(value_name = "MODEL")]
     model: String,
     /// Set a parameter (repeatable); the others keep their defaults
@@ -186,7 +203,7 @@ struct AnalyzeArgs {
 
 #[derive(Args, Debug)]
 struct SweepArgs {
-    /// Model name (see `eom list`)
+    /// Model name (see `eom list`) or model file (.toml)
     #[arg(value_name = "MODEL")]
     model: String,
     /// The swept parameter and its grid: COUNT equally spaced values from START to STOP
@@ -206,7 +223,7 @@ struct SweepArgs {
 
 #[derive(Args, Debug)]
 struct CodegenArgs {
-    /// Model name (see `eom list`)
+    /// Model name (see `eom list`) or model file (.toml)
     #[arg(value_name = "MODEL")]
     model: String,
     /// Output file
@@ -247,7 +264,7 @@ enum SymbolicFormat {
 
 #[derive(Args, Debug)]
 struct SymbolicArgs {
-    /// Model name (see `eom list`)
+    /// Model name (see `eom list`) or model file (.toml)
     #[arg(value_name = "MODEL")]
     model: String,
     /// Substitute a parameter by an exact value (repeatable; `0.21` is 21/100)
@@ -339,8 +356,8 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             }
             let r = sweep::sweep(&choice, &spec, &overrides)?;
             if let Some(path) = &s.plot {
-                let unit = choice.param(&spec.name)?.unit;
-                let plot = plot::sweep::sweep_plot(&r.model, &r.result, unit)?;
+                let unit = choice.param(&spec.name)?.unit.clone();
+                let plot = plot::sweep::sweep_plot(&r.model, &r.result, &unit)?;
                 plot.write("--plot", path)?;
                 stderr.push_str(&plot.notes_text(path));
             }
@@ -366,6 +383,15 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             };
             codegen::codegen(&choice, &overrides, &req, &c.output)?
         }
+        Command::Check { model, format } => {
+            let choice = ModelChoice::resolve(&model)?;
+            let r = check::check(&choice)?;
+            match format {
+                Format::Text => r.to_text(),
+                Format::Json => json(&r)?,
+            }
+        }
+        Command::New { name } => check::starter(&name),
         Command::Symbolic(a) => {
             let choice = ModelChoice::resolve(&a.model)?;
             // Checked as numbers (names, finiteness), kept as text for exact substitution.

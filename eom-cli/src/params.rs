@@ -1,64 +1,131 @@
-//! Models and parameters on the command line: resolving a model name, parsing `--set
+//! Models and parameters on the command line: resolving a model name or file, parsing `--set
 //! NAME=VALUE` and `--param NAME=START:STOP:COUNT`, the full parameter list of a model.
 
 use crate::error::CliError;
-use models::{CatalogueError, ModelInfo, ParamSpec};
+use eom_model::Model;
+use eom_model::file::ParamRange;
+use models::CatalogueError;
+use std::path::{Path, PathBuf};
 
-/// A built-in model chosen by name (`chain50` resolves to the `chainN` entry with size 50).
+/// A model chosen on the command line: a built-in by name (`chain50` resolves to the `chainN`
+/// entry with size 50) or a model file (a path ending in `.toml`, or any existing file).
 #[derive(Clone, Debug)]
 pub struct ModelChoice {
-    /// The name as given (`chain50`).
+    /// The name as given (`chain50`, `cars/my_car.toml`).
     pub name: String,
-    /// The catalogue entry.
-    pub info: ModelInfo,
+    /// Where the model comes from.
+    pub source: Source,
+    /// The parameters with defaults, units, descriptions and ranges, in declaration order.
+    pub params: Vec<Param>,
+}
+
+/// Where a model comes from.
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A built-in model of the catalogue.
+    Builtin,
+    /// A model file.
+    File(PathBuf),
+}
+
+/// A parameter of the chosen model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    /// Its name.
+    pub name: String,
+    /// Its default value.
+    pub default: f64,
+    /// Unit (may be empty).
+    pub unit: String,
+    /// Description (may be empty).
+    pub description: String,
+    /// Allowed values.
+    pub range: ParamRange,
+}
+
+/// Whether a model argument names a file rather than a built-in model.
+pub fn is_file_argument(name: &str) -> bool {
+    name.ends_with(".toml") || name.contains('/') || Path::new(name).is_file()
 }
 
 impl ModelChoice {
-    /// Looks the model up; an unknown name is [`CatalogueError::UnknownModel`], which lists the
-    /// models.
+    /// Looks the model up: a file is loaded (and so checked) at its defaults; an unknown name
+    /// is [`CatalogueError::UnknownModel`], which lists the models.
     pub fn resolve(name: &str) -> Result<ModelChoice, CliError> {
+        if is_file_argument(name) {
+            let loaded = eom_model::file::load(Path::new(name), &[])?;
+            let params = loaded
+                .params
+                .iter()
+                .map(|p| Param {
+                    name: p.name.clone(),
+                    default: p.default,
+                    unit: p.unit.clone(),
+                    description: p.description.clone(),
+                    range: p.range,
+                })
+                .collect();
+            return Ok(ModelChoice {
+                name: name.to_string(),
+                source: Source::File(PathBuf::from(name)),
+                params,
+            });
+        }
         let (info, _) = models::find(name)?;
+        let params = info
+            .params
+            .iter()
+            .map(|p| Param {
+                name: p.name.to_string(),
+                default: p.default,
+                unit: p.unit.to_string(),
+                description: p.description.to_string(),
+                range: ParamRange::of(p.assume),
+            })
+            .collect();
         Ok(ModelChoice {
             name: name.to_string(),
-            info,
+            source: Source::Builtin,
+            params,
         })
     }
 
-    /// The parameter names, in catalogue order.
-    pub fn param_names(&self) -> Vec<String> {
-        self.info
-            .params
-            .iter()
-            .map(|p| p.name.to_string())
-            .collect()
+    /// The model with `overrides` replacing the defaults (values are checked against the
+    /// parameters' ranges).
+    pub fn build(&self, overrides: &[(String, f64)]) -> Result<Model, CliError> {
+        let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        match &self.source {
+            Source::Builtin => Ok(models::build(&self.name, &ov)?),
+            Source::File(path) => Ok(eom_model::file::load(path, &ov)?.model),
+        }
     }
 
-    /// The catalogue entry of a parameter, or [`CatalogueError::UnknownParameter`] listing them.
-    pub fn param(&self, name: &str) -> Result<&ParamSpec, CliError> {
-        self.info
-            .params
-            .iter()
-            .find(|p| p.name == name)
-            .ok_or_else(|| {
-                CliError::Catalogue(CatalogueError::UnknownParameter {
-                    model: self.name.clone(),
-                    name: name.to_string(),
-                    known: self.param_names(),
-                })
+    /// The parameter names, in declaration order.
+    pub fn param_names(&self) -> Vec<String> {
+        self.params.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// A parameter, or [`CatalogueError::UnknownParameter`] listing them.
+    pub fn param(&self, name: &str) -> Result<&Param, CliError> {
+        self.params.iter().find(|p| p.name == name).ok_or_else(|| {
+            CliError::Catalogue(CatalogueError::UnknownParameter {
+                model: self.name.clone(),
+                name: name.to_string(),
+                known: self.param_names(),
             })
+        })
     }
 
     /// Every parameter with its value: the override where given, else the default.
     pub fn values(&self, overrides: &[(String, f64)]) -> Vec<(String, f64)> {
-        self.info
-            .params
+        self.params
             .iter()
             .map(|p| {
                 let v = overrides
                     .iter()
-                    .find(|(k, _)| k == p.name)
+                    .find(|(k, _)| *k == p.name)
                     .map_or(p.default, |o| o.1);
-                (p.name.to_string(), v)
+                (p.name.clone(), v)
             })
             .collect()
     }

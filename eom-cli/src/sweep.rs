@@ -12,7 +12,7 @@ use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
 use eom_model::{Linearizer, Method, Model, ModelError};
 use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
-use eom_sym::{Assumption, Expr, SymError};
+use eom_sym::{Expr, SymError};
 use models::CatalogueError;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -105,7 +105,12 @@ fn check_range(
 ) -> Result<(), CliError> {
     let p = choice.param(&spec.name)?;
     let (lo, hi) = spec.bounds();
-    if p.assume == Assumption::Nonzero && lo <= 0.0 && hi >= 0.0 {
+    if !p.range.contains(0.0)
+        && p.range.contains(lo)
+        && p.range.contains(hi)
+        && lo <= 0.0
+        && hi >= 0.0
+    {
         return Err(CliError::Catalogue(CatalogueError::BadValue {
             model: choice.name.clone(),
             name: spec.name.clone(),
@@ -115,9 +120,9 @@ fn check_range(
     }
     // The sign assumptions are intervals: checking both ends covers the range.
     for x in [lo, hi] {
-        let mut ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        ov.push((spec.name.as_str(), x));
-        models::build(&choice.name, &ov)?;
+        let mut ov = overrides.to_vec();
+        ov.push((spec.name.clone(), x));
+        choice.build(&ov)?;
     }
     Ok(())
 }
@@ -147,9 +152,9 @@ pub fn sweep(
     } else {
         0.5 * (lo + hi)
     };
-    let mut nominal: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    nominal.push((spec.name.as_str(), pivots_at));
-    let model = models::build(&choice.name, &nominal)?;
+    let mut nominal = overrides.to_vec();
+    nominal.push((spec.name.clone(), pivots_at));
+    let model = choice.build(&nominal)?;
     let names = model.scope.names();
     let base = model.scope.nominal_values();
     let k = names

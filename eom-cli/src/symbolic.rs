@@ -150,7 +150,8 @@ pub fn symbolic(
         })
         .collect::<Result<_, CliError>>()?;
     // Pivots are chosen at the point the user fixes.
-    let model = models::build(&choice.name, &numeric)?;
+    let owned: Vec<(String, f64)> = numeric.iter().map(|(k, v)| (k.to_string(), *v)).collect();
+    let model = choice.build(&owned)?;
     let sym = Linearizer::new(&model).symbolic()?;
     model.in_pool(|| build_report(choice, &model, &sym, overrides, req))
 }

@@ -31,6 +31,16 @@ pub enum ModelError {
     /// A model feature that this path does not support (the message says which path does).
     #[error("not supported: {0}")]
     Unsupported(String),
+    /// A model file is invalid: where, about what (item and field), and what is wrong.
+    #[error("{position}: {}{problem}", if context.is_empty() { String::new() } else { format!("{context}: ") })]
+    File {
+        /// File, line and column.
+        position: crate::file::FilePosition,
+        /// The item and field, e.g. ``spring `front`, field `stiffness` ``.
+        context: String,
+        /// What is wrong, with the valid alternatives where there is a short list.
+        problem: String,
+    },
     /// An error of the expression layer (a parameter, an expression, an evaluation).
     #[error(transparent)]
     Sym(#[from] SymError),

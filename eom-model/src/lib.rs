@@ -59,6 +59,7 @@
 pub mod assemble;
 pub mod eliminate;
 pub mod error;
+pub mod file;
 pub mod geometry;
 pub mod items;
 pub mod linearize;

@@ -1,0 +1,656 @@
+//! One array of tables per item kind: fields read with positions, converted through the
+//! builders (so every default is the builder's), mirrored copies added where asked.
+
+use super::mirror::{Mirror, mirror_name};
+use super::params::{Declarations, value_expr};
+use super::source::{Ctx, Table, Value, array_of};
+use crate::Model;
+use crate::error::ModelError;
+use crate::items::*;
+use eom_sym::{Expr, Scope};
+use toml::de::DeValue;
+
+/// The fields every kind accepts besides its own.
+const COMMON: [&str; 2] = ["name", "mirror"];
+
+/// Applies the point fields through the builder methods every point item shares.
+macro_rules! point_apply {
+    ($p:expr, $item:expr) => {{
+        let p = $p;
+        let mut x = $item;
+        if let Some(b) = &p.between {
+            x = x.between(&b[0], &b[1]);
+        }
+        if let Some(a) = p.at {
+            x = x.at(a);
+        }
+        if let Some(n) = p.forces {
+            x = x.forces(n);
+        }
+        if let Some(n) = p.moments {
+            x = x.moments(n);
+        }
+        if let Some(a) = p.axis {
+            x = x.axis(a);
+        }
+        if let Some(a) = p.rolling_axis {
+            x = x.rolling_axis(a);
+        }
+        x
+    }};
+}
+
+/// Reads the items of a file into a model.
+pub(crate) struct Builder<'a> {
+    ctx: &'a Ctx<'a>,
+    decl: &'a Declarations,
+    model: &'a mut Model,
+    /// Names taken so far, for duplicate detection (items and bodies have separate name
+    /// spaces, as in the Rust API).
+    items: Vec<String>,
+}
+
+impl<'a> Builder<'a> {
+    pub fn new(
+        ctx: &'a Ctx<'a>,
+        _scope: &Scope,
+        decl: &'a Declarations,
+        model: &'a mut Model,
+    ) -> Self {
+        Builder {
+            ctx,
+            decl,
+            model,
+            items: Vec::new(),
+        }
+    }
+
+    /// Every kind, bodies first (items refer to them).
+    pub fn all(&mut self, root: &Table<'a>) -> Result<(), ModelError> {
+        self.each(root, "body", Self::body)?;
+        for (kind, f) in [
+            ("load", Self::load as Reader<'a>),
+            ("spring", Self::spring),
+            ("link", Self::link),
+            ("beam", Self::beam),
+            ("rigid_point", Self::rigid_point),
+            ("flex_point", Self::flex_point),
+            ("nh_point", Self::nh_point),
+            ("actuator", Self::actuator),
+            ("sensor", Self::sensor),
+        ] {
+            self.each(root, kind, f)?;
+        }
+        Ok(())
+    }
+
+    /// Reads every `[[kind]]` table, and its mirror image where asked.
+    fn each(&mut self, root: &Table<'a>, kind: &str, f: Reader<'a>) -> Result<(), ModelError> {
+        let Some(v) = root.get(kind) else {
+            return Ok(());
+        };
+        let DeValue::Array(list) = v.get_ref() else {
+            return Err(root.field_error(
+                kind,
+                &v.span(),
+                format!("expected an array of tables (`[[{kind}]]`)"),
+            ));
+        };
+        for (k, entry) in list.iter().enumerate() {
+            let t = Table::sub(self.ctx, entry, format!("{kind} #{}", k + 1))?;
+            let name = t
+                .string("name")?
+                .ok_or_else(|| t.error(format!("every {kind} needs a `name`")))?;
+            let t = Table {
+                context: format!("{kind} `{name}`"),
+                ..t
+            };
+            let mirror = match t.string("mirror")? {
+                None => None,
+                Some(m) => Some(Mirror::parse(&m).map_err(|p| {
+                    let span = t.get("mirror").map(|x| x.span()).unwrap_or(t.span.clone());
+                    t.field_error("mirror", &span, p)
+                })?),
+            };
+            f(self, &t, &name, None)?;
+            if let Some(m) = mirror {
+                let mirrored = mirror_name(&name).ok_or_else(|| {
+                    t.error(
+                        "`mirror` needs a name with `left` or `right` (or L/R, LF/RF, LR/RR \
+                         as a word) to name the copy",
+                    )
+                })?;
+                f(self, &t, &mirrored, Some(m))?;
+            }
+        }
+        Ok(())
+    }
+
+    fn claim(&mut self, t: &Table<'_>, kind: &str, name: &str) -> Result<(), ModelError> {
+        let taken = if kind == "body" {
+            self.model.body(name).is_some() || name == GROUND
+        } else {
+            self.items.iter().any(|n| n == name)
+        };
+        if taken {
+            let span = t.get("name").map(|x| x.span()).unwrap_or(t.span.clone());
+            return Err(t.field_error(
+                "name",
+                &span,
+                format!("a {kind} called `{name}` already exists"),
+            ));
+        }
+        if kind != "body" {
+            self.items.push(name.to_string());
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------- field readers
+
+    fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
+        t.get(key)
+            .map(|v| value_expr(self.ctx, self.decl, v, &t.field_context(key)))
+            .transpose()
+    }
+
+    fn scalars<const N: usize>(
+        &self,
+        t: &Table<'_>,
+        key: &str,
+    ) -> Result<Option<[Expr; N]>, ModelError> {
+        let Some(v) = t.get(key) else {
+            return Ok(None);
+        };
+        let a = array_of(t, key, v, N)?;
+        let mut out = Vec::with_capacity(N);
+        for x in a {
+            out.push(value_expr(self.ctx, self.decl, x, &t.field_context(key))?);
+        }
+        Ok(Some(out.try_into().expect("N values")))
+    }
+
+    fn vector(
+        &self,
+        t: &Table<'_>,
+        key: &str,
+        m: Option<Mirror>,
+        kind: VecKind,
+    ) -> Result<Option<Vec3<Expr>>, ModelError> {
+        Ok(self.scalars::<3>(t, key)?.map(|v| match m {
+            Some(m) => m.apply(v, kind),
+            None => v,
+        }))
+    }
+
+    fn matrix(&self, t: &Table<'_>, key: &str) -> Result<Option<Vec<Vec<Expr>>>, ModelError> {
+        let Some(v) = t.get(key) else {
+            return Ok(None);
+        };
+        let DeValue::Array(rows) = v.get_ref() else {
+            return Err(t.field_error(key, &v.span(), "expected an array of rows"));
+        };
+        let n = rows.len();
+        let mut out = Vec::with_capacity(n);
+        for r in rows.iter() {
+            let row = array_of(t, key, r, n)?;
+            out.push(
+                row.iter()
+                    .map(|x| value_expr(self.ctx, self.decl, x, &t.field_context(key)))
+                    .collect::<Result<Vec<_>, _>>()?,
+            );
+        }
+        Ok(Some(out))
+    }
+
+    /// `between = [body 1, body 2]` (mirrored names where mirrored); the default is the
+    /// builder's.
+    fn between(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Option<[String; 2]>, ModelError> {
+        let Some(v) = t.get("between") else {
+            return Ok(None);
+        };
+        let a = array_of(t, "between", v, 2)?;
+        let mut out = Vec::new();
+        for x in a {
+            let DeValue::String(s) = x.get_ref() else {
+                return Err(t.field_error("between", &x.span(), "expected body names"));
+            };
+            out.push(self.body_ref(t, "between", x, s, m)?);
+        }
+        Ok(Some([out[0].clone(), out[1].clone()]))
+    }
+
+    /// A body name that must exist (mirrored where mirrored and the mirror image exists).
+    fn body_ref(
+        &self,
+        t: &Table<'_>,
+        key: &str,
+        v: &Value<'_>,
+        name: &str,
+        m: Option<Mirror>,
+    ) -> Result<String, ModelError> {
+        let name = match m {
+            Some(_) => mirror_name(name)
+                .filter(|n| self.model.body(n).is_some())
+                .unwrap_or_else(|| name.to_string()),
+            None => name.to_string(),
+        };
+        if name == GROUND || self.model.body(&name).is_some() {
+            return Ok(name);
+        }
+        let known: Vec<String> = std::iter::once(GROUND.to_string())
+            .chain(self.model.bodies.iter().map(|b| b.name.to_string()))
+            .collect();
+        Err(t.field_error(
+            key,
+            &v.span(),
+            format!(
+                "no body called `{name}`; the bodies are: {}",
+                known.join(", ")
+            ),
+        ))
+    }
+
+    // ---------------------------------------------------------------- kinds
+
+    fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&[
+            "location",
+            "mass",
+            "moments",
+            "products",
+            "velocity",
+            "angular_velocity",
+        ]))?;
+        self.claim(t, "body", name)?;
+        let mut b = Body::new(name);
+        if let Some(v) = self.vector(t, "location", m, VecKind::Polar)? {
+            b = b.at(v);
+        }
+        if let Some(x) = self.scalar(t, "mass")? {
+            b = b.mass(x);
+        }
+        if let Some(v) = self.scalars::<3>(t, "moments")? {
+            b = b.moments(v);
+        }
+        if let Some(v) = self.scalars::<3>(t, "products")? {
+            b = b.products(match m {
+                Some(m) => m.products(v),
+                None => v,
+            });
+        }
+        if let Some(v) = self.vector(t, "velocity", m, VecKind::Polar)? {
+            b = b.velocity(v);
+        }
+        if let Some(v) = self.vector(t, "angular_velocity", m, VecKind::Axial)? {
+            b = b.angular_velocity(v);
+        }
+        self.model.add(b);
+        Ok(())
+    }
+
+    fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&["body", "at", "force", "moment", "frame"]))?;
+        self.claim(t, "load", name)?;
+        let body = self
+            .named_body(t, "body", m)?
+            .unwrap_or_else(|| GROUND.to_string());
+        let mut l = Load::new(name, &body);
+        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
+            l = l.at(v);
+        }
+        if let Some(v) = self.vector(t, "force", m, VecKind::Polar)? {
+            l = l.force(v);
+        }
+        if let Some(v) = self.vector(t, "moment", m, VecKind::Axial)? {
+            l = l.moment(v);
+        }
+        if let Some(f) = self.named_body(t, "frame", m)? {
+            l = l.frame(&f);
+        }
+        self.model.add(l);
+        Ok(())
+    }
+
+    fn named_body(
+        &self,
+        t: &Table<'_>,
+        key: &str,
+        m: Option<Mirror>,
+    ) -> Result<Option<String>, ModelError> {
+        let Some(v) = t.get(key) else {
+            return Ok(None);
+        };
+        let DeValue::String(s) = v.get_ref() else {
+            return Err(t.field_error(key, &v.span(), "expected a body name"));
+        };
+        self.body_ref(t, key, v, s, m).map(Some)
+    }
+
+    /// `between`, `ends`, `twist` of a line item.
+    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<LineFields, ModelError> {
+        let ends = match t.get("ends") {
+            None => None,
+            Some(v) => {
+                let a = array_of(t, "ends", v, 2)?;
+                let mut e = Vec::new();
+                for x in a {
+                    let p = array_of(t, "ends", x, 3)?;
+                    let mut c = Vec::new();
+                    for y in p {
+                        c.push(value_expr(
+                            self.ctx,
+                            self.decl,
+                            y,
+                            &t.field_context("ends"),
+                        )?);
+                    }
+                    let c: [Expr; 3] = c.try_into().expect("3");
+                    e.push(match m {
+                        Some(m) => m.apply(c, VecKind::Polar),
+                        None => c,
+                    });
+                }
+                Some([e[0], e[1]])
+            }
+        };
+        Ok(LineFields {
+            between: self.between(t, m)?,
+            ends,
+            twist: t.bool("twist")?.unwrap_or(false),
+        })
+    }
+
+    fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&[
+            LINE[0],
+            LINE[1],
+            LINE[2],
+            "stiffness",
+            "damping",
+            "inertance",
+            "preload",
+        ]))?;
+        self.claim(t, "spring", name)?;
+        let l = self.line(t, m)?;
+        let mut s = l.apply(
+            Spring::new(name),
+            |x, b| x.between(&b[0], &b[1]),
+            |x, e| x.ends(e[0], e[1]),
+            Spring::twist,
+        );
+        if let Some(x) = self.scalar(t, "stiffness")? {
+            s = s.stiffness(x);
+        }
+        if let Some(x) = self.scalar(t, "damping")? {
+            s = s.damping(x);
+        }
+        if let Some(x) = self.scalar(t, "inertance")? {
+            s = s.inertance(x);
+        }
+        if let Some(x) = self.scalar(t, "preload")? {
+            s = s.preload(x);
+        }
+        self.model.add(s);
+        Ok(())
+    }
+
+    fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&LINE))?;
+        self.claim(t, "link", name)?;
+        let l = self.line(t, m)?;
+        let link = l.apply(
+            Link::new(name),
+            |x, b| x.between(&b[0], &b[1]),
+            |x, e| x.ends(e[0], e[1]),
+            Link::twist,
+        );
+        self.model.add(link);
+        Ok(())
+    }
+
+    fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&[
+            LINE[0],
+            LINE[1],
+            LINE[2],
+            "gain",
+            "rate_gain",
+            "units",
+        ]))?;
+        self.claim(t, "actuator", name)?;
+        let l = self.line(t, m)?;
+        let mut a = l.apply(
+            Actuator::new(name),
+            |x, b| x.between(&b[0], &b[1]),
+            |x, e| x.ends(e[0], e[1]),
+            Actuator::twist,
+        );
+        if let Some(x) = self.scalar(t, "gain")? {
+            a = a.gain(x);
+        }
+        if let Some(x) = self.scalar(t, "rate_gain")? {
+            a = a.rate_gain(x);
+        }
+        if let Some(u) = t.string("units")? {
+            a = a.units(&u);
+        }
+        self.model.add(a);
+        Ok(())
+    }
+
+    fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&[
+            LINE[0],
+            LINE[1],
+            LINE[2],
+            "gain",
+            "order",
+            "frame",
+            "feedthrough",
+            "units",
+        ]))?;
+        self.claim(t, "sensor", name)?;
+        let l = self.line(t, m)?;
+        let mut s = l.apply(
+            Sensor::new(name),
+            |x, b| x.between(&b[0], &b[1]),
+            |x, e| x.ends(e[0], e[1]),
+            Sensor::twist,
+        );
+        if let Some(x) = self.scalar(t, "gain")? {
+            s = s.gain(x);
+        }
+        match t.string("order")?.as_deref() {
+            None | Some("displacement") => {}
+            Some("velocity") => s = s.velocity(),
+            Some("acceleration") => s = s.acceleration(),
+            Some(other) => {
+                let span = t.get("order").map(|x| x.span()).unwrap_or(t.span.clone());
+                return Err(t.field_error("order", &span, format!(
+                    "`{other}` is not a sensor order; use displacement, velocity or acceleration"
+                )));
+            }
+        }
+        match t.string("frame")?.as_deref() {
+            None | Some("global") => {}
+            Some("local") => s = s.local(),
+            Some(other) => {
+                let span = t.get("frame").map(|x| x.span()).unwrap_or(t.span.clone());
+                return Err(t.field_error(
+                    "frame",
+                    &span,
+                    format!("`{other}` is not a sensor frame; use global or local"),
+                ));
+            }
+        }
+        if let Some(v) = t.get("feedthrough") {
+            let f = Table::sub(self.ctx, v, t.field_context("feedthrough"))?;
+            f.only(&["actuator", "gain"])?;
+            let actuator = f
+                .string("actuator")?
+                .ok_or_else(|| f.error("`feedthrough` needs an `actuator`"))?;
+            let actuator = match m {
+                Some(_) => mirror_name(&actuator)
+                    .filter(|n| self.items.contains(n))
+                    .unwrap_or(actuator),
+                None => actuator,
+            };
+            let gain = self.scalar(&f, "gain")?.unwrap_or_else(|| Expr::int(-1));
+            s = s.feedthrough(&actuator, gain);
+        }
+        if let Some(u) = t.string("units")? {
+            s = s.units(&u);
+        }
+        self.model.add(s);
+        Ok(())
+    }
+
+    fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&[
+            "between",
+            "ends",
+            "stiffness",
+            "mpul",
+            "perp",
+        ]))?;
+        self.claim(t, "beam", name)?;
+        let l = self.line(t, m)?;
+        let mut b = Beam::new(name);
+        if let Some(bs) = &l.between {
+            b = b.between(&bs[0], &bs[1]);
+        }
+        if let Some(e) = l.ends {
+            b = b.ends(e[0], e[1]);
+        }
+        if let Some([e1, e2]) = self.scalars::<2>(t, "stiffness")? {
+            b = b.stiffness(e1, e2);
+        }
+        if let Some(x) = self.scalar(t, "mpul")? {
+            b = b.mpul(x);
+        }
+        if let Some(v) = self.vector(t, "perp", m, VecKind::Polar)? {
+            b = b.perp(v);
+        }
+        self.model.add(b);
+        Ok(())
+    }
+
+    /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item.
+    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<PointFields, ModelError> {
+        Ok(PointFields {
+            between: self.between(t, m)?,
+            at: self.vector(t, "at", m, VecKind::Polar)?,
+            forces: t.count("forces", 3)?,
+            moments: t.count("moments", 3)?,
+            axis: self.vector(t, "axis", m, VecKind::Polar)?,
+            rolling_axis: self.vector(t, "rolling_axis", m, VecKind::Polar)?,
+        })
+    }
+
+    fn rigid_point(
+        &mut self,
+        t: &Table<'_>,
+        name: &str,
+        m: Option<Mirror>,
+    ) -> Result<(), ModelError> {
+        t.only(&with_common(&POINT))?;
+        self.claim(t, "rigid point", name)?;
+        let p = self.point(t, m)?;
+        let r = point_apply!(p, RigidPoint::new(name));
+        self.model.add(r);
+        Ok(())
+    }
+
+    fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+        t.only(&with_common(&POINT))?;
+        self.claim(t, "nh point", name)?;
+        let p = self.point(t, m)?;
+        let r = point_apply!(p, NhPoint::new(name));
+        self.model.add(r);
+        Ok(())
+    }
+
+    fn flex_point(
+        &mut self,
+        t: &Table<'_>,
+        name: &str,
+        m: Option<Mirror>,
+    ) -> Result<(), ModelError> {
+        let mut keys = POINT.to_vec();
+        keys.extend(["stiffness", "damping", "stiffness_matrix", "damping_matrix"]);
+        t.only(&with_common(&keys))?;
+        self.claim(t, "flex point", name)?;
+        let p = self.point(t, m)?;
+        let mut f = point_apply!(p, FlexPoint::new(name));
+        if let Some([k, kr]) = self.scalars::<2>(t, "stiffness")? {
+            f = f.stiffness(k, kr);
+        }
+        if let Some([c, cr]) = self.scalars::<2>(t, "damping")? {
+            f = f.damping(c, cr);
+        }
+        if let Some(k) = self.matrix(t, "stiffness_matrix")? {
+            f = f.stiffness_matrix(k);
+        }
+        if let Some(c) = self.matrix(t, "damping_matrix")? {
+            f = f.damping_matrix(c);
+        }
+        self.model.add(f);
+        Ok(())
+    }
+}
+
+type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), ModelError>;
+
+/// How a vector transforms under a mirror: a position or direction (polar), or a rotation or
+/// moment (axial, a pseudo-vector).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum VecKind {
+    Polar,
+    Axial,
+}
+
+const LINE: [&str; 3] = ["between", "ends", "twist"];
+const POINT: [&str; 6] = ["between", "at", "forces", "moments", "axis", "rolling_axis"];
+
+fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = COMMON.to_vec();
+    v.extend_from_slice(keys);
+    v
+}
+
+struct LineFields {
+    between: Option<[String; 2]>,
+    ends: Option<[Vec3<Expr>; 2]>,
+    twist: bool,
+}
+
+impl LineFields {
+    fn apply<T>(
+        self,
+        mut item: T,
+        between: impl Fn(T, &[String; 2]) -> T,
+        ends: impl Fn(T, [Vec3<Expr>; 2]) -> T,
+        twist: impl Fn(T) -> T,
+    ) -> T {
+        if let Some(b) = &self.between {
+            item = between(item, b);
+        }
+        if let Some(e) = self.ends {
+            item = ends(item, e);
+        }
+        if self.twist {
+            item = twist(item);
+        }
+        item
+    }
+}
+
+struct PointFields {
+    between: Option<[String; 2]>,
+    at: Option<Vec3<Expr>>,
+    forces: Option<u8>,
+    moments: Option<u8>,
+    axis: Option<Vec3<Expr>>,
+    rolling_axis: Option<Vec3<Expr>>,
+}

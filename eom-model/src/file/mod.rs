@@ -1,0 +1,156 @@
+//! Model files: a model described in TOML, with parameters and expressions, loaded strictly.
+//!
+//! The format is documented in `docs/model-files.md` of the repository. In short: a
+//! `[model]` table (name, description, gravity), a `[parameters]` table (a number, an
+//! expression string for a derived parameter, or a table with `value`, `unit`, `description`
+//! and `range`), and one array of tables per item kind (`[[body]]`, `[[spring]]`,
+//! `[[flex_point]]`, …) whose fields are those of the Rust builders, every number a number or
+//! an expression string. An item with `mirror = "y"` also gets its mirror image, with `left`
+//! and `right` exchanged in its name and in the names of the bodies it connects.
+//!
+//! Loading is strict: an unknown key, a value of the wrong type, an expression that does not
+//! parse or names an unknown parameter, a duplicated name, a body that does not exist, a cycle
+//! among derived parameters — each is a [`ModelError::File`] with the file, line and column,
+//! the item and field, and the valid alternatives where there is a short list.
+//!
+//! ```
+//! let text = r#"
+//! [model]
+//! name = "mass on a spring"
+//! [parameters]
+//! m = { value = 2, unit = "kg", range = "> 0" }
+//! k = { value = 8, unit = "N/m", range = "> 0" }
+//! [[body]]
+//! name = "block"
+//! mass = "m"
+//! [[rigid_point]]
+//! name = "slider"
+//! between = ["block", "ground"]
+//! forces = 2
+//! moments = 3
+//! axis = [0, 0, 1]
+//! [[flex_point]]
+//! name = "spring"
+//! between = ["block", "ground"]
+//! forces = 1
+//! axis = [0, 0, 1]
+//! stiffness = ["k", 0]
+//! "#;
+//! let model = eom_model::file::from_str(text, "spring.toml", &[]).unwrap();
+//! let lin = eom_model::Linearizer::new(&model).run().unwrap();
+//! assert_eq!(lin.state_space.a[(1, 0)], -4.0); // −k/m
+//! ```
+
+mod items;
+mod mirror;
+mod params;
+mod source;
+
+pub use params::{ParamRange, ParamSpec};
+pub use source::FilePosition;
+
+use crate::error::ModelError;
+use crate::{Model, items::Load};
+use eom_sym::Expr;
+use source::{Ctx, Table};
+use std::path::Path;
+
+/// A loaded model file: the model and the parameters' declared ranges (for checking values
+/// given later, e.g. on the command line).
+#[derive(Clone, Debug)]
+pub struct LoadedModel {
+    /// The model, with the nominal values of the file (or the overrides).
+    pub model: Model,
+    /// The model's description (`[model] description`).
+    pub description: String,
+    /// The independent parameters in declaration order, with units, descriptions and ranges.
+    pub params: Vec<ParamSpec>,
+    /// The derived parameters: name and defining expression text.
+    pub derived: Vec<(String, String)>,
+}
+
+/// Reads and loads the model file at `path`; `overrides` replace nominal values by name.
+pub fn load(path: &Path, overrides: &[(&str, f64)]) -> Result<LoadedModel, ModelError> {
+    let text = std::fs::read_to_string(path).map_err(|e| ModelError::File {
+        position: FilePosition::whole(&path.display().to_string()),
+        context: String::new(),
+        problem: format!("cannot be read: {e}"),
+    })?;
+    load_str(&text, &path.display().to_string(), overrides)
+}
+
+/// Loads a model file given as text (`origin` names it in messages).
+pub fn from_str(text: &str, origin: &str, overrides: &[(&str, f64)]) -> Result<Model, ModelError> {
+    Ok(load_str(text, origin, overrides)?.model)
+}
+
+/// Loads a model file given as text, with its parameter declarations.
+pub fn load_str(
+    text: &str,
+    origin: &str,
+    overrides: &[(&str, f64)],
+) -> Result<LoadedModel, ModelError> {
+    let ctx = Ctx::new(text, origin);
+    let doc = ctx.parse()?;
+    let root = Table::new(&ctx, &doc, "the file");
+    root.only(&[
+        "model",
+        "parameters",
+        "body",
+        "load",
+        "spring",
+        "link",
+        "beam",
+        "rigid_point",
+        "flex_point",
+        "nh_point",
+        "actuator",
+        "sensor",
+    ])?;
+    let (name, description, gravity) = model_section(&root)?;
+    let mut model = Model::new(&name);
+    let decl = params::declare(&root, &mut model, overrides)?;
+    let scope = decl.scope(&mut model)?;
+    let mut cx = items::Builder::new(&ctx, &scope, &decl, &mut model);
+    cx.all(&root)?;
+    if let Some(g) = gravity {
+        let g = params::vector(&ctx, &scope, &decl, g, "[model] gravity")?;
+        add_weights(&mut model, g);
+    }
+    model.validate()?;
+    Ok(LoadedModel {
+        model,
+        description,
+        params: decl.specs,
+        derived: decl.derived_text,
+    })
+}
+
+/// `[model]`: name, description, gravity.
+fn model_section<'a>(
+    root: &Table<'a>,
+) -> Result<(String, String, Option<&'a source::Value<'a>>), ModelError> {
+    let Some(m) = root.table("model")? else {
+        return Ok(("model".into(), String::new(), None));
+    };
+    m.only(&["name", "description", "gravity"])?;
+    let name = m.string("name")?.unwrap_or_else(|| "model".into());
+    let description = m.string("description")?.unwrap_or_default();
+    Ok((name, description, m.get("gravity")))
+}
+
+/// A weight (dead load `m·g` at the mass centre) on every body with mass.
+fn add_weights(model: &mut Model, g: [Expr; 3]) {
+    let bodies: Vec<_> = model.bodies.clone();
+    for b in bodies {
+        if b.mass.is_zero() {
+            continue;
+        }
+        let f = [b.mass * g[0], b.mass * g[1], b.mass * g[2]];
+        model.add(
+            Load::new(&format!("{} weight", b.name), &b.name)
+                .at(b.location)
+                .force(f),
+        );
+    }
+}
