@@ -28,12 +28,12 @@ use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref,
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
+use eom_num::{SignalNames, StateSpace};
 use eom_sym::SymError;
 use eom_sym::expr::Expr;
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
 use eom_sym::tape::{NativeTape, Tape};
-use eom_num::{SignalNames, StateSpace};
 use nalgebra::DMatrix;
 
 /// Pivot ratio below which a recorded pivot counts as broken down at an evaluation point:

@@ -11,10 +11,10 @@
 use super::assemble::Assembled;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
-use eom_sym::matrix::SparseMatrix;
 use eom_num::descriptor::{DescriptorOptions, DescriptorReport, descriptor_to_state_space};
 use eom_num::linalg::{Equilibrate, RankTolerance, nullspace_equilibrated};
 use eom_num::{Descriptor, SignalNames, StateSpace};
+use eom_sym::matrix::SparseMatrix;
 use nalgebra::DMatrix;
 
 /// What the robust reduction decided.
