@@ -65,12 +65,7 @@ fn main() {
     .source;
     index.push_str("pub mod gen64 {\n");
     for m in MODELS {
-        add(
-            &format!("{m}_f64.rs"),
-            "f64",
-            builtin(m),
-            &mut index,
-        );
+        add(&format!("{m}_f64.rs"), "f64", builtin(m), &mut index);
     }
     add(
         "bicycle_std.rs",
@@ -99,9 +94,7 @@ fn main() {
     add(
         "shimmy_simplified.rs",
         "f64 simplified",
-        builtin("shimmy")
-            .simplify(true)
-            .module("shimmy_simplified"),
+        builtin("shimmy").simplify(true).module("shimmy_simplified"),
         &mut index,
     );
     let mut speed_only = builtin("bicycle").module("bicycle_speed");
@@ -121,12 +114,7 @@ fn main() {
     );
     index.push_str("}\npub mod gen32 {\n");
     for m in MODELS {
-        add(
-            &format!("{m}_f32.rs"),
-            "f32",
-            builtin(m).f32(),
-            &mut index,
-        );
+        add(&format!("{m}_f32.rs"), "f32", builtin(m).f32(), &mut index);
     }
     index.push_str("}\n");
     // …and again after everything else was built in the same pool.

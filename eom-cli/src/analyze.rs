@@ -11,6 +11,8 @@
 use crate::error::CliError;
 use crate::format::{ReIm, eigenvalue, g, re_im};
 use crate::params::ModelChoice;
+use eom_model::ModelError;
+use eom_model::{Linearizer, Method};
 use eom_num::StateSpace;
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
 use eom_num::gain::{Gain, steady_state_gain};
@@ -19,8 +21,6 @@ use eom_num::minreal::{
 };
 use eom_num::modes::{Mode, ModeKind, Modes, Stability};
 use eom_num::zeros::transmission_zeros;
-use eom_model::ModelError;
-use eom_model::{Linearizer, Method};
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
 

@@ -1,8 +1,8 @@
 //! [`CliError`]: the one error type of the `eom` binary, and its exit codes.
 
+use eom_model::ModelError;
 use eom_num::NumError;
 use eom_num::sweep::SweepError;
-use eom_model::ModelError;
 use eom_sym::SymError;
 use models::CatalogueError;
 

@@ -10,8 +10,8 @@
 use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
-use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
 use eom_model::{Linearizer, Method, Model, ModelError};
+use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
 use eom_sym::{Assumption, Expr, SymError};
 use models::CatalogueError;
 use nalgebra::DMatrix;

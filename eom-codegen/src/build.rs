@@ -19,8 +19,8 @@
 //! when the generator or the model changes).
 
 use crate::{CodegenError, EmitOptions, Emitted, Functions, emit_model};
-use eom_sym::Expr;
 use eom_model::Model;
+use eom_sym::Expr;
 use std::path::{Path, PathBuf};
 
 /// Builder for one generated file.

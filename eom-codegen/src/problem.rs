@@ -4,8 +4,8 @@
 
 use crate::CodegenError;
 use crate::options::EmitOptions;
-use eom_num::SignalNames;
 use eom_model::{SymbolicStateSpace, ValidityCheck};
+use eom_num::SignalNames;
 use eom_sym::simplify::Simplifier;
 use eom_sym::{Expr, subs_many};
 use nalgebra::DMatrix;

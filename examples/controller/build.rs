@@ -17,10 +17,7 @@ fn main() {
         } else {
             info.name
         };
-        for (ty, g) in [
-            ("f64", builtin(name)),
-            ("f32", builtin(name).f32()),
-        ] {
+        for (ty, g) in [("f64", builtin(name)), ("f32", builtin(name).f32())] {
             let file = format!("check_{name}_{ty}.rs");
             g.module(&format!("{name}_{ty}"))
                 .write_to_out_dir(&file)

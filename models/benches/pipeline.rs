@@ -10,8 +10,8 @@
 //! `cargo bench -p models --bench pipeline`
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use eom_sym::Expr;
 use eom_model::{Linearizer, assemble, reduce, reduce_robust};
+use eom_sym::Expr;
 use std::hint::black_box;
 use std::time::Instant;
 

@@ -5,9 +5,9 @@
 //! `cargo bench -p models --bench sweep`
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use eom_model::{EvalWorkspace, Linearizer};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_num::sweep::Sweep;
-use eom_model::{EvalWorkspace, Linearizer};
 use std::hint::black_box;
 
 fn sweeps(c: &mut Criterion) {

@@ -5,10 +5,10 @@
 // Reference values are transcribed digit for digit from their sources.
 #![allow(clippy::excessive_precision)]
 
+use eom_model::*;
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_num::sweep::Sweep;
-use eom_model::*;
 use eom_sym::Expr;
 use nalgebra::DMatrix;
 use num_complex::Complex64;

@@ -7,10 +7,10 @@
 // Reference values are transcribed digit for digit from their sources.
 #![allow(clippy::excessive_precision)]
 
+use eom_model::{Linearizer, Method, assemble, reduce};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_sym::Dd;
 use eom_sym::dd::refine_eigenvalue;
-use eom_model::{Linearizer, Method, assemble, reduce};
 use eom_sym::rational::Rational;
 use eom_sym::scalar::Scalar;
 use num_complex::Complex64;

@@ -4,8 +4,8 @@
 // Reference values are transcribed digit for digit from their sources.
 #![allow(clippy::excessive_precision)]
 
-use eom_num::StateSpace;
 use eom_model::{Linearizer, Method};
+use eom_num::StateSpace;
 use num_complex::Complex64;
 use tests::{max_abs_error, max_relative_error, nonzero};
 

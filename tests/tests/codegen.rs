@@ -6,10 +6,10 @@
 //! rounding error of the generated code against a double-double evaluation of the same
 //! expressions, in units of their running error bound.
 
-use eom_num::StateSpace;
 use eom_model::ModelError;
-use eom_sym::SymError;
 use eom_model::{Linearizer, Method, SymbolicStateSpace};
+use eom_num::StateSpace;
+use eom_sym::SymError;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -254,7 +254,9 @@ fn sym_err(e: &ModelError, g: &Gen) -> Option<GenErr> {
                 .position(|c| msg.starts_with(&format!("{c} (value")))?;
             Some(GenErr::Validity(k, g.checks[k]))
         }
-        ModelError::Sym(SymError::EvalNonFinite { what, .. }) => Some(GenErr::NonFinite(what.clone(), 0, 0)),
+        ModelError::Sym(SymError::EvalNonFinite { what, .. }) => {
+            Some(GenErr::NonFinite(what.clone(), 0, 0))
+        }
         _ => None,
     }
 }
@@ -299,7 +301,9 @@ fn compare(g: &Gen, r: &Reference, values: &[f64], tol: f64) -> Result<bool, Tes
             );
             Ok(false)
         }
-        (Err(GenErr::NonFinite(..)), Err(ModelError::Sym(SymError::EvalNonFinite { .. }))) => Ok(false),
+        (Err(GenErr::NonFinite(..)), Err(ModelError::Sym(SymError::EvalNonFinite { .. }))) => {
+            Ok(false)
+        }
         (got, want) => Err(TestCaseError::fail(format!(
             "{}: generated {:?} but the interpreter {:?} at {values:?}",
             g.model,
@@ -427,7 +431,10 @@ fn special_values_never_slip_through_the_fast_test() {
                     let want = r.sym.evaluate(&values);
                     let same = match (&got, &want) {
                         (Ok(_), Ok(_)) => true,
-                        (Err(GenErr::NonFinite(..)), Err(ModelError::Sym(SymError::EvalNonFinite { .. }))) => true,
+                        (
+                            Err(GenErr::NonFinite(..)),
+                            Err(ModelError::Sym(SymError::EvalNonFinite { .. })),
+                        ) => true,
                         (Err(e @ GenErr::Validity(..)), Err(w)) => {
                             sym_err(w, &g).as_ref() == Some(e)
                         }

@@ -8,9 +8,9 @@
 // Reference values are transcribed digit for digit from their sources.
 #![allow(clippy::excessive_precision)]
 
-use eom_num::StateSpace;
 use eom_model::ModelError;
 use eom_model::{Linearizer, assemble, reduce, reduce_robust};
+use eom_num::StateSpace;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rand::{Rng, SeedableRng, rngs::StdRng};
