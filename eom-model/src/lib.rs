@@ -98,6 +98,7 @@
 #![warn(missing_docs)]
 
 pub mod assemble;
+pub mod compiled;
 pub mod eliminate;
 pub mod error;
 pub mod geometry;
@@ -112,13 +113,15 @@ pub use assemble::{
     Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Reaction, RowLabel, Rows, Term,
     assemble,
 };
+pub use compiled::{
+    CompiledStateSpace, EvalWorkspace, MatrixSize, NATIVE_AFTER, SymbolicStateSpace,
+};
 pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use model::Model;
 pub use reduce::{
-    CheckLabel, CompiledStateSpace, Coord, EvalWorkspace, MatrixSize, NATIVE_AFTER, Reduction,
-    ReductionPlan, ReductionReport, SymbolicStateSpace, ValidityCheck, reduce,
+    CheckLabel, Coord, Reduction, ReductionPlan, ReductionReport, ValidityCheck, reduce,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use validate::Validation;

@@ -22,7 +22,8 @@
 
 use super::Model;
 use super::assemble::assemble;
-use super::reduce::{ReductionReport, SymbolicStateSpace, reduce};
+use super::compiled::SymbolicStateSpace;
+use super::reduce::{ReductionReport, reduce};
 use super::robust::{RobustReport, reduce_robust};
 use crate::error::ModelError;
 use crate::items::ModelScalar;
