@@ -91,12 +91,14 @@ impl<S: ModelScalar> Validation<'_, S> {
     fn check_connected(&self, item: &dyn Item<S>) -> Result<(), ModelError> {
         let bs = item.bodies();
         for (k, b) in bs.iter().enumerate() {
-            let field = match (bs.len(), k) {
-                (1, _) => "body",
-                (_, 0) => "body[1]",
-                _ => "body[2]",
-            };
-            self.check_body(item.kind(), item.name(), field, b)?;
+            if !self.is_body(b) {
+                let field = match (bs.len(), k) {
+                    (1, _) => "body",
+                    (_, 0) => "body[1]",
+                    _ => "body[2]",
+                };
+                return self.check_body(item.kind(), item.name(), field, b);
+            }
         }
         if bs.len() == 2 && bs[0] == bs[1] {
             return Err(field_error(
@@ -138,17 +140,28 @@ impl<S: ModelScalar> Model<S> {
         Ok(cx.warnings)
     }
 
-    /// Step 1: every field is finite at the nominal point (labels are made only to report a
-    /// bad one).
+    /// Step 1: every field is finite at the nominal point (a cheap pass; the first bad field
+    /// is located, and labelled, only when there is one).
     fn check_values(&self) -> Result<(), ModelError> {
+        let bodies = self.bodies.iter().map(|b| b as &dyn Item<S>);
+        let items = || bodies.clone().chain(self.items().iter().map(|x| &**x));
+        let mut finite = true;
+        for item in items() {
+            item.fields(&mut |_, x| finite &= x.nominal().is_finite());
+        }
+        if finite {
+            return Ok(());
+        }
         let mut bad = None;
         let mut k = 0;
-        self.for_each_field(&mut |x| {
-            if bad.is_none() && !x.nominal().is_finite() {
-                bad = Some((k, x.nominal()));
-            }
-            k += 1;
-        });
+        for item in items() {
+            item.fields(&mut |_, x| {
+                if bad.is_none() && !x.nominal().is_finite() {
+                    bad = Some((k, x.nominal()));
+                }
+                k += 1;
+            });
+        }
         match bad {
             Some((k, v)) => Err(self.field_error(k, format!("value {v} is not finite"))),
             None => Ok(()),

@@ -10,6 +10,7 @@ use crate::items::{Body, GROUND, Line, Name, Point, SensorFrame, SensorOrder, Ve
 use crate::items::{x_axis, y_axis, z_axis, zero3};
 use eom_sym::matrix::Triplets;
 use eom_sym::scalar::Scalar;
+use hashbrown::HashMap;
 
 /// The term of the equations a block is added to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -184,11 +185,12 @@ pub(crate) struct RowSet<'m, S> {
 }
 
 impl<S> RowSet<'_, S> {
-    fn new() -> Self {
+    /// An empty set with room for the reactions of `items` items.
+    fn new(items: usize) -> Self {
         RowSet {
             rows: Vec::new(),
             labels: Vec::new(),
-            reactions: Vec::new(),
+            reactions: Vec::with_capacity(items),
         }
     }
 }
@@ -208,9 +210,14 @@ pub(crate) struct Signals<S> {
     pub(crate) feedthrough: Vec<(usize, usize, S)>,
 }
 
+/// Bodies above which [`Assembly::body`] looks names up in a hash map rather than by a scan.
+const BODY_MAP_AFTER: usize = 8;
+
 /// The assembly context: the bodies, and every term the items add to.
 pub struct Assembly<'m, S> {
     pub(crate) bodies: &'m [Body<S>],
+    /// Body indices by name, for models with many bodies.
+    body_map: Option<HashMap<&'m str, usize>>,
     pub(crate) mass: Triplets<S>,
     pub(crate) item_mass: Triplets<S>,
     pub(crate) stiffness: Triplets<S>,
@@ -230,15 +237,23 @@ pub struct Assembly<'m, S> {
 }
 
 impl<'m, S: Scalar> Assembly<'m, S> {
-    /// An empty assembly over `bodies`, with `warnings` so far.
-    pub(crate) fn new(bodies: &'m [Body<S>], warnings: Vec<String>) -> Self {
+    /// An empty assembly over `bodies`, for `items` items, with `warnings` so far.
+    pub(crate) fn new(bodies: &'m [Body<S>], items: usize, warnings: Vec<String>) -> Self {
         let d = 6 * bodies.len();
         // Room for a few 3×3 blocks per body in each matrix, so that filling rarely
         // reallocates.
         let cap = 4 * d;
         let square = || Triplets::with_capacity(d, d, cap);
+        let body_map = (bodies.len() > BODY_MAP_AFTER).then(|| {
+            let mut map = HashMap::with_capacity(bodies.len());
+            for (k, b) in bodies.iter().enumerate() {
+                map.entry(&*b.name).or_insert(k);
+            }
+            map
+        });
         Assembly {
             bodies,
+            body_map,
             mass: square(),
             item_mass: square(),
             stiffness: square(),
@@ -247,9 +262,10 @@ impl<'m, S: Scalar> Assembly<'m, S> {
             velocity: square(),
             load_stiffness: square(),
             applied: vec![S::zero(); d],
-            holonomic: RowSet::new(),
-            elastic: RowSet::new(),
-            nonholonomic: RowSet::new(),
+            // Room for the reactions of a moderate model without growing (a large one grows).
+            holonomic: RowSet::new(items.min(32)),
+            elastic: RowSet::new(items.min(32)),
+            nonholonomic: RowSet::new(0),
             stiffness_blocks: Vec::new(),
             known: Vec::new(),
             signals: Signals {
@@ -273,9 +289,11 @@ impl<'m, S: Scalar> Assembly<'m, S> {
     /// Index of a body by name (`None` for the ground).
     pub fn body(&self, name: &str) -> Option<usize> {
         if name == GROUND {
-            None
-        } else {
-            self.bodies.iter().position(|b| &*b.name == name)
+            return None;
+        }
+        match &self.body_map {
+            Some(map) => map.get(name).copied(),
+            None => self.bodies.iter().position(|b| &*b.name == name),
         }
     }
 

@@ -171,7 +171,7 @@ fn item_terms<'m, S: ModelScalar>(
     model: &'m Model<S>,
     warnings: Vec<String>,
 ) -> Result<Assembly<'m, S>, ModelError> {
-    let mut cx = Assembly::new(&model.bodies, warnings);
+    let mut cx = Assembly::new(&model.bodies, model.items().len(), warnings);
     for b in &model.bodies {
         crate::items::Item::assemble(b, &mut cx)?;
     }

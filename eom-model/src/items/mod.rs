@@ -222,15 +222,15 @@ pub struct Field {
     pub index: [Index; 2],
 }
 
-/// One index of a [`Field`].
+/// One index of a [`Field`] (small: a field is made for every scalar a visitor sees).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Index {
     /// No index.
     None,
     /// A 0-based position, displayed 1-based (`[1]`).
-    Nth(usize),
+    Nth(u16),
     /// A vector component 0, 1, 2, displayed `[x]`, `[y]`, `[z]`.
-    Axis(usize),
+    Axis(u8),
 }
 
 impl Field {
@@ -245,28 +245,28 @@ impl Field {
     pub fn axis(name: &'static str, k: usize) -> Self {
         Field {
             name,
-            index: [Index::Axis(k), Index::None],
+            index: [Index::Axis(k as u8), Index::None],
         }
     }
     /// Element `i` of an array field.
     pub fn nth(name: &'static str, i: usize) -> Self {
         Field {
             name,
-            index: [Index::Nth(i), Index::None],
+            index: [Index::Nth(i as u16), Index::None],
         }
     }
     /// Component `k` of vector `i` of an array of vectors.
     pub fn nth_axis(name: &'static str, i: usize, k: usize) -> Self {
         Field {
             name,
-            index: [Index::Nth(i), Index::Axis(k)],
+            index: [Index::Nth(i as u16), Index::Axis(k as u8)],
         }
     }
     /// Entry `(i, j)` of a matrix field.
     pub fn entry(name: &'static str, i: usize, j: usize) -> Self {
         Field {
             name,
-            index: [Index::Nth(i), Index::Nth(j)],
+            index: [Index::Nth(i as u16), Index::Nth(j as u16)],
         }
     }
 }
@@ -278,7 +278,7 @@ impl std::fmt::Display for Field {
             match i {
                 Index::None => {}
                 Index::Nth(k) => write!(f, "[{}]", k + 1)?,
-                Index::Axis(k) => write!(f, "[{}]", ["x", "y", "z"][k])?,
+                Index::Axis(k) => write!(f, "[{}]", ["x", "y", "z"][k as usize])?,
             }
         }
         Ok(())
@@ -297,9 +297,15 @@ pub(crate) fn map3<S, T>(v: &Vec3<S>, f: &mut dyn FnMut(&S) -> T) -> Vec3<T> {
     [f(&v[0]), f(&v[1]), f(&v[2])]
 }
 
-/// The label of an item in messages: ``spring `front` ``.
+/// The label of an item in messages: ``spring `front` ``. Built directly rather than by
+/// `format!`: every reacting item's preload is labelled on every assembly.
 pub(crate) fn label(kind: &str, name: &str) -> String {
-    format!("{kind} `{name}`")
+    let mut s = String::with_capacity(kind.len() + name.len() + 3);
+    s.push_str(kind);
+    s.push_str(" `");
+    s.push_str(name);
+    s.push('`');
+    s
 }
 
 /// The error of a bad field of an item.
