@@ -101,10 +101,10 @@ pub mod assemble;
 pub mod compiled;
 pub mod eliminate;
 pub mod error;
+mod fields;
 pub mod geometry;
 pub mod items;
 pub mod linearize;
-mod model;
 pub mod reduce;
 pub mod robust;
 pub mod validate;
@@ -119,9 +119,111 @@ pub use compiled::{
 pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
-pub use model::Model;
 pub use reduce::{
     CheckLabel, Coord, Reduction, ReductionPlan, ReductionReport, ValidityCheck, reduce,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use validate::Validation;
+
+use eom_sym::expr::Expr;
+use eom_sym::pool::ParamInfo;
+use eom_sym::scope::Scope;
+use eom_sym::tape::Tape;
+
+/// A multibody model: parameters, bodies and items.
+#[derive(Clone, Debug)]
+pub struct Model<S = Expr> {
+    /// Name of the model.
+    pub name: String,
+    /// Parameters (symbolic models).
+    pub scope: Scope,
+    /// Bodies (the ground is implicit).
+    pub bodies: Vec<Body<S>>,
+    /// The items, in the order of [`KINDS`] (items of one kind in the order they were added).
+    items: Vec<Box<dyn Item<S>>>,
+}
+
+impl<S: 'static> Model<S> {
+    /// Insert an item after the items of its kind and of the kinds before it in [`KINDS`].
+    pub(crate) fn insert_item(&mut self, item: Box<dyn Item<S>>) {
+        let rank = kind_rank(item.kind());
+        let at = self.items.partition_point(|x| kind_rank(x.kind()) <= rank);
+        self.items.insert(at, item);
+    }
+}
+
+impl<S: ModelScalar> Model<S> {
+    /// An empty model.
+    pub fn new(name: &str) -> Self {
+        Model {
+            name: name.to_string(),
+            scope: Scope::new(),
+            bodies: Vec::new(),
+            items: Vec::new(),
+        }
+    }
+
+    /// Add a body or an item (validated later, by [`Model::validate`] or the assembly).
+    pub fn add(&mut self, item: impl Item<S>) -> &mut Self {
+        item.add_to(self);
+        self
+    }
+
+    /// The items (bodies excluded), in the order of [`KINDS`].
+    pub fn items(&self) -> &[Box<dyn Item<S>>] {
+        &self.items
+    }
+
+    /// The items of one kind (e.g. `"spring"`), in the order they were added.
+    pub fn items_of<'a>(&'a self, kind: &'a str) -> impl Iterator<Item = &'a dyn Item<S>> + 'a {
+        self.items
+            .iter()
+            .filter(move |x| x.kind() == kind)
+            .map(|x| &**x)
+    }
+
+    /// The body called `name`.
+    pub fn body(&self, name: &str) -> Option<&Body<S>> {
+        self.bodies.iter().find(|b| &*b.name == name)
+    }
+}
+
+impl Model<Expr> {
+    /// Declare a parameter of the model.
+    pub fn param(&mut self, name: &str, nominal: f64) -> Result<Expr, ModelError> {
+        Ok(self.scope.declare(name, nominal)?)
+    }
+
+    /// Declare a parameter with full metadata.
+    pub fn param_info(&mut self, info: ParamInfo) -> Result<Expr, ModelError> {
+        Ok(self.scope.declare_info(info)?)
+    }
+
+    /// The numeric model at the given parameter values (in the order of `scope.params()`).
+    pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, ModelError> {
+        let fields = self.field_values();
+        for (k, e) in fields.iter().enumerate() {
+            e.check().map_err(|x| self.field_error(k, x.to_string()))?;
+        }
+        let tape = Tape::new(&fields, &self.scope.params())?;
+        let mut vals = vec![0.0; fields.len()];
+        let mut work = vec![0.0; tape.work_len()];
+        tape.eval_into(values, &mut vals, &mut work)?;
+        if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
+            return Err(self.field_error(
+                k,
+                format!("evaluates to {} at the given parameter values", vals[k]),
+            ));
+        }
+        let mut k = 0;
+        Ok(self.map(&mut |_| {
+            k += 1;
+            vals[k - 1]
+        }))
+    }
+
+    /// The numeric model at the nominal parameter values.
+    pub fn nominal(&self) -> Result<Model<f64>, ModelError> {
+        self.evaluate(&self.scope.nominal_values())
+    }
+}
