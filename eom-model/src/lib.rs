@@ -4,7 +4,7 @@
 //! rolling contacts, beams, loads, actuators, sensors). Every numeric field is a scalar `S`: in a
 //! symbolic model (`Model<Expr>`, the default) fields are expressions over the model's
 //! parameters; [`Model::evaluate`] turns it into a numeric `Model<f64>` at given parameter values,
-//! and [`Model::map`] into any other scalar (e.g. double-double).
+//! and [`Model::map`] into any other [`ModelScalar`] (e.g. double-double).
 //!
 //! The data flow is one algorithm written once for every scalar type:
 //!
@@ -20,7 +20,6 @@
 //! The method is that of the EoM software (Minaker et al., University of Windsor); where eom
 //! deliberately differs from it is documented in the modules ([`assemble`](mod@assemble),
 //! [`reduce`](mod@reduce), [`robust`]).
-//!
 //!
 //! # The item layer
 //!
@@ -51,9 +50,11 @@
 //!    builders (a point geometry reuses [`Point`] and `point_builders!`, a two-point one
 //!    [`Line`] and `line_builders!`), and `impl Item<S>` and `impl MapItem<S, T>`.
 //!    `assemble` is usually a few lines: e.g. a velocity-dependent damping block at a point of
-//!    one body takes the point's rows, `let (rows, _) = cx.point(&self.point, KIND, &self.name)`,
-//!    and adds `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square,
-//!    not necessarily symmetric, block, one row and column per direction).
+//!    one body takes the rows of its point,
+//!    `let (rows, _) = cx.point(&self.point, "wing", &self.name)`, and adds
+//!    `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square, not
+//!    necessarily symmetric, block with one row and column per direction: forces first, then
+//!    moments).
 //! 2. Register it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and its kind in
 //!    [`KINDS`] (where it stands there decides where its rows go).
 //! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
@@ -147,6 +148,11 @@ impl<S: 'static> Model<S> {
     /// Insert an item after the items of its kind and of the kinds before it in [`KINDS`].
     pub(crate) fn insert_item(&mut self, item: Box<dyn Item<S>>) {
         let rank = kind_rank(item.kind());
+        debug_assert!(
+            rank < KINDS.len(),
+            "item kind `{}` is not registered in KINDS",
+            item.kind()
+        );
         let at = self.items.partition_point(|x| kind_rank(x.kind()) <= rank);
         self.items.insert(at, item);
     }
