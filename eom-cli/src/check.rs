@@ -40,17 +40,8 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     let assembled = assemble(&numeric)?;
     let lin = Linearizer::new(&model).method(Method::Numeric).run()?;
     let mut items: Vec<(String, usize)> = Vec::new();
-    for (kind, n) in [
-        ("load", model.loads.len()),
-        ("spring", model.springs.len()),
-        ("link", model.links.len()),
-        ("beam", model.beams.len()),
-        ("rigid point", model.rigid_points.len()),
-        ("flex point", model.flex_points.len()),
-        ("nh point", model.nh_points.len()),
-        ("actuator", model.actuators.len()),
-        ("sensor", model.sensors.len()),
-    ] {
+    for kind in eom_model::KINDS {
+        let n = model.items_of(kind).count();
         if n > 0 {
             items.push((kind.to_string(), n));
         }

@@ -100,6 +100,34 @@ pub fn mat_mul<S: Scalar>(a: &Mat3<S>, b: &Mat3<S>) -> Mat3<S> {
     c
 }
 
+/// `A + B` (structural zeros kept).
+pub fn mat_add<S: Scalar>(a: &Mat3<S>, b: &Mat3<S>) -> Mat3<S> {
+    let mut c = *a;
+    for i in 0..3 {
+        for j in 0..3 {
+            c[i][j] = match (a[i][j].is_zero(), b[i][j].is_zero()) {
+                (_, true) => a[i][j],
+                (true, false) => b[i][j],
+                _ => a[i][j] + b[i][j],
+            };
+        }
+    }
+    c
+}
+
+/// `c · A` (structural zeros kept).
+pub fn mat_scale<S: Scalar>(c: S, a: &Mat3<S>) -> Mat3<S> {
+    let mut m = *a;
+    for row in m.iter_mut() {
+        for v in row.iter_mut() {
+            if !v.is_zero() {
+                *v = c * *v;
+            }
+        }
+    }
+    m
+}
+
 /// `A · v`.
 pub fn mat_vec<S: Scalar>(a: &Mat3<S>, v: &Vec3<S>) -> Vec3<S> {
     [S::dot(&a[0], v), S::dot(&a[1], v), S::dot(&a[2], v)]
@@ -135,7 +163,8 @@ pub fn outer<S: Scalar>(a: &Vec3<S>, b: &Vec3<S>) -> Mat3<S> {
 }
 
 /// An orthonormal pair `(ν₁, ν₂)` perpendicular to the unit vector `a`, with `(a, ν₁, ν₂)`
-/// right-handed. Deterministic (unlike an SVD null space, eom-method §13.15): `ν₁` is the
+/// right-handed. Deterministic (an SVD null space would depend on rounding and on the LAPACK
+/// implementation, and so would the labels of the item's rows): `ν₁` is the
 /// normalised `a × e_k` for the global axis `e_k` least aligned with `a` at the nominal point
 /// (the first one on ties), `ν₂ = a × ν₁`. For an axis-aligned `a` the pair is axis-aligned:
 /// `a = z` gives `ν = (y, −x)`.

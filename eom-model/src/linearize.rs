@@ -22,9 +22,11 @@
 
 use super::Model;
 use super::assemble::assemble;
-use super::reduce::{ReductionReport, SymbolicStateSpace, reduce};
+use super::compiled::SymbolicStateSpace;
+use super::reduce::{ReductionReport, reduce};
 use super::robust::{RobustReport, reduce_robust};
 use crate::error::ModelError;
+use crate::items::ModelScalar;
 use eom_num::StateSpace;
 use eom_sym::SymError;
 use eom_sym::expr::Expr;
@@ -160,7 +162,10 @@ impl<'a> Linearizer<'a> {
 impl Model<Expr> {
     /// The model with every field evaluated in another scalar type (e.g. double-double for
     /// reference computations), with parameter values given in that type in scope order.
-    pub fn evaluate_in<S: Elementary>(&self, values: &[S]) -> Result<Model<S>, ModelError> {
+    pub fn evaluate_in<S: Elementary + ModelScalar>(
+        &self,
+        values: &[S],
+    ) -> Result<Model<S>, ModelError> {
         let params = self.scope.params();
         if values.len() != params.len() {
             return Err(SymError::Dimension(format!(
@@ -171,7 +176,7 @@ impl Model<Expr> {
             ))
             .into());
         }
-        let fields: Vec<Expr> = self.fields().into_iter().map(|(_, e)| e).collect();
+        let fields: Vec<Expr> = self.field_values();
         let index: Vec<u32> = params
             .iter()
             .map(|p| p.param_index().expect("parameter"))

@@ -17,7 +17,8 @@
 //! 5. **Inputs with rates** (`G_u u̇`) are absorbed by the state change `x̃ = x − Γu`.
 //! 6. **Outputs.** Displacements and velocities directly; accelerations by differentiating the
 //!    velocity output through the reduced model (`C_acc = C_vel A`, `D_acc = C_vel B`), which
-//!    includes every constraint reaction — the fix of eom-method §13.8.
+//!    includes every constraint reaction (an acceleration taken from the unconstrained
+//!    equations, as in the EoM software, would miss the reactions).
 //!
 //! Every pivot and rank decision is recorded ([`ReductionPlan`]) and can be replayed with any
 //! scalar type; the pivots and the negligible entries of the rank decisions are returned as
@@ -29,11 +30,8 @@ use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
 use eom_num::{SignalNames, StateSpace};
-use eom_sym::SymError;
-use eom_sym::expr::Expr;
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
-use eom_sym::tape::{NativeTape, Tape};
 use nalgebra::DMatrix;
 
 /// Pivot ratio below which a recorded pivot counts as broken down at an evaluation point:
@@ -254,10 +252,6 @@ pub struct Reduction<S: nalgebra::Scalar> {
 const COORD: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 const VELO: [&str; 6] = ["vx", "vy", "vz", "wx", "wy", "wz"];
 
-fn select_rows<S: Scalar>(m: &SparseMatrix<S>, rows: &[usize]) -> SparseMatrix<S> {
-    m.select_rows(rows)
-}
-
 fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> RowStore<S> {
     RowStore::from_matrix(m)
 }
@@ -328,249 +322,486 @@ fn is_constant<S: Scalar>(v: &S) -> bool {
     S::from_f64(v.nominal()) == *v
 }
 
-/// Reduce an assembled model to state space. With `plan = None` the pivots are chosen at the
-/// nominal point and recorded; with a plan they are replayed (the fast numeric path), and the
-/// returned checks tell whether the plan is still valid at this point.
+/// Reduce an assembled model to state space (see the module documentation for the steps).
+/// With `plan = None` the pivots are chosen at the nominal point and recorded; with a plan
+/// they are replayed (the fast numeric path), and the returned checks tell whether the plan
+/// is still valid at this point.
 pub fn reduce<S: Scalar>(
     a: &Assembled<S>,
     plan: Option<&ReductionPlan>,
 ) -> Result<Reduction<S>, ModelError> {
-    let d = a.dim();
-    let mut report = ReductionReport {
-        coordinates: d,
-        ..Default::default()
-    };
-    report.warnings = a.warnings.clone();
-    // Shared names for check labels, made only when a check needs one (a numeric reduction
-    // without a plan records none).
-    let body_names: std::cell::OnceCell<Vec<Name>> = std::cell::OnceCell::new();
-    let coord = |g: usize, velocity: bool| Coord {
-        body: body_names.get_or_init(|| a.bodies.iter().map(|b| Name::from(b.as_str())).collect())
-            [g / 6]
-            .clone(),
-        dof: g % 6,
-        velocity,
-    };
-    let coord_name = |g: usize| coord_text(&a.bodies[g / 6], g % 6, false);
+    let mut cx = Reducer::new(a, plan);
+    let sel = cx.pin_coordinates();
+    let pos = cx.eliminate_positions(&sel)?;
+    let velo = cx.eliminate_velocities(&sel, &pos)?;
+    let dyn_ = cx.project_dynamics(&sel, &pos, &velo)?;
+    let [a_ss, b_ss, gamma] = absorb_input_rates(&pos, &dyn_)?;
+    let (c_out, d_out) = outputs(a, &sel, &dyn_, &a_ss, &b_ss, &gamma)?;
+    cx.finish(sel, pos, velo, dyn_, [a_ss, b_ss, c_out, d_out])
+}
 
-    // ------------------------------------------------------------ 1. pinned coordinates
-    let (active, j_keep) = match plan {
-        Some(p) => (p.active.clone(), p.j_rows.clone()),
-        None => {
-            let mut pin_row: Vec<Option<usize>> = vec![None; d];
-            for i in 0..a.holonomic.nrows() {
-                let row = a.holonomic.row(i);
-                if row.len() == 1 && row[0].1.nominal() != 0.0 && pin_row[row[0].0].is_none() {
-                    pin_row[row[0].0] = Some(i);
-                }
-            }
-            // Keep a pin only if (V p) cannot make its velocity nonzero.
-            loop {
-                let mut changed = false;
-                for g in 0..d {
-                    if pin_row[g].is_some()
-                        && a.velocity.row(g).iter().any(|&(j, _)| pin_row[j].is_none())
-                    {
-                        pin_row[g] = None;
-                        changed = true;
-                    }
-                }
-                if !changed {
-                    break;
-                }
-            }
-            let mut pinning = vec![false; a.holonomic.nrows()];
-            for &r in pin_row.iter().flatten() {
-                pinning[r] = true;
-            }
-            let active: Vec<usize> = (0..d).filter(|&g| pin_row[g].is_none()).collect();
-            let j_keep: Vec<usize> = (0..a.holonomic.nrows()).filter(|&r| !pinning[r]).collect();
-            (active, j_keep)
-        }
-    };
-    let mut is_active = vec![false; d];
-    for &g in &active {
-        is_active[g] = true;
-    }
-    report.pinned = (0..d).filter(|&g| !is_active[g]).map(coord_name).collect();
-    let n = active.len();
-    let jm = a.holonomic.select(&j_keep, &active);
-    let nm = a.nonholonomic.columns_of(&active);
-    let all_active: Vec<usize> = active.clone();
-    let msel = |m: &SparseMatrix<S>| m.select(&all_active, &all_active);
-    let mass = msel(&a.mass);
-    let stiff = msel(&a.stiffness);
-    let damp = msel(&a.damping);
-    let vel = msel(&a.velocity);
-    let f_u = select_rows(&a.input_force, &active);
-    let g_u = select_rows(&a.input_rate_force, &active);
-    let c_s = a.sensor_rows.columns_of(&active);
-    let jlabel = |r: usize| a.holonomic_rows[j_keep[r]].clone();
-    let mut checks = Vec::new();
+/// What the steps share: the assembled model, the plan to replay, the checks and the report.
+struct Reducer<'a, S> {
+    a: &'a Assembled<S>,
+    plan: Option<&'a ReductionPlan>,
+    /// Shared names for check labels, made only when a check needs one (a numeric reduction
+    /// without a plan records none).
+    body_names: std::cell::OnceCell<Vec<Name>>,
+    checks: Vec<ValidityCheck<S>>,
+    report: ReductionReport,
+}
 
-    // ------------------------------------------------------------ 2. positions
-    let rj = rref(to_rows(&jm), n, &[], plan.map(|p| &p.position))?;
-    record_checks(
-        &rj,
-        &|r, c| CheckLabel::PositionPivot {
-            coord: coord(active[c], false),
-            row: jlabel(r),
-        },
-        &|r| CheckLabel::PositionRank { row: jlabel(r) },
-        &mut checks,
-    );
-    for &r in &rj.plan.redundant {
-        report.redundant.push(jlabel(r).to_string());
-    }
-    let dep_p = rj.is_pivot_col();
-    let indep_p: Vec<usize> = (0..n).filter(|&c| !dep_p[c]).collect();
-    let np = indep_p.len();
-    let mut indep_pos = vec![usize::MAX; n];
-    for (t, &k) in indep_p.iter().enumerate() {
-        indep_pos[k] = t;
-    }
-    let pivot_nnz = |r: &Rref<S>| {
-        r.plan
-            .pivots
-            .iter()
-            .map(|&(p, _)| r.rows[p].len())
-            .sum::<usize>()
-    };
-    let mut rp = Triplets::with_capacity(n, np, np + pivot_nnz(&rj));
-    for (t, &k) in indep_p.iter().enumerate() {
-        rp.push(k, t, S::one());
-    }
-    for &(r, c) in &rj.plan.pivots {
-        for &(k, v) in rj.rows.row(r) {
-            if k != c && k < n && indep_pos[k] != usize::MAX {
-                rp.push(c, indep_pos[k], -v);
-            }
-        }
-    }
-    let rp = rp.build();
+/// Step 1: the active coordinates, the kept holonomic rows, and the matrices restricted to
+/// them.
+struct Selection<S> {
+    active: Vec<usize>,
+    j_keep: Vec<usize>,
+    /// `J` (kept rows, active columns) and `N` (active columns).
+    jm: SparseMatrix<S>,
+    nm: SparseMatrix<S>,
+    mass: SparseMatrix<S>,
+    stiff: SparseMatrix<S>,
+    damp: SparseMatrix<S>,
+    vel: SparseMatrix<S>,
+    f_u: SparseMatrix<S>,
+    g_u: SparseMatrix<S>,
+    c_s: SparseMatrix<S>,
+}
 
-    // ------------------------------------------------------------ 3. velocities
-    let rhs = jm.mul(&vel)?.mul(&rp)?;
-    let nq = jm.nrows();
-    // [J  J V R_p; N  0] in one pass.
-    let g = SparseMatrix::block(&[vec![Some(&jm), Some(&rhs)], vec![Some(&nm), None]])?;
-    let g_label = |r: usize| {
-        if r < nq {
-            jlabel(r)
-        } else {
-            a.nonholonomic_rows[r - nq].clone()
+/// Step 2: the position elimination and `p = R_p x_p`.
+struct Positions<S> {
+    rj: Rref<S>,
+    indep_p: Vec<usize>,
+    rp: SparseMatrix<S>,
+}
+
+/// Step 3: the velocity elimination and `w = W_p x_p + R_w x_w`.
+struct Velocities<S> {
+    rg: Rref<S>,
+    indep_w: Vec<usize>,
+    rw: SparseMatrix<S>,
+    wp: SparseMatrix<S>,
+}
+
+/// Step 4: the reduced model's parts.
+struct Dynamics<S> {
+    rm: Rref<S>,
+    /// `w = W x`, `p = P x`, `ṗ = (W − V P) x`.
+    wfull: SparseMatrix<S>,
+    pfull: SparseMatrix<S>,
+    kin: SparseMatrix<S>,
+    /// The kinematic rows of the independent coordinates.
+    a1: SparseMatrix<S>,
+    /// The solved dynamic rows: state, input and input-rate columns.
+    xa: SparseMatrix<S>,
+    xb: SparseMatrix<S>,
+    xg: SparseMatrix<S>,
+}
+
+impl<'a, S: Scalar> Reducer<'a, S> {
+    fn new(a: &'a Assembled<S>, plan: Option<&'a ReductionPlan>) -> Self {
+        Reducer {
+            a,
+            plan,
+            body_names: std::cell::OnceCell::new(),
+            checks: Vec::new(),
+            report: ReductionReport {
+                coordinates: a.dim(),
+                warnings: a.warnings.clone(),
+                ..Default::default()
+            },
         }
-    };
-    let rg = rref(to_rows(&g), n, &rj.plan.pivots, plan.map(|p| &p.velocity))?;
-    // The replayed position pivots are already checked; record the new ones.
-    let mut rg = rg;
-    let all_records = std::mem::take(&mut rg.pivot_records);
-    rg.pivot_records = all_records.into_iter().skip(rj.plan.pivots.len()).collect();
-    record_checks(
-        &rg,
-        &|r, c| CheckLabel::VelocityPivot {
-            coord: coord(active[c], true),
-            row: g_label(r),
-        },
-        &|r| CheckLabel::VelocityRank { row: g_label(r) },
-        &mut checks,
-    );
-    for &r in &rg.plan.redundant {
-        if r >= nq {
-            report.redundant.push(g_label(r).to_string());
+    }
+
+    /// Coordinate `g` (a displacement, or its velocity) as a check label.
+    fn coord(&self, g: usize, velocity: bool) -> Coord {
+        let names = self.body_names.get_or_init(|| {
+            self.a
+                .bodies
+                .iter()
+                .map(|b| Name::from(b.as_str()))
+                .collect()
+        });
+        Coord {
+            body: names[g / 6].clone(),
+            dof: g % 6,
+            velocity,
         }
-        // A redundant velocity row must also be consistent (its right-hand side negligible).
-        for &(k, v) in rg.rows.row(r) {
-            if k >= n {
-                checks.push(ValidityCheck::Negligible {
-                    what: CheckLabel::VelocityConsistency { row: g_label(r) },
-                    value: v,
-                    scale: g.row(r).iter().map(|e| e.1).collect(),
-                });
+    }
+
+    /// The name of coordinate `g` (`body.x`, or `body.vx` for its velocity).
+    fn coord_name(&self, g: usize, velocity: bool) -> String {
+        coord_text(&self.a.bodies[g / 6], g % 6, velocity)
+    }
+
+    /// Step 1: pinned coordinates (replayed from the plan, or found), and the matrices on the
+    /// active coordinates.
+    fn pin_coordinates(&mut self) -> Selection<S> {
+        let a = self.a;
+        let d = a.dim();
+        let (active, j_keep) = match self.plan {
+            Some(p) => (p.active.clone(), p.j_rows.clone()),
+            None => find_pins(a),
+        };
+        let mut is_active = vec![false; d];
+        for &g in &active {
+            is_active[g] = true;
+        }
+        self.report.pinned = (0..d)
+            .filter(|&g| !is_active[g])
+            .map(|g| self.coord_name(g, false))
+            .collect();
+        let msel = |m: &SparseMatrix<S>| m.select(&active, &active);
+        Selection {
+            jm: a.holonomic.select(&j_keep, &active),
+            nm: a.nonholonomic.columns_of(&active),
+            mass: msel(&a.mass),
+            stiff: msel(&a.stiffness),
+            damp: msel(&a.damping),
+            vel: msel(&a.velocity),
+            f_u: a.input_force.select_rows(&active),
+            g_u: a.input_rate_force.select_rows(&active),
+            c_s: a.sensor_rows.columns_of(&active),
+            active,
+            j_keep,
+        }
+    }
+
+    /// Step 2: Gauss–Jordan on the kept `J`; the dependent coordinates in terms of the
+    /// independent ones, `p = R_p x_p`.
+    fn eliminate_positions(&mut self, sel: &Selection<S>) -> Result<Positions<S>, ModelError> {
+        let (a, n) = (self.a, sel.active.len());
+        let jlabel = |r: usize| a.holonomic_rows[sel.j_keep[r]].clone();
+        let rj = rref(to_rows(&sel.jm), n, &[], self.plan.map(|p| &p.position))?;
+        let mut checks = Vec::new();
+        record_checks(
+            &rj,
+            &|r, c| CheckLabel::PositionPivot {
+                coord: self.coord(sel.active[c], false),
+                row: jlabel(r),
+            },
+            &|r| CheckLabel::PositionRank { row: jlabel(r) },
+            &mut checks,
+        );
+        self.checks.append(&mut checks);
+        for &r in &rj.plan.redundant {
+            self.report.redundant.push(jlabel(r).to_string());
+        }
+        let (indep_p, indep_pos) = independent(&rj, n);
+        let np = indep_p.len();
+        let mut rp = Triplets::with_capacity(n, np, np + pivot_nnz(&rj));
+        for (t, &k) in indep_p.iter().enumerate() {
+            rp.push(k, t, S::one());
+        }
+        for &(r, c) in &rj.plan.pivots {
+            for &(k, v) in rj.rows.row(r) {
+                if k != c && k < n && indep_pos[k] != usize::MAX {
+                    rp.push(c, indep_pos[k], -v);
+                }
             }
         }
+        Ok(Positions {
+            rp: rp.build(),
+            rj,
+            indep_p,
+        })
     }
-    let dep_w = rg.is_pivot_col();
-    let indep_w: Vec<usize> = (0..n).filter(|&c| !dep_w[c]).collect();
-    let nw = indep_w.len();
-    let mut indep_wpos = vec![usize::MAX; n];
-    for (t, &k) in indep_w.iter().enumerate() {
-        indep_wpos[k] = t;
-    }
-    let rg_nnz = pivot_nnz(&rg);
-    let mut rw = Triplets::with_capacity(n, nw, nw + rg_nnz);
-    let mut wp = Triplets::with_capacity(n, np, rg_nnz);
-    for (t, &k) in indep_w.iter().enumerate() {
-        rw.push(k, t, S::one());
-    }
-    for &(r, c) in &rg.plan.pivots {
-        for &(k, v) in rg.rows.row(r) {
-            if k < n {
-                if k != c && indep_wpos[k] != usize::MAX {
-                    rw.push(c, indep_wpos[k], -v);
-                }
+
+    /// Step 3: `J w = J V p` and `N w = 0`, the position elimination replayed first, then
+    /// the nonholonomic rows: `w = W_p x_p + R_w x_w`.
+    fn eliminate_velocities(
+        &mut self,
+        sel: &Selection<S>,
+        pos: &Positions<S>,
+    ) -> Result<Velocities<S>, ModelError> {
+        let n = sel.active.len();
+        let np = pos.indep_p.len();
+        let rhs = sel.jm.mul(&sel.vel)?.mul(&pos.rp)?;
+        let nq = sel.jm.nrows();
+        // [J  J V R_p; N  0] in one pass.
+        let g = SparseMatrix::block(&[vec![Some(&sel.jm), Some(&rhs)], vec![Some(&sel.nm), None]])?;
+        let a = self.a;
+        let g_label = |r: usize| {
+            if r < nq {
+                a.holonomic_rows[sel.j_keep[r]].clone()
             } else {
-                wp.push(c, k - n, v);
+                a.nonholonomic_rows[r - nq].clone()
+            }
+        };
+        let mut rg = rref(
+            to_rows(&g),
+            n,
+            &pos.rj.plan.pivots,
+            self.plan.map(|p| &p.velocity),
+        )?;
+        // The replayed position pivots are already checked; record the new ones.
+        let all_records = std::mem::take(&mut rg.pivot_records);
+        rg.pivot_records = all_records
+            .into_iter()
+            .skip(pos.rj.plan.pivots.len())
+            .collect();
+        let mut checks = Vec::new();
+        record_checks(
+            &rg,
+            &|r, c| CheckLabel::VelocityPivot {
+                coord: self.coord(sel.active[c], true),
+                row: g_label(r),
+            },
+            &|r| CheckLabel::VelocityRank { row: g_label(r) },
+            &mut checks,
+        );
+        for &r in &rg.plan.redundant {
+            if r >= nq {
+                self.report.redundant.push(g_label(r).to_string());
+            }
+            // A redundant velocity row must also be consistent (its right-hand side negligible).
+            for &(k, v) in rg.rows.row(r) {
+                if k >= n {
+                    checks.push(ValidityCheck::Negligible {
+                        what: CheckLabel::VelocityConsistency { row: g_label(r) },
+                        value: v,
+                        scale: g.row(r).iter().map(|e| e.1).collect(),
+                    });
+                }
             }
         }
+        self.checks.append(&mut checks);
+        let (indep_w, indep_wpos) = independent(&rg, n);
+        let nw = indep_w.len();
+        let rg_nnz = pivot_nnz(&rg);
+        let mut rw = Triplets::with_capacity(n, nw, nw + rg_nnz);
+        let mut wp = Triplets::with_capacity(n, np, rg_nnz);
+        for (t, &k) in indep_w.iter().enumerate() {
+            rw.push(k, t, S::one());
+        }
+        for &(r, c) in &rg.plan.pivots {
+            for &(k, v) in rg.rows.row(r) {
+                if k < n {
+                    if k != c && indep_wpos[k] != usize::MAX {
+                        rw.push(c, indep_wpos[k], -v);
+                    }
+                } else {
+                    wp.push(c, k - n, v);
+                }
+            }
+        }
+        self.report.position_states = np;
+        self.report.velocity_states = nw;
+        Ok(Velocities {
+            rg,
+            indep_w,
+            rw: rw.build(),
+            wp: wp.build(),
+        })
     }
-    let (rw, wp) = (rw.build(), wp.build());
-    report.position_states = np;
-    report.velocity_states = nw;
 
-    // ------------------------------------------------------------ 4. dynamics
-    let nx = np + nw;
-    let rwt = rw.transpose();
-    let rwt_m = rwt.mul(&mass)?;
-    let m_r = rwt_m.mul(&rw)?;
-    let e21 = rwt_m.mul(&wp)?;
-    let wfull = hstack(&wp, &rw)?; // w = Wfull x
-    let pfull = rp.widen(np + nw); // p = Pfull x = [R_p 0] x
-    let kin = wfull.sub(&vel.mul(&pfull)?)?; // ṗ = (W − V P) x
-    let a1 = kin.select_rows(&indep_p);
-    let a2 = rwt
-        .mul(&stiff)?
-        .mul(&pfull)?
-        .add(&rwt.mul(&damp)?.mul(&wfull)?)?
-        .neg();
-    let rhs_a = a2.sub(&e21.mul(&a1)?)?;
-    let b2 = rwt.mul(&f_u)?;
-    let g2 = rwt.mul(&g_u)?;
-    let m_aug = SparseMatrix::hcat(&[&m_r, &rhs_a, &b2, &g2])?;
-    let rm = rref(to_rows(&m_aug), nw, &[], plan.map(|p| &p.mass))?;
-    let vcoord = |t: usize| coord(active[indep_w[t]], true);
-    let vname = |t: usize| {
-        let g = active[indep_w[t]];
-        coord_text(&a.bodies[g / 6], g % 6, true)
-    };
-    record_checks(
-        &rm,
-        &|r, c| CheckLabel::MassPivot {
-            state: vcoord(c),
-            row: vcoord(r),
-        },
-        &|r| CheckLabel::MassRank { row: vcoord(r) },
-        &mut checks,
-    );
-    if !rm.plan.redundant.is_empty() {
-        let names: Vec<String> = rm.plan.redundant.iter().map(|&r| vname(r)).collect();
-        return Err(ModelError::Unsupported(format!(
-            "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
-            names.join(", ")
-        )));
+    /// Step 4: the equations projected on the admissible velocities, the kinematics of the
+    /// independent coordinates, and the reduced mass matrix eliminated.
+    fn project_dynamics(
+        &mut self,
+        sel: &Selection<S>,
+        pos: &Positions<S>,
+        velo: &Velocities<S>,
+    ) -> Result<Dynamics<S>, ModelError> {
+        let (np, nw) = (pos.indep_p.len(), velo.indep_w.len());
+        let nx = np + nw;
+        let (rw, wp) = (&velo.rw, &velo.wp);
+        let rwt = rw.transpose();
+        let rwt_m = rwt.mul(&sel.mass)?;
+        let m_r = rwt_m.mul(rw)?;
+        let e21 = rwt_m.mul(wp)?;
+        let wfull = hstack(wp, rw)?; // w = Wfull x
+        let pfull = pos.rp.clone().widen(np + nw); // p = Pfull x = [R_p 0] x
+        let kin = wfull.sub(&sel.vel.mul(&pfull)?)?; // ṗ = (W − V P) x
+        let a1 = kin.select_rows(&pos.indep_p);
+        let a2 = rwt
+            .mul(&sel.stiff)?
+            .mul(&pfull)?
+            .add(&rwt.mul(&sel.damp)?.mul(&wfull)?)?
+            .neg();
+        let rhs_a = a2.sub(&e21.mul(&a1)?)?;
+        let b2 = rwt.mul(&sel.f_u)?;
+        let g2 = rwt.mul(&sel.g_u)?;
+        let m_aug = SparseMatrix::hcat(&[&m_r, &rhs_a, &b2, &g2])?;
+        let rm = rref(to_rows(&m_aug), nw, &[], self.plan.map(|p| &p.mass))?;
+        let vcoord = |t: usize| self.coord(sel.active[velo.indep_w[t]], true);
+        let mut checks = Vec::new();
+        record_checks(
+            &rm,
+            &|r, c| CheckLabel::MassPivot {
+                state: vcoord(c),
+                row: vcoord(r),
+            },
+            &|r| CheckLabel::MassRank { row: vcoord(r) },
+            &mut checks,
+        );
+        self.checks.append(&mut checks);
+        if !rm.plan.redundant.is_empty() {
+            let names: Vec<String> = (rm.plan.redundant.iter())
+                .map(|&r| self.coord_name(sel.active[velo.indep_w[r]], true))
+                .collect();
+            return Err(ModelError::Unsupported(format!(
+                "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
+                names.join(", ")
+            )));
+        }
+        let mi = nm_rows_to_matrix(&rm, nw, nx + b2.ncols() + g2.ncols());
+        let m_in = sel.f_u.ncols();
+        Ok(Dynamics {
+            xa: mi.columns(nw..nw + nx),
+            xb: mi.columns(nw + nx..nw + nx + m_in),
+            xg: mi.columns(nw + nx + m_in..nw + nx + 2 * m_in),
+            rm,
+            wfull,
+            pfull,
+            kin,
+            a1,
+        })
     }
-    let mi = nm_rows_to_matrix(&rm, nw, nx + b2.ncols() + g2.ncols());
-    let xa = mi.columns(nw..nw + nx);
-    let m_in = f_u.ncols();
-    let xb = mi.columns(nw + nx..nw + nx + m_in);
-    let xg = mi.columns(nw + nx + m_in..nw + nx + 2 * m_in);
-    let a_ss = vstack(&a1, &xa)?;
-    let gamma = xg.below_zero_rows(np);
-    let b_raw = xb.below_zero_rows(np);
+
+    /// The result: the state names, the map back to the physical coordinates, the dense
+    /// matrices, and (choosing pivots) the check that every recorded decision holds at the
+    /// nominal point.
+    fn finish(
+        self,
+        sel: Selection<S>,
+        pos: Positions<S>,
+        velo: Velocities<S>,
+        dyn_: Dynamics<S>,
+        [a_ss, b_ss, c_out, d_out]: [SparseMatrix<S>; 4],
+    ) -> Result<Reduction<S>, ModelError> {
+        let a = self.a;
+        let nx = pos.indep_p.len() + velo.indep_w.len();
+        let mut phys = Triplets::with_capacity(a.dim(), nx, dyn_.pfull.nnz());
+        for (i, j, v) in dyn_.pfull.iter() {
+            phys.push(sel.active[i], j, v);
+        }
+        let phys = phys.build();
+        let mut states: Vec<String> = (pos.indep_p.iter())
+            .map(|&k| self.coord_name(sel.active[k], false))
+            .collect();
+        states.extend((velo.indep_w.iter()).map(|&k| self.coord_name(sel.active[k], true)));
+        let names = SignalNames {
+            states,
+            inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
+            input_units: a.inputs.iter().map(|x| x.1.clone()).collect(),
+            outputs: a.outputs.iter().map(|x| x.0.clone()).collect(),
+            output_units: a.outputs.iter().map(|x| x.1.clone()).collect(),
+            bodies: a.bodies.clone(),
+        };
+        let ss = StateSpace {
+            a: to_dense(&a_ss),
+            b: to_dense(&b_ss),
+            c: to_dense(&c_out),
+            d: to_dense(&d_out),
+            phys: to_dense(&phys),
+            names,
+        };
+        if self.plan.is_none()
+            && let Some(bad) = self.checks.iter().find(|c| !c.holds_nominal())
+        {
+            return Err(ModelError::Singular(format!(
+                "at the nominal point: {}",
+                bad.what()
+            )));
+        }
+        let plan = ReductionPlan {
+            active: sel.active,
+            j_rows: sel.j_keep,
+            position: pos.rj.plan,
+            velocity: velo.rg.plan,
+            mass: dyn_.rm.plan,
+        };
+        Ok(Reduction {
+            state_space: ss,
+            checks: self.checks,
+            plan,
+            report: self.report,
+        })
+    }
+}
+
+/// Step 1 without a plan: a holonomic row with a single entry pins its coordinate, kept
+/// pinned only if `V p` cannot make its velocity nonzero. Returns the active coordinates and
+/// the holonomic rows that do not pin.
+fn find_pins<S: Scalar>(a: &Assembled<S>) -> (Vec<usize>, Vec<usize>) {
+    let d = a.dim();
+    let mut pin_row: Vec<Option<usize>> = vec![None; d];
+    for i in 0..a.holonomic.nrows() {
+        let row = a.holonomic.row(i);
+        if row.len() == 1 && row[0].1.nominal() != 0.0 && pin_row[row[0].0].is_none() {
+            pin_row[row[0].0] = Some(i);
+        }
+    }
+    loop {
+        let mut changed = false;
+        for g in 0..d {
+            if pin_row[g].is_some() && a.velocity.row(g).iter().any(|&(j, _)| pin_row[j].is_none())
+            {
+                pin_row[g] = None;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut pinning = vec![false; a.holonomic.nrows()];
+    for &r in pin_row.iter().flatten() {
+        pinning[r] = true;
+    }
+    let active: Vec<usize> = (0..d).filter(|&g| pin_row[g].is_none()).collect();
+    let j_keep: Vec<usize> = (0..a.holonomic.nrows()).filter(|&r| !pinning[r]).collect();
+    (active, j_keep)
+}
+
+/// The columns of an elimination over `n` unknowns that are not pivots, and the position of
+/// each among them (`usize::MAX` for a pivot column).
+fn independent<S: Scalar>(r: &Rref<S>, n: usize) -> (Vec<usize>, Vec<usize>) {
+    let dep = r.is_pivot_col();
+    let indep: Vec<usize> = (0..n).filter(|&c| !dep[c]).collect();
+    let mut at = vec![usize::MAX; n];
+    for (t, &k) in indep.iter().enumerate() {
+        at[k] = t;
+    }
+    (indep, at)
+}
+
+/// Entries of the pivot rows of an elimination.
+fn pivot_nnz<S: Scalar>(r: &Rref<S>) -> usize {
+    r.plan
+        .pivots
+        .iter()
+        .map(|&(p, _)| r.rows[p].len())
+        .sum::<usize>()
+}
+
+/// Step 5: inputs with rates absorbed by the state change `x̃ = x − Γu`:
+/// `A`, `B = B_raw + A Γ` and `Γ`.
+fn absorb_input_rates<S: Scalar>(
+    pos: &Positions<S>,
+    dyn_: &Dynamics<S>,
+) -> Result<[SparseMatrix<S>; 3], ModelError> {
+    let np = pos.indep_p.len();
+    let a_ss = vstack(&dyn_.a1, &dyn_.xa)?;
+    let gamma = dyn_.xg.clone().below_zero_rows(np);
+    let b_raw = dyn_.xb.clone().below_zero_rows(np);
     let b_ss = b_raw.add(&a_ss.mul(&gamma)?)?;
+    Ok([a_ss, b_ss, gamma])
+}
 
-    // ------------------------------------------------------------ 5. outputs
-    let nout = c_s.nrows();
+/// Step 6: the output rows `C`, `D`: displacements and velocities directly, accelerations
+/// through the reduced model.
+fn outputs<S: Scalar>(
+    a: &Assembled<S>,
+    sel: &Selection<S>,
+    dyn_: &Dynamics<S>,
+    a_ss: &SparseMatrix<S>,
+    b_ss: &SparseMatrix<S>,
+    gamma: &SparseMatrix<S>,
+) -> Result<(SparseMatrix<S>, SparseMatrix<S>), ModelError> {
+    let nx = a_ss.ncols();
+    let nout = sel.c_s.nrows();
     let mut c_out = Triplets::with_capacity(nout, nx, nout * nx);
     let mut d_out = Triplets::with_capacity(
         nout,
@@ -580,35 +811,36 @@ pub fn reduce<S: Scalar>(
     for (i, j, v) in a.feedthrough.iter() {
         d_out.push(i, j, v);
     }
+    let (kin, wfull) = (&dyn_.kin, &dyn_.wfull);
     for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
-        let row = c_s.select_rows(&[o]);
+        let row = sel.c_s.select_rows(&[o]);
         let (c_row, d_row) = match (order, frame) {
             (SensorOrder::Displacement, _) => {
-                let c = row.mul(&pfull)?;
-                let dr = c.mul(&gamma)?;
+                let c = row.mul(&dyn_.pfull)?;
+                let dr = c.mul(gamma)?;
                 (c, dr)
             }
             (SensorOrder::Velocity, SensorFrame::Global) => {
-                let c = row.mul(&kin)?;
-                let dr = c.mul(&gamma)?;
+                let c = row.mul(kin)?;
+                let dr = c.mul(gamma)?;
                 (c, dr)
             }
             (SensorOrder::Velocity, SensorFrame::Local) => {
-                let c = row.mul(&wfull)?;
-                let dr = c.mul(&gamma)?;
+                let c = row.mul(wfull)?;
+                let dr = c.mul(gamma)?;
                 (c, dr)
             }
             (SensorOrder::Acceleration, SensorFrame::Global) => {
-                let cv = row.mul(&kin)?;
-                rate_check(&cv.mul(&gamma)?, &a.outputs[o].0, &a.inputs)?;
-                (cv.mul(&a_ss)?, cv.mul(&b_ss)?)
+                let cv = row.mul(kin)?;
+                rate_check(&cv.mul(gamma)?, &a.outputs[o].0, &a.inputs)?;
+                (cv.mul(a_ss)?, cv.mul(b_ss)?)
             }
             (SensorOrder::Acceleration, SensorFrame::Local) => {
-                let cw = row.mul(&wfull)?;
-                rate_check(&cw.mul(&gamma)?, &a.outputs[o].0, &a.inputs)?;
-                let cvw = row.mul(&vel)?.mul(&wfull)?;
-                let c = cw.mul(&a_ss)?.sub(&cvw)?;
-                let dr = cw.mul(&b_ss)?.sub(&cvw.mul(&gamma)?)?;
+                let cw = row.mul(wfull)?;
+                rate_check(&cw.mul(gamma)?, &a.outputs[o].0, &a.inputs)?;
+                let cvw = row.mul(&sel.vel)?.mul(wfull)?;
+                let c = cw.mul(a_ss)?.sub(&cvw)?;
+                let dr = cw.mul(b_ss)?.sub(&cvw.mul(gamma)?)?;
                 (c, dr)
             }
         };
@@ -619,53 +851,7 @@ pub fn reduce<S: Scalar>(
             d_out.push(o, j, v);
         }
     }
-
-    // ------------------------------------------------------------ 6. map back and names
-    let mut phys = Triplets::with_capacity(d, nx, pfull.nnz());
-    for (i, j, v) in pfull.iter() {
-        phys.push(active[i], j, v);
-    }
-    let (phys, c_out, d_out) = (phys.build(), c_out.build(), d_out.build());
-    let mut states: Vec<String> = indep_p.iter().map(|&k| coord_name(active[k])).collect();
-    states.extend((0..nw).map(vname));
-    let names = SignalNames {
-        states,
-        inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
-        input_units: a.inputs.iter().map(|x| x.1.clone()).collect(),
-        outputs: a.outputs.iter().map(|x| x.0.clone()).collect(),
-        output_units: a.outputs.iter().map(|x| x.1.clone()).collect(),
-        bodies: a.bodies.clone(),
-    };
-    let dense = |m: &SparseMatrix<S>| -> DMatrix<S> { to_dense(m) };
-    let ss = StateSpace {
-        a: dense(&a_ss),
-        b: dense(&b_ss),
-        c: dense(&c_out),
-        d: dense(&d_out),
-        phys: dense(&phys),
-        names,
-    };
-    if plan.is_none()
-        && let Some(bad) = checks.iter().find(|c| !c.holds_nominal())
-    {
-        return Err(ModelError::Singular(format!(
-            "at the nominal point: {}",
-            bad.what()
-        )));
-    }
-    let plan = ReductionPlan {
-        active,
-        j_rows: j_keep,
-        position: rj.plan,
-        velocity: rg.plan,
-        mass: rm.plan,
-    };
-    Ok(Reduction {
-        state_space: ss,
-        checks,
-        plan,
-        report,
-    })
+    Ok((c_out.build(), d_out.build()))
 }
 
 fn to_dense<S: Scalar>(m: &SparseMatrix<S>) -> DMatrix<S> {
@@ -706,266 +892,4 @@ fn rate_check<S: Scalar>(
         )));
     }
     Ok(())
-}
-
-/// A symbolic state-space model with its validity region, compiled for evaluation.
-#[derive(Clone, Debug)]
-pub struct SymbolicStateSpace {
-    /// The expressions.
-    pub reduction: Reduction<Expr>,
-    /// Parameters in the order values are given.
-    pub params: Vec<Expr>,
-    compiled: CompiledStateSpace,
-    /// Keeps the expressions' pool alive as long as they are.
-    pool: Option<eom_sym::ExprPool>,
-}
-
-/// Size of one symbolic matrix (see [`SymbolicStateSpace::sizes`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MatrixSize {
-    /// "A", "B", "C", "D" or "A..D".
-    pub name: &'static str,
-    /// Structural non-zeros.
-    pub nonzeros: usize,
-    /// Unique DAG nodes.
-    pub nodes: usize,
-    /// Operations of straight-line code evaluating every unique node once.
-    pub operations: usize,
-}
-
-/// The numeric side of a [`SymbolicStateSpace`]: a compiled tape of every entry of A, B, C,
-/// D and `phys` plus the validity checks. It holds no expressions, so it is `Send + Sync`
-/// and can be shared by the threads of a parallel sweep.
-///
-/// Tiered: after [`NATIVE_AFTER`] evaluations (counted over all clones) the tape is
-/// translated to machine code ([`NativeTape`], x86-64 Unix), which computes the same values
-/// bit for bit in about a third of the time; the translation costs about as much as that many
-/// evaluations save, so short uses never pay for it.
-#[derive(Clone, Debug)]
-pub struct CompiledStateSpace {
-    tape: Tape,
-    tier: std::sync::Arc<Tier>,
-    shapes: [(usize, usize); 5],
-    n_matrix: usize,
-    check_layout: Vec<(usize, usize, bool)>,
-    check_labels: Vec<CheckLabel>,
-    names: SignalNames,
-    param_names: Vec<String>,
-}
-
-/// Evaluations of a [`CompiledStateSpace`] after which its tape is translated to machine code.
-pub const NATIVE_AFTER: usize = 1000;
-
-/// The evaluation count and, once it reaches [`NATIVE_AFTER`], the native code (`None` where
-/// the platform has none).
-#[derive(Debug, Default)]
-struct Tier {
-    calls: std::sync::atomic::AtomicUsize,
-    native: std::sync::OnceLock<Option<NativeTape>>,
-}
-
-impl SymbolicStateSpace {
-    /// Compile a symbolic reduction for evaluation with parameter values in the order of
-    /// `params`.
-    pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, ModelError> {
-        let ss = &reduction.state_space;
-        let mut roots: Vec<Expr> = Vec::new();
-        let mut shapes = [(0, 0); 5];
-        for (k, m) in [&ss.a, &ss.b, &ss.c, &ss.d, &ss.phys]
-            .into_iter()
-            .enumerate()
-        {
-            shapes[k] = (m.nrows(), m.ncols());
-            roots.extend(m.iter().copied());
-        }
-        let n_matrix = roots.len();
-        let mut layout = Vec::new();
-        for c in &reduction.checks {
-            let start = roots.len();
-            match c {
-                ValidityCheck::Pivot { value, row, .. } => {
-                    roots.push(*value);
-                    roots.extend(row.iter().copied());
-                    layout.push((start, 1 + row.len(), true));
-                }
-                ValidityCheck::Negligible { value, scale, .. } => {
-                    roots.push(*value);
-                    roots.extend(scale.iter().copied());
-                    layout.push((start, 1 + scale.len(), false));
-                }
-            }
-        }
-        let tape = Tape::new(&roots, params)?;
-        let compiled = CompiledStateSpace {
-            tape,
-            tier: Default::default(),
-            shapes,
-            n_matrix,
-            check_layout: layout,
-            check_labels: reduction.checks.iter().map(|c| c.label().clone()).collect(),
-            names: ss.names.clone(),
-            param_names: params.iter().map(|p| p.to_string()).collect(),
-        };
-        let pool = roots
-            .iter()
-            .chain(params)
-            // 0, 1 and −1 have the same id (0, 1, 2) in every pool and name none.
-            .find(|e| e.id() > 2)
-            .and_then(|e| eom_sym::ExprPool::find(e.pool_serial()));
-        Ok(SymbolicStateSpace {
-            reduction,
-            params: params.to_vec(),
-            compiled,
-            pool,
-        })
-    }
-
-    /// The pool of the expressions (`None` when every entry is a constant 0, 1 or −1).
-    pub fn pool(&self) -> Option<&eom_sym::ExprPool> {
-        self.pool.as_ref()
-    }
-
-    /// The expression state-space model.
-    pub fn state_space(&self) -> &StateSpace<Expr> {
-        &self.reduction.state_space
-    }
-
-    /// Size of the symbolic result per matrix: `(name, structural non-zeros, unique nodes,
-    /// operations)` for A, B, C, D, and the totals with sharing across matrices (`"A..D"`).
-    pub fn sizes(&self) -> Vec<MatrixSize> {
-        let ss = &self.reduction.state_space;
-        let mut out = Vec::new();
-        let mut all = Vec::new();
-        for (name, m) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d)] {
-            let roots: Vec<Expr> = m.iter().copied().filter(|e| !e.is_zero()).collect();
-            all.extend(roots.iter().copied());
-            out.push(MatrixSize {
-                name,
-                nonzeros: roots.len(),
-                nodes: Expr::dag_size(&roots),
-                operations: Expr::op_count(&roots).total(),
-            });
-        }
-        out.push(MatrixSize {
-            name: "A..D",
-            nonzeros: all.len(),
-            nodes: Expr::dag_size(&all),
-            operations: Expr::op_count(&all).total(),
-        });
-        out
-    }
-
-    /// The compiled numeric side (shareable across threads).
-    pub fn compiled(&self) -> &CompiledStateSpace {
-        &self.compiled
-    }
-
-    /// The compiled tape (matrix entries of A, B, C, D, phys column-major, then the checks).
-    pub fn tape(&self) -> &Tape {
-        &self.compiled.tape
-    }
-
-    /// Evaluate at parameter values (in the order of [`SymbolicStateSpace::params`]). Returns
-    /// [`ModelError::PivotBreakdown`] naming the first check that fails instead of numbers when
-    /// the point is outside the validity region.
-    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, ModelError> {
-        self.compiled.evaluate(values)
-    }
-}
-
-/// Reusable buffers for [`CompiledStateSpace::evaluate_with`].
-#[derive(Clone, Debug, Default)]
-pub struct EvalWorkspace {
-    out: Vec<f64>,
-    work: Vec<f64>,
-}
-
-impl CompiledStateSpace {
-    /// Parameter names in the order values are given.
-    pub fn param_names(&self) -> &[String] {
-        &self.param_names
-    }
-
-    /// Number of states.
-    pub fn states(&self) -> usize {
-        self.shapes[0].0
-    }
-
-    /// Evaluate at parameter values (see [`SymbolicStateSpace::evaluate`]).
-    pub fn evaluate(&self, values: &[f64]) -> Result<StateSpace<f64>, ModelError> {
-        self.evaluate_with(values, &mut EvalWorkspace::default())
-    }
-
-    /// [`CompiledStateSpace::evaluate`] reusing the buffers of `ws`.
-    pub fn evaluate_with(
-        &self,
-        values: &[f64],
-        ws: &mut EvalWorkspace,
-    ) -> Result<StateSpace<f64>, ModelError> {
-        ws.out.resize(self.tape.n_outputs(), 0.0);
-        ws.work.resize(self.tape.work_len(), 0.0);
-        let calls = self
-            .tier
-            .calls
-            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let native = if calls >= NATIVE_AFTER {
-            self.tier
-                .native
-                .get_or_init(|| NativeTape::new(&self.tape).ok())
-                .as_ref()
-        } else {
-            None
-        };
-        match native {
-            Some(n) => n.eval_into(values, &mut ws.out, &mut ws.work)?,
-            None => self.tape.eval_into(values, &mut ws.out, &mut ws.work)?,
-        }
-        let out = &ws.out;
-        for ((start, len, pivot), label) in self.check_layout.iter().zip(&self.check_labels) {
-            let v = out[*start];
-            let others = &out[start + 1..start + len];
-            if !ValidityCheck::<f64>::holds(v, others, *pivot) {
-                return Err(ModelError::PivotBreakdown(format!(
-                    "{label} (value {v:.3e}, largest entry of its row {:.3e})",
-                    others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
-                )));
-            }
-        }
-        if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {
-            return Err(SymError::EvalNonFinite {
-                what: format!("state-space entry {k}"),
-                value: out[k],
-            }
-            .into());
-        }
-        let mut k = 0;
-        let mut take = |(r, c): (usize, usize)| {
-            let m = DMatrix::from_column_slice(r, c, &out[k..k + r * c]);
-            k += r * c;
-            m
-        };
-        let a = take(self.shapes[0]);
-        let b = take(self.shapes[1]);
-        let c = take(self.shapes[2]);
-        let d = take(self.shapes[3]);
-        let phys = take(self.shapes[4]);
-        Ok(StateSpace {
-            a,
-            b,
-            c,
-            d,
-            phys,
-            names: self.names.clone(),
-        })
-    }
-
-    /// Only the state matrix A at a point, with the validity checks (the inner loop of a sweep).
-    pub fn evaluate_a(
-        &self,
-        values: &[f64],
-        ws: &mut EvalWorkspace,
-    ) -> Result<DMatrix<f64>, ModelError> {
-        let ss = self.evaluate_with(values, ws)?;
-        Ok(ss.a)
-    }
 }

@@ -1,12 +1,21 @@
 //! The robust numeric path: orthonormal (SVD) complements of the constraints and an index-1
 //! descriptor reduction, with scale-aware (equilibrated) rank decisions.
 //!
-//! This follows the descriptor construction of eom-method §5 — full state `z = [p; w; s]`,
-//! right complement `R = null(J_r)`, left complement `L = null(J_l)` — with three fixes:
-//! rank decisions are taken on equilibrated matrices (§13.1), the descriptor reduction uses
-//! eom-num's scale-aware index-1 reduction (§13.3), and acceleration outputs are derived from
-//! the reduced model (§13.8). It shares nothing with the elimination path except the assembly,
-//! which makes it an independent check of the symbolic-numeric reduction.
+//! 1. **Constrained descriptor** ([`constrained_descriptor`]): the first-order model in the
+//!    full state `z = [p; w; s]` (`s` the input states), projected on the right complement
+//!    `R = null(J_r)` of the position and velocity constraints and the left complement
+//!    `L = null(J_l)`, as in the descriptor construction of the EoM software (Minaker et
+//!    al.), but with the rank decisions taken on equilibrated matrices (scale-aware, not
+//!    dependent on units).
+//! 2. **Output rows** on `z`: the displacement and velocity outputs directly, and the velocity
+//!    outputs that the acceleration sensors differentiate afterwards.
+//! 3. **Descriptor reduction** by eom-num's scale-aware index-1 reduction
+//!    ([`descriptor_to_state_space`]).
+//! 4. **Outputs**: accelerations derived from the reduced model (`C_acc = C_vel A`), so that
+//!    they include every constraint reaction, and the feedthrough added.
+//!
+//! It shares nothing with the elimination path except the assembly, which makes it an
+//! independent check of the symbolic-numeric reduction.
 
 use super::assemble::Assembled;
 use super::items::{SensorFrame, SensorOrder};
@@ -42,8 +51,7 @@ fn put(dst: &mut DMatrix<f64>, r0: usize, c0: usize, src: &DMatrix<f64>, sign: f
     }
 }
 
-/// The constrained descriptor model of eom-method §5 on the orthonormal complements of the
-/// constraints: `E ẋ = A x + B u` with `x` the coordinates in `R = null(J_r)`, before any
+/// The constrained descriptor model on the orthonormal complements of the constraints: `E ẋ = A x + B u` with `x` the coordinates in `R = null(J_r)`, before any
 /// output is attached. Returned with `R` (full state z = [p; w; s] as `R x`) and `L`.
 pub struct ConstrainedDescriptor {
     /// `Lᵀ M R`.
@@ -141,33 +149,80 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
     })
 }
 
-/// Reduce a numeric assembled model with orthonormal complements.
+/// How an output is read from the rows on `z` of the descriptor's outputs.
+enum Post {
+    /// Row `i` directly.
+    Direct(usize),
+    /// The derivative of velocity row `vel` through the reduced model, minus row `minus`
+    /// (the `ω × v` part of a body-frame acceleration).
+    Acc { vel: usize, minus: Option<usize> },
+}
+
+/// Reduce a numeric assembled model with orthonormal complements (see the module
+/// documentation for the steps).
 pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustReport), ModelError> {
     let cd = constrained_descriptor(a)?;
-    let d = a.dim();
+    let (rows, post) = output_rows(a);
     let m = a.inputs.len();
-    let nz = 2 * d + m;
-    let v = dense(&a.velocity);
-    let (e, am, b, r, rank, gap) = (cd.e, cd.a, cd.b, cd.r, cd.rank, cd.gap);
+    let phys = cd.r.rows(0, a.dim()).into_owned();
+    let desc = Descriptor {
+        e: cd.e,
+        a: cd.a,
+        b: cd.b,
+        c: &rows * &cd.r,
+        d: DMatrix::zeros(rows.nrows(), m),
+    };
+    let opts = DescriptorOptions {
+        phys: Some(&phys),
+        ..Default::default()
+    };
+    let (ss, rep) = descriptor_to_state_space(&desc, &opts)?;
     let mut warnings = cd.warnings;
+    warnings.extend(rep.warnings.iter().cloned());
+    let (c_out, d_out) = outputs(a, &ss, &post)?;
+    let n = ss.a.nrows();
+    let names = SignalNames {
+        states: (1..=n).map(|i| format!("x{i}")).collect(),
+        inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
+        input_units: a.inputs.iter().map(|x| x.1.clone()).collect(),
+        outputs: a.outputs.iter().map(|x| x.0.clone()).collect(),
+        output_units: a.outputs.iter().map(|x| x.1.clone()).collect(),
+        bodies: a.bodies.clone(),
+    };
+    let out = StateSpace {
+        a: ss.a,
+        b: ss.b,
+        c: c_out,
+        d: d_out,
+        phys: ss.phys,
+        names,
+    };
+    Ok((
+        out,
+        RobustReport {
+            constraint_rank: cd.rank,
+            constraint_gap: cd.gap,
+            descriptor: rep,
+            warnings,
+        },
+    ))
+}
 
-    // Output rows on z: the direct outputs, plus the velocity outputs that the acceleration
-    // sensors differentiate afterwards.
+/// Step 2: the output rows on `z` and how each output is read from them.
+fn output_rows(a: &Assembled<f64>) -> (DMatrix<f64>, Vec<Post>) {
+    let d = a.dim();
+    let nz = 2 * d + a.inputs.len();
+    let v = dense(&a.velocity);
     let cs = dense(&a.sensor_rows);
-    let nout = cs.nrows();
     let mut rows: Vec<DMatrix<f64>> = Vec::new();
-    enum Post {
-        Direct(usize),
-        Acc { vel: usize, minus: Option<usize> },
-    }
     let mut post = Vec::new();
+    let push = |z: DMatrix<f64>, rows: &mut Vec<DMatrix<f64>>| {
+        rows.push(z);
+        rows.len() - 1
+    };
     for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
         let row = cs.rows(o, 1).into_owned();
         let mut z = DMatrix::<f64>::zeros(1, nz);
-        let push = |z: DMatrix<f64>, rows: &mut Vec<DMatrix<f64>>| {
-            rows.push(z);
-            rows.len() - 1
-        };
         match (order, frame) {
             (SensorOrder::Displacement, _) => {
                 put(&mut z, 0, 0, &row, 1.0);
@@ -201,30 +256,22 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
                 });
             }
         }
-        let _ = o;
     }
     let mut cz = DMatrix::<f64>::zeros(rows.len(), nz);
     for (i, row) in rows.iter().enumerate() {
         cz.set_row(i, &row.row(0));
     }
-    let cm = &cz * &r;
-    let phys = r.rows(0, d).into_owned();
-    let desc = Descriptor {
-        e,
-        a: am,
-        b,
-        c: cm,
-        d: DMatrix::zeros(rows.len(), m),
-    };
-    let opts = DescriptorOptions {
-        phys: Some(&phys),
-        ..Default::default()
-    };
-    let (ss, rep) = descriptor_to_state_space(&desc, &opts)?;
-    warnings.extend(rep.warnings.iter().cloned());
+    (cz, post)
+}
 
-    let n = ss.a.nrows();
-    let mut c_out = DMatrix::<f64>::zeros(nout, n);
+/// Step 4: `C` and `D` of the outputs from the reduced model's output rows.
+fn outputs(
+    a: &Assembled<f64>,
+    ss: &StateSpace<f64>,
+    post: &[Post],
+) -> Result<(DMatrix<f64>, DMatrix<f64>), ModelError> {
+    let m = a.inputs.len();
+    let mut c_out = DMatrix::<f64>::zeros(post.len(), ss.a.nrows());
     let mut d_out = dense(&a.feedthrough);
     for (o, p) in post.iter().enumerate() {
         match *p {
@@ -258,29 +305,5 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
             }
         }
     }
-    let names = SignalNames {
-        states: (1..=n).map(|i| format!("x{i}")).collect(),
-        inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
-        input_units: a.inputs.iter().map(|x| x.1.clone()).collect(),
-        outputs: a.outputs.iter().map(|x| x.0.clone()).collect(),
-        output_units: a.outputs.iter().map(|x| x.1.clone()).collect(),
-        bodies: a.bodies.clone(),
-    };
-    let out = StateSpace {
-        a: ss.a,
-        b: ss.b,
-        c: c_out,
-        d: d_out,
-        phys: ss.phys,
-        names,
-    };
-    Ok((
-        out,
-        RobustReport {
-            constraint_rank: rank,
-            constraint_gap: gap,
-            descriptor: rep,
-            warnings,
-        },
-    ))
+    Ok((c_out, d_out))
 }

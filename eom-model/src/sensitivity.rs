@@ -1,8 +1,8 @@
 //! Eigenvalue sensitivities `∂λ/∂p` of a symbolic state-space model at a point: `∂A/∂p` is
 //! exact (the symbolic derivative of every entry of A, compiled), the eigenvectors numeric.
 
+use crate::compiled::SymbolicStateSpace;
 use crate::error::ModelError;
-use crate::reduce::SymbolicStateSpace;
 use eom_num::sensitivity::{EigenSensitivity, eigenvalue_sensitivities};
 use eom_sym::{Expr, Tape, diff_many};
 use nalgebra::DMatrix;

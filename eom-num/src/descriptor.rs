@@ -3,9 +3,10 @@
 //!
 //! # Reduction (index-1 pencils)
 //!
-//! [`descriptor_to_state_space`] follows EoM.jl's `dss2ss` (eom-method §6.1) with the fixes of
-//! §13.3:
+//! [`descriptor_to_state_space`] follows the descriptor reduction of the EoM software
+//! (Minaker et al.), with scale-aware decisions; one function per step:
 //!
+//! 0. Rows and columns of E at the rounding level of ‖E‖ are set to exactly zero.
 //! 1. The pencil is equilibrated by exact power-of-two row and column scalings
 //!    `R (sE − A) S` (rows then columns of E, as [`crate::linalg::equilibrate`]; rows and
 //!    columns where E is zero are scaled by A), so that the rank of E does not depend on
@@ -35,7 +36,7 @@
 //! # Finite generalized eigenvalues
 //!
 //! [`generalized_eigenvalues`] uses faer's QZ on the equilibrated pencil and drops infinite
-//! eigenvalues with a scale-aware test instead of EoM.jl's fixed `|λ| < 1e9` (§13.16); see
+//! eigenvalues with a scale-aware test instead of a fixed bound like `|λ| < 1e9`; see
 //! [`GenEigOptions`].
 
 use faer::diag::DiagMut;
@@ -204,6 +205,82 @@ pub fn descriptor_to_state_space(
     d: &Descriptor<f64>,
     opts: &DescriptorOptions<'_>,
 ) -> Result<(StateSpace<f64>, DescriptorReport), NumError> {
+    let phys0 = check_arguments(d, opts)?;
+    let (d, noise_notes) = clean_noise(d);
+    let (p, scaling) = equilibrate_pencil(&d, phys0, opts)?;
+    let mut warnings = noise_notes;
+    let e = decide_e_rank(&p.e, opts, &mut warnings)?;
+    let report = DescriptorReport {
+        states: d.states(),
+        dynamic: e.rank.rank,
+        algebraic: d.states() - e.rank.rank,
+        e_rank: e.rank.clone(),
+        a22_rank: None,
+        a22_condition: 1.0,
+        e_condition: e.condition,
+        scaling: opts.equilibrate.then(|| scaling.clone()),
+        warnings: Vec::new(),
+    };
+    if e.rank.rank == d.states() {
+        let ss = full_rank(&d, &p, &scaling, opts)?;
+        return Ok((ss, DescriptorReport { warnings, ..report }));
+    }
+    let blocks = Blocks::rotate(&p, &e);
+    let a22 = decide_a22(&p, &blocks, &e, opts, &mut warnings)?;
+    let ss = schur_complement(&d, &blocks, &e, &a22, opts)?;
+    Ok((
+        ss,
+        DescriptorReport {
+            a22_rank: Some(a22.rank),
+            a22_condition: a22.condition,
+            warnings,
+            ..report
+        },
+    ))
+}
+
+/// The pencil `R (sE − A) S` with `B' = R B`, `C' = C S`, `phys' = phys S`.
+struct Pencil {
+    e: DMatrix<f64>,
+    a: DMatrix<f64>,
+    b: DMatrix<f64>,
+    c: DMatrix<f64>,
+    ph: DMatrix<f64>,
+}
+
+/// Step 2: the SVD of E, its rank decision and condition.
+struct ERank {
+    svd: crate::linalg::Svd,
+    rank: Rank,
+    /// The nullspace of E is exactly its zero rows and columns.
+    structural: bool,
+    condition: f64,
+}
+
+/// The rotated pencil `Uᵀ A V` etc., split at the rank r of E.
+struct Blocks {
+    at: DMatrix<f64>,
+    bt: DMatrix<f64>,
+    ct: DMatrix<f64>,
+    pt: DMatrix<f64>,
+    r: usize,
+    k: usize,
+}
+
+/// Step 3 (rank deficient): the invertibility decision on A22, and its equilibrated LU
+/// factors' inputs.
+struct A22 {
+    rank: Rank,
+    condition: f64,
+    equilibrated: DMatrix<f64>,
+    scaling: Scaling,
+}
+
+/// The options and `phys` are valid; returns `phys` (zero rows when absent).
+fn check_arguments(
+    d: &Descriptor<f64>,
+    opts: &DescriptorOptions<'_>,
+) -> Result<DMatrix<f64>, NumError> {
     d.validate()?;
     opts.rank_tol.validate()?;
     if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
@@ -213,9 +290,7 @@ pub fn descriptor_to_state_space(
         )));
     }
     let n = d.states();
-    let m = d.b.ncols();
-    let p = d.c.nrows();
-    let phys0 = match opts.phys {
+    match opts.phys {
         Some(ph) => {
             if ph.ncols() != n {
                 return Err(NumError::Dimension(format!(
@@ -225,45 +300,54 @@ pub fn descriptor_to_state_space(
                 )));
             }
             check_finite(ph, "phys")?;
-            ph.clone()
+            Ok(ph.clone())
         }
-        None => DMatrix::zeros(0, n),
-    };
+        None => Ok(DMatrix::zeros(0, n)),
+    }
+}
 
-    // 0. Rows and columns of E at the rounding level of ‖E‖ are zero rows/columns (input
-    //    states and massless coordinates after orthonormal projections carry ε-size residues).
-    //    They must be made exactly zero before equilibration, which would otherwise scale the
-    //    noise up to O(1) and turn it into an equation.
+/// Step 0: rows and columns of E at the rounding level of ‖E‖ are zero rows/columns (input
+/// states and massless coordinates after orthonormal projections carry ε-size residues).
+/// They must be made exactly zero before equilibration, which would otherwise scale the
+/// noise up to O(1) and turn it into an equation.
+fn clean_noise(d: &Descriptor<f64>) -> (Descriptor<f64>, Vec<String>) {
+    let n = d.states();
     let mut e_clean = d.e.clone();
-    let mut noise_notes = Vec::new();
-    {
-        let emax = e_clean.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let noise = RANK_NOISE_FACTOR * n as f64 * f64::EPSILON * emax;
-        for i in 0..n {
-            let rmax = e_clean.row(i).iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            if rmax > 0.0 && rmax <= noise {
-                e_clean.row_mut(i).fill(0.0);
-                noise_notes.push(format!("row {i} of E (largest entry {rmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
-            }
-        }
-        for j in 0..n {
-            let cmax = e_clean.column(j).iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            if cmax > 0.0 && cmax <= noise {
-                e_clean.column_mut(j).fill(0.0);
-                noise_notes.push(format!("column {j} of E (largest entry {cmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
-            }
+    let mut notes = Vec::new();
+    let emax = e_clean.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let noise = RANK_NOISE_FACTOR * n as f64 * f64::EPSILON * emax;
+    for i in 0..n {
+        let rmax = e_clean.row(i).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if rmax > 0.0 && rmax <= noise {
+            e_clean.row_mut(i).fill(0.0);
+            notes.push(format!("row {i} of E (largest entry {rmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
         }
     }
-    let d_clean = Descriptor {
+    for j in 0..n {
+        let cmax = e_clean.column(j).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if cmax > 0.0 && cmax <= noise {
+            e_clean.column_mut(j).fill(0.0);
+            notes.push(format!("column {j} of E (largest entry {cmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
+        }
+    }
+    let d = Descriptor {
         e: e_clean,
         a: d.a.clone(),
         b: d.b.clone(),
         c: d.c.clone(),
         d: d.d.clone(),
     };
-    let d = &d_clean;
+    (d, notes)
+}
 
-    // 1. Equilibrate: E' = R E S, A' = R A S, B' = R B, C' = C S, phys' = phys S.
+/// Step 1: `E' = R E S`, `A' = R A S`, `B' = R B`, `C' = C S`, `phys' = phys S` (unit
+/// scalings when not equilibrating).
+fn equilibrate_pencil(
+    d: &Descriptor<f64>,
+    phys: DMatrix<f64>,
+    opts: &DescriptorOptions<'_>,
+) -> Result<(Pencil, Scaling), NumError> {
+    let n = d.states();
     let scaling = if opts.equilibrate {
         pencil_scaling(&d.e, &d.a)?
     } else {
@@ -272,126 +356,145 @@ pub fn descriptor_to_state_space(
             cols: DVector::from_element(n, 1.0),
         }
     };
-    let (mut e, mut a, mut b, mut c, mut ph) =
-        (d.e.clone(), d.a.clone(), d.b.clone(), d.c.clone(), phys0);
-    scale_rows(&mut e, &scaling.rows);
-    scale_cols(&mut e, &scaling.cols);
-    scale_rows(&mut a, &scaling.rows);
-    scale_cols(&mut a, &scaling.cols);
-    scale_rows(&mut b, &scaling.rows);
-    scale_cols(&mut c, &scaling.cols);
-    scale_cols(&mut ph, &scaling.cols);
+    let mut p = Pencil {
+        e: d.e.clone(),
+        a: d.a.clone(),
+        b: d.b.clone(),
+        c: d.c.clone(),
+        ph: phys,
+    };
+    scale_rows(&mut p.e, &scaling.rows);
+    scale_cols(&mut p.e, &scaling.cols);
+    scale_rows(&mut p.a, &scaling.rows);
+    scale_cols(&mut p.a, &scaling.cols);
+    scale_rows(&mut p.b, &scaling.rows);
+    scale_cols(&mut p.c, &scaling.cols);
+    scale_cols(&mut p.ph, &scaling.cols);
+    Ok((p, scaling))
+}
 
-    // 2. SVD of E and its rank. Exactly zero rows and columns (input states, massless
-    //    coordinates) are split off first, so that their part of A22 is exact.
-    let (f, zeros) = structured_svd(&e)?;
+/// Step 2: the SVD of E and its rank. Exactly zero rows and columns (input states,
+/// massless coordinates) are split off first, so that their part of A22 is exact.
+fn decide_e_rank(
+    e: &DMatrix<f64>,
+    opts: &DescriptorOptions<'_>,
+    warnings: &mut Vec<String>,
+) -> Result<ERank, NumError> {
+    let n = e.nrows();
+    let (f, zeros) = structured_svd(e)?;
     let smax = f.singular_values.first().copied().unwrap_or(0.0);
     let e_rank = rank_from(&f.singular_values, opts.rank_tol.threshold(smax, n, n));
     let r = e_rank.rank;
-    // The nullspace is exact when it consists of the structural zero rows/columns only.
-    let structural = n - r == zeros;
-    let mut warnings = noise_notes;
-    near_note("rank of E", &e_rank, &mut warnings);
-    let e_condition = if r == 0 {
+    near_note("rank of E", &e_rank, warnings);
+    let condition = if r == 0 {
         1.0
     } else {
         f.singular_values[0] / f.singular_values[r - 1]
     };
-    if e_condition > opts.warn_condition {
+    if condition > opts.warn_condition {
         warnings.push(format!(
-            "the kept part of E has condition number {e_condition:.3e} (σ_1/σ_r): the reduced \
+            "the kept part of E has condition number {condition:.3e} (σ_1/σ_r): the reduced \
              model is stiff (nearly massless coordinates kept as dynamic)"
         ));
     }
-    let mut names = opts.names.clone();
-    let scaled_report = if opts.equilibrate {
-        Some(scaling.clone())
-    } else {
-        None
-    };
+    Ok(ERank {
+        structural: n - r == zeros,
+        svd: f,
+        rank: e_rank,
+        condition,
+    })
+}
 
-    if r == n {
-        // 3. Full rank: ẋ = E⁻¹A x + E⁻¹B u in original coordinates. With E' = R E S:
-        //    E⁻¹A = S (E'⁻¹ A') S⁻¹ and E⁻¹B = S E'⁻¹ B'.
-        let mut rhs = DMatrix::zeros(n, n + m);
-        rhs.columns_mut(0, n).copy_from(&a);
-        rhs.columns_mut(n, m).copy_from(&b);
-        let x = if n == 0 {
-            rhs
-        } else {
-            e.clone().lu().solve(&rhs).ok_or_else(|| {
-                NumError::Singular(format!(
-                    "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
-                ))
-            })?
-        };
-        let mut a_s = x.columns(0, n).into_owned();
-        let mut b_s = x.columns(n, m).into_owned();
-        for i in 0..n {
-            for j in 0..n {
-                a_s[(i, j)] *= scaling.cols[i] / scaling.cols[j];
-            }
-            for j in 0..m {
-                b_s[(i, j)] *= scaling.cols[i];
-            }
+/// Step 3, full rank: `ẋ = E⁻¹A x + E⁻¹B u` in the original coordinates. With `E' = R E S`:
+/// `E⁻¹A = S (E'⁻¹ A') S⁻¹` and `E⁻¹B = S E'⁻¹ B'`.
+fn full_rank(
+    d: &Descriptor<f64>,
+    p: &Pencil,
+    scaling: &Scaling,
+    opts: &DescriptorOptions<'_>,
+) -> Result<StateSpace<f64>, NumError> {
+    let n = d.states();
+    let m = d.b.ncols();
+    let mut rhs = DMatrix::zeros(n, n + m);
+    rhs.columns_mut(0, n).copy_from(&p.a);
+    rhs.columns_mut(n, m).copy_from(&p.b);
+    let x = if n == 0 {
+        rhs
+    } else {
+        p.e.clone().lu().solve(&rhs).ok_or_else(|| {
+            NumError::Singular(format!(
+                "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
+            ))
+        })?
+    };
+    let mut a_s = x.columns(0, n).into_owned();
+    let mut b_s = x.columns(n, m).into_owned();
+    for i in 0..n {
+        for j in 0..n {
+            a_s[(i, j)] *= scaling.cols[i] / scaling.cols[j];
         }
-        check_finite(&a_s, "A_s = E⁻¹A")?;
-        let phys = match opts.phys {
-            Some(ph0) => ph0.clone(),
-            None => DMatrix::zeros(0, n),
-        };
-        let ss = StateSpace {
-            a: a_s,
-            b: b_s,
-            c: d.c.clone(),
-            d: d.d.clone(),
-            phys,
-            names,
-        };
-        ss.validate()?;
-        return Ok((
-            ss,
-            DescriptorReport {
-                states: n,
-                dynamic: n,
-                algebraic: 0,
-                e_rank,
-                a22_rank: None,
-                a22_condition: 1.0,
-                e_condition,
-                scaling: scaled_report,
-                warnings,
-            },
-        ));
+        for j in 0..m {
+            b_s[(i, j)] *= scaling.cols[i];
+        }
+    }
+    check_finite(&a_s, "A_s = E⁻¹A")?;
+    let phys = match opts.phys {
+        Some(ph0) => ph0.clone(),
+        None => DMatrix::zeros(0, n),
+    };
+    let ss = StateSpace {
+        a: a_s,
+        b: b_s,
+        c: d.c.clone(),
+        d: d.d.clone(),
+        phys,
+        names: opts.names.clone(),
+    };
+    ss.validate()?;
+    Ok(ss)
+}
+
+impl Blocks {
+    /// Step 3, rank deficient: the coordinates `x = V [x₁; x₂]` and equations `Uᵀ`.
+    fn rotate(p: &Pencil, e: &ERank) -> Self {
+        let f = &e.svd;
+        let ut = f.u.transpose();
+        let r = e.rank.rank;
+        Blocks {
+            at: &ut * &p.a * &f.v,
+            bt: &ut * &p.b,
+            ct: &p.c * &f.v,
+            pt: &p.ph * &f.v,
+            r,
+            k: p.e.nrows() - r,
+        }
     }
 
-    // 3'. Rank deficient: rotate by the singular vectors.
-    let ut = f.u.transpose();
-    let at = &ut * &a * &f.v;
-    let bt = &ut * &b;
-    let ct = &c * &f.v;
-    let pt = &ph * &f.v;
-    let k = n - r;
-    let a11 = at.view((0, 0), (r, r));
-    let a12 = at.view((0, r), (r, k));
-    let a21 = at.view((r, 0), (k, r));
-    let a22 = at.view((r, r), (k, k)).into_owned();
-    let b1 = bt.rows(0, r);
-    let b2 = bt.rows(r, k);
-    let c1 = ct.columns(0, r);
-    let c2 = ct.columns(r, k);
-    let p1 = pt.columns(0, r);
-    let p2 = pt.columns(r, k);
+    fn a22(&self) -> DMatrix<f64> {
+        let (r, k) = (self.r, self.k);
+        self.at.view((r, r), (k, k)).into_owned()
+    }
+}
 
-    // A22 invertibility, decided on the equilibrated A22: its rows are algebraic equations
-    // and its columns algebraic variables, whose units are arbitrary (the Schur complement
-    // does not depend on them).
+/// Step 3, rank deficient: A22 invertibility, decided on the equilibrated A22 (its rows are
+/// algebraic equations and its columns algebraic variables, whose units are arbitrary: the
+/// Schur complement does not depend on them). A singular A22 is an error that says whether
+/// the pencil is singular or of higher index.
+fn decide_a22(
+    p: &Pencil,
+    blocks: &Blocks,
+    e: &ERank,
+    opts: &DescriptorOptions<'_>,
+    warnings: &mut Vec<String>,
+) -> Result<A22, NumError> {
+    let (n, r, k) = (p.e.nrows(), blocks.r, blocks.k);
+    let a22 = blocks.a22();
     let (a22e, sc22) = equilibrate(&a22, Equilibrate::Both)?;
     let s22 = crate::linalg::singular_values(&a22e)?;
     let thr22 = opts.rank_tol.threshold(s22[0], k, k);
     let a22_rank = rank_from(&s22, thr22);
     if a22_rank.rank < k {
-        let singular = pencil_is_singular(&e, &a, opts.rank_tol)?;
+        let singular = pencil_is_singular(&p.e, &p.a, opts.rank_tol)?;
         let smin = s22.last().copied().unwrap_or(0.0);
         let detail = format!(
             "E has rank {r} of {n}; the algebraic block A22 ({k}×{k}) has rank {} \
@@ -412,19 +515,19 @@ pub fn descriptor_to_state_space(
             ))
         });
     }
-    let a22_condition = s22[0] / s22[k - 1];
-    near_note("invertibility of A22", &a22_rank, &mut warnings);
-    if a22_condition > opts.warn_condition {
+    let condition = s22[0] / s22[k - 1];
+    near_note("invertibility of A22", &a22_rank, warnings);
+    if condition > opts.warn_condition {
         warnings.push(format!(
-            "A22 ({k}×{k}) has condition number {a22_condition:.3e} (equilibrated): the \
+            "A22 ({k}×{k}) has condition number {condition:.3e} (equilibrated): the \
              elimination of the algebraic states loses about {:.0} digits",
-            a22_condition.log10()
+            condition.log10()
         ));
     }
-    if !structural {
+    if !e.structural {
         // A rotated (non-structural) nullspace of E puts rounding errors of size ε‖A‖ into
         // A22; an A22 at that level may be an index-2 pencil in disguise.
-        let anorm = crate::linalg::singular_values(&a)?
+        let anorm = crate::linalg::singular_values(&p.a)?
             .first()
             .copied()
             .unwrap_or(0.0);
@@ -438,30 +541,59 @@ pub fn descriptor_to_state_space(
             ));
         }
     }
-    // A22⁻¹ Y = C22 (R22 A22 C22)⁻¹ R22 Y.
-    let lu = a22e.lu();
+    Ok(A22 {
+        rank: a22_rank,
+        condition,
+        equilibrated: a22e,
+        scaling: sc22,
+    })
+}
+
+/// Step 4: the Schur complement, `A22⁻¹ Y = C22 (R22 A22 C22)⁻¹ R22 Y` by the LU of the
+/// equilibrated A22.
+fn schur_complement(
+    d: &Descriptor<f64>,
+    blocks: &Blocks,
+    e: &ERank,
+    a22: &A22,
+    opts: &DescriptorOptions<'_>,
+) -> Result<StateSpace<f64>, NumError> {
+    let (r, k) = (blocks.r, blocks.k);
+    let m = d.b.ncols();
+    let at = &blocks.at;
+    let a11 = at.view((0, 0), (r, r));
+    let a12 = at.view((0, r), (r, k));
+    let a21 = at.view((r, 0), (k, r));
+    let b1 = blocks.bt.rows(0, r);
+    let b2 = blocks.bt.rows(r, k);
+    let c1 = blocks.ct.columns(0, r);
+    let c2 = blocks.ct.columns(r, k);
+    let p1 = blocks.pt.columns(0, r);
+    let p2 = blocks.pt.columns(r, k);
+    let lu = a22.equilibrated.clone().lu();
     let mut rhs = DMatrix::zeros(k, r + m);
     rhs.columns_mut(0, r).copy_from(&a21);
     rhs.columns_mut(r, m).copy_from(&b2);
-    scale_rows(&mut rhs, &sc22.rows);
+    scale_rows(&mut rhs, &a22.scaling.rows);
     let mut x = lu.solve(&rhs).ok_or_else(|| {
         NumError::Singular(format!(
             "A22 ({k}×{k}) passed the rank test but its LU factorisation broke down"
         ))
     })?;
-    scale_rows(&mut x, &sc22.cols);
+    scale_rows(&mut x, &a22.scaling.cols);
     let xa = x.columns(0, r);
     let xb = x.columns(r, m);
     let mut a_s = a11 - a12 * xa;
     let mut b_s = b1 - a12 * xb;
     for i in 0..r {
-        let inv = 1.0 / f.singular_values[i];
+        let inv = 1.0 / e.svd.singular_values[i];
         a_s.row_mut(i).scale_mut(inv);
         b_s.row_mut(i).scale_mut(inv);
     }
     let c_s = c1 - c2 * xa;
     let d_s = &d.d - c2 * xb;
     let phys_s = p1 - p2 * xa;
+    let mut names = opts.names.clone();
     names.states = (1..=r).map(|i| format!("x{i}")).collect();
     let ss = StateSpace {
         a: a_s,
@@ -471,22 +603,9 @@ pub fn descriptor_to_state_space(
         phys: phys_s,
         names,
     };
-    debug_assert_eq!(ss.c.nrows(), p);
+    debug_assert_eq!(ss.c.nrows(), d.c.nrows());
     ss.validate()?;
-    Ok((
-        ss,
-        DescriptorReport {
-            states: n,
-            dynamic: r,
-            algebraic: k,
-            e_rank,
-            a22_rank: Some(a22_rank),
-            a22_condition,
-            e_condition,
-            scaling: scaled_report,
-            warnings,
-        },
-    ))
+    Ok(ss)
 }
 
 /// SVD of E with exactly zero rows and columns split off: if E has z zero rows and z zero

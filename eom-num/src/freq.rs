@@ -24,7 +24,7 @@
 //!
 //! # Frequency grid
 //!
-//! With [`FreqRange::Auto`], as the EoM software does, but never failing: the nonzero eigenvalues
+//! With [`FreqRange::Auto`], as in the EoM software but never failing: the nonzero eigenvalues
 //! (zero ones decided scale-aware, see [`crate::modes`]) give `f = |λ|/2π`; the grid spans
 //! the decades `floor(log10(f_min/2)) … ceil(log10(2 f_max))` (at least one decade), with
 //! [`FreqOptions::points_per_decade`] points per decade (200 by default), endpoints included.

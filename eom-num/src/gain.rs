@@ -26,7 +26,7 @@
 //! rounding error), in balanced coordinates.
 //!
 //! EoM.jl replaced the gain by `Re G(jω)` one decade below the plot range whenever
-//! `cond(A) ≥ 1e6` (as the EoM software does), which is meaningless for integrating outputs and
+//! `cond(A) ≥ 1e6`, which is meaningless for integrating outputs and
 //! silently approximate for the others.
 
 use nalgebra::DMatrix;

@@ -48,7 +48,7 @@ pub enum RankTolerance {
     /// `max(m, n) · ε · σ_max`; the factor 10 covers that while staying ~13 orders of
     /// magnitude below `σ_max` for the sizes met here, far below any physical scale
     /// separation. It is deliberately looser than Julia's `min(m, n)` rule and much looser
-    /// than the ULP-tight threshold of the EoM software's descriptor reduction. Mixed units can
+    /// than the ULP-tight threshold of EoM.jl's `dss2ss`. Mixed units can
     /// still defeat any relative tolerance; equilibrate first ([`rank_equilibrated`]).
     #[default]
     Default,

@@ -31,14 +31,14 @@
 //!
 //! where the norms are those of the balanced matrices (see [`MinrealOptions`]). The rule is
 //! relative, so multiplying the whole model by a constant, or changing the time unit, gives the
-//! same decisions; an absolute tolerance (the EoM software uses 1e-7; docs/method.md §9) does not.
+//! same decisions; an absolute tolerance (EoM.jl uses 1e-7) does not.
 //!
 //! # What is reported
 //!
 //! [`MinrealReport`] lists every rank decision with its singular values, tolerance and gap,
 //! and every removed mode (eigenvalues of the uncontrollable and of the unobservable part)
 //! with its kind and stability, so that a caller can say "an unstable mode the sensors cannot
-//! see" instead of silently dropping it (docs/method.md §9, difference 9).
+//! see" instead of silently dropping it.
 
 use nalgebra::{DMatrix, DMatrixView};
 use num_complex::Complex64;

@@ -30,7 +30,7 @@
 //!   the sign of Re λ decides stable/unstable.
 //!
 //! EoM.jl used fixed absolute thresholds (1e-7) and reported ω_n = 0, ζ = NaN for every real
-//! pole (the EoM software reports 0 Hz); here a real pole reports its corner frequency |λ|/2π, ζ = ±1, and
+//! pole; here a real pole reports its corner frequency |λ|/2π, ζ = ±1, and
 //! NaN never appears.
 //!
 //! # Conjugate pairs
@@ -38,7 +38,7 @@
 //! Both members of a complex-conjugate pair are reported (one [`Mode`] per eigenvalue, n modes
 //! for n states, in the same (Re, Im) order as [`eigenvalues`], so the member with negative
 //! imaginary part comes first). Their real parts are bit-identical, which makes the order
-//! deterministic (not dependent on rounding, as a sort by real part alone is). [`Modes::distinct`] skips the negative-frequency member.
+//! deterministic. [`Modes::distinct`] skips the negative-frequency member.
 
 use std::f64::consts::PI;
 

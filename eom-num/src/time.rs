@@ -7,7 +7,7 @@
 //!
 //! * [`impulse`]: `u = δ(t)` on each input in turn: `x(0⁺) = B`, `y(t) = C e^{At} B` for
 //!   t > 0, **plus** `D δ(t)`, which a sampled signal cannot hold; it is returned explicitly
-//!   in [`TimeResponse::direct`] instead of being dropped (as the EoM software drops it).
+//!   in [`TimeResponse::direct`] instead of being dropped.
 //! * [`step`]: unit step on each input in turn, `y = C x + D`.
 //! * [`simulate`]: one trajectory for a sampled input `u_k` held over each step, from `x₀`.
 //!

@@ -25,7 +25,7 @@
 //! eigenvalue `α/β` of the computed pencil is still declared infinite when
 //! `|β| ≤ infinite_rtol · ‖B_f‖_F` — β is then below the backward error of the QZ step and
 //! its sign and size carry no information. This replaces EoM.jl's absolute `|z| < 1e9`
-//! cut-off (as the EoM software has), which depends on the units of the model.
+//! cut-off, which depends on the units of the model.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::{Par, Spec};

@@ -43,9 +43,13 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
 
+mod assign;
+mod boundary;
+
 use crate::error::NumError;
 use crate::minreal::{cser, sort_complex};
 use crate::modes::{EigenvaluesWorkspace, eigenvalues_in};
+use assign::assign_pinned;
 
 /// Errors of [`Sweep::run`]: the caller's model error passed through with the parameter
 /// value at which it happened, or a numeric error at a parameter value.
@@ -317,8 +321,8 @@ impl Sweep {
         Ok(())
     }
 
-    /// Runs the sweep. `f(x)` returns the state matrix `A` at parameter value `x`; it is called
-    /// from several threads.
+    /// Runs the sweep (see the module documentation for the steps). `f(x)` returns the state
+    /// matrix `A` at parameter value `x`; it is called from several threads.
     ///
     /// Errors: [`SweepError::Model`] with the parameter value when `f` fails (the first failing
     /// value in sweep order when several do), [`SweepError::Numeric`] when `A` is not square,
@@ -334,7 +338,31 @@ impl Sweep {
             f: &f,
             param: &self.param,
         };
-        // 1. Evaluate every point in parallel; report the first failure in sweep order.
+        let pts = self.evaluate_grid(&ctx)?;
+        let (tracked, z) = self.follow_branches(&pts);
+        let br = self.neutral_branches(pts, tracked, z);
+        let points = br.points(&self.values);
+        let brackets = br.brackets();
+        let boundaries = self.locate_boundaries(&ctx, &br, &brackets)?;
+        let stable_intervals = self.stable_intervals(&ctx, &br, &points, &brackets, &boundaries)?;
+        Ok(SweepResult {
+            param: self.param.clone(),
+            points,
+            branches: (br.neutral.iter().enumerate())
+                .map(|(index, &neutral)| BranchInfo { index, neutral })
+                .collect(),
+            stable_intervals,
+            boundaries,
+        })
+    }
+
+    /// Step 1: `A` and its eigenvalues at every sweep value, in parallel; the first failure in
+    /// sweep order is reported, and `A` must keep its size.
+    fn evaluate_grid<F, E>(&self, ctx: &Ctx<'_, F>) -> Result<Vec<Eval>, SweepError<E>>
+    where
+        F: Fn(f64) -> Result<DMatrix<f64>, E> + Sync,
+        E: Send,
+    {
         let evals: Vec<Result<Eval, SweepError<E>>> = self
             .values
             .par_iter()
@@ -358,11 +386,14 @@ impl Sweep {
                 ));
             }
         }
-        let marginal_rtol = self
-            .marginal_rtol
-            .unwrap_or(100.0 * (n.max(1) as f64) * f64::EPSILON);
+        Ok(pts)
+    }
 
-        // 2. Follow the branches.
+    /// Step 2: the eigenvalues of every point assigned to the branches (see
+    /// [`assign_pinned`]), against a linear prediction from the two points before. Returns the
+    /// branch values per point and the number `z` of neutral zeros pinned to the first
+    /// branches.
+    fn follow_branches(&self, pts: &[Eval]) -> (Vec<Vec<Complex64>>, usize) {
         let xs = &self.values;
         // The eigenvalues ≈ 0 at every grid point are the neutral zeros: pinned to the first
         // branches (see `assign_pinned`).
@@ -394,8 +425,12 @@ impl Sweep {
             let cur = assign_pinned(&pred, &pts[k].eig, prev, z);
             tracked.push(cur);
         }
+        (tracked, z)
+    }
 
-        // 3. Neutral branches.
+    /// Step 3: the branches that are ≈ 0 at every point.
+    fn neutral_branches(&self, pts: Vec<Eval>, tracked: Vec<Vec<Complex64>>, z: usize) -> Branches {
+        let n = pts[0].eig.len();
         let neutral: Vec<bool> = (0..n)
             .map(|j| {
                 tracked
@@ -404,104 +439,35 @@ impl Sweep {
                     .all(|(t, p)| t[j].norm() <= self.neutral_rtol * p.norm)
             })
             .collect();
-
-        // 4. Stability per point. Real parts are taken together with the neutral branches'
-        // (whose sum is ≈ 0 and exact as a trace): where a real root crosses zero next to a
-        // neutral zero the two form a defective double eigenvalue, each known only to √ε,
-        // but their sum stays accurate.
         let neutral_idx: Vec<usize> = (0..n).filter(|&j| neutral[j]).collect();
-        let band = |k: usize| marginal_rtol * pts[k].norm;
-        let sign = |k: usize, j: usize| -> i8 {
-            let re = effective_re(&tracked[k], j, &neutral_idx);
-            if re > band(k) {
-                1
-            } else if re < -band(k) {
-                -1
-            } else {
-                0
-            }
-        };
-        let classify = |eig: &[Complex64], norm: f64| -> (Option<f64>, PointStability) {
-            let b = marginal_rtol * norm;
-            let mut max_re: Option<f64> = None;
-            for j in (0..eig.len()).filter(|&j| !neutral[j]) {
-                let re = effective_re(eig, j, &neutral_idx);
-                max_re = Some(max_re.map_or(re, |m: f64| m.max(re)));
-            }
-            let st = match max_re {
-                None => PointStability::Marginal,
-                Some(m) if m > b => PointStability::Unstable,
-                Some(m) if m < -b => PointStability::Stable,
-                Some(_) => PointStability::Marginal,
-            };
-            (max_re, st)
-        };
-        let points: Vec<SweepPoint> = (0..pts.len())
-            .map(|k| {
-                let (max_real, stability) = classify(&tracked[k], pts[k].norm);
-                SweepPoint {
-                    value: xs[k],
-                    eigenvalues: tracked[k].clone(),
-                    max_real,
-                    stability,
-                    norm: pts[k].norm,
-                }
-            })
-            .collect();
-
-        // 5. Brackets of sign changes, one per conjugate pair.
-        let increasing = xs.len() < 2 || xs[1] > xs[0];
-        let mut brackets = Vec::new();
-        for j in (0..n).filter(|&j| !neutral[j]) {
-            let mut last: Option<(usize, i8)> = None;
-            for k in 0..pts.len() {
-                let s = sign(k, j);
-                if s == 0 {
-                    continue;
-                }
-                if let Some((kp, sp)) = last
-                    && sp != s
-                    && !is_lower_half_of_pair(&tracked, j, kp, k)
-                {
-                    brackets.push((j, kp, k));
-                }
-                last = Some((k, s));
-            }
+        let marginal_rtol = self
+            .marginal_rtol
+            .unwrap_or(100.0 * (n.max(1) as f64) * f64::EPSILON);
+        Branches {
+            norms: pts.iter().map(|p| p.norm).collect(),
+            tracked,
+            z,
+            neutral,
+            neutral_idx,
+            marginal_rtol,
         }
+    }
 
-        let mut boundaries: Vec<Boundary> = if self.locate {
-            let located: Vec<Result<Boundary, SweepError<E>>> = brackets
-                .par_iter()
-                .map(|&(j, ka, kb)| {
-                    let ends = ((xs[ka], tracked[ka].clone()), (xs[kb], tracked[kb].clone()));
-                    let mut b = ctx.locate(
-                        j,
-                        &neutral_idx,
-                        ends,
-                        (self.tolerance, self.max_evaluations),
-                        z,
-                    )?;
-                    let rising = sign(kb, j) > 0;
-                    b.crossing = if rising == increasing {
-                        Crossing::Destabilizing
-                    } else {
-                        Crossing::Stabilizing
-                    };
-                    Ok(b)
-                })
-                .collect();
-            let mut out = Vec::with_capacity(located.len());
-            for b in located {
-                out.push(b?);
-            }
-            out
-        } else {
-            Vec::new()
-        };
-        boundaries.sort_by(|a, b| a.value.total_cmp(&b.value));
-        dedupe_pairs(&mut boundaries, self.tolerance);
-
-        // 6. Stable intervals.
+    /// Step 6: the stable intervals between the boundaries (or, without located boundaries,
+    /// between the grid cells where a sign changes).
+    fn stable_intervals<F, E>(
+        &self,
+        ctx: &Ctx<'_, F>,
+        br: &Branches,
+        points: &[SweepPoint],
+        brackets: &[(usize, usize, usize)],
+        boundaries: &[Boundary],
+    ) -> Result<Vec<StableInterval>, SweepError<E>>
+    where
+        F: Fn(f64) -> Result<DMatrix<f64>, E> + Sync,
+    {
+        let xs = &self.values;
+        let increasing = xs.len() < 2 || xs[1] > xs[0];
         let (lo_all, hi_all) = if increasing {
             (xs[0], xs[xs.len() - 1])
         } else {
@@ -513,7 +479,7 @@ impl Sweep {
         } else {
             // Without located boundaries, cut at the grid cells where a sign changes: the
             // stable side ends at its last grid point.
-            for &(_, ka, kb) in &brackets {
+            for &(_, ka, kb) in brackets {
                 cuts.push(xs[ka].min(xs[kb]));
                 cuts.push(xs[ka].max(xs[kb]));
             }
@@ -530,7 +496,7 @@ impl Sweep {
             // within 2·tolerance of a boundary sits on it), inclusive at the sweep ends and,
             // without located boundaries, at the grid cuts.
             let margin = 2.0 * self.tolerance;
-            let inside: Vec<usize> = (0..pts.len())
+            let inside: Vec<usize> = (0..points.len())
                 .filter(|&k| {
                     let x = xs[k];
                     let above = if lo == lo_all || !self.locate {
@@ -551,8 +517,8 @@ impl Sweep {
                     false
                 } else {
                     let mid = 0.5 * (lo + hi);
-                    let (eig, norm) = ctx.eval_tracked(mid, xs, &tracked, z)?;
-                    classify(&eig, norm).1 == PointStability::Stable
+                    let (eig, norm) = ctx.eval_tracked(mid, xs, &br.tracked, br.z)?;
+                    br.classify(&eig, norm).1 == PointStability::Stable
                 }
             } else {
                 let any_unstable = inside
@@ -570,18 +536,73 @@ impl Sweep {
                 }
             }
         }
+        Ok(stable_intervals)
+    }
+}
 
-        Ok(SweepResult {
-            param: self.param.clone(),
-            points,
-            branches: neutral
-                .iter()
-                .enumerate()
-                .map(|(index, &neutral)| BranchInfo { index, neutral })
-                .collect(),
-            stable_intervals,
-            boundaries,
-        })
+/// The tracked branches after steps 1–3: their values at every grid point, which are
+/// neutral, and the thresholds of step 4.
+struct Branches {
+    /// `‖A(x_k)‖_F`.
+    norms: Vec<f64>,
+    /// Branch values per grid point.
+    tracked: Vec<Vec<Complex64>>,
+    /// The number of neutral zeros pinned to the first branches.
+    z: usize,
+    neutral: Vec<bool>,
+    neutral_idx: Vec<usize>,
+    marginal_rtol: f64,
+}
+
+impl Branches {
+    /// Step 4: the sign of branch `j`'s real part at point `k` (0 inside the band). Real
+    /// parts are taken together with the neutral branches' (whose sum is ≈ 0 and exact as a
+    /// trace): where a real root crosses zero next to a neutral zero the two form a defective
+    /// double eigenvalue, each known only to √ε, but their sum stays accurate.
+    fn sign(&self, k: usize, j: usize) -> i8 {
+        let band = self.marginal_rtol * self.norms[k];
+        let re = effective_re(&self.tracked[k], j, &self.neutral_idx);
+        if re > band {
+            1
+        } else if re < -band {
+            -1
+        } else {
+            0
+        }
+    }
+
+    /// Step 4: the largest real part of the non-neutral branches and the stability class of
+    /// a point with these branch values.
+    fn classify(&self, eig: &[Complex64], norm: f64) -> (Option<f64>, PointStability) {
+        let b = self.marginal_rtol * norm;
+        let mut max_re: Option<f64> = None;
+        for j in (0..eig.len()).filter(|&j| !self.neutral[j]) {
+            let re = effective_re(eig, j, &self.neutral_idx);
+            max_re = Some(max_re.map_or(re, |m: f64| m.max(re)));
+        }
+        let st = match max_re {
+            None => PointStability::Marginal,
+            Some(m) if m > b => PointStability::Unstable,
+            Some(m) if m < -b => PointStability::Stable,
+            Some(_) => PointStability::Marginal,
+        };
+        (max_re, st)
+    }
+
+    /// Step 4: every grid point with its branch values and stability.
+    fn points(&self, xs: &[f64]) -> Vec<SweepPoint> {
+        (0..self.tracked.len())
+            .map(|k| {
+                let (max_real, stability) = self.classify(&self.tracked[k], self.norms[k]);
+                SweepPoint {
+                    value: xs[k],
+                    eigenvalues: self.tracked[k].clone(),
+                    max_real,
+                    stability,
+                    norm: self.norms[k],
+                }
+            })
+            .collect()
     }
 }
 
@@ -620,34 +641,6 @@ fn deflate_zero_lines(a: &DMatrix<f64>) -> (Option<DMatrix<f64>>, usize) {
         Some(DMatrix::from_fn(m, m, |i, j| a[(keep[i], keep[j])])),
         removed,
     )
-}
-
-/// [`assign`] with the first `z` branches (the neutral zeros) pinned to the `z` eigenvalues
-/// of least modulus. Matching alone cannot tell a real root passing through zero from a
-/// neutral zero: near the crossing both are ≈ 0 and the costs tie (the bicycle's capsize
-/// root at 6 m/s and its heading mode swapped on a 0.25 m/s grid). Pinned, the neutral
-/// branch is always the eigenvalue nearest zero; where the two are closer than rounding,
-/// which is which does not matter, as real parts are taken together with the neutral ones.
-fn assign_pinned(
-    pred: &[Complex64],
-    eig: &[Complex64],
-    prev: &[Complex64],
-    z: usize,
-) -> Vec<Complex64> {
-    if z == 0 {
-        return assign(pred, eig, prev);
-    }
-    let mut order: Vec<usize> = (0..eig.len()).collect();
-    order.sort_by(|&a, &b| eig[a].norm().total_cmp(&eig[b].norm()));
-    let mut pinned = vec![false; eig.len()];
-    order[..z].iter().for_each(|&k| pinned[k] = true);
-    let mut out: Vec<Complex64> = order[..z].iter().map(|&k| eig[k]).collect();
-    let rest: Vec<Complex64> = (0..eig.len())
-        .filter(|&k| !pinned[k])
-        .map(|k| eig[k])
-        .collect();
-    out.extend(assign(&pred[z..], &rest, &prev[z..]));
-    out
 }
 
 struct Ctx<'a, F> {
@@ -711,129 +704,6 @@ where
             norm: a.norm(),
         })
     }
-
-    /// Eigenvalues at an off-grid value, assigned to the branches by interpolating the
-    /// tracked values of the neighbouring grid points.
-    fn eval_tracked(
-        &self,
-        x: f64,
-        xs: &[f64],
-        tracked: &[Vec<Complex64>],
-        z: usize,
-    ) -> Result<(Vec<Complex64>, f64), SweepError<E>> {
-        let n = tracked[0].len();
-        let e = self.eval(x, &mut None, Some(n))?;
-        // Neighbouring grid points (xs is monotone).
-        let k = xs
-            .windows(2)
-            .position(|w| (w[0] - x) * (w[1] - x) <= 0.0)
-            .unwrap_or(0);
-        let pred = if xs.len() < 2 {
-            tracked[0].clone()
-        } else {
-            interpolate(xs[k], &tracked[k], xs[k + 1], &tracked[k + 1], x)
-        };
-        Ok((assign_pinned(&pred, &e.eig, &pred, z), e.norm))
-    }
-
-    /// Brent's method on g(x) = Re λ_j(x) inside a bracket with a sign change.
-    fn locate(
-        &self,
-        j: usize,
-        neutral: &[usize],
-        ends: ((f64, Vec<Complex64>), (f64, Vec<Complex64>)),
-        (tol, max_evaluations): (f64, usize),
-        z: usize,
-    ) -> Result<Boundary, SweepError<E>> {
-        let n = ends.0.1.len();
-        let mut ws = Some(EigenvaluesWorkspace::new(n));
-        let ((mut xa, mut va), (mut xb, mut vb)) = ends;
-        let (mut fa, mut fb) = (effective_re(&va, j, neutral), effective_re(&vb, j, neutral));
-        let (mut xc, mut vc, mut fc) = (xa, va.clone(), fa);
-        let mut d = xb - xa;
-        let mut e = d;
-        let mut evaluations = 0;
-        let mut converged = false;
-        loop {
-            if (fb > 0.0) == (fc > 0.0) {
-                xc = xa;
-                vc = va.clone();
-                fc = fa;
-                d = xb - xa;
-                e = d;
-            }
-            if fc.abs() < fb.abs() {
-                // Keep the best estimate in b.
-                xa = xb;
-                va = vb.clone();
-                fa = fb;
-                xb = xc;
-                vb = vc.clone();
-                fb = fc;
-                xc = xa;
-                vc = va.clone();
-                fc = fa;
-            }
-            let tol1 = 2.0 * f64::EPSILON * xb.abs() + 0.5 * tol;
-            let xm = 0.5 * (xc - xb);
-            if xm.abs() <= tol1 || fb == 0.0 {
-                converged = true;
-                break;
-            }
-            if evaluations >= max_evaluations {
-                break;
-            }
-            if e.abs() >= tol1 && fa.abs() > fb.abs() {
-                // Interpolation step: secant or inverse quadratic.
-                let s = fb / fa;
-                let (mut p, mut q);
-                if xa == xc {
-                    p = 2.0 * xm * s;
-                    q = 1.0 - s;
-                } else {
-                    let qq = fa / fc;
-                    let r = fb / fc;
-                    p = s * (2.0 * xm * qq * (qq - r) - (xb - xa) * (r - 1.0));
-                    q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-                }
-                if p > 0.0 {
-                    q = -q;
-                } else {
-                    p = -p;
-                }
-                if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
-                    e = d;
-                    d = p / q;
-                } else {
-                    d = xm;
-                    e = d;
-                }
-            } else {
-                d = xm;
-                e = d;
-            }
-            xa = xb;
-            va = vb.clone();
-            fa = fb;
-            xb += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
-            // Identify the branches at the trial value against the values interpolated
-            // between the two ends of the current bracket.
-            let pred = interpolate(xa, &va, xc, &vc, xb);
-            let ev = self.eval(xb, &mut ws, Some(n))?;
-            evaluations += 1;
-            vb = assign_pinned(&pred, &ev.eig, &pred, z);
-            fb = effective_re(&vb, j, neutral);
-        }
-        Ok(Boundary {
-            value: xb,
-            eigenvalue: vb[j] + Complex64::new(fb - vb[j].re, 0.0),
-            branch: j,
-            crossing: Crossing::Destabilizing,
-            bracket: [xb.min(xc), xb.max(xc)],
-            evaluations,
-            converged,
-        })
-    }
 }
 
 /// Real part of branch `j` plus those of the neutral branches (see step 4 of `run`).
@@ -844,240 +714,4 @@ fn effective_re(values: &[Complex64], j: usize, neutral: &[usize]) -> f64 {
             .filter(|&&k| k != j)
             .map(|&k| values[k].re)
             .sum::<f64>()
-}
-
-fn interpolate(x0: f64, v0: &[Complex64], x1: f64, v1: &[Complex64], x: f64) -> Vec<Complex64> {
-    let t = if x1 == x0 { 0.0 } else { (x - x0) / (x1 - x0) };
-    v0.iter().zip(v1).map(|(&a, &b)| a + (b - a) * t).collect()
-}
-
-/// Whether branch `j` is the lower (negative imaginary part) half of a conjugate pair at both
-/// grid points `ka` and `kb`: its partner then brackets the same boundary.
-fn is_lower_half_of_pair(tracked: &[Vec<Complex64>], j: usize, ka: usize, kb: usize) -> bool {
-    let (za, zb) = (tracked[ka][j], tracked[kb][j]);
-    if za.im >= 0.0 || zb.im >= 0.0 {
-        return false;
-    }
-    (0..tracked[ka].len())
-        .any(|i| i != j && tracked[ka][i] == za.conj() && tracked[kb][i] == zb.conj())
-}
-
-/// Removes the second of two boundaries at the same value whose eigenvalues are conjugate
-/// (a pair tracked as two branches that both bracketed it), keeping Im ≥ 0.
-fn dedupe_pairs(b: &mut Vec<Boundary>, tol: f64) {
-    let mut i = 0;
-    while i + 1 < b.len() {
-        let (x, y) = (&b[i], &b[i + 1]);
-        let scale = x.eigenvalue.norm().max(y.eigenvalue.norm()).max(1e-300);
-        if (x.value - y.value).abs() <= 10.0 * tol
-            && (x.eigenvalue - y.eigenvalue.conj()).norm() <= 1e-6 * scale
-            && x.eigenvalue.im != 0.0
-        {
-            let drop = if x.eigenvalue.im < 0.0 { i } else { i + 1 };
-            b.remove(drop);
-        } else {
-            i += 1;
-        }
-    }
-}
-
-/// Assigns the eigenvalues `eig` to branches with predicted values `pred` (optimal assignment
-/// on squared distance), then re-pairs conjugates: branches that were a conjugate pair in
-/// `prev` and are complex now get a conjugate pair.
-fn assign(pred: &[Complex64], eig: &[Complex64], prev: &[Complex64]) -> Vec<Complex64> {
-    let n = pred.len();
-    let mut cost = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            cost[i * n + j] = (pred[i] - eig[j]).norm_sqr();
-        }
-    }
-    // Fast path: when every prediction's nearest eigenvalue is a different one, that
-    // assignment reaches the lower bound Σ row minima and is optimal.
-    let mut col: Vec<usize> = (0..n)
-        .map(|i| {
-            (0..n)
-                .min_by(|&a, &b| cost[i * n + a].total_cmp(&cost[i * n + b]))
-                .unwrap_or(0)
-        })
-        .collect();
-    let mut taken = vec![false; n];
-    let is_perm = col.iter().all(|&j| !std::mem::replace(&mut taken[j], true));
-    if !is_perm {
-        col = hungarian(&cost, n);
-    }
-    let mut cur: Vec<Complex64> = col.iter().map(|&j| eig[j]).collect();
-    // Conjugate partners in `prev`, each lower half used once (repeated pairs are possible).
-    let mut used = vec![false; n];
-    let mut pairs = Vec::new();
-    for i in 0..n {
-        if prev[i].im > 0.0
-            && let Some(k) = (0..n).find(|&k| !used[k] && k != i && prev[k] == prev[i].conj())
-        {
-            used[k] = true;
-            pairs.push((i, k));
-        }
-    }
-    let mut locked = vec![false; n];
-    for (i, partner) in pairs {
-        if cur[i].im != 0.0 {
-            let want = cur[i].conj();
-            if cur[partner] != want
-                && let Some(holder) =
-                    (0..n).find(|&k| k != i && k != partner && !locked[k] && cur[k] == want)
-            {
-                cur.swap(partner, holder);
-            }
-        }
-        locked[i] = true;
-        locked[partner] = true;
-    }
-    cur
-}
-
-/// Minimum-cost perfect assignment of an `n × n` cost matrix (row-major) by the Hungarian
-/// method with potentials (Kuhn 1955, Munkres 1957), O(n³). Returns the column of each row.
-fn hungarian(cost: &[f64], n: usize) -> Vec<usize> {
-    // 1-based internally; index 0 is a virtual column.
-    let mut u = vec![0.0f64; n + 1];
-    let mut v = vec![0.0f64; n + 1];
-    let mut owner = vec![0usize; n + 1];
-    let mut way = vec![0usize; n + 1];
-    let mut minv = vec![0.0f64; n + 1];
-    let mut used = vec![false; n + 1];
-    for row in 1..=n {
-        owner[0] = row;
-        let mut j0 = 0;
-        minv.iter_mut().for_each(|m| *m = f64::INFINITY);
-        used.iter_mut().for_each(|u| *u = false);
-        loop {
-            used[j0] = true;
-            let i0 = owner[j0];
-            let mut delta = f64::INFINITY;
-            let mut j1 = 0;
-            for j in 1..=n {
-                if !used[j] {
-                    let c = cost[(i0 - 1) * n + (j - 1)] - u[i0] - v[j];
-                    if c < minv[j] {
-                        minv[j] = c;
-                        way[j] = j0;
-                    }
-                    if minv[j] < delta {
-                        delta = minv[j];
-                        j1 = j;
-                    }
-                }
-            }
-            if j1 == 0 {
-                // Only possible with non-finite costs: take any free column.
-                j1 = (1..=n).find(|&j| !used[j]).unwrap_or(0);
-                if j1 == 0 {
-                    break;
-                }
-                delta = 0.0;
-            }
-            for j in 0..=n {
-                if used[j] {
-                    u[owner[j]] += delta;
-                    v[j] -= delta;
-                } else {
-                    minv[j] -= delta;
-                }
-            }
-            j0 = j1;
-            if owner[j0] == 0 {
-                break;
-            }
-        }
-        loop {
-            let j1 = way[j0];
-            owner[j0] = owner[j1];
-            j0 = j1;
-            if j0 == 0 {
-                break;
-            }
-        }
-    }
-    let mut col = vec![0usize; n];
-    for j in 1..=n {
-        if owner[j] > 0 {
-            col[owner[j] - 1] = j - 1;
-        }
-    }
-    col
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn hungarian_finds_the_optimum_of_small_problems_by_brute_force() {
-        // Compare with enumeration of all permutations for 5×5 pseudo-random costs.
-        let n = 5;
-        let mut seed = 12345u64;
-        for _ in 0..50 {
-            let cost: Vec<f64> = (0..n * n)
-                .map(|_| {
-                    seed = seed
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    ((seed >> 11) as f64) / ((1u64 << 53) as f64)
-                })
-                .collect();
-            let col = hungarian(&cost, n);
-            let got: f64 = (0..n).map(|i| cost[i * n + col[i]]).sum();
-            let mut perm: Vec<usize> = (0..n).collect();
-            let mut best = f64::INFINITY;
-            permute(&mut perm, 0, &mut |p| {
-                let c: f64 = (0..n).map(|i| cost[i * n + p[i]]).sum();
-                best = best.min(c);
-            });
-            assert!((got - best).abs() <= 1e-12, "{got} vs {best}");
-            let mut seen = col.clone();
-            seen.sort();
-            assert_eq!(seen, (0..n).collect::<Vec<_>>());
-        }
-    }
-
-    #[test]
-    fn assign_falls_back_to_the_optimal_assignment() {
-        // Both predictions are nearest to 0.05: greedy nearest is not a permutation.
-        let c = |re: f64| Complex64::new(re, 0.0);
-        let pred = [c(0.0), c(0.1)];
-        let eig = [c(1.0), c(0.05)];
-        let got = assign(&pred, &eig, &pred);
-        assert_eq!(got, vec![c(0.05), c(1.0)]);
-    }
-
-    #[test]
-    fn assign_keeps_conjugate_pairs_together() {
-        // A double pair ±1i splitting into −0.1 ± 1i and 0.1 ± 1i: every assignment of
-        // upper halves to upper halves costs the same, pairs must still come out as pairs.
-        let z = Complex64::new(0.0, 1.0);
-        let prev = [z, z.conj(), z, z.conj()];
-        let (w, v) = (Complex64::new(0.1, 1.0), Complex64::new(-0.1, 1.0));
-        for eig in [
-            [w, w.conj(), v, v.conj()],
-            [w, v.conj(), v, w.conj()],
-            [v.conj(), w, w.conj(), v],
-        ] {
-            let got = assign(&prev, &eig, &prev);
-            assert_eq!(got[1], got[0].conj(), "{got:?}");
-            assert_eq!(got[3], got[2].conj(), "{got:?}");
-            assert!(got[0].im > 0.0 && got[2].im > 0.0);
-        }
-    }
-
-    fn permute(p: &mut Vec<usize>, k: usize, f: &mut impl FnMut(&[usize])) {
-        if k == p.len() {
-            f(p);
-            return;
-        }
-        for i in k..p.len() {
-            p.swap(k, i);
-            permute(p, k + 1, f);
-            p.swap(k, i);
-        }
-    }
 }

@@ -1,0 +1,259 @@
+//! [`Beam`]: an Euler–Bernoulli beam between two bodies, bending in two planes.
+
+use super::{
+    Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name, visit3, zero3,
+};
+use crate::assemble::RowLabel;
+use crate::assemble::{Assembly, ItemRow, Reaction, Rows, Term};
+use crate::error::ModelError;
+use crate::geometry::{self, cross, scale, sub, unit};
+use crate::validate::Validation;
+use eom_sym::scalar::Scalar;
+
+/// An Euler–Bernoulli beam between two bodies (bending in two planes, no torsion or axial
+/// stiffness).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Beam<S> {
+    /// Unique name.
+    pub name: Name,
+    /// `[body 1, body 2]`.
+    pub bodies: [Name; 2],
+    /// End points.
+    pub ends: [Vec3<S>; 2],
+    /// Bending stiffness `[EI₁, EI₂]` towards the two bending directions.
+    pub stiffness: [S; 2],
+    /// Mass per unit length.
+    pub mpul: S,
+    /// A vector that with the axis defines bending plane 1 (not parallel to the axis).
+    pub perp: Vec3<S>,
+}
+impl<S: Scalar> Beam<S> {
+    /// A beam with zero properties.
+    pub fn new(n: &str) -> Self {
+        Beam {
+            name: name(n),
+            bodies: [name(GROUND), name(GROUND)],
+            ends: [zero3(), zero3()],
+            stiffness: [S::zero(), S::zero()],
+            mpul: S::zero(),
+            perp: zero3(),
+        }
+    }
+    /// The two bodies.
+    pub fn between(mut self, b1: &str, b2: &str) -> Self {
+        self.bodies = [name(b1), name(b2)];
+        self
+    }
+    /// End points.
+    pub fn ends(mut self, p1: Vec3<S>, p2: Vec3<S>) -> Self {
+        self.ends = [p1, p2];
+        self
+    }
+    /// Bending stiffnesses.
+    pub fn stiffness(mut self, ei1: impl Into<S>, ei2: impl Into<S>) -> Self {
+        self.stiffness = [ei1.into(), ei2.into()];
+        self
+    }
+    /// Mass per unit length.
+    pub fn mpul(mut self, mu: impl Into<S>) -> Self {
+        self.mpul = mu.into();
+        self
+    }
+    /// Bending plane vector.
+    pub fn perp(mut self, p: Vec3<S>) -> Self {
+        self.perp = p;
+        self
+    }
+}
+
+impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Beam<S> {
+    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+        Box::new(Beam {
+            name: self.name.clone(),
+            bodies: self.bodies.clone(),
+            ends: [map3(&self.ends[0], f), map3(&self.ends[1], f)],
+            stiffness: [f(&self.stiffness[0]), f(&self.stiffness[1])],
+            mpul: f(&self.mpul),
+            perp: map3(&self.perp, f),
+        })
+    }
+}
+
+impl<S: ModelScalar> Item<S> for Beam<S> {
+    fn kind(&self) -> &'static str {
+        "beam"
+    }
+
+    fn name(&self) -> &Name {
+        &self.name
+    }
+
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        for (i, end) in self.ends.iter().enumerate() {
+            for (k, x) in end.iter().enumerate() {
+                f(Field::nth_axis("ends", i, k), x);
+            }
+        }
+        f(Field::nth("stiffness", 0), &self.stiffness[0]);
+        f(Field::nth("stiffness", 1), &self.stiffness[1]);
+        f(Field::scalar("mpul"), &self.mpul);
+        visit3(f, "perp", &self.perp);
+    }
+
+    fn bodies(&self) -> &[Name] {
+        &self.bodies
+    }
+
+    fn supports(&self) -> bool {
+        true
+    }
+
+    /// A nonzero length, and a bending-plane vector not parallel to the axis.
+    fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        let t = geometry::sub(&self.ends[1], &self.ends[0]);
+        let tn: Vec<f64> = t.iter().map(|x| x.nominal()).collect();
+        if tn.iter().all(|&x| x == 0.0) {
+            return Err(field_error(
+                "beam",
+                &self.name,
+                "ends",
+                "the two ends coincide: zero length".into(),
+            ));
+        }
+        let p: Vec<f64> = self.perp.iter().map(|x| x.nominal()).collect();
+        let c = [
+            tn[1] * p[2] - tn[2] * p[1],
+            tn[2] * p[0] - tn[0] * p[2],
+            tn[0] * p[1] - tn[1] * p[0],
+        ];
+        if c.iter().map(|x| x * x).sum::<f64>()
+            <= 1e-24
+                * tn.iter().map(|x| x * x).sum::<f64>()
+                * p.iter().map(|x| x * x).sum::<f64>().max(1e-300)
+        {
+            return Err(field_error(
+                "beam",
+                &self.name,
+                "perp",
+                "zero or parallel to the beam axis".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Eight elastic rows (two bending directions, displacement and rotation, at each end)
+    /// with the bending stiffness and consistent mass blocks; the multipliers are the end
+    /// loads, reported as zero preloads without geometric stiffness.
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        let (rows, kb, mb) = beam_rows(cx, self);
+        cx.add_rows_block(Term::Stiffness, &rows.rows, &kb);
+        cx.add_rows_block(Term::ItemMass, &rows.rows, &mb);
+        cx.elastic("beam", &self.name, rows, kb, Reaction::Unreported);
+        Ok(())
+    }
+}
+
+/// The 8 rows of a beam and its stiffness and mass blocks.
+type BeamParts<S> = (Rows<S>, Vec<Vec<S>>, Vec<Vec<S>>);
+fn beam_rows<S: Scalar>(cx: &Assembly<'_, S>, bm: &Beam<S>) -> BeamParts<S> {
+    let b = [cx.body(&bm.bodies[0]), cx.body(&bm.bodies[1])];
+    let t = sub(&bm.ends[1], &bm.ends[0]);
+    let l = geometry::norm(&t);
+    let u = scale(l.recip(), &t);
+    let e2 = unit(&cross(&u, &bm.perp));
+    let e1 = scale(-S::one(), &cross(&u, &e2));
+    let r = [
+        sub(&bm.ends[0], &cx.mass_centre(b[0])),
+        sub(&bm.ends[1], &cx.mass_centre(b[1])),
+    ];
+    let z = zero3::<S>();
+    let mut rows = Vec::new();
+    for (body, rad) in b.iter().zip(&r) {
+        for e in [&e1, &e2] {
+            let mut row = ItemRow::new();
+            row.push_body(*body, e, &cross(rad, e), true);
+            rows.push(row.sorted());
+        }
+        for e in [&e1, &e2] {
+            let mut row = ItemRow::new();
+            row.push_body(*body, &z, e, true);
+            rows.push(row.sorted());
+        }
+    }
+    let labels = (1..=8)
+        .map(|k| RowLabel {
+            kind: "beam",
+            item: bm.name.clone(),
+            part: "end row",
+            index: k,
+        })
+        .collect();
+    // The bending stiffness K = Dᵀ diag(kd) D / L and the consistent mass M = Eᵀ diag(md) E ·
+    // μL/432 of the Euler–Bernoulli beam in two planes, on the end rows
+    // [e1·δx1, e2·δx1, e1·θ1, e2·θ1, e1·δx2, e2·δx2, e1·θ2, e2·θ2].
+    let s = |x: i64| S::from_i64(x);
+    let two_l = s(2) / l;
+    let o = S::zero();
+    let dmat: [[S; 8]; 4] = [
+        [o, o, o, -s(1), o, o, o, s(1)],
+        [two_l, o, o, s(1), -two_l, o, o, s(1)],
+        [o, o, -s(1), o, o, o, s(1), o],
+        [o, two_l, -s(1), o, o, -two_l, -s(1), o],
+    ];
+    let [ei1, ei2] = bm.stiffness;
+    let kd = [ei1, s(3) * ei1, ei2, s(3) * ei2];
+    let il = l.recip();
+    let emat: [[S; 8]; 4] = [
+        [s(6), o, o, l, s(6), o, o, -l],
+        [s(8), o, o, l, -s(8), o, o, l],
+        [o, s(6), -l, o, o, s(6), l, o],
+        [o, s(8), -l, o, o, -s(8), -l, o],
+    ];
+    let md = [s(3), s(1), s(3), s(1)];
+    let mscale = bm.mpul * l / s(432);
+    let quad = |m: &[[S; 8]; 4], dg: &[S; 4], c: S| -> Vec<Vec<S>> {
+        (0..8)
+            .map(|i| {
+                (0..8)
+                    .map(|j| {
+                        let terms: Vec<S> = (0..4)
+                            .filter(|&k| {
+                                !m[k][i].is_zero() && !m[k][j].is_zero() && !dg[k].is_zero()
+                            })
+                            .map(|k| m[k][i] * dg[k] * m[k][j])
+                            .collect();
+                        let v = S::sum(&terms);
+                        if v.is_zero() || c.is_zero() {
+                            S::zero()
+                        } else {
+                            c * v
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    (
+        Rows { rows, labels },
+        quad(&dmat, &kd, il),
+        quad(&emat, &md, mscale),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::items::tests::{Counter, check_fields_and_map};
+
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        let b = Beam::new("b")
+            .between("a", "b")
+            .ends(c.v(), c.v())
+            .stiffness(c.x(), c.x())
+            .mpul(c.x())
+            .perp(c.v());
+        check_fields_and_map(&b);
+    }
+}

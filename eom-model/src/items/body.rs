@@ -1,0 +1,289 @@
+//! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
+
+use super::{
+    Field, Item, MapItem, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3,
+};
+use crate::Model;
+use crate::assemble::{Assembly, Term};
+use crate::error::ModelError;
+use crate::geometry::{self, Mat3, scale, skew};
+use crate::validate::Validation;
+use eom_sym::scalar::Scalar;
+
+/// A rigid body: mass, inertia about its mass centre (global axes), and the nominal motion
+/// about which the equations are linearized.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body<S> {
+    /// Unique name.
+    pub name: Name,
+    /// Mass centre location.
+    pub location: Vec3<S>,
+    /// Mass (zero is allowed: a massless body).
+    pub mass: S,
+    /// `[Ixx, Iyy, Izz]` about the mass centre.
+    pub moments: Vec3<S>,
+    /// `[Ixy, Iyz, Izx]` as positive integrals (∫xy dm, …); they enter the tensor with a minus
+    /// sign.
+    pub products: Vec3<S>,
+    /// Nominal velocity of the mass centre.
+    pub velocity: Vec3<S>,
+    /// Nominal angular velocity (spin).
+    pub angular_velocity: Vec3<S>,
+}
+
+impl<S: Scalar> Body<S> {
+    /// A body with zero mass and inertia at the origin, at rest.
+    pub fn new(n: &str) -> Self {
+        Body {
+            name: name(n),
+            location: zero3(),
+            mass: S::zero(),
+            moments: zero3(),
+            products: zero3(),
+            velocity: zero3(),
+            angular_velocity: zero3(),
+        }
+    }
+    /// Mass centre location.
+    pub fn at(mut self, location: Vec3<S>) -> Self {
+        self.location = location;
+        self
+    }
+    /// Mass.
+    pub fn mass(mut self, m: impl Into<S>) -> Self {
+        self.mass = m.into();
+        self
+    }
+    /// Moments of inertia `[Ixx, Iyy, Izz]`.
+    pub fn moments(mut self, i: Vec3<S>) -> Self {
+        self.moments = i;
+        self
+    }
+    /// Products of inertia `[Ixy, Iyz, Izx]` (positive integrals).
+    pub fn products(mut self, p: Vec3<S>) -> Self {
+        self.products = p;
+        self
+    }
+    /// Nominal velocity.
+    pub fn velocity(mut self, v: Vec3<S>) -> Self {
+        self.velocity = v;
+        self
+    }
+    /// Nominal angular velocity.
+    pub fn angular_velocity(mut self, w: Vec3<S>) -> Self {
+        self.angular_velocity = w;
+        self
+    }
+}
+
+impl<S: Scalar> Body<S> {
+    /// The body converted with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Body<T> {
+        Body {
+            name: self.name.clone(),
+            location: map3(&self.location, f),
+            mass: f(&self.mass),
+            moments: map3(&self.moments, f),
+            products: map3(&self.products, f),
+            velocity: map3(&self.velocity, f),
+            angular_velocity: map3(&self.angular_velocity, f),
+        }
+    }
+}
+
+impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Body<S> {
+    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+        Box::new(self.map(f))
+    }
+}
+
+impl<S: ModelScalar> Item<S> for Body<S> {
+    fn kind(&self) -> &'static str {
+        "body"
+    }
+
+    fn name(&self) -> &Name {
+        &self.name
+    }
+
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        visit3(f, "location", &self.location);
+        f(Field::scalar("mass"), &self.mass);
+        visit3(f, "moments", &self.moments);
+        visit3(f, "products", &self.products);
+        visit3(f, "velocity", &self.velocity);
+        visit3(f, "angular_velocity", &self.angular_velocity);
+    }
+
+    fn bodies(&self) -> &[Name] {
+        &[]
+    }
+
+    fn supports(&self) -> bool {
+        false
+    }
+
+    /// A negative mass is an error; moments of inertia that no physical body has are a
+    /// warning. (The name is checked with the other bodies' names.)
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        if self.mass.nominal() < 0.0 {
+            return Err(field_error(
+                "body",
+                &self.name,
+                "mass",
+                format!("negative mass {}", self.mass.nominal()),
+            ));
+        }
+        let i: Vec<f64> = self.moments.iter().map(|x| x.nominal()).collect();
+        let triangle = i[0] + i[1] < i[2] || i[1] + i[2] < i[0] || i[0] + i[2] < i[1];
+        if i.iter().any(|&x| x < 0.0) || (i.iter().all(|&x| x > 0.0) && triangle) {
+            cx.warn(format!(
+                "{}: moments of inertia {i:?} are not those of a physical body (negative, or violating the triangle inequality)",
+                label("body", &self.name)
+            ));
+        }
+        Ok(())
+    }
+
+    /// Mass and inertia; the momentum of the nominal velocity and the gyroscopic terms of the
+    /// nominal spin (which must be about an axis of symmetry); the kinematic velocity
+    /// matrix.
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        let k = cx.body(&self.name);
+        let Some(kk) = k else {
+            return Ok(());
+        };
+        for i in 0..3 {
+            cx.add(Term::Mass, 6 * kk + i, 6 * kk + i, self.mass);
+        }
+        let inertia = inertia_tensor(self);
+        cx.add_block(Term::Mass, (k, 3), (k, 3), &inertia, 1.0);
+        let w0 = self.angular_velocity;
+        if !geometry::is_zero(&w0) {
+            check_spin(self, &inertia)?;
+            let h = geometry::mat_vec(&inertia, &w0);
+            cx.add_block(Term::Momentum, (k, 3), (k, 3), &skew(&h), -1.0);
+        }
+        if !geometry::is_zero(&self.velocity) {
+            let mvv = scale(self.mass, &self.velocity);
+            cx.add_block(Term::Momentum, (k, 0), (k, 3), &skew(&mvv), -1.0);
+            cx.add_block(Term::Velocity, (k, 0), (k, 3), &skew(&self.velocity), 1.0);
+        }
+        Ok(())
+    }
+
+    fn add_to(self, model: &mut Model<S>) {
+        model.bodies.push(self);
+    }
+}
+
+/// The inertia tensor; products enter with a minus sign, ordered (xy, yz, zx).
+fn inertia_tensor<S: Scalar>(b: &Body<S>) -> Mat3<S> {
+    let n = |x: S| if x.is_zero() { x } else { -x };
+    let [ixx, iyy, izz] = b.moments;
+    let [ixy, iyz, izx] = b.products;
+    [
+        [ixx, n(ixy), n(izx)],
+        [n(ixy), iyy, n(iyz)],
+        [n(izx), n(iyz), izz],
+    ]
+}
+
+/// A spinning body must spin about an axis of symmetry (at the nominal point): the
+/// linearization in the non-spinning (Resal) frame has constant coefficients only then.
+fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), ModelError> {
+    let w: Vec<f64> = b.angular_velocity.iter().map(|x| x.nominal()).collect();
+    let i: Vec<Vec<f64>> = inertia
+        .iter()
+        .map(|r| r.iter().map(|x| x.nominal()).collect())
+        .collect();
+    let wn = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    if wn == 0.0 {
+        return Ok(());
+    }
+    let a = [w[0] / wn, w[1] / wn, w[2] / wn];
+    let ia: Vec<f64> = (0..3)
+        .map(|r| (0..3).map(|c| i[r][c] * a[c]).sum())
+        .collect();
+    let scale = i
+        .iter()
+        .flatten()
+        .map(|x| x.abs())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let c = [
+        a[1] * ia[2] - a[2] * ia[1],
+        a[2] * ia[0] - a[0] * ia[2],
+        a[0] * ia[1] - a[1] * ia[0],
+    ];
+    let cn = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+    let item = format!("body `{}`", b.name);
+    if cn > 1e-9 * scale {
+        return Err(ModelError::Model {
+            item,
+            field: "angular_velocity".into(),
+            problem: "the spin axis is not a principal axis of inertia: the linearization about a steady spin does not exist".into(),
+        });
+    }
+    // Transverse inertia: I projected on the plane ⊥ a must be isotropic.
+    let axial = a.iter().zip(&ia).map(|(x, y)| x * y).sum::<f64>();
+    let tr = i[0][0] + i[1][1] + i[2][2] - axial;
+    let half = tr / 2.0;
+    // Check vᵀ I v = half for two perpendicular unit vectors.
+    let k = (0..3)
+        .min_by(|&x, &y| a[x].abs().partial_cmp(&a[y].abs()).expect("finite"))
+        .expect("3");
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let mut v1 = [
+        a[1] * e[2] - a[2] * e[1],
+        a[2] * e[0] - a[0] * e[2],
+        a[0] * e[1] - a[1] * e[0],
+    ];
+    let n1 = (v1[0] * v1[0] + v1[1] * v1[1] + v1[2] * v1[2]).sqrt();
+    v1.iter_mut().for_each(|x| *x /= n1);
+    let q: f64 = (0..3)
+        .map(|r| (0..3).map(|c| v1[r] * i[r][c] * v1[c]).sum::<f64>())
+        .sum();
+    if (q - half).abs() > 1e-9 * scale {
+        return Err(ModelError::Model {
+            item,
+            field: "angular_velocity".into(),
+            problem: "spins about a principal axis that is not an axis of symmetry (unequal transverse inertias): the gyroscopic terms would be periodic, not constant".into(),
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::items::tests::{Counter, check_fields_and_map};
+    use crate::items::vec3;
+
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        let b = Body::new("b")
+            .at(c.v())
+            .moments(c.v())
+            .products(c.v())
+            .velocity(c.v())
+            .angular_velocity(c.v())
+            .mass(100.0);
+        check_fields_and_map(&b);
+    }
+
+    #[test]
+    fn a_spin_about_an_unsymmetric_principal_axis_is_an_error() {
+        let b = Body::<f64>::new("top")
+            .moments(vec3(1.0, 2.0, 3.0))
+            .angular_velocity(vec3(0.0, 0.0, 1.0));
+        let e = check_spin(&b, &inertia_tensor(&b)).unwrap_err();
+        assert!(e.to_string().contains("not an axis of symmetry"), "{e}");
+        let sym = Body::<f64>::new("top")
+            .moments(vec3(2.0, 2.0, 3.0))
+            .angular_velocity(vec3(0.0, 0.0, 1.0));
+        assert!(check_spin(&sym, &inertia_tensor(&sym)).is_ok());
+    }
+}

@@ -1,0 +1,86 @@
+//! [`NhPoint`]: a nonholonomic constraint on the relative velocity at a point (e.g. a tyre that cannot slip).
+
+use super::point::{Point, point_builders};
+use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use crate::assemble::Assembly;
+use crate::error::ModelError;
+use crate::validate::Validation;
+use eom_sym::scalar::Scalar;
+
+/// A nonholonomic constraint on relative velocity (e.g. a no-slip tyre).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NhPoint<S> {
+    /// Unique name.
+    pub name: Name,
+    /// Geometry.
+    pub point: Point<S>,
+}
+impl<S: Scalar> NhPoint<S> {
+    /// A constraint between ground and ground (set bodies and directions).
+    pub fn new(n: &str) -> Self {
+        NhPoint {
+            name: name(n),
+            point: Point::new(),
+        }
+    }
+}
+point_builders!(NhPoint);
+
+impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for NhPoint<S> {
+    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+        Box::new(NhPoint {
+            name: self.name.clone(),
+            point: self.point.map(f),
+        })
+    }
+}
+
+impl<S: ModelScalar> Item<S> for NhPoint<S> {
+    fn kind(&self) -> &'static str {
+        "nh point"
+    }
+
+    fn name(&self) -> &Name {
+        &self.name
+    }
+
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        self.point.fields(f);
+    }
+
+    fn bodies(&self) -> &[Name] {
+        &self.point.bodies
+    }
+
+    fn supports(&self) -> bool {
+        self.point.constrains()
+    }
+
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        self.point.validate("nh point", &self.name, cx)
+    }
+
+    /// One nonholonomic row per constrained direction.
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        let (rows, _) = cx.point(&self.point, "nh point", &self.name);
+        cx.nonholonomic(rows);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::items::tests::{Counter, check_fields_and_map};
+
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        let p = NhPoint::new("p")
+            .between("a", "b")
+            .at(c.v())
+            .axis(c.v())
+            .rolling_axis(c.v());
+        check_fields_and_map(&p);
+    }
+}

@@ -1,0 +1,92 @@
+//! [`RigidPoint`]: a holonomic joint at a point: some relative translations and rotations of two bodies are zero.
+
+use super::point::{Point, point_builders};
+use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use crate::assemble::{Assembly, Reaction};
+use crate::error::ModelError;
+use crate::validate::Validation;
+use eom_sym::scalar::Scalar;
+
+/// A holonomic joint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidPoint<S> {
+    /// Unique name.
+    pub name: Name,
+    /// Geometry.
+    pub point: Point<S>,
+}
+impl<S: Scalar> RigidPoint<S> {
+    /// A joint between ground and ground (set bodies and directions).
+    pub fn new(n: &str) -> Self {
+        RigidPoint {
+            name: name(n),
+            point: Point::new(),
+        }
+    }
+}
+point_builders!(RigidPoint);
+
+impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for RigidPoint<S> {
+    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+        Box::new(RigidPoint {
+            name: self.name.clone(),
+            point: self.point.map(f),
+        })
+    }
+}
+
+impl<S: ModelScalar> Item<S> for RigidPoint<S> {
+    fn kind(&self) -> &'static str {
+        "rigid point"
+    }
+
+    fn name(&self) -> &Name {
+        &self.name
+    }
+
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        self.point.fields(f);
+    }
+
+    fn bodies(&self) -> &[Name] {
+        &self.point.bodies
+    }
+
+    fn supports(&self) -> bool {
+        self.point.constrains()
+    }
+
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        self.point.validate("rigid point", &self.name, cx)
+    }
+
+    /// One holonomic row per constrained direction; the multipliers are the joint's force and
+    /// moment.
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        let (rows, geometry) = cx.point(&self.point, "rigid point", &self.name);
+        cx.holonomic(
+            "rigid point",
+            &self.name,
+            rows,
+            Reaction::Point(&self.point, geometry),
+        );
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::items::tests::{Counter, check_fields_and_map};
+
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        let p = RigidPoint::new("p")
+            .between("a", "b")
+            .at(c.v())
+            .axis(c.v())
+            .rolling_axis(c.v());
+        check_fields_and_map(&p);
+    }
+}
