@@ -126,7 +126,7 @@ h = {{ value = 0.5, unit = "m", description = "height of the mass", range = "> 0
 [[body]]
 name = "block"
 mass = "m"
-location = [0, 0, "h"]
+at = [0, 0, "h"]
 
 # A slider: the block moves along z only (two forces across the axis, all three moments).
 [[rigid_point]]

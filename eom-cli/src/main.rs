@@ -118,6 +118,18 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+    /// Write a model (a built-in, or a file, normalised) as a model file
+    Export {
+        /// Model name (see `eom list`) or model file
+        #[arg(value_name = "MODEL")]
+        model: String,
+        /// Set a parameter's value (repeatable)
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Output file (default: standard output)
+        #[arg(short, long, value_name = "FILE.toml")]
+        output: Option<PathBuf>,
+    },
     /// Print a commented starter model file (redirect it into NAME.toml)
     New {
         /// The model's name
@@ -392,6 +404,22 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             }
         }
         Command::New { name } => check::starter(&name),
+        Command::Export { model, set, output } => {
+            let choice = ModelChoice::resolve(&model)?;
+            let overrides = choice.parse_sets(&set)?;
+            let text = eom_model::file::to_toml(&choice.build(&overrides)?);
+            match output {
+                None => text,
+                Some(path) => {
+                    std::fs::write(&path, &text).map_err(|source| CliError::Io {
+                        path: path.display().to_string(),
+                        source,
+                    })?;
+                    stderr.push_str(&format!("wrote {}\n", path.display()));
+                    String::new()
+                }
+            }
+        }
         Command::Symbolic(a) => {
             let choice = ModelChoice::resolve(&a.model)?;
             // Checked as numbers (names, finiteness), kept as text for exact substitution.

@@ -48,6 +48,9 @@ pub(crate) struct Builder<'a> {
     /// Names taken so far, for duplicate detection (items and bodies have separate name
     /// spaces, as in the Rust API).
     items: Vec<String>,
+    /// Where each body and item was defined, by its label in the model's messages
+    /// (``flex point `spring` ``), for errors found after loading.
+    pub spans: Vec<(String, std::ops::Range<usize>)>,
 }
 
 impl<'a> Builder<'a> {
@@ -62,6 +65,7 @@ impl<'a> Builder<'a> {
             decl,
             model,
             items: Vec::new(),
+            spans: Vec::new(),
         }
     }
 
@@ -127,6 +131,8 @@ impl<'a> Builder<'a> {
     }
 
     fn claim(&mut self, t: &Table<'_>, kind: &str, name: &str) -> Result<(), ModelError> {
+        self.spans
+            .push((crate::items::label(kind, name), t.span.clone()));
         let taken = if kind == "body" {
             self.model.body(name).is_some() || name == GROUND
         } else {
@@ -134,11 +140,12 @@ impl<'a> Builder<'a> {
         };
         if taken {
             let span = t.get("name").map(|x| x.span()).unwrap_or(t.span.clone());
-            return Err(t.field_error(
-                "name",
-                &span,
-                format!("a {kind} called `{name}` already exists"),
-            ));
+            let problem = if kind == "body" {
+                format!("a body called `{name}` already exists")
+            } else {
+                format!("another item is already called `{name}` (item names are unique)")
+            };
+            return Err(t.field_error("name", &span, problem));
         }
         if kind != "body" {
             self.items.push(name.to_string());
@@ -255,7 +262,7 @@ impl<'a> Builder<'a> {
 
     fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
         t.only(&with_common(&[
-            "location",
+            "at",
             "mass",
             "moments",
             "products",
@@ -264,7 +271,7 @@ impl<'a> Builder<'a> {
         ]))?;
         self.claim(t, "body", name)?;
         let mut b = Body::new(name);
-        if let Some(v) = self.vector(t, "location", m, VecKind::Polar)? {
+        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
             b = b.at(v);
         }
         if let Some(x) = self.scalar(t, "mass")? {

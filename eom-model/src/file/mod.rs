@@ -41,11 +41,13 @@
 //! assert_eq!(lin.state_space.a[(1, 0)], -4.0); // −k/m
 //! ```
 
+mod export;
 mod items;
 mod mirror;
 mod params;
 mod source;
 
+pub use export::to_toml;
 pub use params::{ParamRange, ParamSpec};
 pub use source::FilePosition;
 
@@ -113,11 +115,12 @@ pub fn load_str(
     let scope = decl.scope(&mut model)?;
     let mut cx = items::Builder::new(&ctx, &scope, &decl, &mut model);
     cx.all(&root)?;
+    let spans = std::mem::take(&mut cx.spans);
     if let Some(g) = gravity {
         let g = params::vector(&ctx, &scope, &decl, g, "[model] gravity")?;
         add_weights(&mut model, g);
     }
-    model.validate()?;
+    model.validate().map_err(|e| positioned(&ctx, &spans, e))?;
     Ok(LoadedModel {
         model,
         description,
@@ -152,5 +155,44 @@ fn add_weights(model: &mut Model, g: [Expr; 3]) {
                 .at(b.location)
                 .force(f),
         );
+    }
+}
+
+/// A model error about an item or body, positioned at the table that defined it.
+fn positioned(
+    ctx: &Ctx<'_>,
+    spans: &[(String, std::ops::Range<usize>)],
+    e: ModelError,
+) -> ModelError {
+    match e {
+        ModelError::Model {
+            item,
+            field,
+            problem,
+        } => match spans.iter().find(|(label, _)| *label == item) {
+            Some((_, span)) => {
+                let context = if field.is_empty() {
+                    item
+                } else {
+                    format!("{item}, field `{field}`")
+                };
+                ctx.error(span, &context, problem)
+            }
+            None => ModelError::File {
+                position: FilePosition::whole(ctx.origin),
+                context: item,
+                problem: if field.is_empty() {
+                    problem
+                } else {
+                    format!("field `{field}`: {problem}")
+                },
+            },
+        },
+        ModelError::File { .. } => e,
+        other => ModelError::File {
+            position: FilePosition::whole(ctx.origin),
+            context: String::new(),
+            problem: other.to_string(),
+        },
     }
 }

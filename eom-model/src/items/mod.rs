@@ -191,6 +191,12 @@ pub trait Item<S>:
     /// converts them.
     fn fields(&self, f: &mut dyn FnMut(Field, &S));
 
+    /// The item's settings that are not scalar fields (the bodies it connects, counts, flags,
+    /// labels), by the names a model file uses for them.
+    fn settings(&self) -> Vec<(&'static str, Setting)> {
+        Vec::new()
+    }
+
     /// The bodies the item connects: each must exist, and two must differ. (Other body
     /// references, like a load's frame, are checked by [`Item::validate`].)
     fn bodies(&self) -> &[Name];
@@ -217,6 +223,19 @@ pub trait Item<S>:
     {
         model.insert_item(Box::new(self));
     }
+}
+
+/// A setting of an item that is not a scalar field (see [`Item::settings`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Setting {
+    /// A name or label.
+    Text(String),
+    /// Two body names.
+    Pair([String; 2]),
+    /// A count.
+    Count(u8),
+    /// A flag.
+    Flag(bool),
 }
 
 /// The name of a scalar field of an item, with up to two indices: `mass`, `location[x]`,
