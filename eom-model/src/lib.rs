@@ -110,6 +110,7 @@ pub mod linearize;
 pub mod reduce;
 pub mod robust;
 pub mod sensitivity;
+pub mod tutorials;
 pub mod validate;
 
 pub use assemble::{
@@ -123,7 +124,8 @@ pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use reduce::{
-    CheckLabel, Coord, Reduction, ReductionPlan, ReductionReport, ValidityCheck, reduce,
+    CheckLabel, Coord, ReducedDescriptor, Reduction, ReductionPlan, ReductionReport, ValidityCheck,
+    reduce,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};
