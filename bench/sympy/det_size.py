@@ -20,6 +20,8 @@ def to_sympy(text, names):
     text = text.replace("^", "**")
     text = re.sub(r"float\(([^)]*)\)", r"(\1)", text)
     text = re.sub(r"\bln\(", "log(", text)
+    # `lambda` is a Python keyword.
+    text = re.sub(r"\blambda\b", "lam", text)
     return sp.parse_expr(text, local_dict=names)
 
 
@@ -27,13 +29,12 @@ def main():
     data = json.load(open(sys.argv[1]))
     simplify = "--simplify" in sys.argv
     names = {n: sp.Symbol(n) for n in data["parameters"]}
-    names["lambda"] = sp.Symbol("lambda")
+    names["lam"] = sp.Symbol("lambda")
     s = sp.Symbol("s")
     E = sp.Matrix([[to_sympy(x, names) for x in row] for row in data["E"]])
     F = sp.Matrix([[to_sympy(x, names) for x in row] for row in data["F"]])
     t = time.time()
     det = (s * E - F).det(method="berkowitz")
-    poly = sp.Poly(sp.expand(det, deep=False), s) if False else None
     t_det = time.time() - t
     ops = sp.count_ops(det)
     print(f"sympy det(sE - F): {t_det:.1f} s, count_ops {ops}")

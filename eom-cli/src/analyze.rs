@@ -19,6 +19,7 @@ use eom_num::gain::{Gain, steady_state_gain};
 use eom_num::minreal::{
     MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
 };
+use eom_num::modes::ModeOptions;
 use eom_num::modes::{Mode, ModeKind, Modes, Stability};
 use eom_num::zeros::transmission_zeros;
 use num_complex::Complex64;
@@ -73,10 +74,13 @@ pub struct Analysis {
     pub outputs: Vec<Signal>,
     /// Every eigenvalue of the state-space model, sorted by real part, then imaginary part.
     pub eigenvalues: Vec<ReIm>,
-    /// `stable` (every mode decays), `marginal` (none grows, some do not decay) or
-    /// `unstable`.
+    /// The zero eigenvalues the model's structure proves, exactly zero: what each one is (a
+    /// coordinate on which nothing depends, or a pair of which only the difference acts).
+    pub structural_zeros: Vec<String>,
+    /// `stable` (every mode decays, the structural zeros aside), `marginal` (none grows, some
+    /// do not decay) or `unstable`.
     pub stability: &'static str,
-    /// Whether every mode is stable.
+    /// Whether the model is stable in this sense (as `eom sweep` decides it).
     pub stable: bool,
     /// One entry per eigenvalue, in the order of `eigenvalues`.
     pub modes: Vec<ModeReport>,
@@ -297,14 +301,29 @@ fn mode_report(m: &Mode) -> ModeReport {
     }
 }
 
-fn overall_stability(modes: &Modes) -> &'static str {
-    if modes.is_stable() {
-        "stable"
-    } else if modes
+/// Stability with the structural zero eigenvalues set apart: `stable` when every other mode
+/// decays (the definition `eom sweep` uses too: a vehicle's lateral position and heading do
+/// not feed back, so they neither make nor break its stability).
+fn overall_stability(modes: &Modes, structural_zeros: usize) -> &'static str {
+    let exact_zeros = modes
         .modes
         .iter()
-        .any(|m| m.stability == Stability::Unstable)
-    {
+        .filter(|m| m.eigenvalue == num_complex::Complex64::new(0.0, 0.0))
+        .count()
+        .min(structural_zeros);
+    let mut skipped = 0;
+    let mut others = modes.modes.iter().filter(|m| {
+        if skipped < exact_zeros && m.eigenvalue == num_complex::Complex64::new(0.0, 0.0) {
+            skipped += 1;
+            false
+        } else {
+            true
+        }
+    });
+    let rest: Vec<&Stability> = others.by_ref().map(|m| &m.stability).collect();
+    if rest.iter().all(|s| **s == Stability::Stable) {
+        "stable"
+    } else if rest.iter().any(|s| **s == Stability::Unstable) {
         "unstable"
     } else {
         "marginal"
@@ -371,7 +390,13 @@ pub fn analyze(
         .iter()
         .map(|w| format!("linearization: {w}"))
         .collect();
-    let mut r = analyze_state_space(&lin.state_space, warnings, opts.freq.as_ref())?;
+    let mut r = analyze_state_space(
+        &lin.state_space,
+        warnings,
+        opts.freq.as_ref(),
+        lin.structural_zeros.len(),
+    )?;
+    r.structural_zeros = lin.structural_zeros.clone();
     r.model = choice.name.clone();
     r.method = method_name(lin.method);
     r.parameters = choice.values(overrides);
@@ -391,8 +416,13 @@ fn analyze_state_space(
     ss: &StateSpace<f64>,
     mut warnings: Vec<String>,
     freq: Option<&FreqRequest>,
+    structural_zeros: usize,
 ) -> Result<Analysis, CliError> {
-    let modes = Modes::compute(ss)?;
+    let opts = ModeOptions {
+        structural_zeros,
+        ..ModeOptions::default()
+    };
+    let modes = Modes::compute_with(ss, &opts)?;
     let n = &ss.names;
     let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
     let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
@@ -441,8 +471,8 @@ fn analyze_state_space(
         inputs,
         outputs,
         eigenvalues: re_im(&modes.eigenvalues()),
-        stability: overall_stability(&modes),
-        stable: modes.is_stable(),
+        stability: overall_stability(&modes, structural_zeros),
+        stable: overall_stability(&modes, structural_zeros) == "stable",
         modes: modes.modes.iter().map(mode_report).collect(),
         minimal,
         steady_state_gain,
@@ -450,6 +480,7 @@ fn analyze_state_space(
         warnings,
         frequency_response,
         sensitivity: None,
+        structural_zeros: Vec::new(),
     })
 }
 
@@ -687,7 +718,7 @@ mod tests {
             dmatrix![0.0; 0.0],
         )
         .unwrap();
-        let r = analyze_state_space(&ss, Vec::new(), None).unwrap();
+        let r = analyze_state_space(&ss, Vec::new(), None, 0).unwrap();
         let g = r.steady_state_gain.as_ref().unwrap();
         let i = g[0]
             .integrating
@@ -729,7 +760,7 @@ mod tests {
             dmatrix![0.0],
         )
         .unwrap();
-        let r = analyze_state_space(&ss, Vec::new(), None).unwrap();
+        let r = analyze_state_space(&ss, Vec::new(), None, 0).unwrap();
         assert_eq!(r.stability, "unstable");
         let m = r.minimal.as_ref().unwrap();
         assert_eq!(m.states, 1);

@@ -71,7 +71,8 @@ struct Tier {
 impl SymbolicStateSpace {
     /// Compile a symbolic reduction for evaluation with parameter values in the order of
     /// `params`.
-    pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, ModelError> {
+    pub fn new(mut reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, ModelError> {
+        crate::canonical::canonical_columns(&mut reduction.state_space.a);
         let ss = &reduction.state_space;
         let mut roots: Vec<Expr> = Vec::new();
         let mut shapes = [(0, 0); 5];

@@ -99,6 +99,7 @@
 #![warn(missing_docs)]
 
 pub mod assemble;
+mod canonical;
 pub mod compiled;
 pub mod eliminate;
 pub mod error;

@@ -116,6 +116,7 @@
 
 #![warn(missing_docs)]
 
+pub mod deflate;
 pub mod descriptor;
 pub mod error;
 pub mod freq;

@@ -50,6 +50,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
 use crate::NumError;
+use crate::deflate;
 use crate::linalg::balance_in_place;
 use crate::statespace::{StateSpace, check_finite};
 
@@ -87,6 +88,11 @@ pub fn eigenvalues(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {
 pub struct EigenvaluesWorkspace {
     n: usize,
     a: Vec<f64>,
+    b: Vec<f64>,
+    removed: Vec<bool>,
+    order: Vec<usize>,
+    combos: Vec<deflate::Combine>,
+    keys: Vec<(u64, usize)>,
     scale: Vec<f64>,
     re: Vec<f64>,
     im: Vec<f64>,
@@ -122,6 +128,11 @@ impl EigenvaluesWorkspace {
         EigenvaluesWorkspace {
             n,
             a: vec![0.0; n * n],
+            b: vec![0.0; n * n],
+            removed: vec![false; n],
+            order: Vec::with_capacity(n),
+            combos: Vec::with_capacity(n),
+            keys: Vec::with_capacity(n),
             scale: vec![1.0; n],
             re: vec![0.0; n],
             im: vec![0.0; n],
@@ -159,22 +170,38 @@ pub fn eigenvalues_in(
     if n == 0 {
         return Ok(());
     }
-    ws.a.copy_from_slice(a.as_slice());
-    balance_in_place(&mut ws.a, n, &mut ws.scale);
-    evd_real(
-        MatRef::from_column_major_slice(&ws.a, n, n),
-        DiagMut::from_slice_mut(&mut ws.re),
-        DiagMut::from_slice_mut(&mut ws.im),
-        None,
-        None,
-        Par::Seq,
-        MemStack::new(&mut ws.buf),
-        Default::default(),
-    )
-    .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+    // Structural zero eigenvalues are deflated first (see `deflate`).
+    ws.b.copy_from_slice(a.as_slice());
+    deflate::deflate_in_place(
+        &mut ws.b,
+        n,
+        &mut ws.removed,
+        &mut ws.order,
+        &mut ws.combos,
+        &mut ws.keys,
+    );
+    let m = deflate::kept_block(&ws.b, n, &ws.removed, &mut ws.a);
+    if m > 0 {
+        balance_in_place(&mut ws.a[..m * m], m, &mut ws.scale[..m]);
+        evd_real(
+            MatRef::from_column_major_slice(&ws.a[..m * m], m, m),
+            DiagMut::from_slice_mut(&mut ws.re[..m]),
+            DiagMut::from_slice_mut(&mut ws.im[..m]),
+            None,
+            None,
+            Par::Seq,
+            MemStack::new(&mut ws.buf),
+            Default::default(),
+        )
+        .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+    }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.
-        *o = Complex64::new(ws.re[k], ws.im[k] + 0.0);
+        *o = if k < m {
+            Complex64::new(ws.re[k], ws.im[k] + 0.0)
+        } else {
+            Complex64::new(0.0, 0.0)
+        };
     }
     out.sort_unstable_by(cmp_re_im);
     Ok(())
@@ -194,10 +221,157 @@ pub(crate) struct Eigen {
     pub norm: f64,
 }
 
-/// Eigenvalues, right eigenvectors and condition numbers of `a` (balanced first if asked).
+/// Eigenvalues, right and left eigenvectors and condition numbers of `a` (balanced first if
+/// asked), with the structural zero eigenvalues deflated first (see `deflate`): their vectors
+/// are unit vectors of the states found, and their condition numbers 1/ε (they may be
+/// defective: a sensitivity is not defined for them).
 pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
     check_square(a, "A")?;
     check_finite(a, "A")?;
+    let n = a.nrows();
+    let mut t = a.clone();
+    let (mut removed, mut order, mut combos, mut keys) = (vec![false; n], vec![], vec![], vec![]);
+    deflate::deflate_in_place(
+        t.as_mut_slice(),
+        n,
+        &mut removed,
+        &mut order,
+        &mut combos,
+        &mut keys,
+    );
+    if order.is_empty() {
+        return eigen_dense(a, balance);
+    }
+    let kept: Vec<usize> = (0..n).filter(|&i| !removed[i]).collect();
+    let sub = DMatrix::from_fn(kept.len(), kept.len(), |i, j| t[(kept[i], kept[j])]);
+    let e = eigen_dense(&sub, balance)?;
+    let mut e = lift(&t, e, &kept, &order);
+    undo_combinations(&mut e, &combos);
+    Ok(e)
+}
+
+/// Where `A` shows fewer exact structural zeros than `k` are known, the other eigenvalues from
+/// the orthogonally deflated matrix ([`deflate::deflate_null_directions`]), matched to the
+/// decomposition's, and the `k` nearest zero set to exactly zero (flagged as not simple).
+fn known_zeros(a: &DMatrix<f64>, eig: &mut Eigen, k: usize) -> Result<(), NumError> {
+    let exact = eig
+        .values
+        .iter()
+        .filter(|v| **v == Complex64::new(0.0, 0.0))
+        .count();
+    if k == 0 || exact >= k || k > a.nrows() {
+        return Ok(());
+    }
+    let Some(rest) = deflate::deflate_null_directions(a, k) else {
+        return Ok(());
+    };
+    let mut others = eigenvalues(&rest)?;
+    let n = eig.values.len();
+    let mut by_size: Vec<usize> = (0..n).collect();
+    by_size.sort_by(|&x, &y| eig.values[x].norm().total_cmp(&eig.values[y].norm()));
+    let mut free = vec![true; n];
+    for &z in by_size.iter().take(k) {
+        eig.values[z] = Complex64::new(0.0, 0.0);
+        eig.condition[z] = 1.0 / f64::EPSILON;
+        free[z] = false;
+    }
+    // Each remaining eigenvalue takes the nearest deflated one.
+    for (i, _) in free.iter().enumerate().filter(|(_, f)| **f) {
+        if others.is_empty() {
+            break;
+        }
+        let (j, _) = others
+            .iter()
+            .enumerate()
+            .min_by(|x, y| {
+                (x.1 - eig.values[i])
+                    .norm()
+                    .total_cmp(&(y.1 - eig.values[i]).norm())
+            })
+            .expect("nonempty");
+        eig.values[i] = others.swap_remove(j);
+    }
+    let n = eig.values.len();
+    let mut perm: Vec<usize> = (0..n).collect();
+    perm.sort_by(|&x, &y| cmp_re_im(&eig.values[x], &eig.values[y]));
+    eig.values = perm.iter().map(|&k| eig.values[k]).collect();
+    eig.condition = perm.iter().map(|&k| eig.condition[k]).collect();
+    eig.right = DMatrix::from_fn(n, n, |i, j| eig.right[(i, perm[j])]);
+    eig.left = DMatrix::from_fn(n, n, |i, j| eig.left[(i, perm[j])]);
+    Ok(())
+}
+
+/// Vectors of the transformed matrix back to the original coordinates: `x = T x̃`,
+/// `y = T⁻ᴴ ỹ` for each change of coordinates, last first.
+fn undo_combinations(e: &mut Eigen, combos: &[deflate::Combine]) {
+    if combos.is_empty() {
+        return;
+    }
+    let n = e.right.nrows();
+    for k in 0..n {
+        for c in combos.iter().rev() {
+            let xi = e.right[(c.i, k)];
+            e.right[(c.j, k)] -= xi * c.s;
+            let yj = e.left[(c.j, k)];
+            e.left[(c.i, k)] += yj * c.s;
+        }
+        for m in [&mut e.right, &mut e.left] {
+            let nn = m.column(k).norm();
+            if nn > 0.0 {
+                m.column_mut(k).unscale_mut(nn);
+            }
+        }
+    }
+}
+
+/// The decomposition of the kept block extended to the whole matrix (see `eigen_full`).
+fn lift(a: &DMatrix<f64>, e: Eigen, kept: &[usize], order: &[usize]) -> Eigen {
+    let n = a.nrows();
+    let zero = Complex64::new(0.0, 0.0);
+    let mut right = DMatrix::<Complex64>::zeros(n, n);
+    let mut left = DMatrix::<Complex64>::zeros(n, n);
+    let mut values = Vec::with_capacity(n);
+    let mut condition = Vec::with_capacity(n);
+    for k in 0..kept.len() {
+        let lambda = e.values[k];
+        for (i, &ki) in kept.iter().enumerate() {
+            right[(ki, k)] = e.right[(i, k)];
+            left[(ki, k)] = e.left[(i, k)];
+        }
+        // Rows of the removed states, last found first: λ x_r = Σ a_rj x_j.
+        if lambda != zero {
+            for &r in order.iter().rev() {
+                let s: Complex64 = (0..n).map(|j| right[(j, k)] * a[(r, j)]).sum();
+                right[(r, k)] = s / lambda;
+            }
+        }
+        let nn = right.column(k).norm();
+        if nn > 0.0 {
+            right.column_mut(k).unscale_mut(nn);
+        }
+        values.push(lambda);
+        condition.push(e.condition[k]);
+    }
+    for (t, &r) in order.iter().enumerate() {
+        let k = kept.len() + t;
+        right[(r, k)] = Complex64::new(1.0, 0.0);
+        left[(r, k)] = Complex64::new(1.0, 0.0);
+        values.push(zero);
+        condition.push(1.0 / f64::EPSILON);
+    }
+    let mut perm: Vec<usize> = (0..n).collect();
+    perm.sort_by(|&x, &y| cmp_re_im(&values[x], &values[y]));
+    Eigen {
+        values: perm.iter().map(|&k| values[k]).collect(),
+        right: DMatrix::from_fn(n, n, |i, j| right[(i, perm[j])]),
+        left: DMatrix::from_fn(n, n, |i, j| left[(i, perm[j])]),
+        condition: perm.iter().map(|&k| condition[k]).collect(),
+        norm: e.norm,
+    }
+}
+
+/// [`eigen_full`] without the deflation.
+fn eigen_dense(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
     let n = a.nrows();
     let mut ab = a.as_slice().to_vec();
     let mut scale = vec![1.0; n];
@@ -378,6 +552,11 @@ pub struct Mode {
 pub struct ModeOptions {
     /// Balance A before the eigendecomposition (default `true`).
     pub balance: bool,
+    /// Zero eigenvalues the model's structure proves, known from another basis of the same
+    /// model (e.g. the elimination path's, for the robust path's matrix, whose orthonormal basis
+    /// hides them in rounding). When `A` shows fewer exact structural zeros, this many null
+    /// directions are deflated orthogonally before the eigensolve (default 0).
+    pub structural_zeros: usize,
     /// The factor `tol_factor` in `tol = tol_factor · n · ε · ‖Ã‖ · κ` (default 10).
     pub tol_factor: f64,
 }
@@ -387,6 +566,7 @@ impl Default for ModeOptions {
         ModeOptions {
             balance: true,
             tol_factor: 10.0,
+            structural_zeros: 0,
         }
     }
 }
@@ -421,7 +601,8 @@ impl Modes {
         }
         ss.validate()?;
         let n = ss.states();
-        let eig = eigen_full(&ss.a, opts.balance)?;
+        let mut eig = eigen_full(&ss.a, opts.balance)?;
+        known_zeros(&ss.a, &mut eig, opts.structural_zeros)?;
         let nb = if ss.phys.nrows().is_multiple_of(6) {
             ss.phys.nrows() / 6
         } else {
