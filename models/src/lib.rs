@@ -23,8 +23,10 @@
 
 #![warn(missing_docs)]
 
+mod applications;
 mod bicycle;
 mod catalogue;
+pub mod wings;
 
 pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 
@@ -64,6 +66,9 @@ pub enum CatalogueError {
     /// An error of an expression while building the model.
     #[error(transparent)]
     Sym(#[from] eom_sym::SymError),
+    /// The vortex lattice of a model's wing failed (its message).
+    #[error("wing aerodynamics: {0}")]
+    Aero(String),
     /// An error of the model layer while building the model.
     #[error(transparent)]
     Model(#[from] eom_model::ModelError),
