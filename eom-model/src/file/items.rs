@@ -42,12 +42,14 @@ macro_rules! point_apply {
 
 /// Reads the items of a file into a model.
 pub(crate) struct Builder<'a> {
-    ctx: &'a Ctx<'a>,
-    decl: &'a Declarations,
-    model: &'a mut Model,
+    pub(super) ctx: &'a Ctx<'a>,
+    pub(super) decl: &'a Declarations,
+    pub(super) model: &'a mut Model,
     /// Names taken so far, for duplicate detection (items and bodies have separate name
     /// spaces, as in the Rust API).
     items: Vec<String>,
+    /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
+    pub(super) warnings: Vec<String>,
 }
 
 impl<'a> Builder<'a> {
@@ -62,6 +64,7 @@ impl<'a> Builder<'a> {
             decl,
             model,
             items: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 
@@ -76,6 +79,7 @@ impl<'a> Builder<'a> {
             ("rigid_point", Self::rigid_point),
             ("flex_point", Self::flex_point),
             ("nh_point", Self::nh_point),
+            ("wing", Self::wing),
             ("actuator", Self::actuator),
             ("sensor", Self::sensor),
         ] {
@@ -126,7 +130,12 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
-    fn claim(&mut self, t: &Table<'_>, kind: &str, name: &str) -> Result<(), ModelError> {
+    pub(super) fn claim(
+        &mut self,
+        t: &Table<'_>,
+        kind: &str,
+        name: &str,
+    ) -> Result<(), ModelError> {
         let taken = if kind == "body" {
             self.model.body(name).is_some() || name == GROUND
         } else {
@@ -148,7 +157,7 @@ impl<'a> Builder<'a> {
 
     // ---------------------------------------------------------------- field readers
 
-    fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
+    pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
         t.get(key)
             .map(|v| value_expr(self.ctx, self.decl, v, &t.field_context(key)))
             .transpose()
@@ -170,7 +179,7 @@ impl<'a> Builder<'a> {
         Ok(Some(out.try_into().expect("N values")))
     }
 
-    fn vector(
+    pub(super) fn vector(
         &self,
         t: &Table<'_>,
         key: &str,
@@ -312,7 +321,7 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
-    fn named_body(
+    pub(super) fn named_body(
         &self,
         t: &Table<'_>,
         key: &str,
@@ -613,7 +622,7 @@ pub(crate) enum VecKind {
 const LINE: [&str; 3] = ["between", "ends", "twist"];
 const POINT: [&str; 6] = ["between", "at", "forces", "moments", "axis", "rolling_axis"];
 
-fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
+pub(super) fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
     let mut v: Vec<&'static str> = COMMON.to_vec();
     v.extend_from_slice(keys);
     v
