@@ -98,6 +98,7 @@
 
 #![warn(missing_docs)]
 
+pub mod aero;
 pub mod assemble;
 pub mod compiled;
 pub mod eliminate;
@@ -112,6 +113,7 @@ pub mod robust;
 pub mod sensitivity;
 pub mod validate;
 
+pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
     Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Reaction, RowLabel, Rows, Term,
     assemble,

@@ -11,12 +11,16 @@
 //! * `aircraft_ground`: a light taildragger rolling on its landing gear at constant speed
 //!   (main wheels ahead of the mass centre that cannot slip sideways, a castering tail wheel,
 //!   vertical gear springs, its weight), with a wing and a tail (tailplane and fin). The main
-//!   wheels ahead of the mass centre make the yaw motion unstable at low speed (the ground
-//!   loop); the fin's weathercock moment grows with the square of the speed. The gear is of
-//!   the spring-steel kind, without dampers: heave, pitch and roll are damped by the wing
-//!   and tail alone. (The aircraft moves at its nominal speed, which the tyres need; a
-//!   damper between it and the ground would act on its body-axis velocity, which includes
-//!   the sliding term u·θ of a pitched body: right for a sliding contact, not for a strut.)
+//!   wheels ahead of the mass centre make the heading unstable on the ground — the ground
+//!   loop: a real eigenvalue that grows in proportion to the speed (the tyres' m·xm·u against
+//!   the yaw inertia). The fin's yaw damping grows in proportion to the speed too, so it slows
+//!   the ground loop by the same fraction at every speed (about a sixth with these values)
+//!   but cannot cure it. The gear is of the spring-steel kind, without dampers: heave, pitch
+//!   and roll are damped by the wing and tail alone, and the reduced-frequency check marks
+//!   those modes as too fast for quasi-steady aerodynamics at taxiing speeds. (The aircraft
+//!   moves at its nominal speed, which the tyres need; a damper between it and the ground
+//!   would act on its body-axis velocity, which includes the sliding term u·θ of a pitched
+//!   body: right for a sliding contact, not for a strut.)
 //!
 //! The wings' derivatives come from eom-aero's vortex lattice (flat plates, α = 0), computed
 //! once per process. Each wing is attached at the model point of its configuration's

@@ -163,14 +163,29 @@ pub fn seed_fin() -> Configuration {
 }
 
 /// The derivatives of a configuration by the vortex lattice at α = 0, computed once per
-/// process (the geometry is fixed).
+/// process (the geometry is fixed). Entries below 1e-12 of the largest are the rounding
+/// residue of couplings that the configuration's symmetry makes zero, and are set to zero
+/// (so that they do not clutter the symbolic model).
 pub(crate) fn lattice_derivatives(
     cell: &'static OnceLock<Result<Derivatives, String>>,
     config: fn() -> Configuration,
 ) -> Result<Derivatives, CatalogueError> {
     cell.get_or_init(|| {
         eom_aero::solve(&config(), &SolverOptions::default())
-            .map(|s| s.derivatives)
+            .map(|s| {
+                let mut d = s.derivatives;
+                let largest = d
+                    .coefficients
+                    .iter()
+                    .flatten()
+                    .fold(0.0f64, |m, x| m.max(x.abs()));
+                for x in d.coefficients.iter_mut().flatten() {
+                    if x.abs() < 1e-12 * largest {
+                        *x = 0.0;
+                    }
+                }
+                d
+            })
             .map_err(|e| e.to_string())
     })
     .clone()

@@ -275,3 +275,46 @@ fn ride_wings_matches_a_bounce_pitch_model_derived_by_hand() {
         assert!(close(&got, &want, 1e-10), "{method:?}: {got:?} vs {want:?}");
     }
 }
+
+/// The rate check of a time response: the shimmy's yaw rate is one of its states, so the
+/// normalised yaw rate of the fin is `|r|·b/2V` of that state, sample by sample.
+#[test]
+fn rates_of_a_response_are_checked_against_avls_limits() {
+    let model = models::build("shimmy_wing", &[("u", 10.0)]).unwrap();
+    let ss = Linearizer::new(&model).run().unwrap().state_space;
+    let k = ss
+        .names
+        .states
+        .iter()
+        .position(|s| s == "chassis.wz")
+        .expect("the yaw rate is a state");
+    let num = model.nominal().unwrap();
+    for (r0, exceeded) in [(1.0, false), (6.0, true)] {
+        let mut x0 = nalgebra::DVector::zeros(ss.states());
+        x0[k] = r0;
+        let n = 400;
+        let dt = 0.01;
+        let u = DMatrix::zeros(ss.inputs(), n);
+        let rates = eom_model::simulated_rates(&num, &ss, &u, dt, Some(&x0)).unwrap();
+        // The reference: the yaw-rate state of the same response, x_k = e^{A k dt} x0.
+        let phi = (&ss.a * dt).exp();
+        let mut states = DMatrix::zeros(ss.states(), n);
+        let mut x = x0.clone();
+        for j in 0..n {
+            states.set_column(j, &x);
+            x = &phi * x;
+        }
+        assert_eq!(rates.len(), 1);
+        let want = states.row(k).iter().fold(0.0f64, |m, r| m.max(r.abs())) * 1.0 / 20.0;
+        let got = &rates[0];
+        assert!(
+            (got.max[2] - want).abs() <= 1e-10 * want,
+            "{} vs {want}",
+            got.max[2]
+        );
+        assert_eq!(got.max[0], 0.0, "no roll");
+        assert_eq!(got.max[1], 0.0, "no pitch");
+        assert_eq!(got.exceeded, [false, false, exceeded]);
+        assert_eq!(got.warnings().len(), usize::from(exceeded));
+    }
+}
