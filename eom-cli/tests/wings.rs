@@ -283,3 +283,14 @@ fn the_wing_models_are_listed() {
         assert!(text.contains(m), "{m} missing:\n{text}");
     }
 }
+
+#[test]
+fn check_counts_the_wing_of_a_model_file_reading_avl_output() {
+    let file = format!(
+        "{}/../models/tests/data/shimmy_fin_avl.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let r = eom(&["check", &file]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert!(r.stdout.contains("1 wing"), "{}", r.stdout);
+}

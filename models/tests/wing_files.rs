@@ -136,8 +136,17 @@ fn an_avl_geometry_is_solved_by_the_vortex_lattice() {
     let v = wing_of(&models::build("shimmy_fin", &[]).unwrap());
     // The same lattice (the built-in model sets the rounding residue of the symmetric plate,
     // below 1e-12 of the largest entry, to zero).
-    let largest = v.derivatives.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-    for (a, b) in w.derivatives.iter().flatten().zip(v.derivatives.iter().flatten()) {
+    let largest = v
+        .derivatives
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    for (a, b) in w
+        .derivatives
+        .iter()
+        .flatten()
+        .zip(v.derivatives.iter().flatten())
+    {
         assert!((a - b).abs() <= 1e-12 * largest, "{a} vs {b}");
     }
 }
