@@ -96,6 +96,10 @@ pub struct Analysis {
     /// The frequency response (only with `--freq`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frequency_response: Option<FreqReport>,
+    /// The wings (only for models with wings): each one's damping matrix in model axes at its
+    /// point and the reduced frequency β = |Im λ|·c/V of every oscillatory mode.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wings: Option<Vec<crate::wings::WingReport>>,
     /// `∂λ/∂p` of every eigenvalue (only with `--sensitivity`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensitivity: Option<Vec<SensitivityReport>>,
@@ -408,6 +412,12 @@ pub fn analyze(
     if opts.sensitivity {
         r.sensitivity = Some(sensitivity_report(choice, overrides)?);
     }
+    let eigenvalues: Vec<Complex64> = r
+        .eigenvalues
+        .iter()
+        .map(|z| Complex64::new(z.re, z.im))
+        .collect();
+    r.wings = crate::wings::wing_reports(&at_point.nominal()?, &eigenvalues, &mut r.warnings);
     Ok(r)
 }
 
@@ -479,6 +489,7 @@ fn analyze_state_space(
         zeros,
         warnings,
         frequency_response,
+        wings: None,
         sensitivity: None,
         structural_zeros: Vec::new(),
     })

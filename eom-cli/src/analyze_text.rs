@@ -258,6 +258,10 @@ impl Analysis {
             t.push('\n');
         }
 
+        if let Some(w) = &self.wings {
+            t.push_str(&crate::wings::wings_text(w));
+        }
+
         if let Some(sens) = &self.sensitivity {
             t.push_str(&sensitivity_text(sens));
         }

@@ -98,6 +98,7 @@
 
 #![warn(missing_docs)]
 
+pub mod aero;
 pub mod assemble;
 mod canonical;
 pub mod compiled;
@@ -114,6 +115,7 @@ pub mod sensitivity;
 pub mod tutorials;
 pub mod validate;
 
+pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
     Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Reaction, RowLabel, Rows, Term,
     assemble,

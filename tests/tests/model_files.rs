@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 8] = [
+const BUILTINS: [&str; 13] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -18,6 +18,11 @@ const BUILTINS: [&str; 8] = [
     "top",
     "disk",
     "chain10",
+    "smd_wing",
+    "shimmy_wing",
+    "shimmy_fin",
+    "ride_wings",
+    "aircraft_ground",
 ];
 
 fn path(name: &str) -> PathBuf {

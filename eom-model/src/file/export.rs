@@ -61,7 +61,15 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
             None => groups.push((f.name, vec![(f, *e)])),
         },
     );
+    // A wing's derivatives go into one inline table, by their AVL names.
+    let mut derivatives: Vec<String> = Vec::new();
     for (name, values) in groups {
+        if crate::items::wing_derivative_index(name).is_some() {
+            if !values[0].1.is_zero() {
+                derivatives.push(format!("{name} = {}", value(&values[0].1)));
+            }
+            continue;
+        }
         if name == "actuator_gain" {
             if let Some(a) = &feedthrough {
                 let _ = writeln!(
@@ -77,6 +85,9 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
             continue;
         }
         let _ = writeln!(t, "{} = {}", file_key(name), group(&values));
+    }
+    if !derivatives.is_empty() {
+        let _ = writeln!(t, "derivatives = {{ {} }}", derivatives.join(", "));
     }
 }
 
@@ -119,6 +130,8 @@ fn list(items: impl Iterator<Item = String>) -> String {
 
 /// An integer as a TOML integer, anything else as an expression string.
 fn value(e: &Expr) -> String {
+    // An inexact constant stays in the parser's `float(…)` spelling: a bare decimal would read
+    // back as the exact decimal fraction, a different number.
     match e.as_rational().and_then(|r| r.as_small()) {
         Some((n, 1)) => n.to_string(),
         _ => quote(&e.to_string()),

@@ -23,6 +23,7 @@ mod point;
 mod rigid_point;
 mod sensor;
 mod spring;
+mod wing;
 
 pub use actuator::Actuator;
 pub use beam::Beam;
@@ -36,6 +37,7 @@ pub use point::Point;
 pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
+pub use wing::{WING_DERIVATIVES, Wing, wing_derivative_index};
 
 use crate::Model;
 use crate::assemble::Assembly;
@@ -59,6 +61,7 @@ pub const KINDS: &[&str] = &[
     "link",
     "rigid point",
     "nh point",
+    "wing",
     "actuator",
     "sensor",
 ];
@@ -179,6 +182,7 @@ pub trait Item<S>:
     + MapItem<S, Expr>
     + Send
     + Sync
+    + std::any::Any
     + 'static
 {
     /// The kind as it appears in messages and in [`KINDS`], e.g. `"flex point"`.
