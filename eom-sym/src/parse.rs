@@ -625,14 +625,9 @@ impl<'a> Parser<'a> {
             a.atan2(x)
         } else {
             self.expect(Tok::RParen, || format!("`)` ({})", takes()))?;
-            match name {
-                "sin" => a.sin(),
-                "cos" => a.cos(),
-                "tan" => a.tan(),
-                "exp" => a.exp(),
-                "ln" | "log" => a.ln(),
-                "abs" => a.abs(),
-                _ => a.sqrt(),
+            match crate::func::Func::from_name(name) {
+                Some(f) => a.apply(f),
+                None => a.sqrt(),
             }
         };
         self.checked(e, col)

@@ -27,7 +27,7 @@
 use crate::context::with_serial;
 use crate::error::SymError;
 use crate::expr::{Expr, reachable};
-use crate::pool::{Constant, Func, Id, Node};
+use crate::pool::{Func, Id, Node, Shape, ShapeBuf};
 use crate::rational::Rational;
 use crate::scalar::Elementary;
 use hashbrown::{HashMap, HashSet};
@@ -1184,122 +1184,36 @@ pub fn eval_generic<S: Elementary>(
         r.check().map_err(|e| SymError::Invalid(Box::new(e)))?;
     }
     let reach = reachable(roots);
-    let ids = &reach.ids;
-    // Gather node structure first (the pool must not be borrowed while scalar arithmetic runs,
-    // since `S` may itself be `Expr`).
-    enum G {
-        Num(Rational),
-        Float(f64),
-        Const(Constant),
-        Param(u32, String),
-        Add(Rational, Vec<(usize, Option<Rational>, f64)>, Option<f64>),
-        Mul(Option<Rational>, f64, Vec<(usize, Rational)>),
-        Pow(usize, usize),
-        Func(Func, usize),
-        Atan2(usize, usize),
-    }
-    let nodes: Vec<G> = with_serial(reach.serial, |p| {
-        let pos: HashMap<Id, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
-        ids.iter()
-            .map(|&id| match p.node(id) {
-                Node::Num(r) => G::Num(r.clone()),
-                Node::Float(f) => G::Float(*f),
-                Node::Const(c) => G::Const(*c),
-                Node::Param(i) => G::Param(*i, p.param(*i).name.clone()),
-                Node::Add(..) => {
-                    let (c0, pairs) = p.add_parts(id).expect("sum");
-                    let c0r = p.rational_of(c0).cloned();
-                    let c0f = if c0r.is_none() {
-                        Some(p.nominal(c0))
-                    } else {
-                        None
-                    };
-                    G::Add(
-                        c0r.unwrap_or(Rational::ZERO),
-                        pairs
-                            .chunks_exact(2)
-                            .map(|t| (pos[&t[0]], p.rational_of(t[1]).cloned(), p.nominal(t[1])))
-                            .collect(),
-                        c0f,
-                    )
-                }
-                Node::Mul(..) => {
-                    let (c, pairs) = p.mul_parts(id).expect("product");
-                    G::Mul(
-                        p.rational_of(c).cloned(),
-                        p.nominal(c),
-                        pairs
-                            .chunks_exact(2)
-                            .map(|t| (pos[&t[0]], p.rational_of(t[1]).expect("exp").clone()))
-                            .collect(),
-                    )
-                }
-                Node::Pow(a, b) => G::Pow(pos[a], pos[b]),
-                Node::Func(f, a) => G::Func(*f, pos[a]),
-                Node::Atan2(a, b) => G::Atan2(pos[a], pos[b]),
-                Node::Invalid(_) => unreachable!("checked above"),
+    let pos: HashMap<Id, usize> = reach.ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
+    // The shapes are copied out first: the pool must not be held while the scalar arithmetic
+    // runs, since `S` may itself be `Expr`.
+    let (shapes, names): (Vec<ShapeBuf>, HashMap<u32, String>) = with_serial(reach.serial, |p| {
+        let shapes: Vec<ShapeBuf> = reach.ids.iter().map(|&i| p.shape(i).to_buf()).collect();
+        let names = shapes
+            .iter()
+            .filter_map(|s| match s {
+                Shape::Param(i) => Some((*i, p.param(*i).name.clone())),
+                _ => None,
             })
-            .collect()
+            .collect();
+        (shapes, names)
     });
-    let num = |r: &Rational| S::from_rational(r);
-    let coef = |r: &Option<Rational>, f: f64| match r {
-        Some(r) => S::from_rational(r),
-        None => S::from_f64(f),
+    let rat = |c: Id| match &shapes[pos[&c]] {
+        Shape::Num(r) => r.clone(),
+        _ => unreachable!("product exponents are rational"),
     };
-    let mut val: Vec<S> = Vec::with_capacity(nodes.len());
-    for g in &nodes {
-        let v = match g {
-            G::Num(r) => num(r),
-            G::Float(f) => S::from_f64(*f),
-            G::Const(Constant::Pi) => S::pi(),
-            G::Const(Constant::E) => S::e(),
-            G::Param(i, name) => {
-                value_of(*i).ok_or_else(|| SymError::MissingParameter { name: name.clone() })?
-            }
-            G::Add(c0, terms, c0f) => {
-                let mut items: Vec<S> = Vec::with_capacity(terms.len() + 1);
-                match c0f {
-                    Some(f) => items.push(S::from_f64(*f)),
-                    None if !c0.is_zero() => items.push(num(c0)),
-                    None => {}
-                }
-                for (k, cr, cf) in terms {
-                    let c = coef(cr, *cf);
-                    items.push(if c.is_one() { val[*k] } else { c * val[*k] });
-                }
-                S::sum(&items)
-            }
-            G::Mul(cr, cf, factors) => {
-                let mut acc = coef(cr, *cf);
-                for (k, e) in factors {
-                    let b = val[*k];
-                    let f = match e.as_small() {
-                        Some((n, 1)) => b.powi(n),
-                        Some((1, 2)) => b.sqrt(),
-                        Some((-1, 2)) => b.sqrt().recip(),
-                        _ => b.powf(num(e)),
-                    };
-                    acc = if acc.is_one() { f } else { acc * f };
-                }
-                acc
-            }
-            G::Pow(a, b) => val[*a].powf(val[*b]),
-            G::Func(f, a) => {
-                let x = val[*a];
-                match f {
-                    Func::Sin => x.sin(),
-                    Func::Cos => x.cos(),
-                    Func::Tan => x.tan(),
-                    Func::Exp => x.exp(),
-                    Func::Ln => x.ln(),
-                    Func::Abs => x.abs(),
-                }
-            }
-            G::Atan2(a, b) => val[*a].atan2(val[*b]),
+    let mut val: Vec<S> = Vec::with_capacity(shapes.len());
+    for shape in &shapes {
+        let v = match shape {
+            Shape::Param(i) => value_of(*i).ok_or_else(|| SymError::MissingParameter {
+                name: names[i].clone(),
+            })?,
+            _ => shape
+                .eval(|c| val[pos[&c]], rat)
+                .expect("valid nodes have values"),
         };
         val.push(v);
     }
-    let pos: HashMap<Id, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
     Ok(reach.roots.iter().map(|r| val[pos[r]]).collect())
 }
 
