@@ -103,14 +103,12 @@
 
 pub mod build;
 mod error;
-mod lower;
 mod options;
-mod order;
 mod problem;
 mod render;
 
+pub use eom_sym::lower::CodeOps;
 pub use error::CodegenError;
-pub use lower::CodeOps;
 pub use options::{DEFAULT_CHUNK, EmitOptions, Functions, MathLib, Precision};
 pub use render::FunctionStats;
 

@@ -2,9 +2,10 @@
 //! buffer, the validity checks, the finiteness check and the sparse stores.
 
 use crate::CodegenError;
-use crate::lower::{CodeOps, Fn1, Fn2, Inst, Lowered, Operand, Rhs};
 use crate::options::{MathLib, Precision};
 use crate::problem::{Check, Mat, Problem};
+use eom_sym::lower::{CodeOps, Inst, Lowered, Operand, Rhs, Rounding, lower};
+use eom_sym::{Call, Func};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{HashMap, HashSet};
@@ -214,8 +215,8 @@ impl Ctx<'_> {
             }
             call => {
                 let lat = match call {
-                    Rhs::Call1(Fn1::Abs, _) => latency::SIGN,
-                    Rhs::Call1(Fn1::Sqrt, _) => latency::SQRT,
+                    Rhs::Call1(Call::Func(Func::Abs), _) => latency::SIGN,
+                    Rhs::Call1(Call::Sqrt, _) => latency::SQRT,
                     _ => latency::CALL,
                 };
                 let at = call
@@ -239,12 +240,12 @@ impl Ctx<'_> {
                 let xv = self.operand(*x)?;
                 quote!(sincos(#xv))
             }
-            Rhs::Call1(Fn1::Sin, x) => {
+            Rhs::Call1(Call::Func(Func::Sin), x) => {
                 self.trig.set(true);
                 let xv = self.operand(*x)?;
                 quote!(sincos(#xv).0)
             }
-            Rhs::Call1(Fn1::Cos, x) => {
+            Rhs::Call1(Call::Func(Func::Cos), x) => {
                 self.trig.set(true);
                 let xv = self.operand(*x)?;
                 quote!(sincos(#xv).1)
@@ -253,44 +254,28 @@ impl Ctx<'_> {
                 let xv = self.operand(*x)?;
                 let rv = self.receiver(*x)?;
                 match (f, self.math) {
-                    (Fn1::Abs, _) => quote!(#rv.abs()),
+                    (Call::Func(Func::Abs), _) => quote!(#rv.abs()),
                     (f, MathLib::Libm) => {
-                        let name = match f {
-                            Fn1::Sqrt => "sqrt",
-                            Fn1::Tan => "tan",
-                            Fn1::Exp => "exp",
-                            Fn1::Ln => "log",
-                            Fn1::Sin | Fn1::Cos | Fn1::Abs => unreachable!("handled above"),
-                        };
-                        let func = self.libm(name);
+                        let func = self.libm(f.libm_name());
                         quote!(#func(#xv))
                     }
                     (f, MathLib::Std) => {
-                        let name = match f {
-                            Fn1::Sqrt => "sqrt",
-                            Fn1::Tan => "tan",
-                            Fn1::Exp => "exp",
-                            Fn1::Ln => "ln",
-                            Fn1::Sin | Fn1::Cos | Fn1::Abs => unreachable!("handled above"),
-                        };
-                        let m = Ident::new(name, Span::call_site());
+                        let m = Ident::new(f.std_method(), Span::call_site());
                         quote!(#rv.#m())
                     }
                 }
             }
             Rhs::Call2(f, x, y) => {
                 let (xv, yv, rv) = (self.operand(*x)?, self.operand(*y)?, self.receiver(*x)?);
-                match (f, self.math) {
-                    (Fn2::Pow, MathLib::Libm) => {
-                        let func = self.libm("pow");
+                match self.math {
+                    MathLib::Libm => {
+                        let func = self.libm(f.libm_name());
                         quote!(#func(#xv, #yv))
                     }
-                    (Fn2::Atan2, MathLib::Libm) => {
-                        let func = self.libm("atan2");
-                        quote!(#func(#xv, #yv))
+                    MathLib::Std => {
+                        let m = Ident::new(f.std_method(), Span::call_site());
+                        quote!(#rv.#m(#yv))
                     }
-                    (Fn2::Pow, MathLib::Std) => quote!(#rv.powf(#yv)),
-                    (Fn2::Atan2, MathLib::Std) => quote!(#rv.atan2(#yv)),
                 }
             }
         })
@@ -473,20 +458,13 @@ pub(crate) fn plan(spec: &FnSpec, problem: &Problem) -> Result<FnPlan, CodegenEr
         roots.push(c.value);
         roots.extend(&c.others);
     }
-    let pos: HashMap<u32, u32> = problem
-        .param_index
-        .iter()
-        .enumerate()
-        .map(|(k, &i)| (i, k as u32))
-        .collect();
-    let dag = crate::order::build(&roots, &pos)?;
     let pivots: Vec<eom_sym::Expr> = problem
         .checks
         .iter()
         .filter(|c| c.pivot)
         .map(|c| c.value)
         .collect();
-    let lowered = crate::lower::lower(&dag, &roots, &pivots)?;
+    let lowered = lower(&roots, &problem.param_exprs, &pivots, Rounding::Free)?;
     let outputs = where_
         .iter()
         .zip(&lowered.roots[..n_out])
@@ -1100,12 +1078,12 @@ fn magnitude_bounds(insts: &[Inst], musts: &[Operand]) -> Option<Bounds> {
                     }
                 }
             }
-            Rhs::Call1(Fn1::Sqrt, x) => {
+            Rhs::Call1(Call::Sqrt, x) => {
                 if !matches!(x, Operand::Lit(_)) && !roots.contains(x) {
                     roots.push(*x);
                 }
             }
-            Rhs::Call1(Fn1::Sin | Fn1::Cos | Fn1::Abs, _) => {}
+            Rhs::Call1(Call::Func(Func::Sin | Func::Cos | Func::Abs), _) => {}
             _ => return None,
         }
         for o in inst.rhs.operands() {
@@ -1136,9 +1114,9 @@ fn magnitude_bounds(insts: &[Inst], musts: &[Operand]) -> Option<Bounds> {
                 Rhs::Prod { coef, num, den } => {
                     log2(*coef) + num.iter().map(|x| of(x, &e)).sum::<f64>() + m * den.len() as f64
                 }
-                Rhs::Call1(Fn1::Sqrt, x) => of(x, &e) / 2.0 + 1.0,
-                Rhs::Call1(Fn1::Abs, x) => of(x, &e),
-                Rhs::Call1(Fn1::Sin | Fn1::Cos, _) | Rhs::SinCos(_) => 0.0,
+                Rhs::Call1(Call::Sqrt, x) => of(x, &e) / 2.0 + 1.0,
+                Rhs::Call1(Call::Func(Func::Abs), x) => of(x, &e),
+                Rhs::Call1(Call::Func(Func::Sin | Func::Cos), _) | Rhs::SinCos(_) => 0.0,
                 _ => return false,
             };
             if v.is_nan() || v > 1000.0 {
@@ -1176,7 +1154,7 @@ fn magnitude_bounds(insts: &[Inst], musts: &[Operand]) -> Option<Bounds> {
 /// is finite, so is every value of `musts`: testing fewer values changes no result, it
 /// shortens the fast path. Walks the instructions backwards (consumers before producers).
 fn finiteness_sinks(insts: &[Inst], musts: &[Operand]) -> Vec<bool> {
-    use crate::lower::OpKey;
+    use eom_sym::lower::OpKey;
     let must: HashSet<OpKey> = musts.iter().map(|o| o.key()).collect();
     let mut covered: HashSet<OpKey> = HashSet::new();
     let mut tested: HashSet<OpKey> = HashSet::new();
@@ -1198,10 +1176,8 @@ fn finiteness_sinks(insts: &[Inst], musts: &[Operand]) -> Vec<bool> {
         let keeps: Vec<Operand> = match &inst.rhs {
             Rhs::Sum { terms, .. } => terms.iter().map(|t| t.0).collect(),
             Rhs::Prod { num, .. } => num.clone(),
-            Rhs::Call1(f, x) => match f {
-                Fn1::Sqrt | Fn1::Sin | Fn1::Cos | Fn1::Tan | Fn1::Ln | Fn1::Abs => vec![*x],
-                Fn1::Exp => Vec::new(),
-            },
+            Rhs::Call1(f, x) if f.keeps_non_finite() => vec![*x],
+            Rhs::Call1(..) => Vec::new(),
             Rhs::SinCos(x) => vec![*x],
             Rhs::Call2(..) => Vec::new(),
         };
@@ -1389,7 +1365,7 @@ fn render_checks(
     let pivot_tol = num.round(eom_model::reduce::PIVOT_TOLERANCE);
     let rank_tol = num.round(eom_model::reduce::RANK_TOLERANCE);
     let mut ts = TokenStream::new();
-    let mut seen: HashMap<(bool, Vec<crate::lower::OpKey>), (TokenStream, TokenStream)> =
+    let mut seen: HashMap<(bool, Vec<eom_sym::lower::OpKey>), (TokenStream, TokenStream)> =
         HashMap::new();
     let mut per_check: Vec<TokenStream> = Vec::new();
     let mut per_mag: Vec<TokenStream> = Vec::new();
@@ -1447,7 +1423,7 @@ fn render_checks(
                     mag_ops.push(*v);
                     let tl = num.lit(pivot_tol, "tolerance")?;
                     let mut lit_max: f64 = 0.0;
-                    let mut seen_r: Vec<crate::lower::OpKey> = Vec::new();
+                    let mut seen_r: Vec<eom_sym::lower::OpKey> = Vec::new();
                     for r in others {
                         if seen_r.contains(&r.key()) || r.key() == v.key() {
                             continue;

@@ -33,7 +33,7 @@ use eom_sym::SymError;
 use eom_sym::expr::Expr;
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
-use eom_sym::tape::{NativeTape, Tape};
+use eom_sym::tape::Tape;
 use nalgebra::DMatrix;
 
 /// Pivot ratio below which a recorded pivot counts as broken down at an evaluation point:
@@ -736,15 +736,9 @@ pub struct MatrixSize {
 /// The numeric side of a [`SymbolicStateSpace`]: a compiled tape of every entry of A, B, C,
 /// D and `phys` plus the validity checks. It holds no expressions, so it is `Send + Sync`
 /// and can be shared by the threads of a parallel sweep.
-///
-/// Tiered: after [`NATIVE_AFTER`] evaluations (counted over all clones) the tape is
-/// translated to machine code ([`NativeTape`], x86-64 Unix), which computes the same values
-/// bit for bit in about a third of the time; the translation costs about as much as that many
-/// evaluations save, so short uses never pay for it.
 #[derive(Clone, Debug)]
 pub struct CompiledStateSpace {
     tape: Tape,
-    tier: std::sync::Arc<Tier>,
     shapes: [(usize, usize); 5],
     n_matrix: usize,
     check_layout: Vec<(usize, usize, bool)>,
@@ -753,16 +747,10 @@ pub struct CompiledStateSpace {
     param_names: Vec<String>,
 }
 
-/// Evaluations of a [`CompiledStateSpace`] after which its tape is translated to machine code.
-pub const NATIVE_AFTER: usize = 1000;
-
-/// The evaluation count and, once it reaches [`NATIVE_AFTER`], the native code (`None` where
-/// the platform has none).
-#[derive(Debug, Default)]
-struct Tier {
-    calls: std::sync::atomic::AtomicUsize,
-    native: std::sync::OnceLock<Option<NativeTape>>,
-}
+/// Formerly the evaluations after which the tape was translated to machine code; the tape is
+/// always interpreted now (the translation did not pay end to end). Unused; kept until its
+/// re-export goes.
+pub const NATIVE_AFTER: usize = usize::MAX;
 
 impl SymbolicStateSpace {
     /// Compile a symbolic reduction for evaluation with parameter values in the order of
@@ -798,7 +786,6 @@ impl SymbolicStateSpace {
         let tape = Tape::new(&roots, params)?;
         let compiled = CompiledStateSpace {
             tape,
-            tier: Default::default(),
             shapes,
             n_matrix,
             check_layout: layout,
@@ -904,22 +891,7 @@ impl CompiledStateSpace {
     ) -> Result<StateSpace<f64>, ModelError> {
         ws.out.resize(self.tape.n_outputs(), 0.0);
         ws.work.resize(self.tape.work_len(), 0.0);
-        let calls = self
-            .tier
-            .calls
-            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let native = if calls >= NATIVE_AFTER {
-            self.tier
-                .native
-                .get_or_init(|| NativeTape::new(&self.tape).ok())
-                .as_ref()
-        } else {
-            None
-        };
-        match native {
-            Some(n) => n.eval_into(values, &mut ws.out, &mut ws.work)?,
-            None => self.tape.eval_into(values, &mut ws.out, &mut ws.work)?,
-        }
+        self.tape.eval_into(values, &mut ws.out, &mut ws.work)?;
         let out = &ws.out;
         for ((start, len, pivot), label) in self.check_layout.iter().zip(&self.check_labels) {
             let v = out[*start];

@@ -101,6 +101,19 @@ impl Func {
         self.eval(x)
     }
 
+    /// [`Func::eval_f64`] as a function pointer, for loops that apply one function many times
+    /// (the interpreter of the [`Tape`](crate::Tape)).
+    pub fn f64_fn(self) -> fn(f64) -> f64 {
+        match self {
+            Func::Sin => |x| Func::Sin.eval(x),
+            Func::Cos => |x| Func::Cos.eval(x),
+            Func::Tan => |x| Func::Tan.eval(x),
+            Func::Exp => |x| Func::Exp.eval(x),
+            Func::Ln => |x| Func::Ln.eval(x),
+            Func::Abs => |x| Func::Abs.eval(x),
+        }
+    }
+
     /// `f′(x)`, given `x` and `fx = f(x)` (which some derivatives reuse).
     pub fn derivative(self, x: Expr, fx: Expr) -> Expr {
         match self {
@@ -163,6 +176,16 @@ impl Call {
             Call::Sqrt => x.sqrt(),
             Call::Pow => x.powf(y),
             Call::Atan2 => x.atan2(y),
+        }
+    }
+
+    /// Is the result NaN or infinite whenever the first argument is, whatever the others
+    /// (as IEEE 754 defines the functions)? True for `sin`, `cos`, `tan`, `ln`, `abs` and
+    /// `√`; not for `exp` (`exp(−∞) = 0`), general powers and `atan2`.
+    pub fn keeps_non_finite(self) -> bool {
+        match self {
+            Call::Func(Func::Exp) | Call::Pow | Call::Atan2 => false,
+            Call::Func(_) | Call::Sqrt => true,
         }
     }
 

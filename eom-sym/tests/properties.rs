@@ -38,9 +38,7 @@
 mod common;
 
 use common::{N_PARAMS, Recipe, build, params, recipe};
-use eom_sym::{
-    Constant, Dd, Expr, ExprView, Func, NativeTape, Rational, Scalar, SymError, Tape, eval_generic,
-};
+use eom_sym::{Constant, Dd, Expr, ExprView, Func, Rational, Scalar, SymError, Tape, eval_generic};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, TestCaseError, TestRunner};
 use std::cell::Cell;
@@ -525,40 +523,6 @@ fn batch_evaluation_equals_pointwise_evaluation() {
             Ok(())
         },
     );
-}
-
-/// The native tape (machine code) computes what the interpreter computes, bit for bit (NaN
-/// matching NaN), for both the exact and the reassociating tape, on several roots at once
-/// (so that values are shared and live across one another).
-#[test]
-#[cfg(all(target_arch = "x86_64", unix))]
-fn native_tape_equals_the_interpreter_bit_for_bit() {
-    let p = params();
-    run((recipe(), recipe(), point()), |(r1, r2, x)| {
-        let (e, f) = (build(&r1, &p), build(&r2, &p));
-        if e.check().is_err() || f.check().is_err() {
-            return Ok(());
-        }
-        let roots = [e, f, e * f + p[0], (e - f).sin(), e.sqrt() - f];
-        let roots: Vec<Expr> = roots.into_iter().filter(|r| r.check().is_ok()).collect();
-        for tape in [Tape::new(&roots, &p), Tape::new_reassociating(&roots, &p)] {
-            let tape = tape.expect("tape of valid expressions");
-            let native = NativeTape::new(&tape).expect("native code on x86-64");
-            let mut work = vec![0.0; tape.work_len()];
-            let mut a = vec![0.0; roots.len()];
-            let mut b = vec![0.0; roots.len()];
-            tape.eval_into(&x, &mut a, &mut work).unwrap();
-            native.eval_into(&x, &mut b, &mut work).unwrap();
-            for (k, (t, n)) in a.iter().zip(&b).enumerate() {
-                prop_assert!(
-                    t.to_bits() == n.to_bits() || (t.is_nan() && n.is_nan()),
-                    "root {k}: tape {t:e} vs native {n:e} for {}",
-                    roots[k]
-                );
-            }
-        }
-        Ok(())
-    });
 }
 
 /// The double-double reference itself (every tolerance above relies on it): exact identities
