@@ -100,6 +100,7 @@
 //! arithmetic as written (Rust never contracts `a * b + c` into a fused multiply-add by itself).
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod build;
 mod error;

@@ -47,6 +47,7 @@
 //!   closed forms.
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod context;
 pub mod dd;
@@ -67,7 +68,6 @@ pub mod subs;
 pub mod tape;
 #[doc(hidden)]
 pub mod testing;
-pub mod trig;
 pub mod tutorials;
 pub mod zero;
 

@@ -22,6 +22,7 @@
 //! | `chainN` | N masses in series (e.g. `chain50`) | closed form |
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 mod bicycle;
 mod catalogue;
