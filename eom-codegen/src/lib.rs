@@ -88,13 +88,10 @@
 //! its two-operand instructions need a register copy for every value still used afterwards.
 //! Large kernels may go the other way: from SSE3 on, LLVM's SLP vectoriser packs the bicycle's
 //! operations into pairs twice as often and loses more to shuffles than it gains. Measure with
-//! your model. Against PyDy's generated C in one driver, both sides compiled alike
-//! (`bench/pydy/README.md`, AMD EPYC Zen 4, ns per call):
-//!
-//! | | baseline (SSE2) | `x86-64-v3` | `native` |
-//! |---|---|---|---|
-//! | shimmy `eval_abcd_varying` (`--simplify`) / PyDy | 4.28 / 4.65 (0.92×) | 3.94 / 4.55 (0.87×) | 3.88 / 4.51 (0.86×) |
-//! | bicycle `eval_abcd_varying` / PyDy | 68.1 / 122.1 (0.56×) | 76.0 / 103.9 (0.73×) | 75.8 / 111.0 (0.68×) |
+//! your model. Against PyDy's generated C in one driver, both sides compiled alike, the
+//! shimmy's `eval_abcd_varying` (`--simplify`) takes about 0.86–0.92× PyDy's time and the
+//! bicycle's 0.56–0.73×, depending on the target level; the figures and the script that
+//! measures them are in `bench/pydy/README.md`.
 //!
 //! No fast-math is needed or wanted: the finiteness proofs and the accuracy tests assume IEEE
 //! arithmetic as written (Rust never contracts `a * b + c` into a fused multiply-add by itself).

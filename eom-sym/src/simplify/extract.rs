@@ -2,7 +2,7 @@
 //!
 //! egg's [`Extractor`](egg::Extractor) minimises the *tree* cost: a subterm used twice is paid
 //! twice, so it happily trades one shared node for two private ones and the generated code gets
-//! slower (the crate notes measured `AᵀBA` going from DAG cost 347 to 421). The ILP extractor
+//! slower (on `AᵀBA` the shared cost grows from 347 to 421). The ILP extractor
 //! minimises the DAG cost but needs a C solver. And a cost computed on the e-graph is not the
 //! cost of the result anyway: the smart constructors flatten nested sums and products, inline
 //! powers and numeric coefficients into the product or sum that uses them, and collect like
