@@ -232,28 +232,7 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
         });
     }
     let problem = Problem::new(sym, opts.model_name.as_deref(), opts)?;
-    // The generated `Error` holds a check as `u32`, a row and a column as `u16`.
-    index_fits(problem.checks.len(), u32::MAX, || "validity checks".into())?;
-    for m in Mat::ALL {
-        let spec = &problem.mats[m.index()];
-        index_fits(spec.rows, u16::MAX, || format!("rows of {}", m.variant()))?;
-        index_fits(spec.cols, u16::MAX, || {
-            format!("columns of {}", m.variant())
-        })?;
-    }
-    let module = match &opts.module {
-        Some(m) => {
-            let id = problem::module_ident(m);
-            if &id != m {
-                return Err(CodegenError::BadOption {
-                    option: "module",
-                    problem: format!("`{m}` is not a plain lower-case identifier (try `{id}`)"),
-                });
-            }
-            id
-        }
-        None => problem::module_ident(&problem.model),
-    };
+    let module = module_name(&problem, opts)?;
     let num = Num {
         prec: opts.precision,
     };
@@ -264,86 +243,8 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
         ty: Ident::new(opts.precision.type_name(), Span::call_site()),
         trig: std::cell::Cell::new(false),
     };
-
-    let f = opts.functions;
-    let mut specs = Vec::new();
-    if f.abcd {
-        specs.push(FnSpec {
-            name: "eval_abcd",
-            varying: "eval_abcd_varying",
-            constants: "write_abcd_constants",
-            mats: vec![Mat::A, Mat::B, Mat::C, Mat::D],
-        });
-    }
-    if f.ab {
-        specs.push(FnSpec {
-            name: "eval_ab",
-            varying: "eval_ab_varying",
-            constants: "write_ab_constants",
-            mats: vec![Mat::A, Mat::B],
-        });
-    }
-    if f.cd {
-        specs.push(FnSpec {
-            name: "eval_cd",
-            varying: "eval_cd_varying",
-            constants: "write_cd_constants",
-            mats: vec![Mat::C, Mat::D],
-        });
-    }
-    if f.phys {
-        specs.push(FnSpec {
-            name: "eval_phys",
-            varying: "eval_phys_varying",
-            constants: "write_phys_constants",
-            mats: vec![Mat::Phys],
-        });
-    }
-    if specs.is_empty() {
-        return Err(CodegenError::BadOption {
-            option: "functions",
-            problem: "no function selected".into(),
-        });
-    }
-    let mut fn_items = TokenStream::new();
-    let mut stats = Vec::new();
-    let mut work_len = 0;
-    // Each `eval_X_varying` leaves out the constant entries; without any, it is `eval_X`.
-    let mut varying: Vec<render::FnPlan> = Vec::new();
-    for spec in &specs {
-        let plan = render::plan(spec, &problem)?;
-        let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
-        work_len = work_len.max(r.work_len);
-        fn_items.extend(r.items);
-        stats.push(r.stats);
-        fn_items.extend(render::render_constants(
-            &ctx,
-            &plan,
-            spec.constants,
-            spec.varying,
-        )?);
-        if plan.writes_constants() {
-            varying.push(plan.without_constants(spec.varying, spec.constants));
-        } else {
-            let whole = Ident::new(spec.name, Span::call_site());
-            let alias = Ident::new(spec.varying, Span::call_site());
-            let doc = format!(
-                " [`{}`]: this model has no constant entry there, so there is nothing to leave out.",
-                spec.name
-            );
-            fn_items.extend(quote! {
-                #[doc = #doc]
-                pub use #whole as #alias;
-            });
-        }
-    }
-    for plan in varying {
-        let r = render::render_fn(&ctx, &plan, opts.max_temporaries)?;
-        work_len = work_len.max(r.work_len);
-        fn_items.extend(r.items);
-        stats.push(r.stats);
-    }
-
+    let specs = fn_specs(opts.functions)?;
+    let (fn_items, stats, work_len) = render_functions(&ctx, &specs, opts)?;
     let abcd_roots: Vec<Expr> = problem.mats[..4]
         .iter()
         .flat_map(|m| m.entries.iter().map(|e| e.2))
@@ -406,6 +307,126 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
         module,
         stats: emitted_stats,
     })
+}
+
+/// The module's name, after checking that the sizes fit the generated `Error`.
+fn module_name(problem: &Problem, opts: &EmitOptions) -> Result<String, CodegenError> {
+    // The generated `Error` holds a check as `u32`, a row and a column as `u16`.
+    index_fits(problem.checks.len(), u32::MAX, || "validity checks".into())?;
+    for m in Mat::ALL {
+        let spec = &problem.mats[m.index()];
+        index_fits(spec.rows, u16::MAX, || format!("rows of {}", m.variant()))?;
+        index_fits(spec.cols, u16::MAX, || {
+            format!("columns of {}", m.variant())
+        })?;
+    }
+    let module = match &opts.module {
+        Some(m) => {
+            let id = problem::module_ident(m);
+            if &id != m {
+                return Err(CodegenError::BadOption {
+                    option: "module",
+                    problem: format!("`{m}` is not a plain lower-case identifier (try `{id}`)"),
+                });
+            }
+            id
+        }
+        None => problem::module_ident(&problem.model),
+    };
+    Ok(module)
+}
+
+/// The functions to generate.
+fn fn_specs(f: Functions) -> Result<Vec<FnSpec>, CodegenError> {
+    let mut specs = Vec::new();
+    if f.abcd {
+        specs.push(FnSpec {
+            name: "eval_abcd",
+            varying: "eval_abcd_varying",
+            constants: "write_abcd_constants",
+            mats: vec![Mat::A, Mat::B, Mat::C, Mat::D],
+        });
+    }
+    if f.ab {
+        specs.push(FnSpec {
+            name: "eval_ab",
+            varying: "eval_ab_varying",
+            constants: "write_ab_constants",
+            mats: vec![Mat::A, Mat::B],
+        });
+    }
+    if f.cd {
+        specs.push(FnSpec {
+            name: "eval_cd",
+            varying: "eval_cd_varying",
+            constants: "write_cd_constants",
+            mats: vec![Mat::C, Mat::D],
+        });
+    }
+    if f.phys {
+        specs.push(FnSpec {
+            name: "eval_phys",
+            varying: "eval_phys_varying",
+            constants: "write_phys_constants",
+            mats: vec![Mat::Phys],
+        });
+    }
+    if specs.is_empty() {
+        return Err(CodegenError::BadOption {
+            option: "functions",
+            problem: "no function selected".into(),
+        });
+    }
+    Ok(specs)
+}
+
+/// The evaluation functions (each with its constants writer and its varying kernel), their
+/// statistics and the work buffer they need.
+fn render_functions(
+    ctx: &Ctx,
+    specs: &[FnSpec],
+    opts: &EmitOptions,
+) -> Result<(TokenStream, Vec<FunctionStats>, usize), CodegenError> {
+    let mut fn_items = TokenStream::new();
+    let mut stats = Vec::new();
+    let mut work_len = 0;
+    // Each `eval_X_varying` leaves out the constant entries; without any, it is `eval_X`.
+    let mut varying: Vec<render::FnPlan> = Vec::new();
+    for spec in specs {
+        let plan = render::plan(spec, ctx.problem)?;
+        let r = render::render_fn(ctx, &plan, opts.max_temporaries)?;
+        work_len = work_len.max(r.work_len);
+        fn_items.extend(r.items);
+        stats.push(r.stats);
+        fn_items.extend(render::render_constants(
+            ctx,
+            &plan,
+            spec.constants,
+            spec.varying,
+        )?);
+        if plan.writes_constants() {
+            varying.push(plan.without_constants(spec.varying, spec.constants));
+        } else {
+            let whole = Ident::new(spec.name, Span::call_site());
+            let alias = Ident::new(spec.varying, Span::call_site());
+            let doc = format!(
+                " [`{}`]: this model has no constant entry there, so there is nothing to leave out.",
+                spec.name
+            );
+            fn_items.extend(quote! {
+                #[doc = #doc]
+                pub use #whole as #alias;
+            });
+        }
+    }
+    for plan in varying {
+        let r = render::render_fn(ctx, &plan, opts.max_temporaries)?;
+        work_len = work_len.max(r.work_len);
+        fn_items.extend(r.items);
+        stats.push(r.stats);
+    }
+
+    Ok((fn_items, stats, work_len))
 }
 
 /// `count` as the index type `T` of the generated `Error` (`u32` or `u16`), or
