@@ -6,6 +6,7 @@
 //! validity region of the symbolic reduction with `--method symbolic`).
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 mod aero;
 mod analyze;

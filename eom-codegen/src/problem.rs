@@ -84,8 +84,8 @@ pub(crate) struct Check {
 pub(crate) struct Problem {
     pub model: String,
     pub params: Vec<Param>,
-    /// Pool index of each parameter, in interface order.
-    pub param_index: Vec<u32>,
+    /// The parameters, in interface order.
+    pub param_exprs: Vec<Expr>,
     pub mats: Vec<MatrixSpec>,
     pub checks: Vec<Check>,
     pub names: SignalNames,
@@ -359,7 +359,7 @@ impl Problem {
         }
 
         let mut out_params = Vec::new();
-        let mut param_index = Vec::new();
+        let mut param_exprs = Vec::new();
         let mut fields: Vec<String> = Vec::new();
         for p in &params {
             let info = p.param_info().ok_or_else(|| CodegenError::BadOption {
@@ -379,12 +379,12 @@ impl Problem {
                 unit: info.unit.clone().unwrap_or_default(),
                 description: info.description.clone().unwrap_or_default(),
             });
-            param_index.push(p.param_index().expect("parameter"));
+            param_exprs.push(*p);
         }
         Ok(Problem {
             model: name.unwrap_or("model").to_string(),
             params: out_params,
-            param_index,
+            param_exprs,
             mats,
             checks: kept,
             names: ss.names.clone(),

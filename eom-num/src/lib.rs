@@ -115,6 +115,8 @@
 //! cleanly when unstable; eigenvalue order is deterministic.
 
 #![warn(missing_docs)]
+// One exception, allowed where it is: the AVX2 frequency-response kernel (`freq`).
+#![deny(unsafe_code)]
 
 pub mod deflate;
 pub mod descriptor;

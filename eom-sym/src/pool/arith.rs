@@ -2,6 +2,7 @@
 //! identities of the table in the [`pool`](super) module).
 
 use super::*;
+use crate::func::Parity;
 
 impl PoolData {
     // ---------------------------------------------------------------- sums
@@ -110,7 +111,7 @@ impl PoolData {
         key.clear();
         key.push(ONE);
         key.extend_from_slice(self.mul_parts(id).expect("product").1);
-        let id = self.intern(Key::Mul(&key));
+        let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
     }
@@ -153,7 +154,7 @@ impl PoolData {
             let cid = self.num(c);
             key.push(cid);
         }
-        let id = self.intern(Key::Add(&key));
+        let id = self.intern(Shape::Add(&key));
         self.key_buf = key;
         id
     }
@@ -209,7 +210,7 @@ impl PoolData {
                 key.push(ONE);
             }
         }
-        let id = self.intern(Key::Mul(&key));
+        let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
     }
@@ -425,7 +426,7 @@ impl PoolData {
             let eid = self.rational(e);
             key.push(eid);
         }
-        let id = self.intern(Key::Mul(&key));
+        let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
     }
@@ -475,13 +476,13 @@ impl PoolData {
                         what: format!("{} ^ {f}", bv.to_f64()),
                     });
                 }
-                self.intern(Key::Pow(base, exp))
+                self.intern(Shape::Pow([base, exp]))
             }
             _ => {
                 if base == ONE {
                     return ONE;
                 }
-                self.intern(Key::Pow(base, exp))
+                self.intern(Shape::Pow([base, exp]))
             }
         }
     }
@@ -558,7 +559,7 @@ impl PoolData {
                         };
                     }
                     let e = self.rational(r);
-                    self.intern(Key::Mul(&[ONE, base, e]))
+                    self.intern(Shape::Mul(&[ONE, base, e]))
                 }
             };
         }
@@ -646,7 +647,7 @@ impl PoolData {
             }
         }
         let eid = self.rational(e);
-        self.intern(Key::Mul(&[ONE, b, eid]))
+        self.intern(Shape::Mul(&[ONE, b, eid]))
     }
 
     // ---------------------------------------------------------------- functions
@@ -693,13 +694,13 @@ impl PoolData {
         }
         // Odd and even functions of a negated argument.
         if let Some(pos) = self.negated(a) {
-            match f {
-                Func::Cos | Func::Abs => return self.func(f, pos),
-                Func::Sin | Func::Tan => {
+            match f.parity() {
+                Parity::Even => return self.func(f, pos),
+                Parity::Odd => {
                     let v = self.func(f, pos);
                     return self.mul_n(&[MINUS_ONE, v]);
                 }
-                _ => {}
+                Parity::None => {}
             }
         }
         match f {
@@ -724,7 +725,7 @@ impl PoolData {
             }
             _ => {}
         }
-        self.intern(Key::Func(f, a))
+        self.intern(Shape::Func(f, [a]))
     }
 
     /// If `a = k·π` with rational `k`, return `k`.
@@ -770,7 +771,7 @@ impl PoolData {
             let v = a.atan2(*b);
             return self.float(v);
         }
-        self.intern(Key::Atan2(y, x))
+        self.intern(Shape::Atan2([y, x]))
     }
 }
 
@@ -807,14 +808,5 @@ pub(crate) fn dyadic(x: f64) -> Option<Rational> {
         Rational::new(scaled as i64, 1 << 20)
     } else {
         None
-    }
-}
-
-pub(crate) fn pow_f64(x: f64, e: &Rational) -> f64 {
-    match e.as_small() {
-        Some((n, 1)) if n.unsigned_abs() <= i32::MAX as u64 => x.powi(n as i32),
-        Some((1, 2)) => x.sqrt(),
-        Some((-1, 2)) => 1.0 / x.sqrt(),
-        _ => x.powf(e.to_f64()),
     }
 }
