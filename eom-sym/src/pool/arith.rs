@@ -301,6 +301,8 @@ impl PoolData {
                 match q.powi(k) {
                     Some(Ok(qk)) => match coef.mul(&Number::Rat(qk)) {
                         Ok(c) => coef = c,
+                        // The content would underflow the coefficient: keep the sum as it is.
+                        Err(SymError::Underflow { .. }) => continue,
                         Err(err) => return self.invalid(err),
                     },
                     _ => return self.invalid(SymError::RationalOverflow),
@@ -410,12 +412,16 @@ impl PoolData {
                 let mut terms = std::mem::take(&mut self.terms_buf);
                 terms.clear();
                 let id = match self.collect_add(b, &coef, &mut c0, &mut terms) {
-                    Ok(()) => self.finish_add(c0, &mut terms),
-                    Err(e) => self.invalid(e),
+                    Ok(()) => Some(self.finish_add(c0, &mut terms)),
+                    // A term's coefficient would underflow: keep the product undistributed.
+                    Err(SymError::Underflow { .. }) => None,
+                    Err(e) => Some(self.invalid(e)),
                 };
                 terms.clear();
                 self.terms_buf = terms;
-                return id;
+                if let Some(id) = id {
+                    return id;
+                }
             }
         }
         let mut key = std::mem::take(&mut self.key_buf);

@@ -172,7 +172,18 @@ impl Number {
                 .mul(b)
                 .map(Number::Rat)
                 .map_err(|_| SymError::RationalOverflow),
-            _ => finite(self.to_f64() * o.to_f64()),
+            _ => {
+                let (a, b) = (self.to_f64(), o.to_f64());
+                let p = a * b;
+                // A product of nonzero constants that leaves the normal range lost digits
+                // (or all of them): not an exact fold.
+                if p.abs() < f64::MIN_POSITIVE && a != 0.0 && b != 0.0 {
+                    return Err(SymError::Underflow {
+                        what: format!("{a:e} × {b:e}"),
+                    });
+                }
+                finite(p)
+            }
         }
     }
 }
