@@ -152,14 +152,16 @@ enum Command {
     Aero(AeroArgs),
     /// Write one self-contained HTML page about a model: parameters and items, a picture, the
     /// modes with their shapes, gains, zeros, Bode and time responses, a sweep, closed forms
-    #[command(long_about = "Write one self-contained HTML page about a model (no network, \
+    #[command(
+        long_about = "Write one self-contained HTML page about a model (no network, \
         plots inline as SVG): the parameters and items, a picture of the model from its \
         geometry, the modes table and every mode's shape (animated), the modes seen from the \
         inputs and outputs, steady-state gains, transmission zeros, the Bode plot, step, \
         impulse and free responses, with --sweep the eigenvalues over a parameter with the \
         stability boundaries and the root locus, and for small models the closed forms \
         (characteristic polynomial, ωn and ζ, stability conditions, transfer functions) in \
-        MathML with their LaTeX beside.")]
+        MathML with their LaTeX beside."
+    )]
     Report(ReportArgs),
     /// Print a commented starter model file (redirect it into NAME.toml)
     New {
@@ -426,7 +428,8 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             let choice = ModelChoice::resolve(&r.model)?;
             let overrides = choice.parse_sets(&r.set)?;
             let spec = r.sweep.as_deref().map(SweepSpec::parse).transpose()?;
-            let path = report::write_report(&choice, &overrides, spec.as_ref(), &r.output, cli.quiet)?;
+            let path =
+                report::write_report(&choice, &overrides, spec.as_ref(), &r.output, cli.quiet)?;
             stderr.push_str(&format!("wrote {}\n", path.display()));
             String::new()
         }
@@ -678,7 +681,10 @@ fn sweep_compare(s: &SweepArgs, quiet: bool, stderr: &mut String) -> Result<Stri
         choice.param(&spec.name)?;
         let overrides = choice.parse_sets(&s.set)?;
         let bar = progress::Progress::new(quiet, spec.count as u64, &format!("sweep {name}"));
-        reports.push((sweep::sweep_with(&choice, &spec, &overrides, &|| bar.tick())?, choice));
+        reports.push((
+            sweep::sweep_with(&choice, &spec, &overrides, &|| bar.tick())?,
+            choice,
+        ));
         bar.finish();
     }
     let (a, b) = (&reports[0], &reports[1]);

@@ -57,32 +57,45 @@ pub fn step_impulse_plot(model: &str, ss: &StateSpace<f64>) -> Result<Plot, CliE
     )
 }
 
+/// The rows of the modes table of `eom analyze` as indices into `modes.modes`: one per real
+/// or zero mode and one per conjugate pair (its member with Im λ > 0). The table's `#` is
+/// the 1-based position in this list.
+pub fn table_rows(modes: &Modes) -> Vec<usize> {
+    modes
+        .modes
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| !(m.kind == ModeKind::Oscillatory && m.eigenvalue.im < 0.0))
+        .map(|(k, _)| k)
+        .collect()
+}
+
 /// The mode `eom analyze --plot-initial` starts by default: the least damped oscillatory one
 /// (largest real part), else the slowest real one; 1-based, as in the modes table.
 pub fn default_mode(modes: &Modes) -> Option<usize> {
+    let rows = table_rows(modes);
     let pick = |kind: ModeKind| {
-        modes
-            .modes
-            .iter()
+        rows.iter()
             .enumerate()
-            .filter(|(_, m)| m.kind == kind && m.eigenvalue.im >= 0.0)
+            .map(|(row, &k)| (row, &modes.modes[k]))
+            .filter(|(_, m)| m.kind == kind)
             .max_by(|a, b| a.1.eigenvalue.re.total_cmp(&b.1.eigenvalue.re))
-            .map(|(k, _)| k + 1)
+            .map(|(row, _)| row + 1)
     };
     pick(ModeKind::Oscillatory).or_else(|| pick(ModeKind::Real))
 }
 
 /// Mode `k` (1-based), or an error naming the valid range.
 pub fn mode_at<'m>(modes: &'m Modes, k: usize, option: &str) -> Result<&'m Mode, CliError> {
-    modes
-        .modes
-        .get(k.wrapping_sub(1))
+    let rows = table_rows(modes);
+    rows.get(k.wrapping_sub(1))
+        .map(|&i| &modes.modes[i])
         .ok_or_else(|| CliError::BadArgument {
             argument: format!("{option} {k}"),
             problem: format!(
-                "the model has {} modes: give a number from 1 to {} (the # column of the modes table)",
-                modes.modes.len(),
-                modes.modes.len()
+                "the modes table has {} rows: give a number from 1 to {} (its # column)",
+                rows.len(),
+                rows.len()
             ),
         })
 }
@@ -111,16 +124,16 @@ pub fn initial_plot(
     )
 }
 
-/// The modes drawn by default: every distinct (Im λ ≥ 0) mode that moves a body, 1-based.
+/// The modes drawn by default: every row of the modes table that moves a body, 1-based.
 pub fn drawable_modes(modes: &Modes) -> Vec<usize> {
-    modes
-        .modes
+    table_rows(modes)
         .iter()
         .enumerate()
-        .filter(|(_, m)| {
-            m.kind != ModeKind::Zero && m.eigenvalue.im >= 0.0 && m.reference_index.is_some()
+        .filter(|&(_, &i)| {
+            let m = &modes.modes[i];
+            m.kind != ModeKind::Zero && m.reference_index.is_some()
         })
-        .map(|(k, _)| k + 1)
+        .map(|(row, _)| row + 1)
         .collect()
 }
 

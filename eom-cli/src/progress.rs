@@ -29,10 +29,10 @@ impl Progress {
 
     /// One step done (boundary refinements may go past the length: the bar then stays full).
     pub fn tick(&self) {
-        if let Some(b) = &self.bar {
-            if b.position() + 1 < b.length().unwrap_or(u64::MAX) {
-                b.inc(1);
-            }
+        if let Some(b) = &self.bar
+            && b.position() + 1 < b.length().unwrap_or(u64::MAX)
+        {
+            b.inc(1);
         }
     }
 

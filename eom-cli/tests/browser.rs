@@ -98,8 +98,14 @@ fn check_page(browser: &str, dir: &Path, args: &[&str], name: &str) {
 
     let profile = dir.join("profile");
     let (dom, log) = headless(browser, &page, &profile, &["--dump-dom"]);
-    assert!(dom.contains("<h1>"), "the page did not render: {dom:.300}\n{log}");
-    assert!(!dom.contains("EOM-ERROR"), "script or console error: {dom:.400}");
+    assert!(
+        dom.contains("<h1>"),
+        "the page did not render: {dom:.300}\n{log}"
+    );
+    assert!(
+        !dom.contains("EOM-ERROR"),
+        "script or console error: {dom:.400}"
+    );
     for line in log.lines() {
         let console = line.contains("CONSOLE") || line.contains(":console(");
         assert!(
@@ -108,7 +114,10 @@ fn check_page(browser: &str, dir: &Path, args: &[&str], name: &str) {
         );
     }
     assert_eq!(attribute(&dom, "rendered"), Some("yes"), "{log}");
-    assert_eq!(attribute(&dom, "figures"), Some(figures.to_string().as_str()));
+    assert_eq!(
+        attribute(&dom, "figures"),
+        Some(figures.to_string().as_str())
+    );
     assert_eq!(attribute(&dom, "empty-svgs"), Some("0"));
 
     let shot = dir.join(format!("{name}.png"));

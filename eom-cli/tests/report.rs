@@ -30,7 +30,9 @@ fn report(args: &[&str], dir: &Path, name: &str) -> String {
 
 /// The numbers in the first column of the table after `heading`.
 fn first_column_after(html: &str, heading: &str) -> Vec<f64> {
-    let start = html.find(heading).unwrap_or_else(|| panic!("no `{heading}`"));
+    let start = html
+        .find(heading)
+        .unwrap_or_else(|| panic!("no `{heading}`"));
     let table = &html[start..];
     let end = table.find("</table>").unwrap();
     table[..end]
@@ -59,7 +61,10 @@ fn the_shimmy_report_has_every_part_and_the_published_boundaries() {
         "sweep",
         "closed",
     ] {
-        assert!(html.contains(&format!("<h2 id=\"{id}\">")), "no section {id}");
+        assert!(
+            html.contains(&format!("<h2 id=\"{id}\">")),
+            "no section {id}"
+        );
     }
     // Nothing is loaded from elsewhere.
     for remote in ["src=\"http", "href=\"http", "@import", "url("] {
@@ -70,7 +75,11 @@ fn the_shimmy_report_has_every_part_and_the_published_boundaries() {
     let figures: Vec<&str> = html.split("<figure>").skip(1).collect();
     assert!(figures.len() >= 8, "{} figures", figures.len());
     for f in &figures {
-        assert!(f.trim_start().starts_with("<svg"), "{}", &f[..80.min(f.len())]);
+        assert!(
+            f.trim_start().starts_with("<svg"),
+            "{}",
+            &f[..80.min(f.len())]
+        );
         assert!(f.contains("<line") || f.contains("<polyline") || f.contains("<path"));
     }
     // The mode shapes are animated.
@@ -78,7 +87,10 @@ fn the_shimmy_report_has_every_part_and_the_published_boundaries() {
     // Boundaries at a/l = 0.3 and 0.7 (the closed form's roots).
     let b = first_column_after(&html, "boundary x");
     assert_eq!(b.len(), 2, "{b:?}");
-    assert!((b[0] - 0.3).abs() < 1e-8 && (b[1] - 0.7).abs() < 1e-8, "{b:?}");
+    assert!(
+        (b[0] - 0.3).abs() < 1e-8 && (b[1] - 0.7).abs() < 1e-8,
+        "{b:?}"
+    );
     // Closed forms: MathML with the LaTeX beside it.
     assert!(html.matches("<math display=\"block\">").count() >= 3);
     assert!(html.contains("<pre>") && html.contains("\\frac"));
@@ -95,7 +107,10 @@ fn the_bicycle_report_shows_the_benchmark_speeds() {
     assert!((b[1] - 6.024_262_376_7).abs() < 1e-6, "{b:?}");
     // Three views per mode shape for a 3-D model.
     assert!(html.contains("side view") && html.contains("front view") && html.contains("top view"));
-    assert!(html.contains("class=\"centre\""), "no centre of rotation marked");
+    assert!(
+        html.contains("class=\"centre\""),
+        "no centre of rotation marked"
+    );
 }
 
 #[test]

@@ -74,7 +74,11 @@ pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex
     }
     // Largest entry real and positive (first of equals).
     let (l, _) = v.iter().enumerate().fold((0, -1.0), |(bi, bv), (i, z)| {
-        if z.norm() > bv + 1e-12 { (i, z.norm()) } else { (bi, bv) }
+        if z.norm() > bv + 1e-12 {
+            (i, z.norm())
+        } else {
+            (bi, bv)
+        }
     });
     let phase = Complex64::from_polar(1.0, -v[l].arg());
     Ok(v.map(|z| z * phase))
@@ -148,7 +152,10 @@ mod tests {
             assert!(res < 1e-10, "residual {res}");
             let x0 = v.map(|z| z.re);
             let opts = TimeOptions {
-                horizon: Horizon::Given { t_end: 3.0, dt: 0.01 },
+                horizon: Horizon::Given {
+                    t_end: 3.0,
+                    dt: 0.01,
+                },
                 ..TimeOptions::default()
             };
             let r = initial(&ss, &x0, &opts).unwrap();
@@ -157,7 +164,10 @@ mod tests {
                 for i in 0..4 {
                     let want = (v[i] * e).re;
                     let got = r.at(kk)[(i, 0)];
-                    assert!((got - want).abs() < 1e-9, "t = {t}, state {i}: {got} vs {want}");
+                    assert!(
+                        (got - want).abs() < 1e-9,
+                        "t = {t}, state {i}: {got} vs {want}"
+                    );
                 }
             }
         }

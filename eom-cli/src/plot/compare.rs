@@ -3,11 +3,11 @@
 //! model's colour (solid for the first, dashed for the second), each model's stable intervals
 //! shaded in a light tint of its colour and its boundaries as dashed vertical lines.
 
+use super::zoom::Zoom;
 use super::{
     Area, Chart, Mark, Plot, axis_range, bounds, color, draw_legend, draw_mesh, drawing, plottable,
     render, runs, union, with_title, with_unit,
 };
-use super::zoom::Zoom;
 use crate::error::CliError;
 use crate::format::g;
 use eom_num::sweep::SweepResult;
@@ -230,7 +230,14 @@ pub fn compare_plot(
         let (charts, legend) = with_title(root, &title)?;
         let h = charts.dim_in_pixel().1;
         let (top, rest) = charts.split_vertically(if half.is_some() { h / 3 } else { h / 2 });
-        panel(&top, &sides, (x, y_re), (&x_desc, "Re λ [1/s]"), false, None)?;
+        panel(
+            &top,
+            &sides,
+            (x, y_re),
+            (&x_desc, "Re λ [1/s]"),
+            false,
+            None,
+        )?;
         let bottom = match half {
             Some(half) => {
                 let (middle, bottom) = rest.split_vertically(h / 3);
@@ -240,7 +247,14 @@ pub fn compare_plot(
             }
             None => rest,
         };
-        panel(&bottom, &sides, (x, y_hz), (&x_desc, "|Im λ|/2π [Hz]"), true, None)?;
+        panel(
+            &bottom,
+            &sides,
+            (x, y_hz),
+            (&x_desc, "|Im λ|/2π [Hz]"),
+            true,
+            None,
+        )?;
         draw_legend(&legend, &rows)
     })?;
     Ok(Plot { svg, notes })

@@ -66,15 +66,17 @@ pub struct Sketch {
 fn item_points(item: &dyn Item<f64>) -> (Option<[f64; 3]>, [Option<[f64; 3]>; 2]) {
     let mut location: Option<[f64; 3]> = None;
     let mut ends: [Option<[f64; 3]>; 2] = [None, None];
-    item.fields(&mut |field: Field, x: &f64| match (field.name, field.index) {
-        ("location", [Index::Axis(k), _]) => {
-            location.get_or_insert([0.0; 3])[k as usize] = *x;
-        }
-        ("ends", [Index::Nth(i), Index::Axis(k)]) if i < 2 => {
-            ends[i as usize].get_or_insert([0.0; 3])[k as usize] = *x;
-        }
-        _ => {}
-    });
+    item.fields(
+        &mut |field: Field, x: &f64| match (field.name, field.index) {
+            ("location", [Index::Axis(k), _]) => {
+                location.get_or_insert([0.0; 3])[k as usize] = *x;
+            }
+            ("ends", [Index::Nth(i), Index::Axis(k)]) if i < 2 => {
+                ends[i as usize].get_or_insert([0.0; 3])[k as usize] = *x;
+            }
+            _ => {}
+        },
+    );
     (location, ends)
 }
 

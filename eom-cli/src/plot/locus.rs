@@ -5,8 +5,8 @@
 //! boundary as a ring on the imaginary axis with its value.
 
 use super::{
-    Mark, Plot, STABLE_FILL, axis_range, bounds, color, draw_legend, draw_mesh, draw_runs,
-    drawing, render, runs, union, with_title,
+    Mark, Plot, STABLE_FILL, axis_range, bounds, color, draw_legend, draw_mesh, draw_runs, drawing,
+    render, runs, union, with_title,
 };
 use crate::error::CliError;
 use crate::format::g;
@@ -57,7 +57,10 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
     if paths.is_empty() {
         notes.push("no eigenvalue branches to draw (no states, or all branches neutral)".into());
     }
-    let left_out: usize = paths.iter().map(|p| super::left_out(p.iter().copied())).sum();
+    let left_out: usize = paths
+        .iter()
+        .map(|p| super::left_out(p.iter().copied()))
+        .sum();
     if left_out > 0 {
         notes.push(format!(
             "{left_out} eigenvalue value(s) are NaN or infinite and are not drawn"
@@ -75,8 +78,14 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
     };
     let mut rows = vec![
         (Mark::Text, format!("{} branches over {p}", paths.len())),
-        (Mark::Square(BLACK), format!("start: {p} = {}", g(first(r), 6))),
-        (Mark::Triangle(BLACK), format!("end: {p} = {}", g(last(r), 6))),
+        (
+            Mark::Square(BLACK),
+            format!("start: {p} = {}", g(first(r), 6)),
+        ),
+        (
+            Mark::Triangle(BLACK),
+            format!("end: {p} = {}", g(last(r), 6)),
+        ),
         (Mark::Text, format!("dots: {p} at {LABELS} values")),
         (Mark::Swatch(STABLE_FILL), "stable half-plane".into()),
     ];
@@ -109,7 +118,10 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
         draw_mesh(&mut chart, "Re λ [1/s]", "Im λ [rad/s]")?;
         for line in [[(0.0, y.0), (0.0, y.1)], [(x.0, 0.0), (x.1, 0.0)]] {
             chart
-                .draw_series(std::iter::once(PathElement::new(line, BLACK.stroke_width(1))))
+                .draw_series(std::iter::once(PathElement::new(
+                    line,
+                    BLACK.stroke_width(1),
+                )))
                 .map_err(drawing)?;
         }
         let style = ("sans-serif", 13)

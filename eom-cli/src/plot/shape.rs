@@ -129,7 +129,15 @@ pub fn shape_svg(d: &ShapeDrawing<'_>) -> String {
             k as f64 * pw,
             40.0
         );
-        view_svg(&mut out, s, &nodes, &disp, *v, (pw, ph), d.motions.as_deref());
+        view_svg(
+            &mut out,
+            s,
+            &nodes,
+            &disp,
+            *v,
+            (pw, ph),
+            d.motions.as_deref(),
+        );
         out.push_str("</g>");
     }
     out.push_str("</svg>\n");
@@ -152,6 +160,7 @@ struct Frame {
     view: View,
     scale: f64,
     offset: (f64, f64),
+    panel: (f64, f64),
 }
 
 impl Frame {
@@ -173,6 +182,7 @@ impl Frame {
             view,
             scale,
             offset,
+            panel: (pw, ph),
         }
     }
 
@@ -343,11 +353,7 @@ fn body_dots(
         }
         let is_body = i >= first_centre;
         let (x, y) = f.map(n.at);
-        let (r, fill) = if is_body {
-            (5, "#222")
-        } else {
-            (3, "white")
-        };
+        let (r, fill) = if is_body { (5, "#222") } else { (3, "white") };
         let anim = if animated {
             animate("cx", &frames(|phi| f.map(moved(n, d, phi)).0))
                 + &animate("cy", &frames(|phi| f.map(moved(n, d, phi)).1))
@@ -403,6 +409,10 @@ fn centres_of_rotation(
         p[h] += rh.re;
         p[v] += rv.re;
         let (x, y) = f.map(p);
+        // Outside the panel (a centre far off the drawing, in this view's scale): not drawn.
+        if !(6.0..=f.panel.0 - 6.0).contains(&x) || !(30.0..=f.panel.1 - 6.0).contains(&y) {
+            continue;
+        }
         let _ = write!(
             out,
             r##"<g class="centre" stroke="#c00" stroke-width="1.5" fill="none"><circle cx="{x:.1}" cy="{y:.1}" r="6"/><path d="M{:.1},{y:.1} h12 M{x:.1},{:.1} v12"/></g>"##,

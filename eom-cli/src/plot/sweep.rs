@@ -5,11 +5,11 @@
 //! The damped frequency is drawn as |Im λ|/2π in Hz rather than Im λ: a conjugate pair then
 //! shares one curve, which halves the clutter, and Hz is the unit of the text tables.
 
+use super::zoom::Zoom;
 use super::{
     Area, Chart, Mark, Plot, STABLE_FILL, Series, axis_range, bounds, color, draw_legend,
     draw_mesh, draw_runs, drawing, plottable, render, runs, union, with_title, with_unit,
 };
-use super::zoom::Zoom;
 use crate::error::CliError;
 use crate::format::g;
 use eom_num::sweep::{Crossing, SweepResult};
@@ -250,11 +250,8 @@ pub fn sweep_plot(
         let bottom = match half {
             Some(half) => {
                 let (middle, bottom) = rest.split_vertically(h / 3);
-                panel((-half, half), ZOOM_DESC, true, Some(half)).draw(
-                    &middle,
-                    &curves,
-                    |b| &b.re,
-                )?;
+                panel((-half, half), ZOOM_DESC, true, Some(half))
+                    .draw(&middle, &curves, |b| &b.re)?;
                 bottom
             }
             None => rest,

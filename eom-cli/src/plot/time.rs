@@ -127,9 +127,7 @@ fn draw_cell(
     if heading {
         b.caption(&c.title, ("sans-serif", 17));
     }
-    let mut chart = b
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
-        .map_err(drawing)?;
+    let mut chart = b.build_cartesian_2d(x.0..x.1, y.0..y.1).map_err(drawing)?;
     draw_mesh(&mut chart, "t [s]", y_desc)?;
     for (j, s) in series.iter().enumerate() {
         draw_runs(&mut chart, &runs(s.iter().copied()), color(j))?;

@@ -111,10 +111,7 @@ fn name(n: &str) -> String {
             ("tau", "τ"),
             ("omega", "ω"),
         ];
-        let t = GREEK
-            .iter()
-            .find(|(k, _)| *k == s)
-            .map_or(s, |(_, g)| *g);
+        let t = GREEK.iter().find(|(k, _)| *k == s).map_or(s, |(_, g)| *g);
         crate::plot::shape::escape(t)
     };
     match n.split_once('_') {
@@ -175,9 +172,7 @@ fn parenthesized_always(e: Expr) -> String {
 /// A base of a power or a factor: parenthesized when it is a sum or a product.
 fn operand(e: Expr, out: &mut String) {
     match e.view() {
-        ExprView::Sum { .. } | ExprView::Product { .. } => {
-            out.push_str(&parenthesized_always(e))
-        }
+        ExprView::Sum { .. } | ExprView::Product { .. } => out.push_str(&parenthesized_always(e)),
         ExprView::Rational(r) if r.is_negative() || !r.is_integer() => {
             out.push_str(&parenthesized_always(e))
         }
@@ -311,7 +306,10 @@ mod tests {
             let ml = strip(&mathml(-k / m));
             assert_eq!(ml, "<mo>−</mo><mfrac><mi>k</mi><mi>m</mi></mfrac>");
             let root = strip(&mathml((k / m).sqrt()));
-            assert!(root.contains("<msqrt>") || root.contains("<msup>"), "{root}");
+            assert!(
+                root.contains("<msqrt>") || root.contains("<msup>"),
+                "{root}"
+            );
             let s = strip(&mathml(k - m));
             assert!(s.contains("<mo>−</mo>") && s.contains("<mi>k</mi>"), "{s}");
             let i = p("I_xx");

@@ -92,17 +92,22 @@ pub fn model(p: &mut Page, cx: &Context<'_>) {
 }
 
 fn or_none(s: &str) -> String {
-    if s.is_empty() { "none".into() } else { s.into() }
+    if s.is_empty() {
+        "none".into()
+    } else {
+        s.into()
+    }
 }
 
 fn mode_rows(modes: &[ModeReport]) -> Vec<Vec<String>> {
     modes
         .iter()
+        .filter(|m| !(m.kind == "oscillatory" && m.eigenvalue.im < 0.0))
         .enumerate()
         .map(|(k, m)| {
             vec![
                 (k + 1).to_string(),
-                eigenvalue(z(&m.eigenvalue), SIG, false),
+                eigenvalue(z(&m.eigenvalue), SIG, m.kind == "oscillatory"),
                 g(m.natural_frequency_hz, SIG),
                 opt(m.damping_ratio, "–"),
                 opt(m.time_constant, "∞"),
@@ -152,7 +157,7 @@ pub fn modes(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
     );
     for k in drawable {
         let svg = pictures::mode_shape_svg(&cx.choice.name, cx.model, ss, &modes, k)?;
-        let m = &modes.modes[k - 1];
+        let m = pictures::mode_at(&modes, k, "mode")?;
         p.figure(&svg, &pictures::mode_heading(k, m));
     }
     Ok(())
@@ -253,7 +258,7 @@ pub fn responses(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
             &plot.svg,
             &format!(
                 "Free response started in mode {k} alone (x₀ = Re v, v its eigenvector): {}",
-                pictures::mode_heading(k, &modes.modes[k - 1])
+                pictures::mode_heading(k, pictures::mode_at(&modes, k, "mode")?)
             ),
         );
     }
