@@ -102,9 +102,14 @@ fn check_page(browser: &str, dir: &Path, args: &[&str], name: &str) {
         dom.contains("<h1>"),
         "the page did not render: {dom:.300}\n{log}"
     );
+    let title = dom
+        .split("<title>")
+        .nth(1)
+        .and_then(|t| t.split("</title>").next())
+        .expect("a title");
     assert!(
-        !dom.contains("EOM-ERROR"),
-        "script or console error: {dom:.400}"
+        !title.contains("EOM-ERROR"),
+        "script or console error: {title}"
     );
     for line in log.lines() {
         let console = line.contains("CONSOLE") || line.contains(":console(");
