@@ -67,6 +67,7 @@
 //! | [`freq`] | frequency response of every input/output pair, magnitude and unwrapped phase |
 //! | [`gain`] | steady-state gains, with integrating outputs identified |
 //! | [`time`] | impulse, step and sampled-input responses by exact ZOH discretisation |
+//! | [`initial`] | the free response from an initial state, and the state that starts one mode alone |
 //! | [`minreal`] | minimal realization (orthogonal staircase), with the removed modes reported |
 //! | [`zeros`] | transmission zeros |
 //! | [`sweep`] | parameter sweeps: eigenvalue branches, stability boundaries, stable intervals |
@@ -123,6 +124,7 @@ pub mod descriptor;
 pub mod error;
 pub mod freq;
 pub mod gain;
+pub mod initial;
 pub mod linalg;
 pub mod minreal;
 pub mod modes;
