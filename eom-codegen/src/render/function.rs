@@ -362,45 +362,21 @@ pub(crate) fn render_fn(
         .collect();
     let (finite, fast_note) =
         finiteness_test(ctx, plan, &values, &checks, &ready, ch.chunked(), &mut body)?;
-    // One branch for the validity checks and the finiteness, to the slow path that finds the
-    // first failure in the interpreter's order.
-    let mut conds: Vec<TokenStream> = (0..checks.distinct)
-        .map(|k| {
-            let i = format_ident!("ok{}", k);
-            quote!(#i)
-        })
-        .collect();
-    conds.extend(finite);
-    let conds_empty = conds.is_empty();
-    if !conds_empty {
-        let all = join(&conds, quote!(&));
-        let all = if conds.len() > 1 { quote!((#all)) } else { all };
-        let vals: Vec<TokenStream> = values
-            .iter()
-            .map(|v| ctx.operand(*v))
-            .collect::<Result<_, _>>()?;
-        let tname = format_ident!("{}_ENTRIES", plan.name.to_uppercase());
-        let n = Literal::usize_unsuffixed(table.len());
-        let doc = format!(
-            " Computed entries of [`{}`]: matrix, row, column, index of the value.",
-            plan.name
-        );
-        items.extend(quote! {
-            #[doc = #doc]
-            const #tname: [(Matrix, u16, u16, usize); #n] = [#(#table),*];
-        });
-        let (oks, mags) = (&checks.ok, &checks.mag);
-        slow.extend(quote! {
-            if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[#(#vals),*], &#tname) {
-                return Err(e);
-            }
-        });
-        body.extend(quote! {
-            if !#all {
-                return #slow_name(p, #(#mat_args,)* work);
-            }
-        });
-    }
+    let conds_empty = slow_branch(
+        ctx,
+        plan,
+        SlowBranch {
+            checks: &checks,
+            finite,
+            values: &values,
+            table: &table,
+            slow_name: &slow_name,
+            mat_args: &mat_args,
+        },
+        &mut items,
+        &mut slow,
+        &mut body,
+    )?;
 
     // Stores.
     let mut stores = 0;
@@ -469,6 +445,75 @@ pub(crate) fn render_fn(
             critical_path,
         },
     })
+}
+
+/// What the branch to the slow path needs (see [`slow_branch`]).
+struct SlowBranch<'a> {
+    checks: &'a Checks,
+    finite: Option<TokenStream>,
+    values: &'a [Operand],
+    table: &'a [TokenStream],
+    slow_name: &'a Ident,
+    mat_args: &'a [Ident],
+}
+
+/// One branch for the validity checks and the finiteness, to the slow path that finds the
+/// first failure in the interpreter's order; `true` when there is nothing to check.
+fn slow_branch(
+    ctx: &Ctx,
+    plan: &FnPlan,
+    b: SlowBranch<'_>,
+    items: &mut TokenStream,
+    slow: &mut TokenStream,
+    body: &mut TokenStream,
+) -> Result<bool, CodegenError> {
+    let SlowBranch {
+        checks,
+        finite,
+        values,
+        table,
+        slow_name,
+        mat_args,
+    } = b;
+    let mut conds: Vec<TokenStream> = (0..checks.distinct)
+        .map(|k| {
+            let i = format_ident!("ok{}", k);
+            quote!(#i)
+        })
+        .collect();
+    conds.extend(finite);
+    let conds_empty = conds.is_empty();
+    if !conds_empty {
+        let all = join(&conds, quote!(&));
+        let all = if conds.len() > 1 { quote!((#all)) } else { all };
+        let vals: Vec<TokenStream> = values
+            .iter()
+            .map(|v| ctx.operand(*v))
+            .collect::<Result<_, _>>()?;
+        let tname = format_ident!("{}_ENTRIES", plan.name.to_uppercase());
+        let n = Literal::usize_unsuffixed(table.len());
+        let doc = format!(
+            " Computed entries of [`{}`]: matrix, row, column, index of the value.",
+            plan.name
+        );
+        items.extend(quote! {
+            #[doc = #doc]
+            const #tname: [(Matrix, u16, u16, usize); #n] = [#(#table),*];
+        });
+        let (oks, mags) = (&checks.ok, &checks.mag);
+        slow.extend(quote! {
+            if let Some(e) = failure(&[#(#oks),*], &[#(#mags),*], &[#(#vals),*], &#tname) {
+                return Err(e);
+            }
+        });
+        body.extend(quote! {
+            if !#all {
+                return #slow_name(p, #(#mat_args,)* work);
+            }
+        });
+    }
+
+    Ok(conds_empty)
 }
 
 pub(super) fn fn_doc(
