@@ -286,52 +286,12 @@ impl PoolData {
     /// The canonical product `coef·Π factors`. `factors` is consumed (left in an unspecified
     /// state).
     fn finish_mul(&mut self, mut coef: Number, factors: &mut Vec<(Id, Rational)>) -> Id {
-        // Sum bases with integer exponents are made primitive (first coefficient one), the
-        // content going into the coefficient: `(2a + 2b)·x` and `2·((a + b)·x)` must be the
-        // same node although `2·(a + b)` alone is distributed. A lone sum to the first power
-        // is left alone: it is distributed below anyway.
-        if !(factors.len() == 1 && factors[0].1.is_one()) {
-            for f in factors.iter_mut() {
-                let Some(k) = f.1.to_i64().filter(|_| f.1.is_integer()) else {
-                    continue;
-                };
-                let Some((q, s)) = self.primitive_sum(f.0) else {
-                    continue;
-                };
-                match q.powi(k) {
-                    Some(Ok(qk)) => match coef.mul(&Number::Rat(qk)) {
-                        Ok(c) => coef = c,
-                        // The content would underflow the coefficient: keep the sum as it is.
-                        Err(SymError::Underflow { .. }) => continue,
-                        Err(err) => return self.invalid(err),
-                    },
-                    _ => return self.invalid(SymError::RationalOverflow),
-                }
-                f.0 = s;
-            }
+        if let Err(invalid) = self.primitive_sum_factors(&mut coef, factors) {
+            return invalid;
         }
-        // Sort by base, positive exponents before negative ones.
-        factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
-        // Merge equal bases in place.
-        let mut w = 0;
-        for i in 0..factors.len() {
-            if w > 0 {
-                let (b, lb) = (factors[i].0, factors[w - 1].0);
-                let same_sign = factors[w - 1].1.signum() == factors[i].1.signum();
-                if lb == b && (same_sign || self.sign(b).is_nonzero()) {
-                    match factors[w - 1].1.add(&factors[i].1) {
-                        Ok(s) => factors[w - 1].1 = s,
-                        Err(_) => return self.invalid(SymError::RationalOverflow),
-                    }
-                    continue;
-                }
-                // Same base, opposite sign, base may vanish: keep a second entry so that
-                // no division is cancelled (see the table in the module docs).
-            }
-            factors.swap(w, i);
-            w += 1;
+        if let Err(invalid) = self.merge_equal_bases(factors) {
+            return invalid;
         }
-        factors.truncate(w);
         // Fold numeric bases with integer exponents into the coefficient; drop x^0. The kept
         // factors are compacted in place; expansions (rare) go to `extra`.
         let mut kept = 0;
@@ -435,6 +395,68 @@ impl PoolData {
         let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
+    }
+
+    /// Sum bases with integer exponents made primitive (first coefficient one), the content
+    /// going into `coef`; `Err` holds the invalid node of a failure.
+    fn primitive_sum_factors(
+        &mut self,
+        coef: &mut Number,
+        factors: &mut [(Id, Rational)],
+    ) -> Result<(), Id> {
+        // Sum bases with integer exponents are made primitive (first coefficient one), the
+        // content going into the coefficient: `(2a + 2b)·x` and `2·((a + b)·x)` must be the
+        // same node although `2·(a + b)` alone is distributed. A lone sum to the first power
+        // is left alone: it is distributed below anyway.
+        if !(factors.len() == 1 && factors[0].1.is_one()) {
+            for f in factors.iter_mut() {
+                let Some(k) = f.1.to_i64().filter(|_| f.1.is_integer()) else {
+                    continue;
+                };
+                let Some((q, s)) = self.primitive_sum(f.0) else {
+                    continue;
+                };
+                match q.powi(k) {
+                    Some(Ok(qk)) => match coef.mul(&Number::Rat(qk)) {
+                        Ok(c) => *coef = c,
+                        // The content would underflow the coefficient: keep the sum as it is.
+                        Err(SymError::Underflow { .. }) => continue,
+                        Err(err) => return Err(self.invalid(err)),
+                    },
+                    _ => return Err(self.invalid(SymError::RationalOverflow)),
+                }
+                f.0 = s;
+            }
+        }
+        Ok(())
+    }
+
+    /// Factors sorted by base and equal bases merged (where no division is cancelled);
+    /// `Err` holds the invalid node of a failure.
+    fn merge_equal_bases(&mut self, factors: &mut Vec<(Id, Rational)>) -> Result<(), Id> {
+        // Sort by base, positive exponents before negative ones.
+        factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
+        // Merge equal bases in place.
+        let mut w = 0;
+        for i in 0..factors.len() {
+            if w > 0 {
+                let (b, lb) = (factors[i].0, factors[w - 1].0);
+                let same_sign = factors[w - 1].1.signum() == factors[i].1.signum();
+                if lb == b && (same_sign || self.sign(b).is_nonzero()) {
+                    match factors[w - 1].1.add(&factors[i].1) {
+                        Ok(s) => factors[w - 1].1 = s,
+                        Err(_) => return Err(self.invalid(SymError::RationalOverflow)),
+                    }
+                    continue;
+                }
+                // Same base, opposite sign, base may vanish: keep a second entry so that
+                // no division is cancelled (see the table in the module docs).
+            }
+            factors.swap(w, i);
+            w += 1;
+        }
+        factors.truncate(w);
+        Ok(())
     }
 
     /// A numeric base to an integer power.
