@@ -18,13 +18,14 @@
 //! small eigenvalues nearby (a bicycle's capsize root at 6 m/s lost three digits). Deflating
 //! it first keeps every other eigenvalue to the accuracy of `A_KK`.
 //!
-//! A structural zero of the reduction is an exact `0.0`. Two columns that depend on a
+//! A structural zero of the reduction is an exact `0.0`, or a residue of rounding below
+//! [`CHOP_ULPS`]`·n·ε` times its row's largest entry, which is set to zero first. Two columns that depend on a
 //! difference of coordinates are negatives of each other up to the rounding of their separate
 //! computations: they count when every entry agrees to within [`PAIR_ULPS`] units in the last
 //! place, with the same zeros (pairs that agree so closely in every entry by accident do not
-//! occur), and are then made exact. A matrix with rounding noise in its zero columns (the
-//! robust path's orthonormal bases) is left as it is: its structural zeros are deflated
-//! orthogonally when their number is known ([`deflate_null_directions`]).
+//! occur), and are then made exact. A matrix with rounding noise above that level in its zero
+//! columns (the robust path's orthonormal bases) is left as it is: its structural zeros are
+//! deflated orthogonally when their number is known ([`deflate_null_directions`]).
 
 /// Relative agreement, in units of `f64::EPSILON`, for two columns to count as equal up to sign.
 pub const PAIR_ULPS: f64 = 4096.0;
@@ -55,6 +56,7 @@ pub(crate) fn deflate_in_place(
     removed.iter_mut().for_each(|r| *r = false);
     order.clear();
     combos.clear();
+    chop(a, n);
     loop {
         let before = order.len();
         remove_zero_columns(a, n, removed, order);
@@ -67,6 +69,28 @@ pub(crate) fn deflate_in_place(
         }
         if order.len() == before {
             return;
+        }
+    }
+}
+
+/// Relative size, in units of `n·f64::EPSILON` times the largest entry of its row, below which
+/// an entry counts as a rounding residue of zero (see [`chop`]).
+pub const CHOP_ULPS: f64 = 8.0;
+
+/// Entries below [`CHOP_ULPS`]`·n·ε` times the largest of their row set to exactly zero.
+///
+/// A reduction by floating-point elimination leaves residues of that size where the exact
+/// matrix has zeros (the column of a vehicle's lateral position at parameter values whose
+/// products do not cancel exactly); left in, they hide the structure. Setting them to zero is
+/// a perturbation of the size the eigensolver's own backward error has anyway.
+fn chop(a: &mut [f64], n: usize) {
+    for i in 0..n {
+        let scale = (0..n).fold(0.0f64, |m, j| m.max(a[j * n + i].abs()));
+        let tol = CHOP_ULPS * n as f64 * f64::EPSILON * scale;
+        for j in 0..n {
+            if a[j * n + i].abs() <= tol {
+                a[j * n + i] = 0.0;
+            }
         }
     }
 }
