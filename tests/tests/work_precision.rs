@@ -1,6 +1,7 @@
 //! Smoke test of the work-precision benchmark (`tests::work_precision`): on the
 //! spring-mass-damper and the shimmy, the double-double reference agrees with the closed-form
-//! eigenvalues, and every method's eigenvalues agree with the reference.
+//! eigenvalues, and every method's eigenvalues agree with the reference; the bicycle against
+//! its published benchmark eigenvalues.
 
 use eom_model::Linearizer;
 use num_complex::Complex64;
@@ -117,4 +118,28 @@ fn shimmy_closed(names: &[String], p: &[f64]) -> Vec<Complex64> {
 fn shimmy_reference_and_methods() {
     reference_matches("shimmy", shimmy_closed);
     methods_agree("shimmy");
+}
+
+/// The bicycle's lean/steer eigenvalues against the benchmark's (Meijaard et al. 2007, Table 2
+/// speeds, 17-digit values): the double-double reference to 1e-14, every `f64` method to 1e-12.
+#[test]
+fn bicycle_against_the_benchmark() {
+    let rows = run_model("bicycle", &quick()).expect("benchmark");
+    for r in &rows {
+        let e = r
+            .published_err
+            .expect("a published error for every bicycle row");
+        let tol = if r.method.starts_with("reference") {
+            1e-14
+        } else if r.method.contains("f32") {
+            1e-3
+        } else {
+            1e-12
+        };
+        assert!(
+            e < tol,
+            "bicycle {}: {e:e} from the published eigenvalues",
+            r.method
+        );
+    }
 }
