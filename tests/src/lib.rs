@@ -2,6 +2,8 @@
 
 use num_complex::Complex64;
 
+pub mod work_precision;
+
 /// Read a CSV of numbers with a header line: rows of `f64`.
 pub fn read_csv(text: &str) -> Vec<Vec<f64>> {
     text.lines()

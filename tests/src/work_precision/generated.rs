@@ -1,0 +1,102 @@
+//! The generated modules (eom-codegen, compiled by `build.rs` for every built-in model) behind
+//! one interface: the state matrix A at a point, and the median time of `eval_ab` per call.
+
+use super::timing::median_batch_ns;
+use nalgebra::DMatrix;
+use std::time::Duration;
+
+#[allow(missing_docs, clippy::all)]
+mod code {
+    include!(concat!(env!("OUT_DIR"), "/generated.rs"));
+}
+
+/// One generated module of one model.
+#[derive(Clone, Copy)]
+pub struct GenKernel {
+    /// The method's label ("generated f64", …).
+    pub label: &'static str,
+    /// A (column-major, converted to `f64`) at a point, `None` outside the validity region.
+    pub a: fn(&[f64]) -> Option<DMatrix<f64>>,
+    /// Median time per `eval_ab` call in ns over the given points, repeated for at least the
+    /// given duration (parameters converted to the module's type before the clock starts).
+    pub time: fn(&[Vec<f64>], Duration) -> f64,
+}
+
+macro_rules! kernel {
+    ($label:expr, $m:path, $ty:ty) => {{
+        use $m as g;
+        fn typed(p: &[f64]) -> [$ty; g::N_PARAMS] {
+            core::array::from_fn(|k| p[k] as $ty)
+        }
+        fn a(p: &[f64]) -> Option<DMatrix<f64>> {
+            let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
+            g::eval_ab(&typed(p), &mut a, &mut b, &mut w).ok()?;
+            let n = (g::A_LEN as f64).sqrt().round() as usize;
+            Some(DMatrix::from_iterator(n, n, a.iter().map(|&x| x as f64)))
+        }
+        fn time(points: &[Vec<f64>], min: Duration) -> f64 {
+            type Kernel = fn(
+                &[$ty; g::N_PARAMS],
+                &mut [$ty; g::A_LEN],
+                &mut [$ty; g::B_LEN],
+                &mut [$ty; g::WORK_LEN],
+            ) -> Result<(), g::Error>;
+            let pts: Vec<[$ty; g::N_PARAMS]> = points.iter().map(|p| typed(p)).collect();
+            let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
+            // Through a function pointer hidden from the optimiser, as a separately compiled
+            // object would be called.
+            let f: Kernel = std::hint::black_box(g::eval_ab);
+            median_batch_ns(pts.len(), min, || {
+                for p in std::hint::black_box(&pts) {
+                    let _ = std::hint::black_box(f(p, &mut a, &mut b, &mut w));
+                }
+                std::hint::black_box((&a, &b));
+            })
+        }
+        GenKernel {
+            label: $label,
+            a,
+            time,
+        }
+    }};
+}
+
+/// The generated modules of a model: `f64`, `f32`, and the egg-simplified `f64` variant where
+/// `build.rs` makes one. Empty for a model `build.rs` does not generate.
+pub fn kernels(model: &str) -> Vec<GenKernel> {
+    use code::{gen32, gen64};
+    const F64: &str = "generated f64";
+    const F32: &str = "generated f32";
+    const EGG: &str = "generated f64 egg";
+    match model {
+        "smd" => vec![kernel!(F64, gen64::smd, f64), kernel!(F32, gen32::smd, f32)],
+        "shimmy" => vec![
+            kernel!(F64, gen64::shimmy, f64),
+            kernel!(F32, gen32::shimmy, f32),
+            kernel!(EGG, gen64::shimmy_simplified, f64),
+        ],
+        "bicycle" => vec![
+            kernel!(F64, gen64::bicycle, f64),
+            kernel!(F32, gen32::bicycle, f32),
+            kernel!(EGG, gen64::bicycle_simplified, f64),
+        ],
+        "quarter_car" => vec![
+            kernel!(F64, gen64::quarter_car, f64),
+            kernel!(F32, gen32::quarter_car, f32),
+        ],
+        "top" => vec![kernel!(F64, gen64::top, f64), kernel!(F32, gen32::top, f32)],
+        "chain50" => vec![
+            kernel!(F64, gen64::chain50, f64),
+            kernel!(F32, gen32::chain50, f32),
+        ],
+        "smd_wing" => vec![
+            kernel!(F64, gen64::smd_wing, f64),
+            kernel!(F32, gen32::smd_wing, f32),
+        ],
+        "shimmy_wing" => vec![
+            kernel!(F64, gen64::shimmy_wing, f64),
+            kernel!(F32, gen32::shimmy_wing, f32),
+        ],
+        _ => Vec::new(),
+    }
+}
