@@ -3,105 +3,20 @@
 //! good to about 1e-13, docs/references.md §A), with the heading and lateral position reported
 //! as exact structural zeros.
 
-// Published digits, quoted as printed.
-#![allow(clippy::excessive_precision, clippy::unreadable_literal)]
-
 mod common;
 use common::{complex, eom_json};
 
-/// (v, [weave re, weave im, capsize, castor]) for v = 1…10; v = 0 has four real roots.
-const TABLE: [(f64, [f64; 4]); 10] = [
-    (
-        1.0,
-        [
-            3.52696170990070,
-            0.80774027519930,
-            -3.13423125066578,
-            -7.11008014637442,
-        ],
-    ),
-    (
-        2.0,
-        [
-            2.68234517512745,
-            1.68066296590675,
-            -3.07158645641514,
-            -8.67387984831735,
-        ],
-    ),
-    (
-        3.0,
-        [
-            1.70675605663975,
-            2.31582447384325,
-            -2.63366137253667,
-            -10.35101467245920,
-        ],
-    ),
-    (
-        4.0,
-        [
-            0.41325331521125,
-            3.07910818603206,
-            -1.42944427361326,
-            -12.15861426576447,
-        ],
-    ),
-    (
-        5.0,
-        [
-            -0.77534188219585,
-            4.46486771378823,
-            -0.32286642900409,
-            -14.07838969279822,
-        ],
-    ),
-    (
-        6.0,
-        [
-            -1.52644486584142,
-            5.87673060598709,
-            -0.00406690076970,
-            -16.08537123098030,
-        ],
-    ),
-    (
-        7.0,
-        [
-            -2.13875644258362,
-            7.19525913329805,
-            0.10268170574766,
-            -18.15788466125262,
-        ],
-    ),
-    (
-        8.0,
-        [
-            -2.69348683581097,
-            8.46037971396931,
-            0.14327879765713,
-            -20.27940894394569,
-        ],
-    ),
-    (
-        9.0,
-        [
-            -3.21675402252485,
-            9.69377351531791,
-            0.15790184030917,
-            -22.43788559040858,
-        ],
-    ),
-    (
-        10.0,
-        [
-            -3.72016840437287,
-            10.90681139476287,
-            0.16105338653172,
-            -24.62459635017404,
-        ],
-    ),
-];
+/// (v, [weave re, weave im, capsize, castor]) for v = 1…10 (Table 2(b), as printed).
+fn table() -> Vec<(f64, [f64; 4])> {
+    include_str!("../../tests/data/bicycle_table2.csv")
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().expect("a number")).collect();
+            (v[0], [v[1], v[2], v[3], v[4]])
+        })
+        .collect()
+}
 
 fn printed(v: f64, method: &str) -> (Vec<(f64, f64)>, usize) {
     let j = eom_json(&[
@@ -130,7 +45,7 @@ fn printed(v: f64, method: &str) -> (Vec<(f64, f64)>, usize) {
 #[test]
 fn printed_eigenvalues_equal_the_published_table_on_every_path() {
     for method in ["numeric", "symbolic", "robust"] {
-        for &(v, [wr, wi, capsize, castor]) in &TABLE {
+        for (v, [wr, wi, capsize, castor]) in table() {
             let (e, zeros) = printed(v, method);
             assert_eq!(zeros, 2, "{method} v = {v}: heading and lateral position");
             let exact_zeros = e.iter().filter(|z| **z == (0.0, 0.0)).count();

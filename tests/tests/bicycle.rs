@@ -16,80 +16,19 @@ use eom_sym::scalar::Scalar;
 use num_complex::Complex64;
 use tests::{max_abs_error, read_csv};
 
-/// Published Table 2(b): v, Re weave, Im weave, capsize, castor (v = 0: all four roots real,
-/// given as ±3.13164324790656, ±5.53094371765393).
-const PUBLISHED: [[f64; 5]; 10] = [
-    [
-        1.0,
-        3.52696170990070,
-        0.80774027519930,
-        -3.13423125066578,
-        -7.11008014637442,
-    ],
-    [
-        2.0,
-        2.68234517512745,
-        1.68066296590675,
-        -3.07158645641514,
-        -8.67387984831735,
-    ],
-    [
-        3.0,
-        1.70675605663975,
-        2.31582447384325,
-        -2.63366137253667,
-        -10.35101467245920,
-    ],
-    [
-        4.0,
-        0.41325331521125,
-        3.07910818603206,
-        -1.42944427361326,
-        -12.15861426576447,
-    ],
-    [
-        5.0,
-        -0.77534188219585,
-        4.46486771378823,
-        -0.32286642900409,
-        -14.07838969279822,
-    ],
-    [
-        6.0,
-        -1.52644486584142,
-        5.87673060598709,
-        -0.00406690076970,
-        -16.08537123098030,
-    ],
-    [
-        7.0,
-        -2.13875644258362,
-        7.19525913329805,
-        0.10268170574766,
-        -18.15788466125262,
-    ],
-    [
-        8.0,
-        -2.69348683581097,
-        8.46037971396931,
-        0.14327879765713,
-        -20.27940894394569,
-    ],
-    [
-        9.0,
-        -3.21675402252485,
-        9.69377351531791,
-        0.15790184030917,
-        -22.43788559040858,
-    ],
-    [
-        10.0,
-        -3.72016840437287,
-        10.90681139476287,
-        0.16105338653172,
-        -24.62459635017404,
-    ],
-];
+/// Published Table 2(b) (v = 0: all four roots real, given as ±3.13164324790656,
+/// ±5.53094371765393) (`tests/data/bicycle_table2.csv`): v, Re weave, Im weave, capsize,
+/// castor for v = 1…10 m/s.
+fn published() -> Vec<[f64; 5]> {
+    include_str!("../data/bicycle_table2.csv")
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().expect("a number")).collect();
+            [v[0], v[1], v[2], v[3], v[4]]
+        })
+        .collect()
+}
 
 /// The same quantities computed exactly (mpmath, 60 digits) and printed to 17 digits
 /// (docs/references.md §A, computed for this project in 60-digit arithmetic).
@@ -214,7 +153,7 @@ fn published_table_by_three_paths() {
     let sym = Linearizer::new(&model).symbolic().unwrap();
     let mut worst = [0.0f64; 3];
     let cases: Vec<(f64, Vec<Complex64>)> = std::iter::once((0.0, at_rest()))
-        .chain(PUBLISHED.iter().map(|r| (r[0], expected(r))))
+        .chain(published().iter().map(|r| (r[0], expected(r))))
         .collect();
     for (v, exp) in &cases {
         let values = model.scope.values_with(&[("v", *v)]).unwrap();
@@ -310,7 +249,7 @@ fn double_double_reproduces_exact_and_published_digits() {
     let model = models::build("bicycle", &[]).unwrap();
     let names = model.scope.names();
     let mut worst_exact = 0.0f64;
-    for (row, publ) in EXACT.iter().zip(PUBLISHED.iter()) {
+    for (row, publ) in EXACT.iter().zip(published().iter()) {
         let values: Vec<Dd> = names
             .iter()
             .zip(model.scope.nominal_values())
