@@ -124,6 +124,7 @@ pub mod linalg;
 pub mod minreal;
 pub mod modes;
 pub mod sensitivity;
+mod staircase;
 pub mod statespace;
 pub mod sweep;
 pub mod time;
