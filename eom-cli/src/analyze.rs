@@ -19,7 +19,7 @@ use eom_num::gain::{Gain, steady_state_gain};
 use eom_num::minreal::{
     MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
 };
-use eom_num::modes::{Mode, ModeKind, Modes, Stability};
+use eom_num::modes::{Mode, ModeKind, ModeOptions, Modes, Stability};
 use eom_num::zeros::transmission_zeros;
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
@@ -386,13 +386,21 @@ pub fn analyze(
     Ok(r)
 }
 
+/// The modes as reported: no mode shapes (nothing here shows them).
+fn mode_options() -> ModeOptions {
+    ModeOptions {
+        shapes: false,
+        ..ModeOptions::default()
+    }
+}
+
 /// The analyses of a state-space model (model name, method and parameters left empty).
 fn analyze_state_space(
     ss: &StateSpace<f64>,
     mut warnings: Vec<String>,
     freq: Option<&FreqRequest>,
 ) -> Result<Analysis, CliError> {
-    let modes = Modes::compute(ss)?;
+    let modes = Modes::compute_with(ss, &mode_options())?;
     let n = &ss.names;
     let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
     let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
@@ -478,7 +486,12 @@ fn minimal_view(
                 .join(", ")
         ));
     }
-    let mmodes = Modes::compute(ssm)?;
+    // Nothing removed: the same model, the same modes.
+    let mmodes = if rep.states_out == rep.states_in {
+        modes.clone()
+    } else {
+        Modes::compute_with(ssm, &mode_options())?
+    };
     let removed = rep
         .removed
         .iter()

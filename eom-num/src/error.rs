@@ -28,4 +28,8 @@ pub enum NumError {
     /// singular); only index-1 pencils are reduced.
     #[error("descriptor index > 1: {0}")]
     HigherIndex(String),
+    /// The analysis would need more memory than the limit ([`crate::budget`]); the message
+    /// names the step, the predicted size, the limit and how to raise it.
+    #[error("too large: {0}")]
+    TooLarge(String),
 }

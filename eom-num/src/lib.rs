@@ -61,6 +61,7 @@
 //! | module | answers |
 //! |---|---|
 //! | [`statespace`] | the model types [`StateSpace`] (with `phys`, the map to body coordinates, and [`SignalNames`]) and [`Descriptor`] |
+//! | [`budget`] | memory predicted before large allocations, refused above a limit |
 //! | [`linalg`] | SVD rank and nullspace decisions with their gap, equilibration of mixed units, condition numbers, balancing, nalgebra ↔ faer |
 //! | [`descriptor`] | descriptor → state space for index-1 pencils, finite generalized eigenvalues |
 //! | [`modes`] | eigenvalues (also without allocation), modal quantities, mode shapes, instantaneous centres of rotation |
@@ -116,7 +117,9 @@
 
 #![warn(missing_docs)]
 
+pub mod budget;
 pub mod descriptor;
+mod eigen;
 pub mod error;
 pub mod freq;
 pub mod gain;

@@ -45,11 +45,12 @@ use std::f64::consts::PI;
 use faer::diag::DiagMut;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::evd::{ComputeEigenvectors, evd_real, evd_scratch};
-use faer::{Mat, MatRef, Par};
+use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
 use crate::NumError;
+use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
 use crate::statespace::{StateSpace, check_finite};
 
@@ -101,7 +102,7 @@ impl std::fmt::Debug for EigenvaluesWorkspace {
     }
 }
 
-fn eig_scratch(n: usize, vectors: bool) -> StackReq {
+pub(crate) fn eig_scratch(n: usize, vectors: bool) -> StackReq {
     let v = if vectors {
         ComputeEigenvectors::Yes
     } else {
@@ -178,120 +179,6 @@ pub fn eigenvalues_in(
     }
     out.sort_unstable_by(cmp_re_im);
     Ok(())
-}
-
-/// A full eigendecomposition with condition numbers (internal, shared with `freq` and `time`).
-pub(crate) struct Eigen {
-    /// Eigenvalues sorted by (re, im).
-    pub values: Vec<Complex64>,
-    /// Right eigenvectors (columns, original coordinates, unit 2-norm).
-    pub right: DMatrix<Complex64>,
-    /// Left eigenvectors (columns `y` with `yᴴA = λyᴴ`, original coordinates, unit 2-norm).
-    pub left: DMatrix<Complex64>,
-    /// Eigenvalue condition numbers κᵢ (computed on the balanced matrix).
-    pub condition: Vec<f64>,
-    /// Frobenius norm of the balanced matrix.
-    pub norm: f64,
-}
-
-/// Eigenvalues, right eigenvectors and condition numbers of `a` (balanced first if asked).
-pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
-    check_square(a, "A")?;
-    check_finite(a, "A")?;
-    let n = a.nrows();
-    let mut ab = a.as_slice().to_vec();
-    let mut scale = vec![1.0; n];
-    if balance {
-        balance_in_place(&mut ab, n, &mut scale);
-    }
-    let mut re = vec![0.0; n];
-    let mut im = vec![0.0; n];
-    let mut ul = Mat::<f64>::zeros(n, n);
-    let mut ur = Mat::<f64>::zeros(n, n);
-    if n > 0 {
-        let mut buf = MemBuffer::new(eig_scratch(n, true));
-        evd_real(
-            MatRef::from_column_major_slice(&ab, n, n),
-            DiagMut::from_slice_mut(&mut re),
-            DiagMut::from_slice_mut(&mut im),
-            Some(ul.as_mut()),
-            Some(ur.as_mut()),
-            Par::Seq,
-            MemStack::new(&mut buf),
-            Default::default(),
-        )
-        .map_err(|_| {
-            NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
-        })?;
-    }
-    let norm = ab.iter().map(|x| x * x).sum::<f64>().sqrt();
-    // Unpack faer's real storage: a pair (j, j+1) holds Re and Im of the vector of λ_j
-    // (Im λ_j > 0), the conjugate belongs to λ_{j+1}. Same packing for left vectors.
-    let mut values = Vec::with_capacity(n);
-    let mut xr = DMatrix::<Complex64>::zeros(n, n);
-    let mut yl = DMatrix::<Complex64>::zeros(n, n);
-    let mut j = 0;
-    while j < n {
-        if im[j] == 0.0 || j + 1 == n {
-            values.push(Complex64::new(re[j], 0.0));
-            for i in 0..n {
-                xr[(i, j)] = Complex64::new(ur[(i, j)], 0.0);
-                yl[(i, j)] = Complex64::new(ul[(i, j)], 0.0);
-            }
-            j += 1;
-        } else {
-            values.push(Complex64::new(re[j], im[j]));
-            values.push(Complex64::new(re[j], -im[j]));
-            for i in 0..n {
-                xr[(i, j)] = Complex64::new(ur[(i, j)], ur[(i, j + 1)]);
-                xr[(i, j + 1)] = Complex64::new(ur[(i, j)], -ur[(i, j + 1)]);
-                yl[(i, j)] = Complex64::new(ul[(i, j)], ul[(i, j + 1)]);
-                yl[(i, j + 1)] = Complex64::new(ul[(i, j)], -ul[(i, j + 1)]);
-            }
-            j += 2;
-        }
-    }
-    let mut condition = vec![0.0; n];
-    for (k, cond) in condition.iter_mut().enumerate() {
-        let x = xr.column(k);
-        let y = yl.column(k);
-        let dot: Complex64 = y.iter().zip(x.iter()).map(|(a, b)| a.conj() * b).sum();
-        let c = x.norm() * y.norm() / dot.norm();
-        // An exactly defective eigenvalue gives yᴴx = 0: cap at 1/ε (fully undetermined).
-        *cond = if c.is_finite() {
-            c.min(1.0 / f64::EPSILON)
-        } else {
-            1.0 / f64::EPSILON
-        };
-    }
-    // Back to original coordinates x = D x̃, y = D⁻¹ ỹ, unit 2-norm.
-    for k in 0..n {
-        let mut col = xr.column_mut(k);
-        for i in 0..n {
-            col[i] *= scale[i];
-        }
-        let nn = col.norm();
-        if nn > 0.0 {
-            col.unscale_mut(nn);
-        }
-        let mut col = yl.column_mut(k);
-        for i in 0..n {
-            col[i] /= scale[i];
-        }
-        let nn = col.norm();
-        if nn > 0.0 {
-            col.unscale_mut(nn);
-        }
-    }
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| cmp_re_im(&values[a], &values[b]));
-    Ok(Eigen {
-        values: order.iter().map(|&k| values[k]).collect(),
-        right: DMatrix::from_fn(n, n, |i, j| xr[(i, order[j])]),
-        left: DMatrix::from_fn(n, n, |i, j| yl[(i, order[j])]),
-        condition: order.iter().map(|&k| condition[k]).collect(),
-        norm,
-    })
 }
 
 /// What kind of motion a mode is.
@@ -380,6 +267,10 @@ pub struct ModeOptions {
     pub balance: bool,
     /// The factor `tol_factor` in `tol = tol_factor · n · ε · ‖Ã‖ · κ` (default 10).
     pub tol_factor: f64,
+    /// Compute the mode shapes and instantaneous centres (default `true`; without, every
+    /// [`Mode::shape`] is empty and [`Mode::centres`] too, which saves a product of the
+    /// physical map with every eigenvector and the memory of the shapes).
+    pub shapes: bool,
 }
 
 impl Default for ModeOptions {
@@ -387,6 +278,7 @@ impl Default for ModeOptions {
         ModeOptions {
             balance: true,
             tol_factor: 10.0,
+            shapes: true,
         }
     }
 }
@@ -421,61 +313,25 @@ impl Modes {
         }
         ss.validate()?;
         let n = ss.states();
-        let eig = eigen_full(&ss.a, opts.balance)?;
-        let nb = if ss.phys.nrows().is_multiple_of(6) {
-            ss.phys.nrows() / 6
+        let eig = eigen_full(&ss.a, opts.balance, false)?;
+        let rows = ss.phys.nrows();
+        let shapes = if opts.shapes && rows > 0 {
+            crate::budget::check(
+                "the mode shapes",
+                crate::budget::product(&[rows, n, 16 + 8]),
+            )?;
+            eig.map_right(&ss.phys)
         } else {
-            0
+            Vec::new()
         };
-        let phys_c = ss.phys.map(|x| Complex64::new(x, 0.0));
+        let mut shapes = shapes.into_iter();
         let mut modes = Vec::with_capacity(n);
         for k in 0..n {
-            let lambda = eig.values[k];
             let tol = opts.tol_factor * n as f64 * f64::EPSILON * eig.norm * eig.condition[k];
-            let mut mode = classify(lambda, tol);
+            let mut mode = classify(eig.values[k], tol);
             mode.condition = eig.condition[k];
-            if ss.phys.nrows() > 0 {
-                let mut shape = &phys_c * eig.right.column(k);
-                let (idx, big) = shape.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, z)| {
-                    if z.norm() > bv {
-                        (i, z.norm())
-                    } else {
-                        (bi, bv)
-                    }
-                });
-                if big > 0.0 {
-                    let f = shape[idx] * 2.0;
-                    shape.iter_mut().for_each(|z| *z /= f);
-                    shape[idx] = Complex64::new(0.5, 0.0);
-                    mode.reference_index = Some(idx);
-                    for b in 0..nb {
-                        let name = ss
-                            .names
-                            .bodies
-                            .get(b)
-                            .cloned()
-                            .unwrap_or_else(|| format!("body {}", b + 1));
-                        mode.centres.push(instant_centre(
-                            name,
-                            &shape.as_slice()[6 * b..6 * b + 6],
-                            n,
-                        ));
-                    }
-                } else {
-                    for b in 0..nb {
-                        mode.centres.push(InstantCentre {
-                            body: ss
-                                .names
-                                .bodies
-                                .get(b)
-                                .cloned()
-                                .unwrap_or_else(|| format!("body {}", b + 1)),
-                            radius: None,
-                            axis: None,
-                        });
-                    }
-                }
-                mode.shape = shape;
+            if let Some(shape) = shapes.next() {
+                set_shape(&mut mode, shape, ss, n);
             }
             modes.push(mode);
         }
@@ -503,11 +359,57 @@ impl Modes {
     }
 }
 
+/// The mode shape `phys · x` scaled so that its largest entry is exactly 0.5, and the
+/// instantaneous centre of every body (six rows of `phys` each).
+fn set_shape(mode: &mut Mode, mut shape: DVector<Complex64>, ss: &StateSpace<f64>, n: usize) {
+    let nb = if ss.phys.nrows().is_multiple_of(6) {
+        ss.phys.nrows() / 6
+    } else {
+        0
+    };
+    let body = |b: usize| {
+        ss.names
+            .bodies
+            .get(b)
+            .cloned()
+            .unwrap_or_else(|| format!("body {}", b + 1))
+    };
+    let (idx, big) = shape.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, z)| {
+        if z.norm() > bv {
+            (i, z.norm())
+        } else {
+            (bi, bv)
+        }
+    });
+    if big > 0.0 {
+        let f = shape[idx] * 2.0;
+        shape.iter_mut().for_each(|z| *z /= f);
+        shape[idx] = Complex64::new(0.5, 0.0);
+        mode.reference_index = Some(idx);
+        for b in 0..nb {
+            mode.centres.push(instant_centre(
+                body(b),
+                &shape.as_slice()[6 * b..6 * b + 6],
+                n,
+            ));
+        }
+    } else {
+        for b in 0..nb {
+            mode.centres.push(InstantCentre {
+                body: body(b),
+                radius: None,
+                axis: None,
+            });
+        }
+    }
+    mode.shape = shape;
+}
+
 /// Modes of a bare matrix (no shapes), with default options: used for automatic frequency
 /// ranges and time horizons.
 pub(crate) fn classify_matrix(a: &DMatrix<f64>) -> Result<Vec<Mode>, NumError> {
     let n = a.nrows();
-    let eig = eigen_full(a, true)?;
+    let eig = eigen_full(a, true, false)?;
     let f = ModeOptions::default().tol_factor;
     Ok((0..n)
         .map(|k| {
