@@ -42,19 +42,19 @@ use crate::error::NumError;
 use crate::minreal::{RankDecision, RankStage, svd_full};
 
 /// One step's rotation of the coordinates `off..`: `U = (I − V T Vᵀ) · diag(rot, I)`.
-struct Reflectors {
-    off: usize,
+pub(crate) struct Reflectors {
+    pub off: usize,
     /// Householder vectors (r × t, unit first entry, zeros above it).
-    v: DMatrix<f64>,
+    pub v: DMatrix<f64>,
     /// Upper triangular factor of the compact WY form (t × t).
-    t: DMatrix<f64>,
+    pub t: DMatrix<f64>,
     /// Left singular vectors of the small triangular factor (t × t).
-    rot: DMatrix<f64>,
+    pub rot: DMatrix<f64>,
 }
 
 impl Reflectors {
     /// `M[off.., col0..] ← Uᵀ M[off.., col0..]`.
-    fn apply_left_t(&self, m: &mut DMatrix<f64>, col0: usize) {
+    pub fn apply_left_t(&self, m: &mut DMatrix<f64>, col0: usize) {
         let (r, w) = (m.nrows() - self.off, m.ncols() - col0);
         if w == 0 || self.v.ncols() == 0 {
             return;
@@ -69,7 +69,7 @@ impl Reflectors {
     }
 
     /// `M[.., off..] ← M[.., off..] U`.
-    fn apply_right(&self, m: &mut DMatrix<f64>) {
+    pub fn apply_right(&self, m: &mut DMatrix<f64>) {
         let (rows, r) = (m.nrows(), m.ncols() - self.off);
         if rows == 0 || self.v.ncols() == 0 {
             return;
@@ -157,7 +157,7 @@ impl StaircaseForm {
 
 /// Householder QR of `x` (r × k) in place: returns `V` (r × t), the WY factor `T` (t × t)
 /// and leaves `R` in the top `t` rows of `x` (zeros below), with `t = min(r, k)`.
-fn householder_qr(x: &mut DMatrix<f64>) -> (DMatrix<f64>, DMatrix<f64>) {
+pub(crate) fn householder_qr(x: &mut DMatrix<f64>) -> (DMatrix<f64>, DMatrix<f64>) {
     let (r, k) = x.shape();
     let t = r.min(k);
     let mut v = DMatrix::<f64>::zeros(r, t);
@@ -200,6 +200,25 @@ fn householder_qr(x: &mut DMatrix<f64>) -> (DMatrix<f64>, DMatrix<f64>) {
     (v, tm)
 }
 
+/// The rotation `U = H · diag(U_R, I)` of the rows of `x` (r × k) that puts its range first,
+/// ordered by singular value, and the singular values of `x` (those of `R` in `x = H [R; 0]`):
+/// `Uᵀ x = [Σ V_Rᵀ; 0]`. The rotation acts on coordinates `off..` of the matrices it is
+/// applied to.
+pub(crate) fn compress(
+    mut x: DMatrix<f64>,
+    off: usize,
+) -> Result<(Reflectors, Vec<f64>), NumError> {
+    let (v, t) = householder_qr(&mut x);
+    let k = v.ncols();
+    let (rot, s) = if k == 0 {
+        (DMatrix::identity(0, 0), Vec::new())
+    } else {
+        let (u, s, _) = svd_full(&x.rows(0, k).clone_owned())?;
+        (u, s)
+    };
+    Ok((Reflectors { off, v, t, rot }, s))
+}
+
 /// Below this many remaining states a single-column tail is finished step by step (the
 /// blocked reduction only pays off for larger matrices).
 const TAIL_MIN: usize = 16;
@@ -232,25 +251,17 @@ pub(crate) fn staircase(
             transforms.push(Transform::Tail(tail));
             break;
         }
-        let mut block: DMatrix<f64> = if step == 0 {
+        let block: DMatrix<f64> = if step == 0 {
             b.rows(off, r).clone_owned()
         } else {
             a.view((off, prev.0), (r, prev.1 - prev.0)).clone_owned()
         };
         let width = block.ncols();
-        let (v, tm) = householder_qr(&mut block);
-        let t = v.ncols();
-        let (rot, s) = if t == 0 {
-            (DMatrix::identity(0, 0), Vec::new())
-        } else {
-            let (u, s, _) = svd_full(&block.rows(0, t).clone_owned())?;
-            (u, s)
-        };
+        let (refl, s) = compress(block, off)?;
         let decision = RankDecision::new(stage, step, r, width, s, tol);
         let rank = decision.rank;
         decisions.push(decision);
         if rank > 0 {
-            let refl = Reflectors { off, v, t: tm, rot };
             // Rows: columns before prev.0 are zero below the settled rows already.
             refl.apply_left_t(&mut a, prev.0);
             refl.apply_right(&mut a);

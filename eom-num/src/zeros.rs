@@ -7,10 +7,12 @@
 //! depend on λ, without changing its zeros:
 //!
 //! 1. `reduce`: compress the rows of `D` (SVD); the outputs with zero feedthrough `C₂`
-//!    force `C₂ x = 0`. Compress `C₂`'s columns so that `C₂ V = [0 C₂₂]` with `C₂₂` of full
-//!    column rank ρ: the last ρ (rotated) states are zero on the zero directions, their state
-//!    equations become new "outputs" `A₂₁ x₁ + B₂ u = 0`. Repeat until `D` has full row rank
-//!    (rows of `[C₂ D₂]` that are entirely zero are dropped).
+//!    force `C₂ x = 0`. Compress `C₂`'s columns so that `C₂ V = [C₂₂ 0]` with `C₂₂` of full
+//!    column rank ρ (`V` as Householder reflectors in compact WY form followed by the SVD of
+//!    the small triangular factor, never formed: O(n²ρ) per step): the first ρ (rotated)
+//!    states are zero on the zero directions, their state equations become new "outputs"
+//!    `A₁₂ x₂ + B₁ u = 0`. Repeat until `D` has full row rank (rows of `[C₂ D₂]` that are
+//!    entirely zero are dropped).
 //! 2. The same on the dual (transposed) system, after which `D` is square and invertible.
 //! 3. Compress the columns of `[C D]`: with `W₁` an orthonormal basis of its null space,
 //!    the zeros are the generalized eigenvalues of `([A B] W₁, [I 0] W₁)`, computed by
@@ -38,6 +40,7 @@ use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
     svd_full,
 };
+use crate::staircase::compress;
 use crate::statespace::StateSpace;
 
 /// Options of [`transmission_zeros_with`].
@@ -257,39 +260,39 @@ fn reduce(
         if sigma == p {
             return Ok((a, b, c, d));
         }
+        // Column compression of C₂ by Householder reflectors: C₂ V = [C₂₂ 0] with the range
+        // in the first ρ rotated states (V never formed).
         let c2 = c.rows(sigma, p - sigma).clone_owned();
-        let (v, rho) = if n == 0 {
-            (DMatrix::identity(0, 0), 0)
+        let (refl, rho) = if n == 0 {
+            (None, 0)
         } else {
-            let (_, s, v) = svd_full(&c2)?;
+            let (refl, s) = compress(c2.transpose(), 0)?;
             let dec = RankDecision::new(RankStage::OutputRows { dual }, step, p - sigma, n, s, tol);
             let rho = dec.rank;
             decisions.push(dec);
-            (v, rho)
+            (Some(refl), rho)
         };
-        if rho == 0 {
+        let Some(refl) = refl.filter(|_| rho > 0) else {
             // The remaining rows of [C D] are zero: they do not constrain the pencil.
             c = c.rows(0, sigma).clone_owned();
             d = d.rows(0, sigma).clone_owned();
             return Ok((a, b, c, d));
-        }
-        // V' = [v_{ρ..n}, v_{0..ρ}] puts C₂'s range into the last ρ rotated states.
+        };
+        // The range states become the new "outputs": their state equations must vanish.
         let k = n - rho;
-        let mut vp = DMatrix::zeros(n, n);
-        vp.columns_mut(0, k).copy_from(&v.columns(rho, k));
-        vp.columns_mut(k, rho).copy_from(&v.columns(0, rho));
-        let at = vp.transpose() * &a * &vp;
-        let bt = vp.transpose() * &b;
-        let c1 = c.rows(0, sigma) * &vp;
-        let d1 = d.rows(0, sigma).clone_owned();
+        refl.apply_left_t(&mut a, 0);
+        refl.apply_right(&mut a);
+        refl.apply_left_t(&mut b, 0);
+        let mut c1 = c.rows(0, sigma).clone_owned();
+        refl.apply_right(&mut c1);
         let mut cn = DMatrix::zeros(rho + sigma, k);
-        cn.rows_mut(0, rho).copy_from(&at.view((k, 0), (rho, k)));
-        cn.rows_mut(rho, sigma).copy_from(&c1.columns(0, k));
+        cn.rows_mut(0, rho).copy_from(&a.view((0, rho), (rho, k)));
+        cn.rows_mut(rho, sigma).copy_from(&c1.columns(rho, k));
         let mut dn = DMatrix::zeros(rho + sigma, m);
-        dn.rows_mut(0, rho).copy_from(&bt.rows(k, rho));
-        dn.rows_mut(rho, sigma).copy_from(&d1);
-        a = at.view((0, 0), (k, k)).clone_owned();
-        b = bt.rows(0, k).clone_owned();
+        dn.rows_mut(0, rho).copy_from(&b.rows(0, rho));
+        dn.rows_mut(rho, sigma).copy_from(&d.rows(0, sigma));
+        a = a.view((rho, rho), (k, k)).clone_owned();
+        b = b.rows(rho, k).clone_owned();
         c = cn;
         d = dn;
         step += 1;
