@@ -11,7 +11,7 @@ use eom_codegen::{EmitOptions, emit_model};
 use std::fmt::Write;
 use std::path::PathBuf;
 
-const MODELS: [&str; 10] = [
+const MODELS: [&str; 12] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -22,6 +22,8 @@ const MODELS: [&str; 10] = [
     "chain1",
     "chain3",
     "chain50",
+    "smd_wing",
+    "shimmy_wing",
 ];
 
 fn main() {

@@ -73,10 +73,13 @@ pub struct Analysis {
     pub outputs: Vec<Signal>,
     /// Every eigenvalue of the state-space model, sorted by real part, then imaginary part.
     pub eigenvalues: Vec<ReIm>,
-    /// `stable` (every mode decays), `marginal` (none grows, some do not decay) or
-    /// `unstable`.
+    /// The zero eigenvalues the model's structure proves, exactly zero: what each one is (a
+    /// coordinate on which nothing depends, or a pair of which only the difference acts).
+    pub structural_zeros: Vec<String>,
+    /// `stable` (every mode decays, the structural zeros aside), `marginal` (none grows, some
+    /// do not decay) or `unstable`.
     pub stability: &'static str,
-    /// Whether every mode is stable.
+    /// Whether the model is stable in this sense (as `eom sweep` decides it).
     pub stable: bool,
     /// One entry per eigenvalue, in the order of `eigenvalues`.
     pub modes: Vec<ModeReport>,
@@ -92,6 +95,10 @@ pub struct Analysis {
     /// The frequency response (only with `--freq`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frequency_response: Option<FreqReport>,
+    /// The wings (only for models with wings): each one's damping matrix in model axes at its
+    /// point and the reduced frequency β = |Im λ|·c/V of every oscillatory mode.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wings: Option<Vec<crate::wings::WingReport>>,
     /// `∂λ/∂p` of every eigenvalue (only with `--sensitivity`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensitivity: Option<Vec<SensitivityReport>>,
@@ -297,14 +304,29 @@ fn mode_report(m: &Mode) -> ModeReport {
     }
 }
 
-fn overall_stability(modes: &Modes) -> &'static str {
-    if modes.is_stable() {
-        "stable"
-    } else if modes
+/// Stability with the structural zero eigenvalues set apart: `stable` when every other mode
+/// decays (the definition `eom sweep` uses too: a vehicle's lateral position and heading do
+/// not feed back, so they neither make nor break its stability).
+fn overall_stability(modes: &Modes, structural_zeros: usize) -> &'static str {
+    let exact_zeros = modes
         .modes
         .iter()
-        .any(|m| m.stability == Stability::Unstable)
-    {
+        .filter(|m| m.eigenvalue == num_complex::Complex64::new(0.0, 0.0))
+        .count()
+        .min(structural_zeros);
+    let mut skipped = 0;
+    let mut others = modes.modes.iter().filter(|m| {
+        if skipped < exact_zeros && m.eigenvalue == num_complex::Complex64::new(0.0, 0.0) {
+            skipped += 1;
+            false
+        } else {
+            true
+        }
+    });
+    let rest: Vec<&Stability> = others.by_ref().map(|m| &m.stability).collect();
+    if rest.iter().all(|s| **s == Stability::Stable) {
+        "stable"
+    } else if rest.iter().any(|s| **s == Stability::Unstable) {
         "unstable"
     } else {
         "marginal"
@@ -371,7 +393,13 @@ pub fn analyze(
         .iter()
         .map(|w| format!("linearization: {w}"))
         .collect();
-    let mut r = analyze_state_space(&lin.state_space, warnings, opts.freq.as_ref())?;
+    let mut r = analyze_state_space(
+        &lin.state_space,
+        warnings,
+        opts.freq.as_ref(),
+        lin.structural_zeros.len(),
+    )?;
+    r.structural_zeros = lin.structural_zeros.clone();
     r.model = choice.name.clone();
     r.method = method_name(lin.method);
     r.parameters = choice.values(overrides);
@@ -383,6 +411,12 @@ pub fn analyze(
     if opts.sensitivity {
         r.sensitivity = Some(sensitivity_report(choice, overrides)?);
     }
+    let eigenvalues: Vec<Complex64> = r
+        .eigenvalues
+        .iter()
+        .map(|z| Complex64::new(z.re, z.im))
+        .collect();
+    r.wings = crate::wings::wing_reports(&at_point.nominal()?, &eigenvalues, &mut r.warnings);
     Ok(r)
 }
 
@@ -399,8 +433,13 @@ fn analyze_state_space(
     ss: &StateSpace<f64>,
     mut warnings: Vec<String>,
     freq: Option<&FreqRequest>,
+    structural_zeros: usize,
 ) -> Result<Analysis, CliError> {
-    let modes = Modes::compute_with(ss, &mode_options())?;
+    let opts = ModeOptions {
+        structural_zeros,
+        ..mode_options()
+    };
+    let modes = Modes::compute_with(ss, &opts)?;
     let n = &ss.names;
     let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
     let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
@@ -449,15 +488,17 @@ fn analyze_state_space(
         inputs,
         outputs,
         eigenvalues: re_im(&modes.eigenvalues()),
-        stability: overall_stability(&modes),
-        stable: modes.is_stable(),
+        stability: overall_stability(&modes, structural_zeros),
+        stable: overall_stability(&modes, structural_zeros) == "stable",
         modes: modes.modes.iter().map(mode_report).collect(),
         minimal,
         steady_state_gain,
         zeros,
         warnings,
         frequency_response,
+        wings: None,
         sensitivity: None,
+        structural_zeros: Vec::new(),
     })
 }
 
@@ -700,7 +741,7 @@ mod tests {
             dmatrix![0.0; 0.0],
         )
         .unwrap();
-        let r = analyze_state_space(&ss, Vec::new(), None).unwrap();
+        let r = analyze_state_space(&ss, Vec::new(), None, 0).unwrap();
         let g = r.steady_state_gain.as_ref().unwrap();
         let i = g[0]
             .integrating
@@ -742,7 +783,7 @@ mod tests {
             dmatrix![0.0],
         )
         .unwrap();
-        let r = analyze_state_space(&ss, Vec::new(), None).unwrap();
+        let r = analyze_state_space(&ss, Vec::new(), None, 0).unwrap();
         assert_eq!(r.stability, "unstable");
         let m = r.minimal.as_ref().unwrap();
         assert_eq!(m.states, 1);

@@ -116,6 +116,11 @@ impl Analysis {
             .filter(|m| m.stability == "marginal")
             .count();
         t.push_str(&match self.stability {
+            "stable" if !self.structural_zeros.is_empty() => {
+                "  The model is stable: every mode decays, the structural zeros below aside (they \
+                 do not feed back).\n"
+                    .to_string()
+            }
             "stable" => "  The model is stable: every mode decays.\n".to_string(),
             "unstable" => format!(
                 "  The model is UNSTABLE: {unstable} eigenvalue(s) with positive real part.\n"
@@ -125,6 +130,21 @@ impl Analysis {
                  (zero or undamped modes), none growing exponentially.\n"
             ),
         });
+        if !self.structural_zeros.is_empty() {
+            t.push_str(&format!(
+                "  {} zero eigenvalue(s) proved by the structure (exactly 0): {}.\n",
+                self.structural_zeros.len(),
+                self.structural_zeros
+                    .iter()
+                    .map(|s| if s.contains(['+', '−']) {
+                        format!("{s} (only the difference of the two acts)")
+                    } else {
+                        format!("{s} (nothing depends on it)")
+                    })
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ));
+        }
         t.push('\n');
 
         match &self.minimal {
@@ -236,6 +256,10 @@ impl Analysis {
             let h: Vec<&str> = header.iter().map(String::as_str).collect();
             t.push_str(&table(&h, &rows, 2));
             t.push('\n');
+        }
+
+        if let Some(w) = &self.wings {
+            t.push_str(&crate::wings::wings_text(w));
         }
 
         if let Some(sens) = &self.sensitivity {

@@ -29,7 +29,7 @@ pub struct CheckReport {
     pub inputs: Vec<String>,
     /// Outputs.
     pub outputs: Vec<String>,
-    /// Warnings of the linearization.
+    /// Warnings of the loading and of the linearization.
     pub warnings: Vec<String>,
 }
 
@@ -39,6 +39,12 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     let numeric = model.nominal()?;
     let assembled = assemble(&numeric)?;
     let lin = Linearizer::new(&model).method(Method::Numeric).run()?;
+    // The file's own warnings (e.g. derivatives an AVL stability-axis file cannot give).
+    let mut warnings = match &choice.source {
+        crate::params::Source::File(path) => eom_model::file::load(path, &[])?.warnings,
+        crate::params::Source::Builtin => Vec::new(),
+    };
+    warnings.extend(lin.warnings);
     let mut items: Vec<(String, usize)> = Vec::new();
     for kind in eom_model::KINDS {
         let n = model.items_of(kind).count();
@@ -57,7 +63,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
         states: lin.state_space.states(),
         inputs: assembled.inputs.iter().map(|(n, _)| n.clone()).collect(),
         outputs: assembled.outputs.iter().map(|(n, _)| n.clone()).collect(),
-        warnings: lin.warnings,
+        warnings,
     })
 }
 
@@ -126,7 +132,7 @@ h = {{ value = 0.5, unit = "m", description = "height of the mass", range = "> 0
 [[body]]
 name = "block"
 mass = "m"
-location = [0, 0, "h"]
+at = [0, 0, "h"]
 
 # A slider: the block moves along z only (two forces across the axis, all three moments).
 [[rigid_point]]

@@ -44,6 +44,9 @@ pub enum CliError {
         /// The failed validity check.
         source: ModelError,
     },
+    /// A wing file could not be read or solved (the message names the file, line and field).
+    #[error(transparent)]
+    Aero(#[from] eom_aero::AeroError),
     /// A numeric analysis failed.
     #[error(transparent)]
     Num(#[from] NumError),
@@ -100,7 +103,14 @@ impl CliError {
                 | CatalogueError::BadValue { .. },
             )
             | CliError::BadArgument { .. }
-            | CliError::Model(eom_model::ModelError::File { .. }) => EXIT_USAGE,
+            | CliError::Model(eom_model::ModelError::File { .. })
+            | CliError::Aero(
+                eom_aero::AeroError::Parse { .. }
+                | eom_aero::AeroError::UnsupportedKeyword { .. }
+                | eom_aero::AeroError::BadValue { .. }
+                | eom_aero::AeroError::MissingField { .. }
+                | eom_aero::AeroError::Io { .. },
+            ) => EXIT_USAGE,
             _ => EXIT_FAILURE,
         }
     }

@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+mod aero;
 mod analyze;
 mod analyze_text;
 mod check;
@@ -18,6 +19,7 @@ mod params;
 mod plot;
 mod sweep;
 mod symbolic;
+mod wings;
 
 use crate::analyze::{AnalyzeOptions, FreqRequest};
 use crate::codegen::CodegenRequest;
@@ -47,6 +49,8 @@ use std::process::ExitCode;
         eom analyze quarter_car --freq-range 0.1:100 --plot bode.svg --plot-poles poles.svg\n  \
         eom sweep bicycle --param v=0:10:101\n  \
         eom sweep bicycle --param v=0:10:201 --plot bicycle-v.svg\n  \
+        eom sweep shimmy --compare shimmy_wing --param x=0:1:201 --plot fin.svg\n  \
+        eom aero wing.avl --alpha 2\n  \
         eom codegen bicycle -o bicycle.rs --f32 --no-std\n\n\
         Exit codes: 0 success, 2 unknown model/parameter or malformed argument, 1 other failures."
 )]
@@ -118,6 +122,28 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+    /// Write a model (a built-in, or a file, normalised) as a model file
+    Export {
+        /// Model name (see `eom list`) or model file
+        #[arg(value_name = "MODEL")]
+        model: String,
+        /// Set a parameter's value (repeatable)
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Output file (default: standard output)
+        #[arg(short, long, value_name = "FILE.toml")]
+        output: Option<PathBuf>,
+    },
+    /// Show the stability derivatives of a wing: AVL geometry (.avl, by the vortex lattice) or
+    /// AVL output (.sb body axes, .st stability axes)
+    #[command(long_about = "Show the stability derivatives of a wing.\n\n\
+        Reads an AVL geometry file (.avl), solved by eom's vortex lattice at the angle of \
+        attack --alpha, or a derivative file written by AVL itself (.sb: body axes, the one to \
+        prefer; .st: stability axes, from which the u column cannot be recovered). Prints the \
+        36 body-axis derivatives by AVL's names (CXu … Cnr, AVL's standard axes x forward, \
+        y right, z down) and the dimensional 6×6 ∂F/∂x at the density --rho and airspeed \
+        --speed: the negative of the damping block a wing item adds.")]
+    Aero(AeroArgs),
     /// Print a commented starter model file (redirect it into NAME.toml)
     New {
         /// The model's name
@@ -219,6 +245,33 @@ struct SweepArgs {
     /// boundaries and the stable intervals into an SVG file (needs COUNT ≥ 2)
     #[arg(long, value_name = "FILE.svg")]
     plot: Option<PathBuf>,
+    /// Sweep a second model over the same grid (same --set values) and report it too; with
+    /// --plot, draw both in one plot
+    #[arg(long, value_name = "MODEL")]
+    compare: Option<String>,
+}
+
+#[derive(Args, Debug)]
+struct AeroArgs {
+    /// AVL geometry (.avl) or AVL derivative file (.sb, .st)
+    #[arg(value_name = "FILE")]
+    file: String,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Angle of attack of the trim state in degrees (.avl only; default 0)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    alpha: Option<f64>,
+    /// Moment reference point Xref,Yref,Zref in AVL's geometry axes (x aft, y right, z up;
+    /// .avl only; default: the file's)
+    #[arg(long = "ref", value_name = "X,Y,Z", allow_hyphen_values = true)]
+    reference: Option<String>,
+    /// Air density of the dimensional matrix [kg/m^3]
+    #[arg(long, value_name = "RHO", default_value_t = 1.225)]
+    rho: f64,
+    /// Airspeed of the dimensional matrix [m/s]
+    #[arg(long, value_name = "V", default_value_t = 10.0)]
+    speed: f64,
 }
 
 #[derive(Args, Debug)]
@@ -346,6 +399,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 Format::Json => json(&r)?,
             }
         }
+        Command::Sweep(s) if s.compare.is_some() => sweep_compare(&s, &mut stderr)?,
         Command::Sweep(s) => {
             let choice = ModelChoice::resolve(&s.model)?;
             let spec = SweepSpec::parse(&s.param)?;
@@ -392,6 +446,39 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             }
         }
         Command::New { name } => check::starter(&name),
+        Command::Export { model, set, output } => {
+            let choice = ModelChoice::resolve(&model)?;
+            let overrides = choice.parse_sets(&set)?;
+            let text = eom_model::file::to_toml(&choice.build(&overrides)?);
+            match output {
+                None => text,
+                Some(path) => {
+                    std::fs::write(&path, &text).map_err(|source| CliError::Io {
+                        path: path.display().to_string(),
+                        source,
+                    })?;
+                    stderr.push_str(&format!("wrote {}\n", path.display()));
+                    String::new()
+                }
+            }
+        }
+        Command::Aero(a) => {
+            let req = aero::AeroRequest {
+                alpha_deg: a.alpha,
+                reference: a
+                    .reference
+                    .as_deref()
+                    .map(aero::parse_reference)
+                    .transpose()?,
+                density: a.rho,
+                speed: a.speed,
+            };
+            let r = aero::aero(&a.file, &req)?;
+            match a.format {
+                Format::Text => r.to_text(),
+                Format::Json => json(&r)?,
+            }
+        }
         Command::Symbolic(a) => {
             let choice = ModelChoice::resolve(&a.model)?;
             // Checked as numbers (names, finiteness), kept as text for exact substitution.
@@ -420,6 +507,49 @@ fn run(cli: Cli) -> Result<Output, CliError> {
         }
     };
     Ok(Output { stdout, stderr })
+}
+
+/// `eom sweep A --compare B`: both sweeps over the same grid, reported one after the other
+/// (JSON: `{"sweeps": [A, B]}`), drawn in one plot with `--plot`.
+fn sweep_compare(s: &SweepArgs, stderr: &mut String) -> Result<String, CliError> {
+    let other = s.compare.as_deref().unwrap_or_default();
+    if s.format == SweepFormat::Csv {
+        return Err(CliError::BadArgument {
+            argument: format!("--compare {other}"),
+            problem: "not with --format csv (one table per model): use text or json".into(),
+        });
+    }
+    let spec = SweepSpec::parse(&s.param)?;
+    if let Some(path) = &s.plot {
+        check_sweep_plot(&s.param, &spec, path)?;
+    }
+    let mut reports = Vec::new();
+    for name in [s.model.as_str(), other] {
+        let choice = ModelChoice::resolve(name)?;
+        choice.param(&spec.name)?;
+        let overrides = choice.parse_sets(&s.set)?;
+        reports.push((sweep::sweep(&choice, &spec, &overrides)?, choice));
+    }
+    let (a, b) = (&reports[0], &reports[1]);
+    if let Some(path) = &s.plot {
+        let unit = a.1.param(&spec.name)?.unit.clone();
+        let plot = plot::compare::compare_plot(
+            (&a.0.model, &a.0.result),
+            (&b.0.model, &b.0.result),
+            &unit,
+        )?;
+        plot.write("--plot", path)?;
+        stderr.push_str(&plot.notes_text(path));
+    }
+    Ok(match s.format {
+        SweepFormat::Json => json(&serde_json::json!({ "sweeps": [&a.0, &b.0] }))?,
+        _ => format!(
+            "{}
+{}",
+            a.0.to_text(),
+            b.0.to_text()
+        ),
+    })
 }
 
 /// The plot files asked of `eom analyze`, checked before the analysis runs.

@@ -216,7 +216,24 @@ fn build_report(
                 "{n} states: the closed forms may be large and slow to compute"
             ));
         }
-        closed_forms(model, &ss.names, &mut report, req, limit, &mut notes)?;
+        let (e, f) = sym.pencil();
+        let sub = |m: DMatrix<Expr>| -> Result<DMatrix<Expr>, CliError> {
+            if map.is_empty() {
+                return Ok(m);
+            }
+            let v = eom_sym::subs_many(m.as_slice(), &map)?;
+            Ok(DMatrix::from_column_slice(m.nrows(), m.ncols(), &v))
+        };
+        let pencil = (sub(e)?, sub(f)?);
+        closed_forms(
+            model,
+            &ss.names,
+            &pencil,
+            &mut report,
+            req,
+            limit,
+            &mut notes,
+        )?;
     }
     report.notes.extend(notes);
     Ok(report)
@@ -266,9 +283,11 @@ fn matrix_out(
     })
 }
 
+#[allow(clippy::too_many_arguments)]
 fn closed_forms(
     model: &eom_model::Model,
     names: &eom_num::SignalNames,
+    (e, f): &(DMatrix<Expr>, DMatrix<Expr>),
     report: &mut SymbolicReport,
     req: &SymbolicRequest,
     limit: usize,
@@ -276,7 +295,8 @@ fn closed_forms(
 ) -> Result<(), CliError> {
     let cf = ClosedForms::default().with_max_states(limit.max(1));
     let a = report.matrices[0].matrix.clone();
-    let p = cf.characteristic_polynomial(&a)?;
+    // From the descriptor pencil: no nested divisions by the reduced mass matrix.
+    let p = cf.pencil_polynomial(Some(e), f)?;
     if !p.normalized {
         notes.push(
             "the characteristic polynomial's coefficients are exact but not in normal form (a \

@@ -71,7 +71,8 @@ struct Tier {
 impl SymbolicStateSpace {
     /// Compile a symbolic reduction for evaluation with parameter values in the order of
     /// `params`.
-    pub fn new(reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, ModelError> {
+    pub fn new(mut reduction: Reduction<Expr>, params: &[Expr]) -> Result<Self, ModelError> {
+        crate::canonical::canonical_columns(&mut reduction.state_space.a);
         let ss = &reduction.state_space;
         let mut roots: Vec<Expr> = Vec::new();
         let mut shapes = [(0, 0); 5];
@@ -122,6 +123,32 @@ impl SymbolicStateSpace {
             compiled,
             pool,
         })
+    }
+
+    /// The descriptor pencil `(E, F)` with `A = E⁻¹F`: `E = diag(I, M)` with the reduced mass
+    /// matrix `M`, `F` the kinematic and dynamic rows (see
+    /// [`Reduction::descriptor`](crate::Reduction::descriptor)). Closed forms computed from
+    /// it carry no nested divisions by `M`.
+    pub fn pencil(&self) -> (DMatrix<Expr>, DMatrix<Expr>) {
+        let d = &self.reduction.descriptor;
+        let n = self.reduction.state_space.a.nrows();
+        let (np, nw) = (d.kinematics.nrows(), d.mass.nrows());
+        let mut e = DMatrix::from_element(n, n, Expr::zero());
+        let mut f = DMatrix::from_element(n, n, Expr::zero());
+        for i in 0..np {
+            e[(i, i)] = Expr::one();
+        }
+        for (i, j, v) in d.mass.iter() {
+            e[(np + i, np + j)] = v;
+        }
+        for (i, j, v) in d.kinematics.iter() {
+            f[(i, j)] = v;
+        }
+        for (i, j, v) in d.dynamics.iter() {
+            f[(np + i, j)] = v;
+        }
+        debug_assert_eq!(np + nw, n);
+        (e, f)
     }
 
     /// The pool of the expressions (`None` when every entry is a constant 0, 1 or −1).

@@ -98,7 +98,9 @@
 
 #![warn(missing_docs)]
 
+pub mod aero;
 pub mod assemble;
+mod canonical;
 pub mod compiled;
 pub mod eliminate;
 pub mod error;
@@ -110,8 +112,10 @@ pub mod linearize;
 pub mod reduce;
 pub mod robust;
 pub mod sensitivity;
+pub mod tutorials;
 pub mod validate;
 
+pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
     Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Reaction, RowLabel, Rows, Term,
     assemble,
@@ -123,7 +127,8 @@ pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use reduce::{
-    CheckLabel, Coord, Reduction, ReductionPlan, ReductionReport, ValidityCheck, reduce,
+    CheckLabel, Coord, ReducedDescriptor, Reduction, ReductionPlan, ReductionReport, ValidityCheck,
+    reduce,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};

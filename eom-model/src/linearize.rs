@@ -28,6 +28,7 @@ use super::robust::{RobustReport, reduce_robust};
 use crate::error::ModelError;
 use crate::items::ModelScalar;
 use eom_num::StateSpace;
+use eom_num::deflate::structural_zero_states;
 use eom_sym::SymError;
 use eom_sym::expr::Expr;
 use eom_sym::scalar::Elementary;
@@ -59,6 +60,13 @@ pub struct Linearization {
     pub robust: Option<RobustReport>,
     /// Warnings.
     pub warnings: Vec<String>,
+    /// The zero eigenvalues the model's structure proves at this point, one description each
+    /// (ignorable coordinates such as a vehicle's lateral position, or a pair of headings of
+    /// which only the difference acts): found on the elimination path's state matrix, whose
+    /// structural zeros are exact (see `eom_num::deflate`). Analyses of the robust path's
+    /// matrix pass the count on (`ModeOptions::structural_zeros`), since that basis hides them
+    /// in rounding.
+    pub structural_zeros: Vec<String>,
 }
 
 /// Builder: `Linearizer::new(&model).at(&[("v", 6.0)]).method(Method::Robust).run()`.
@@ -125,6 +133,7 @@ impl<'a> Linearizer<'a> {
                 let report = sym.reduction.report.clone();
                 Ok(Linearization {
                     warnings: report.warnings.clone(),
+                    structural_zeros: structural_zero_states(&ss.a, &ss.names.states),
                     state_space: ss,
                     method: self.method,
                     report: Some(report),
@@ -137,6 +146,10 @@ impl<'a> Linearizer<'a> {
                 let r = reduce(&a, None)?;
                 Ok(Linearization {
                     warnings: r.report.warnings.clone(),
+                    structural_zeros: structural_zero_states(
+                        &r.state_space.a,
+                        &r.state_space.names.states,
+                    ),
                     state_space: r.state_space,
                     method: self.method,
                     report: Some(r.report),
@@ -147,7 +160,13 @@ impl<'a> Linearizer<'a> {
                 let m = self.model.evaluate(&values)?;
                 let a = assemble(&m)?;
                 let (ss, rep) = reduce_robust(&a)?;
+                // Counted on the elimination path's matrix at the same point (when it can
+                // reduce this model).
+                let structural_zeros = reduce(&a, None)
+                    .map(|r| structural_zero_states(&r.state_space.a, &r.state_space.names.states))
+                    .unwrap_or_default();
                 Ok(Linearization {
+                    structural_zeros,
                     warnings: rep.warnings.clone(),
                     state_space: ss,
                     method: self.method,

@@ -247,6 +247,23 @@ pub struct Reduction<S: nalgebra::Scalar> {
     pub plan: ReductionPlan,
     /// Sizes and decisions.
     pub report: ReductionReport,
+    /// The reduced equations before the mass matrix is eliminated: `ẋ_p = K x` (the
+    /// independent positions' kinematics) and `M ẋ_w = F x` (the dynamics), `x = [x_p; x_w]`.
+    /// So `A = [K; M⁻¹F]`, and `det(sI − A) = det(sE − [K; F]) / det(M)` with
+    /// `E = diag(I, M)`: the closed forms of a mechanical model come from this pencil, whose
+    /// entries have no nested divisions by the mass matrix.
+    pub descriptor: ReducedDescriptor<S>,
+}
+
+/// See [`Reduction::descriptor`].
+#[derive(Clone, Debug)]
+pub struct ReducedDescriptor<S> {
+    /// The reduced mass matrix `M` (one row and column per independent velocity).
+    pub mass: SparseMatrix<S>,
+    /// `K`: the kinematic rows of the independent positions.
+    pub kinematics: SparseMatrix<S>,
+    /// `F`: the dynamic rows.
+    pub dynamics: SparseMatrix<S>,
 }
 
 const COORD: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
@@ -392,6 +409,9 @@ struct Dynamics<S> {
     kin: SparseMatrix<S>,
     /// The kinematic rows of the independent coordinates.
     a1: SparseMatrix<S>,
+    /// The reduced mass matrix and the dynamic rows before its elimination.
+    m_r: SparseMatrix<S>,
+    rhs_a: SparseMatrix<S>,
     /// The solved dynamic rows: state, input and input-rate columns.
     xa: SparseMatrix<S>,
     xb: SparseMatrix<S>,
@@ -656,6 +676,8 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             pfull,
             kin,
             a1,
+            m_r,
+            rhs_a,
         })
     }
 
@@ -717,6 +739,11 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             checks: self.checks,
             plan,
             report: self.report,
+            descriptor: ReducedDescriptor {
+                mass: dyn_.m_r,
+                kinematics: dyn_.a1,
+                dynamics: dyn_.rhs_a,
+            },
         })
     }
 }

@@ -37,6 +37,11 @@ impl<S: ModelScalar> Validation<'_, S> {
         body == GROUND || self.bodies.contains(body)
     }
 
+    /// The body called `name` (`None` for the ground or an unknown name).
+    pub fn body(&self, name: &str) -> Option<&Body<S>> {
+        self.model.body(name)
+    }
+
     /// `field` of item `kind` `item` must name a body (or the ground).
     pub fn check_body(
         &self,

@@ -118,6 +118,7 @@
 #![warn(missing_docs)]
 
 pub mod budget;
+pub mod deflate;
 pub mod descriptor;
 mod eigen;
 pub mod error;

@@ -50,6 +50,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
 use crate::NumError;
+use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
 use crate::statespace::{StateSpace, check_finite};
@@ -88,6 +89,11 @@ pub fn eigenvalues(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {
 pub struct EigenvaluesWorkspace {
     n: usize,
     a: Vec<f64>,
+    b: Vec<f64>,
+    removed: Vec<bool>,
+    order: Vec<usize>,
+    combos: Vec<deflate::Combine>,
+    keys: Vec<(u64, usize)>,
     scale: Vec<f64>,
     re: Vec<f64>,
     im: Vec<f64>,
@@ -123,6 +129,11 @@ impl EigenvaluesWorkspace {
         EigenvaluesWorkspace {
             n,
             a: vec![0.0; n * n],
+            b: vec![0.0; n * n],
+            removed: vec![false; n],
+            order: Vec::with_capacity(n),
+            combos: Vec::with_capacity(n),
+            keys: Vec::with_capacity(n),
             scale: vec![1.0; n],
             re: vec![0.0; n],
             im: vec![0.0; n],
@@ -160,22 +171,38 @@ pub fn eigenvalues_in(
     if n == 0 {
         return Ok(());
     }
-    ws.a.copy_from_slice(a.as_slice());
-    balance_in_place(&mut ws.a, n, &mut ws.scale);
-    evd_real(
-        MatRef::from_column_major_slice(&ws.a, n, n),
-        DiagMut::from_slice_mut(&mut ws.re),
-        DiagMut::from_slice_mut(&mut ws.im),
-        None,
-        None,
-        Par::Seq,
-        MemStack::new(&mut ws.buf),
-        Default::default(),
-    )
-    .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+    // Structural zero eigenvalues are deflated first (see `deflate`).
+    ws.b.copy_from_slice(a.as_slice());
+    deflate::deflate_in_place(
+        &mut ws.b,
+        n,
+        &mut ws.removed,
+        &mut ws.order,
+        &mut ws.combos,
+        &mut ws.keys,
+    );
+    let m = deflate::kept_block(&ws.b, n, &ws.removed, &mut ws.a);
+    if m > 0 {
+        balance_in_place(&mut ws.a[..m * m], m, &mut ws.scale[..m]);
+        evd_real(
+            MatRef::from_column_major_slice(&ws.a[..m * m], m, m),
+            DiagMut::from_slice_mut(&mut ws.re[..m]),
+            DiagMut::from_slice_mut(&mut ws.im[..m]),
+            None,
+            None,
+            Par::Seq,
+            MemStack::new(&mut ws.buf),
+            Default::default(),
+        )
+        .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+    }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.
-        *o = Complex64::new(ws.re[k], ws.im[k] + 0.0);
+        *o = if k < m {
+            Complex64::new(ws.re[k], ws.im[k] + 0.0)
+        } else {
+            Complex64::new(0.0, 0.0)
+        };
     }
     out.sort_unstable_by(cmp_re_im);
     Ok(())
@@ -265,6 +292,11 @@ pub struct Mode {
 pub struct ModeOptions {
     /// Balance A before the eigendecomposition (default `true`).
     pub balance: bool,
+    /// Zero eigenvalues the model's structure proves, known from another basis of the same
+    /// model (e.g. the elimination path's, for the robust path's matrix, whose orthonormal basis
+    /// hides them in rounding). When `A` shows fewer exact structural zeros, this many null
+    /// directions are deflated orthogonally before the eigensolve (default 0).
+    pub structural_zeros: usize,
     /// The factor `tol_factor` in `tol = tol_factor · n · ε · ‖Ã‖ · κ` (default 10).
     pub tol_factor: f64,
     /// Compute the mode shapes and instantaneous centres (default `true`; without, every
@@ -278,6 +310,7 @@ impl Default for ModeOptions {
         ModeOptions {
             balance: true,
             tol_factor: 10.0,
+            structural_zeros: 0,
             shapes: true,
         }
     }
@@ -313,7 +346,8 @@ impl Modes {
         }
         ss.validate()?;
         let n = ss.states();
-        let eig = eigen_full(&ss.a, opts.balance, false)?;
+        let mut eig = eigen_full(&ss.a, opts.balance, false)?;
+        eig.known_zeros(&ss.a, opts.structural_zeros)?;
         let rows = ss.phys.nrows();
         let shapes = if opts.shapes && rows > 0 {
             crate::budget::check(

@@ -48,7 +48,7 @@ const fn real(
     }
 }
 
-type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), CatalogueError>;
+pub(crate) type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), CatalogueError>;
 
 /// A built-in model.
 #[derive(Clone, Debug)]
@@ -63,6 +63,21 @@ pub struct ModelInfo {
 }
 
 impl ModelInfo {
+    /// An entry of the catalogue.
+    pub(crate) fn new(
+        name: &'static str,
+        description: &'static str,
+        params: Vec<ParamSpec>,
+        builder: Builder,
+    ) -> Self {
+        ModelInfo {
+            name,
+            description,
+            params,
+            builder,
+        }
+    }
+
     /// Build the model with `overrides` replacing defaults (by name).
     pub fn build(
         &self,
@@ -233,6 +248,10 @@ pub fn catalogue() -> Vec<ModelInfo> {
             builder: chain,
         },
     ]
+    .into_iter()
+    .chain(crate::wings::entries())
+    .chain(crate::applications::entries())
+    .collect()
 }
 
 /// Largest chain size accepted by name.
@@ -275,7 +294,7 @@ pub fn build(name: &str, overrides: &[(&str, f64)]) -> Result<Model<Expr>, Catal
     info.build(overrides, size, name)
 }
 
-fn smd(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
+pub(crate) fn smd(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [m, k, c] = [p[0], p[1], p[2]];
     md.add(Body::new("block").mass(m).at(vec3(0, 0, 1)));
     md.add(
@@ -366,7 +385,7 @@ fn pendulum(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueE
     Ok(())
 }
 
-fn shimmy(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
+pub(crate) fn shimmy(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
     let [m, i, k, l, x, u] = [p[0], p[1], p[2], p[3], p[4], p[5]];
     let a = x * l;
     let b = l - a;

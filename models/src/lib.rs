@@ -20,11 +20,18 @@
 //! | `top` | heavy symmetric top on a fixed point | closed form |
 //! | `disk` | rolling disk | closed form |
 //! | `chainN` | N masses in series (e.g. `chain50`) | closed form |
+//! | `smd_wing` | the spring–mass–damper under a horizontal wing (the wing item's seed example) | closed form |
+//! | `shimmy_wing` | the shimmy with a vertical fin at the spring point, given derivatives | the seed paper's damping entries; closed-form cubic |
+//! | `shimmy_fin` | the same fin, derivatives from eom-aero's vortex lattice | within 0.3 % of the paper's entries |
+//! | `ride_wings` | a car's bounce–pitch ride model with a front and a rear wing (illustrative) | a two-degree-of-freedom model derived by hand |
+//! | `aircraft_ground` | a light taildragger on its landing gear with a wing and a tail (illustrative) | the three reduction paths |
 
 #![warn(missing_docs)]
 
+mod applications;
 mod bicycle;
 mod catalogue;
+pub mod wings;
 
 pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 
@@ -64,6 +71,9 @@ pub enum CatalogueError {
     /// An error of an expression while building the model.
     #[error(transparent)]
     Sym(#[from] eom_sym::SymError),
+    /// The vortex lattice of a model's wing failed (its message).
+    #[error("wing aerodynamics: {0}")]
+    Aero(String),
     /// An error of the model layer while building the model.
     #[error(transparent)]
     Model(#[from] eom_model::ModelError),

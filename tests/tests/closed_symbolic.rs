@@ -306,4 +306,25 @@ fn bicycle_polynomial_at_random_points() {
         let at = random_point(&m, &mut rng, 0.1);
         assert_same_polynomial(&m, &p, &at, 1e-9);
     }
+    // From the descriptor pencil (no nested divisions by the mass matrix): the same polynomial.
+    let sym = Linearizer::new(&m).symbolic().expect("symbolic");
+    let (e, f) = sym.pencil();
+    let q = ClosedForms::default()
+        .pencil_polynomial(Some(&e), &f)
+        .expect("pencil polynomial");
+    assert_eq!(q.zero_roots, 2);
+    assert!(
+        Expr::op_count(&q.polynomial.coefficients).total()
+            < Expr::op_count(&p.polynomial.coefficients).total()
+    );
+    for _ in 0..1000 {
+        let at = random_point(&m, &mut rng, 0.1);
+        assert_same_polynomial(&m, &q, &at, 1e-9);
+        // and det(sI − A) = s² p(s)/scale: the scale is det(M) times the normal form's factor.
+        let lead = eval(&m, &[q.polynomial.coefficients[4], q.scale], &at);
+        assert!(
+            (lead[0] / lead[1] - 1.0).abs() < 1e-9,
+            "det(sI − A) is monic: {lead:?}"
+        );
+    }
 }

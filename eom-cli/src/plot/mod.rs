@@ -2,7 +2,8 @@
 //!
 //! * [`sweep::sweep_plot`]: eigenvalue branches over the swept parameter;
 //! * [`bode::bode_plot`]: magnitude and phase of every output/input pair;
-//! * [`poles::pole_map`]: poles and transmission zeros in the complex plane.
+//! * [`poles::pole_map`]: poles and transmission zeros in the complex plane;
+//! * [`compare::compare_plot`]: two models' sweeps of one parameter.
 //!
 //! Every plot is drawn into a string first and written in one go ([`Plot::write`]), so a
 //! drawing failure never leaves half a file behind, and values that cannot be drawn (NaN,
@@ -11,6 +12,7 @@
 //! width, splitting a series at the values left out, colours, and the legend column.
 
 pub mod bode;
+pub mod compare;
 pub mod poles;
 pub mod sweep;
 

@@ -42,12 +42,17 @@ macro_rules! point_apply {
 
 /// Reads the items of a file into a model.
 pub(crate) struct Builder<'a> {
-    ctx: &'a Ctx<'a>,
-    decl: &'a Declarations,
-    model: &'a mut Model,
+    pub(super) ctx: &'a Ctx<'a>,
+    pub(super) decl: &'a Declarations,
+    pub(super) model: &'a mut Model,
     /// Names taken so far, for duplicate detection (items and bodies have separate name
     /// spaces, as in the Rust API).
     items: Vec<String>,
+    /// Where each body and item was defined, by its label in the model's messages
+    /// (``flex point `spring` ``), for errors found after loading.
+    pub spans: Vec<(String, std::ops::Range<usize>)>,
+    /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
+    pub(super) warnings: Vec<String>,
 }
 
 impl<'a> Builder<'a> {
@@ -62,6 +67,8 @@ impl<'a> Builder<'a> {
             decl,
             model,
             items: Vec::new(),
+            spans: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 
@@ -76,6 +83,7 @@ impl<'a> Builder<'a> {
             ("rigid_point", Self::rigid_point),
             ("flex_point", Self::flex_point),
             ("nh_point", Self::nh_point),
+            ("wing", Self::wing),
             ("actuator", Self::actuator),
             ("sensor", Self::sensor),
         ] {
@@ -126,7 +134,14 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
-    fn claim(&mut self, t: &Table<'_>, kind: &str, name: &str) -> Result<(), ModelError> {
+    pub(super) fn claim(
+        &mut self,
+        t: &Table<'_>,
+        kind: &str,
+        name: &str,
+    ) -> Result<(), ModelError> {
+        self.spans
+            .push((crate::items::label(kind, name), t.span.clone()));
         let taken = if kind == "body" {
             self.model.body(name).is_some() || name == GROUND
         } else {
@@ -134,11 +149,12 @@ impl<'a> Builder<'a> {
         };
         if taken {
             let span = t.get("name").map(|x| x.span()).unwrap_or(t.span.clone());
-            return Err(t.field_error(
-                "name",
-                &span,
-                format!("a {kind} called `{name}` already exists"),
-            ));
+            let problem = if kind == "body" {
+                format!("a body called `{name}` already exists")
+            } else {
+                format!("another item is already called `{name}` (item names are unique)")
+            };
+            return Err(t.field_error("name", &span, problem));
         }
         if kind != "body" {
             self.items.push(name.to_string());
@@ -148,7 +164,7 @@ impl<'a> Builder<'a> {
 
     // ---------------------------------------------------------------- field readers
 
-    fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
+    pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
         t.get(key)
             .map(|v| value_expr(self.ctx, self.decl, v, &t.field_context(key)))
             .transpose()
@@ -170,7 +186,7 @@ impl<'a> Builder<'a> {
         Ok(Some(out.try_into().expect("N values")))
     }
 
-    fn vector(
+    pub(super) fn vector(
         &self,
         t: &Table<'_>,
         key: &str,
@@ -255,7 +271,7 @@ impl<'a> Builder<'a> {
 
     fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
         t.only(&with_common(&[
-            "location",
+            "at",
             "mass",
             "moments",
             "products",
@@ -264,7 +280,7 @@ impl<'a> Builder<'a> {
         ]))?;
         self.claim(t, "body", name)?;
         let mut b = Body::new(name);
-        if let Some(v) = self.vector(t, "location", m, VecKind::Polar)? {
+        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
             b = b.at(v);
         }
         if let Some(x) = self.scalar(t, "mass")? {
@@ -312,7 +328,7 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
-    fn named_body(
+    pub(super) fn named_body(
         &self,
         t: &Table<'_>,
         key: &str,
@@ -613,7 +629,7 @@ pub(crate) enum VecKind {
 const LINE: [&str; 3] = ["between", "ends", "twist"];
 const POINT: [&str; 6] = ["between", "at", "forces", "moments", "axis", "rolling_axis"];
 
-fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
+pub(super) fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
     let mut v: Vec<&'static str> = COMMON.to_vec();
     v.extend_from_slice(keys);
     v

@@ -4,7 +4,7 @@
 //! `[model]` table (name, description, gravity), a `[parameters]` table (a number, an
 //! expression string for a derived parameter, or a table with `value`, `unit`, `description`
 //! and `range`), and one array of tables per item kind (`[[body]]`, `[[spring]]`,
-//! `[[flex_point]]`, …) whose fields are those of the Rust builders, every number a number or
+//! `[[flex_point]]`, `[[wing]]`, …) whose fields are those of the Rust builders, every number a number or
 //! an expression string. An item with `mirror = "y"` also gets its mirror image, with `left`
 //! and `right` exchanged in its name and in the names of the bodies it connects.
 //!
@@ -41,11 +41,14 @@
 //! assert_eq!(lin.state_space.a[(1, 0)], -4.0); // −k/m
 //! ```
 
+mod export;
 mod items;
 mod mirror;
 mod params;
 mod source;
+mod wing;
 
+pub use export::to_toml;
 pub use params::{ParamRange, ParamSpec};
 pub use source::FilePosition;
 
@@ -67,6 +70,9 @@ pub struct LoadedModel {
     pub params: Vec<ParamSpec>,
     /// The derived parameters: name and defining expression text.
     pub derived: Vec<(String, String)>,
+    /// Warnings of the loading (e.g. the entries an AVL stability-axis file cannot give,
+    /// taken as zero).
+    pub warnings: Vec<String>,
 }
 
 /// Reads and loads the model file at `path`; `overrides` replace nominal values by name.
@@ -76,7 +82,7 @@ pub fn load(path: &Path, overrides: &[(&str, f64)]) -> Result<LoadedModel, Model
         context: String::new(),
         problem: format!("cannot be read: {e}"),
     })?;
-    load_str(&text, &path.display().to_string(), overrides)
+    load_in(&text, &path.display().to_string(), overrides, path.parent())
 }
 
 /// Loads a model file given as text (`origin` names it in messages).
@@ -84,13 +90,24 @@ pub fn from_str(text: &str, origin: &str, overrides: &[(&str, f64)]) -> Result<M
     Ok(load_str(text, origin, overrides)?.model)
 }
 
-/// Loads a model file given as text, with its parameter declarations.
+/// Loads a model file given as text, with its parameter declarations (AVL files it names are
+/// relative to the current directory).
 pub fn load_str(
     text: &str,
     origin: &str,
     overrides: &[(&str, f64)],
 ) -> Result<LoadedModel, ModelError> {
-    let ctx = Ctx::new(text, origin);
+    load_in(text, origin, overrides, None)
+}
+
+/// Loads a model file given as text, its relative paths taken from `base`.
+fn load_in(
+    text: &str,
+    origin: &str,
+    overrides: &[(&str, f64)],
+    base: Option<&Path>,
+) -> Result<LoadedModel, ModelError> {
+    let ctx = Ctx::new(text, origin, base);
     let doc = ctx.parse()?;
     let root = Table::new(&ctx, &doc, "the file");
     root.only(&[
@@ -104,6 +121,7 @@ pub fn load_str(
         "rigid_point",
         "flex_point",
         "nh_point",
+        "wing",
         "actuator",
         "sensor",
     ])?;
@@ -113,16 +131,19 @@ pub fn load_str(
     let scope = decl.scope(&mut model)?;
     let mut cx = items::Builder::new(&ctx, &scope, &decl, &mut model);
     cx.all(&root)?;
+    let spans = std::mem::take(&mut cx.spans);
+    let warnings = std::mem::take(&mut cx.warnings);
     if let Some(g) = gravity {
         let g = params::vector(&ctx, &scope, &decl, g, "[model] gravity")?;
         add_weights(&mut model, g);
     }
-    model.validate()?;
+    model.validate().map_err(|e| positioned(&ctx, &spans, e))?;
     Ok(LoadedModel {
         model,
         description,
         params: decl.specs,
         derived: decl.derived_text,
+        warnings,
     })
 }
 
@@ -152,5 +173,44 @@ fn add_weights(model: &mut Model, g: [Expr; 3]) {
                 .at(b.location)
                 .force(f),
         );
+    }
+}
+
+/// A model error about an item or body, positioned at the table that defined it.
+fn positioned(
+    ctx: &Ctx<'_>,
+    spans: &[(String, std::ops::Range<usize>)],
+    e: ModelError,
+) -> ModelError {
+    match e {
+        ModelError::Model {
+            item,
+            field,
+            problem,
+        } => match spans.iter().find(|(label, _)| *label == item) {
+            Some((_, span)) => {
+                let context = if field.is_empty() {
+                    item
+                } else {
+                    format!("{item}, field `{field}`")
+                };
+                ctx.error(span, &context, problem)
+            }
+            None => ModelError::File {
+                position: FilePosition::whole(ctx.origin),
+                context: item,
+                problem: if field.is_empty() {
+                    problem
+                } else {
+                    format!("field `{field}`: {problem}")
+                },
+            },
+        },
+        ModelError::File { .. } => e,
+        other => ModelError::File {
+            position: FilePosition::whole(ctx.origin),
+            context: String::new(),
+            problem: other.to_string(),
+        },
     }
 }

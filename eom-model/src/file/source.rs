@@ -45,11 +45,14 @@ impl std::fmt::Display for FilePosition {
 pub(crate) struct Ctx<'t> {
     pub text: &'t str,
     pub origin: &'t str,
+    /// The directory that relative paths in the file (AVL files) are relative to; `None`:
+    /// the current directory.
+    pub base: Option<&'t std::path::Path>,
 }
 
 impl<'t> Ctx<'t> {
-    pub fn new(text: &'t str, origin: &'t str) -> Self {
-        Ctx { text, origin }
+    pub fn new(text: &'t str, origin: &'t str, base: Option<&'t std::path::Path>) -> Self {
+        Ctx { text, origin, base }
     }
 
     /// The position of byte offset `at`.

@@ -72,6 +72,12 @@ impl<S: ModelScalar> Item<S> for Actuator<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        let mut s = self.line.settings();
+        s.push(("units", super::Setting::Text(self.units.clone())));
+        s
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.line.fields(f);
         f(Field::scalar("gain"), &self.gain);

@@ -88,6 +88,13 @@ impl<S: ModelScalar> Item<S> for Beam<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        vec![(
+            "between",
+            super::Setting::Pair(self.bodies.clone().map(|b| b.to_string())),
+        )]
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         for (i, end) in self.ends.iter().enumerate() {
             for (k, x) in end.iter().enumerate() {

@@ -81,6 +81,10 @@ impl<S: ModelScalar> Item<S> for FlexPoint<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        self.point.settings()
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.point.fields(f);
         f(Field::nth("stiffness", 0), &self.stiffness[0]);

@@ -27,6 +27,17 @@ impl<S: Scalar> Line<S> {
     }
 
     /// Visit the end points.
+    /// `between` and `twist`.
+    pub(crate) fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        vec![
+            (
+                "between",
+                super::Setting::Pair(self.bodies.clone().map(|b| b.to_string())),
+            ),
+            ("twist", super::Setting::Flag(self.twist)),
+        ]
+    }
+
     pub(crate) fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         for (i, end) in self.ends.iter().enumerate() {
             for (k, x) in end.iter().enumerate() {

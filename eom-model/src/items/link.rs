@@ -44,6 +44,10 @@ impl<S: ModelScalar> Item<S> for Link<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        self.line.settings()
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.line.fields(f);
     }

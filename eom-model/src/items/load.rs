@@ -96,6 +96,13 @@ impl<S: ModelScalar> Item<S> for Load<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        vec![
+            ("body", super::Setting::Text(self.body.to_string())),
+            ("frame", super::Setting::Text(self.frame.to_string())),
+        ]
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         visit3(f, "location", &self.location);
         visit3(f, "force", &self.force);

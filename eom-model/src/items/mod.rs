@@ -23,6 +23,7 @@ mod point;
 mod rigid_point;
 mod sensor;
 mod spring;
+mod wing;
 
 pub use actuator::Actuator;
 pub use beam::Beam;
@@ -36,6 +37,7 @@ pub use point::Point;
 pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
+pub use wing::{WING_DERIVATIVES, Wing, wing_derivative_index};
 
 use crate::Model;
 use crate::assemble::Assembly;
@@ -59,6 +61,7 @@ pub const KINDS: &[&str] = &[
     "link",
     "rigid point",
     "nh point",
+    "wing",
     "actuator",
     "sensor",
 ];
@@ -179,6 +182,7 @@ pub trait Item<S>:
     + MapItem<S, Expr>
     + Send
     + Sync
+    + std::any::Any
     + 'static
 {
     /// The kind as it appears in messages and in [`KINDS`], e.g. `"flex point"`.
@@ -190,6 +194,12 @@ pub trait Item<S>:
     /// Visit every scalar field with its name, in the order in which [`MapItem::map_item`]
     /// converts them.
     fn fields(&self, f: &mut dyn FnMut(Field, &S));
+
+    /// The item's settings that are not scalar fields (the bodies it connects, counts, flags,
+    /// labels), by the names a model file uses for them.
+    fn settings(&self) -> Vec<(&'static str, Setting)> {
+        Vec::new()
+    }
 
     /// The bodies the item connects: each must exist, and two must differ. (Other body
     /// references, like a load's frame, are checked by [`Item::validate`].)
@@ -217,6 +227,19 @@ pub trait Item<S>:
     {
         model.insert_item(Box::new(self));
     }
+}
+
+/// A setting of an item that is not a scalar field (see [`Item::settings`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Setting {
+    /// A name or label.
+    Text(String),
+    /// Two body names.
+    Pair([String; 2]),
+    /// A count.
+    Count(u8),
+    /// A flag.
+    Flag(bool),
 }
 
 /// The name of a scalar field of an item, with up to two indices: `mass`, `location[x]`,

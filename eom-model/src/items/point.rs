@@ -37,6 +37,18 @@ impl<S: Scalar> Point<S> {
     }
 
     /// Visit the location and the two axes.
+    /// `between`, `forces` and `moments`.
+    pub(crate) fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        vec![
+            (
+                "between",
+                super::Setting::Pair(self.bodies.clone().map(|b| b.to_string())),
+            ),
+            ("forces", super::Setting::Count(self.forces)),
+            ("moments", super::Setting::Count(self.moments)),
+        ]
+    }
+
     pub(crate) fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         visit3(f, "location", &self.location);
         visit3(f, "axis", &self.axis);

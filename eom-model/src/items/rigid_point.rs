@@ -44,6 +44,10 @@ impl<S: ModelScalar> Item<S> for RigidPoint<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        self.point.settings()
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.point.fields(f);
     }

@@ -121,6 +121,27 @@ impl<S: ModelScalar> Item<S> for Sensor<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        use super::Setting::Text;
+        let mut s = self.line.settings();
+        let order = match self.order {
+            SensorOrder::Displacement => "displacement",
+            SensorOrder::Velocity => "velocity",
+            SensorOrder::Acceleration => "acceleration",
+        };
+        s.push(("order", Text(order.into())));
+        let frame = match self.frame {
+            SensorFrame::Global => "global",
+            SensorFrame::Local => "local",
+        };
+        s.push(("frame", Text(frame.into())));
+        if let Some(a) = &self.actuator {
+            s.push(("feedthrough", Text(a.to_string())));
+        }
+        s.push(("units", Text(self.units.clone())));
+        s
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.line.fields(f);
         f(Field::scalar("gain"), &self.gain);

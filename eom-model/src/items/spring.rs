@@ -80,6 +80,10 @@ impl<S: ModelScalar> Item<S> for Spring<S> {
         &self.name
     }
 
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        self.line.settings()
+    }
+
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.line.fields(f);
         f(Field::scalar("stiffness"), &self.stiffness);

@@ -140,9 +140,10 @@ impl ClosedForms {
         self.pencil_polynomial(None, a)
     }
 
-    /// `det(sE − F)` in closed form (`E = I` when `e` is `None`). For the descriptor form of a
-    /// mechanical model (`E = diag(I, M)`) this is `det(M)·det(sI − A)`, whose coefficients
-    /// have no nested divisions: the closed form to show for larger models.
+    /// `det(sI − A)` for `A = E⁻¹F`, computed as `det(sE − F)/det(E)` (`E = I` when `e` is
+    /// `None`). For the descriptor form of a mechanical model (`E = diag(I, M)`) the
+    /// coefficients of `det(sE − F)` have no nested divisions by the mass matrix: the closed
+    /// form to show for larger models; `det(E)` goes into the scale.
     pub fn pencil_polynomial(
         &self,
         e: Option<&DMatrix<Expr>>,
@@ -170,6 +171,14 @@ impl ClosedForms {
                 Some((c, scale)) => (c, scale, true),
                 None => (coeffs, Expr::one(), false),
             };
+            if let Some(e) = e {
+                let rows: Vec<Vec<Expr>> = (0..n)
+                    .map(|i| (0..n).map(|j| e[(i, j)]).collect())
+                    .collect();
+                let det_e = det::det(&rows);
+                let product = scale * det_e;
+                scale = crate::simplify::normalize_rational(product).unwrap_or(product);
+            }
             let zero_roots = coeffs
                 .iter()
                 .take_while(|c| c.is_zero() || crate::zero::is_identically_zero(**c))

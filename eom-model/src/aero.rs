@@ -1,0 +1,208 @@
+//! Where the quasi-steady wing derivatives can be trusted.
+//!
+//! A wing's derivatives are those of a steady flow; they describe a moving wing well when the
+//! motion is slow against the time the air takes to pass a chord, and its rates small:
+//!
+//! * [`reduced_frequencies`]: for every oscillatory eigenvalue λ and every wing, the reduced
+//!   frequency β = |Im λ|·c/V, with a warning above
+//!   [`REDUCED_FREQUENCY_LIMIT`](eom_aero::REDUCED_FREQUENCY_LIMIT) = 0.1 (k = β/2 ≲ 0.05, where
+//!   the unsteady lift lag of Theodorsen's function is still a few percent);
+//! * [`response_rates`]: the largest normalised rates |p b/2V|, |q c/2V|, |r b/2V| of each wing
+//!   along a time response (given by its states), against AVL's limits 0.10, 0.03 and 0.25
+//!   (beyond which the straight trailing legs of the vortex lattice no longer follow the
+//!   wake); [`simulated_rates`] simulates the response first.
+
+use crate::Model;
+use crate::error::ModelError;
+use crate::items::Wing;
+use eom_aero::validity::{
+    PITCH_RATE_LIMIT, REDUCED_FREQUENCY_LIMIT, ROLL_RATE_LIMIT, YAW_RATE_LIMIT, check_rates,
+    reduced_frequency,
+};
+use eom_num::NumError;
+use eom_num::StateSpace;
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+
+/// The reduced frequency of one oscillatory mode at one wing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReducedFrequency {
+    /// The wing.
+    pub wing: String,
+    /// The eigenvalue (the member of its pair with positive imaginary part).
+    pub eigenvalue: Complex64,
+    /// β = |Im λ|·c/V.
+    pub beta: f64,
+    /// Whether β exceeds the limit 0.1.
+    pub too_high: bool,
+}
+
+impl ReducedFrequency {
+    /// The warning for a reduced frequency above the limit.
+    pub fn warning(&self) -> Option<String> {
+        self.too_high.then(|| {
+            format!(
+                "wing `{}`: the mode λ = {} has the reduced frequency β = |Im λ|·c/V = {:.3} > {}: \
+                 its quasi-steady derivatives are doubtful there (unsteady lift lags)",
+                self.wing,
+                format_eigenvalue(self.eigenvalue),
+                self.beta,
+                REDUCED_FREQUENCY_LIMIT
+            )
+        })
+    }
+}
+
+fn format_eigenvalue(z: Complex64) -> String {
+    format!("{:.6} ± {:.6}i", z.re, z.im.abs())
+}
+
+/// β = |Im λ|·c/V of every eigenvalue with a positive imaginary part (one per conjugate pair)
+/// at every wing of `model` (its airspeed as in [`Model::airspeed_of`]), wing by wing.
+pub fn reduced_frequencies(model: &Model<f64>, eigenvalues: &[Complex64]) -> Vec<ReducedFrequency> {
+    let mut out = Vec::new();
+    for w in model.wings() {
+        let v = model.airspeed_of(w);
+        for z in eigenvalues.iter().filter(|z| z.im > 0.0) {
+            let beta = reduced_frequency(z.im, w.chord, v);
+            out.push(ReducedFrequency {
+                wing: w.name.to_string(),
+                eigenvalue: *z,
+                beta,
+                too_high: eom_aero::validity::reduced_frequency_too_high(beta),
+            });
+        }
+    }
+    out
+}
+
+/// The largest normalised rates of one wing along a response.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WingRates {
+    /// The wing.
+    pub wing: String,
+    /// The largest |p b/2V|, |q c/2V|, |r b/2V| (the wing's own axes).
+    pub max: [f64; 3],
+    /// The sample at which each was reached.
+    pub at: [usize; 3],
+    /// AVL's limits 0.10, 0.03, 0.25.
+    pub limits: [f64; 3],
+    /// Whether each limit was reached or exceeded.
+    pub exceeded: [bool; 3],
+}
+
+impl WingRates {
+    /// One warning per exceeded limit.
+    pub fn warnings(&self) -> Vec<String> {
+        let names = ["p b/2V", "q c/2V", "r b/2V"];
+        (0..3)
+            .filter(|&k| self.exceeded[k])
+            .map(|k| {
+                format!(
+                    "wing `{}`: |{}| reaches {:.4} (sample {}), beyond {}: the quasi-steady \
+                     derivatives are doubtful there",
+                    self.wing, names[k], self.max[k], self.at[k], self.limits[k]
+                )
+            })
+            .collect()
+    }
+}
+
+/// The normalised rates of every wing along a response of `ss` (the state space of `model`):
+/// `states` holds one state vector per column, `inputs` the inputs at the same samples (zero
+/// if `None`). The body rates are `phys · ẋ` (rotation rows), `ẋ = A x + B u`, turned into
+/// each wing's axes and normalised by its span, chord and airspeed.
+pub fn response_rates(
+    model: &Model<f64>,
+    ss: &StateSpace<f64>,
+    states: &DMatrix<f64>,
+    inputs: Option<&DMatrix<f64>>,
+) -> Result<Vec<WingRates>, ModelError> {
+    let n = ss.states();
+    if states.nrows() != n {
+        return Err(NumError::Dimension(format!(
+            "the states have {} rows, the model {n} states",
+            states.nrows()
+        ))
+        .into());
+    }
+    let mut xdot = &ss.a * states;
+    if let Some(u) = inputs {
+        if u.nrows() != ss.inputs() || u.ncols() != states.ncols() {
+            return Err(NumError::Dimension(format!(
+                "the inputs are {}×{}, expected {}×{}",
+                u.nrows(),
+                u.ncols(),
+                ss.inputs(),
+                states.ncols()
+            ))
+            .into());
+        }
+        xdot += &ss.b * u;
+    }
+    let mut out = Vec::new();
+    for w in model.wings() {
+        let Some(k) = ss.names.bodies.iter().position(|b| **b == *w.body) else {
+            return Err(ModelError::Model {
+                item: format!("wing `{}`", w.name),
+                field: "body".into(),
+                problem: format!("body `{}` is not among the state space's bodies", w.body),
+            });
+        };
+        let omega = ss.phys.rows(6 * k + 3, 3) * &xdot;
+        out.push(rates_of(model, w, &omega));
+    }
+    Ok(out)
+}
+
+/// [`response_rates`] of the simulation of `ss` from `x0` (zero if `None`) under the inputs
+/// `inputs` (one column per sample, held over each step `dt`; see
+/// [`eom_num::time::simulate`]).
+pub fn simulated_rates(
+    model: &Model<f64>,
+    ss: &StateSpace<f64>,
+    inputs: &DMatrix<f64>,
+    dt: f64,
+    x0: Option<&nalgebra::DVector<f64>>,
+) -> Result<Vec<WingRates>, ModelError> {
+    // The states themselves as the outputs.
+    let mut full = ss.clone();
+    full.c = DMatrix::identity(ss.states(), ss.states());
+    full.d = DMatrix::zeros(ss.states(), ss.inputs());
+    full.names.outputs.clear();
+    full.names.output_units.clear();
+    let opts = eom_num::time::TimeOptions::default();
+    let resp = eom_num::time::simulate(&full, inputs, dt, x0, &opts)?;
+    let states = DMatrix::from_column_slice(ss.states(), resp.len(), &resp.y);
+    let used = inputs.columns(0, resp.len()).into_owned();
+    response_rates(model, ss, &states, Some(&used))
+}
+
+/// The largest normalised rates of `w` for the body rates `omega` (3 × samples, model axes).
+fn rates_of(model: &Model<f64>, w: &Wing<f64>, omega: &DMatrix<f64>) -> WingRates {
+    let q = w.rotation();
+    let v = model.airspeed_of(w);
+    let mut max = [0.0f64; 3];
+    let mut at = [0usize; 3];
+    let mut exceeded = [false; 3];
+    for (s, col) in omega.column_iter().enumerate() {
+        let own: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| q[i][j] * col[j]).sum());
+        let c = check_rates(own[0], own[1], own[2], w.span, w.chord, v);
+        for k in 0..3 {
+            let x = c.normalised[k].abs();
+            // NaN counts as the largest.
+            if x.is_nan() || x > max[k] {
+                max[k] = x;
+                at[k] = s;
+            }
+            exceeded[k] |= c.exceeded[k];
+        }
+    }
+    WingRates {
+        wing: w.name.to_string(),
+        max,
+        at,
+        limits: [ROLL_RATE_LIMIT, PITCH_RATE_LIMIT, YAW_RATE_LIMIT],
+        exceeded,
+    }
+}

@@ -1,0 +1,700 @@
+//! [`Wing`]: a lifting surface on a body, as the quasi-steady aerodynamic damping of its
+//! stability derivatives.
+//!
+//! A wing moving through still air at airspeed V feels, to first order in the perturbation
+//! velocities of its reference point, the force and moment `F = (q̄S/V)·M·x` with
+//! `x = (u, v, w, p, q, r)` in the wing's own axes (AVL's standard body axes: x forward,
+//! y right, z down), `q̄ = ½ρV²` and
+//!
+//! ```text
+//! M_ij = row_i · col_j · C_ij,   row = (1, 1, 1, b, c, b),   col = (1, 1, 1, b/2, c/2, b/2)
+//! ```
+//!
+//! where `C_ij` are the non-dimensional body-axis derivatives by AVL's names (CXu … Cnr: rows
+//! CX, CY, CZ per q̄S, Cl, Cn per q̄Sb, Cm per q̄Sc; columns u/V, v/V, w/V, pb/2V, qc/2V,
+//! rb/2V). This is the matrix of the EoM software's wing ("build_mtx", there with 18 of the
+//! 36 entries). The wing's damping block is `L = −(q̄S/V)·M = −(ρVS/2)·M` (so V never
+//! divides), rotated into model axes by the 6×6 block rotation `diag(Q, Q)` whose rows are the
+//! wing's forward, right and down axes, and attached to the body through the Jacobian of its
+//! point with all three forces and moments relative to ground: a non-symmetric damping
+//! block, which every reduction path and the generated code carry like any other.
+//!
+//! **Airspeed and air stream.** Without a given airspeed the air is still and the wing flies
+//! at its body's nominal velocity: V is that velocity's component along the forward axis, and
+//! the body-axis velocity perturbations of the point are exactly the air-relative ones (a
+//! rotated body sees its own velocity along new axes, which tilts the relative wind). With a
+//! given airspeed the air moves at `v_air = v_body − V·forward` (a wind tunnel: a body at rest
+//! in a stream V), and a rotation θ of the body turns that stream in the body's axes by
+//! `θ × v_air`: the wing then adds the stiffness block `Jᵀ·L[:, u v w]·(−[v_air]×)` on the
+//! body's rotations (to the load stiffness), so that, e.g., a car modelled at rest on a moving
+//! road sees the angle of attack of its pitch attitude. (When `v_air` is zero, as when the
+//! given airspeed is the body's own speed along the forward axis, nothing is added.)
+//!
+//! The default orientation is forward = +x, down = −z: AVL's x forward, y right, z down are
+//! the model's x forward, y left, z up turned by π about x (entry `(i, j)` of the block
+//! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
+
+use super::point::Point;
+use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
+use super::{label, visit3, zero3};
+use crate::Model;
+use crate::assemble::{Assembly, Term};
+use crate::error::ModelError;
+use crate::geometry::{cross, dot, skew};
+use crate::validate::Validation;
+use eom_sym::scalar::Scalar;
+
+/// The 36 derivative names in AVL's body-axis layout: `WING_DERIVATIVES[i][j]` is row i
+/// (CX, CY, CZ, Cl, Cm, Cn) and column j (u, v, w, p, q, r).
+pub const WING_DERIVATIVES: [[&str; 6]; 6] = [
+    ["CXu", "CXv", "CXw", "CXp", "CXq", "CXr"],
+    ["CYu", "CYv", "CYw", "CYp", "CYq", "CYr"],
+    ["CZu", "CZv", "CZw", "CZp", "CZq", "CZr"],
+    ["Clu", "Clv", "Clw", "Clp", "Clq", "Clr"],
+    ["Cmu", "Cmv", "Cmw", "Cmp", "Cmq", "Cmr"],
+    ["Cnu", "Cnv", "Cnw", "Cnp", "Cnq", "Cnr"],
+];
+
+/// The row and column of a derivative name (case-sensitive: AVL's `Cl` is roll).
+pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
+    WING_DERIVATIVES
+        .iter()
+        .enumerate()
+        .find_map(|(i, row)| row.iter().position(|n| *n == name).map(|j| (i, j)))
+}
+
+/// The list of the 36 names, for messages.
+pub(crate) fn derivative_list() -> String {
+    WING_DERIVATIVES
+        .iter()
+        .map(|r| r.join(" "))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A wing: quasi-steady aerodynamic damping at a point of a body, from stability derivatives.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Wing<S> {
+    /// Unique name.
+    pub name: Name,
+    /// The body the wing is fixed to (its forces act relative to the ground).
+    pub body: Name,
+    /// The reference point (moment reference of the derivatives, usually the quarter chord).
+    pub location: Vec3<S>,
+    /// The wing's forward axis (AVL's x) in model axes, a unit vector.
+    pub forward: Vec3<S>,
+    /// The wing's down axis (AVL's z) in model axes, a unit vector perpendicular to
+    /// `forward`; the right axis is `down × forward`.
+    pub down: Vec3<S>,
+    /// Reference area S.
+    pub area: S,
+    /// Reference chord c (pitch moment, pitch rate).
+    pub chord: S,
+    /// Reference span b (roll and yaw moments, roll and yaw rates).
+    pub span: S,
+    /// Air density ρ.
+    pub density: S,
+    /// Airspeed V; `None`: the body's nominal velocity along `forward`.
+    pub airspeed: Option<S>,
+    /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero.
+    pub derivatives: [[S; 6]; 6],
+    /// Names given to [`Wing::derivative`] that are not derivative names (reported by the
+    /// validation, since a builder cannot fail).
+    unknown: Vec<String>,
+}
+
+impl<S: Scalar> Wing<S> {
+    /// A wing on the ground with unit reference quantities, ρ = 1.225, the default
+    /// orientation (forward +x, down −z) and all derivatives zero.
+    pub fn new(n: &str) -> Self {
+        Wing {
+            name: name(n),
+            body: name(GROUND),
+            location: zero3(),
+            forward: [S::one(), S::zero(), S::zero()],
+            down: [S::zero(), S::zero(), -S::one()],
+            area: S::one(),
+            chord: S::one(),
+            span: S::one(),
+            density: S::from_f64(1.225),
+            airspeed: None,
+            derivatives: [[S::zero(); 6]; 6],
+            unknown: Vec::new(),
+        }
+    }
+
+    /// A wing with the reference area, chord, span and the 36 derivatives of `d` (computed
+    /// by eom-aero's vortex lattice or read from an AVL file). The reference point stays the
+    /// caller's: put the wing [`at`](Wing::at) the model point of `d.reference.point`.
+    pub fn from_derivatives(n: &str, d: &eom_aero::Derivatives) -> Self {
+        let mut w = Wing::new(n)
+            .area(S::from_f64(d.reference.sref))
+            .chord(S::from_f64(d.reference.cref))
+            .span(S::from_f64(d.reference.bref));
+        for (i, row) in d.coefficients.iter().enumerate() {
+            for (j, &c) in row.iter().enumerate() {
+                w.derivatives[i][j] = S::from_f64(c);
+            }
+        }
+        w
+    }
+
+    /// The body the wing is fixed to.
+    pub fn on(mut self, body: &str) -> Self {
+        self.body = name(body);
+        self
+    }
+    /// The reference point.
+    pub fn at(mut self, location: Vec3<S>) -> Self {
+        self.location = location;
+        self
+    }
+    /// The wing's forward and down axes in model axes (orthonormal at the nominal point).
+    pub fn axes(mut self, forward: Vec3<S>, down: Vec3<S>) -> Self {
+        self.forward = forward;
+        self.down = down;
+        self
+    }
+    /// Reference area S.
+    pub fn area(mut self, s: impl Into<S>) -> Self {
+        self.area = s.into();
+        self
+    }
+    /// Reference chord c.
+    pub fn chord(mut self, c: impl Into<S>) -> Self {
+        self.chord = c.into();
+        self
+    }
+    /// Reference span b.
+    pub fn span(mut self, b: impl Into<S>) -> Self {
+        self.span = b.into();
+        self
+    }
+    /// Air density ρ.
+    pub fn density(mut self, rho: impl Into<S>) -> Self {
+        self.density = rho.into();
+        self
+    }
+    /// Airspeed V (default: the body's nominal velocity along the forward axis).
+    pub fn airspeed(mut self, v: impl Into<S>) -> Self {
+        self.airspeed = Some(v.into());
+        self
+    }
+    /// One derivative by its AVL name (`"CYv"`, `"Cnr"`, …); an unknown name is reported
+    /// by the validation.
+    pub fn derivative(mut self, n: &str, value: impl Into<S>) -> Self {
+        match wing_derivative_index(n) {
+            Some((i, j)) => self.derivatives[i][j] = value.into(),
+            None => self.unknown.push(n.to_string()),
+        }
+        self
+    }
+
+    /// The airspeed used: the given one, else the component of `velocity` (the body's
+    /// nominal velocity) along the forward axis.
+    pub fn airspeed_with(&self, velocity: &Vec3<S>) -> S {
+        self.airspeed
+            .unwrap_or_else(|| dot(&self.forward, velocity))
+    }
+
+    /// The nominal velocity of the air for a body moving at `velocity`: zero (still air)
+    /// without a given airspeed, else `velocity − V·forward`.
+    pub fn air_velocity(&self, velocity: &Vec3<S>) -> Vec3<S> {
+        match self.airspeed {
+            None => zero3(),
+            Some(v) => {
+                let f = self.forward;
+                std::array::from_fn(|k| {
+                    let flow = times(v, f[k]);
+                    if flow.is_zero() {
+                        velocity[k]
+                    } else {
+                        velocity[k] - flow
+                    }
+                })
+            }
+        }
+    }
+
+    /// The rows of the rotation `Q` from model axes to the wing's axes: forward, right
+    /// (`down × forward`), down.
+    pub fn rotation(&self) -> [Vec3<S>; 3] {
+        [self.forward, cross(&self.down, &self.forward), self.down]
+    }
+
+    /// `M = build_mtx`: the derivatives with rows scaled by (1, 1, 1, b, c, b) and columns
+    /// by (1, 1, 1, b/2, c/2, b/2), in the wing's axes.
+    pub fn scaled_derivatives(&self) -> [[S; 6]; 6] {
+        let (b, c) = (self.span, self.chord);
+        let half = S::from_f64(0.5);
+        let row = [S::one(), S::one(), S::one(), b, c, b];
+        let col = [S::one(), S::one(), S::one(), half * b, half * c, half * b];
+        let mut m = [[S::zero(); 6]; 6];
+        for i in 0..6 {
+            for j in 0..6 {
+                let d = self.derivatives[i][j];
+                if !d.is_zero() {
+                    m[i][j] = times(times(d, row[i]), col[j]);
+                }
+            }
+        }
+        m
+    }
+
+    /// The damping block `L = −(ρVS/2)·diag(Q,Q)ᵀ·M·diag(Q,Q)` in model axes at the wing's
+    /// point, rows (X, Y, Z, L, M, N), columns (u, v, w, p, q, r), for airspeed `v`: the
+    /// aerodynamic force on the body is `−L` times the point's velocity.
+    pub fn damping(&self, v: S) -> [[S; 6]; 6] {
+        let m = self.scaled_derivatives();
+        let k = -(self.density * v * self.area * S::from_f64(0.5));
+        let q = self.rotation();
+        // t[a][i]: entry (a, i) of diag(Q, Q); wing row a from model column i.
+        let t = |a: usize, i: usize| -> S {
+            if a / 3 == i / 3 {
+                q[a % 3][i % 3]
+            } else {
+                S::zero()
+            }
+        };
+        // M·T first (6×6), then Tᵀ·(M·T), skipping structural zeros.
+        let mt: [[S; 6]; 6] = std::array::from_fn(|a| {
+            std::array::from_fn(|i| {
+                let terms: Vec<S> = (0..6)
+                    .filter(|&b| !m[a][b].is_zero() && !t(b, i).is_zero())
+                    .map(|b| times(m[a][b], t(b, i)))
+                    .collect();
+                S::sum(&terms)
+            })
+        });
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| {
+                let terms: Vec<S> = (0..6)
+                    .filter(|&a| !t(a, i).is_zero() && !mt[a][j].is_zero())
+                    .map(|a| times(t(a, i), mt[a][j]))
+                    .collect();
+                let s = S::sum(&terms);
+                if s.is_zero() { s } else { times(k, s) }
+            })
+        })
+    }
+}
+
+/// `a·b` without building a product by one.
+fn times<S: Scalar>(a: S, b: S) -> S {
+    if a.is_one() {
+        b
+    } else if b.is_one() {
+        a
+    } else {
+        a * b
+    }
+}
+
+impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
+    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+        let location = map3(&self.location, f);
+        let forward = map3(&self.forward, f);
+        let down = map3(&self.down, f);
+        let area = f(&self.area);
+        let chord = f(&self.chord);
+        let span = f(&self.span);
+        let density = f(&self.density);
+        let airspeed = self.airspeed.as_ref().map(&mut *f);
+        let derivatives =
+            std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
+        Box::new(Wing {
+            name: self.name.clone(),
+            body: self.body.clone(),
+            location,
+            forward,
+            down,
+            area,
+            chord,
+            span,
+            density,
+            airspeed,
+            derivatives,
+            unknown: self.unknown.clone(),
+        })
+    }
+}
+
+/// Relative tolerance of the orthonormality of the axes at the nominal point.
+const AXES_TOLERANCE: f64 = 1e-9;
+
+impl<S: ModelScalar> Wing<S> {
+    /// A positive reference quantity.
+    fn check_positive(&self, field: &str, x: &S, what: &str) -> Result<(), ModelError> {
+        let v = x.nominal();
+        if v > 0.0 {
+            return Ok(());
+        }
+        Err(field_error(
+            "wing",
+            &self.name,
+            field,
+            format!("the {what} must be positive (nominal value {v})"),
+        ))
+    }
+
+    /// Forward and down are unit vectors, perpendicular, at the nominal point.
+    fn check_axes(&self) -> Result<(), ModelError> {
+        let n = |v: &Vec3<S>| -> [f64; 3] { [v[0].nominal(), v[1].nominal(), v[2].nominal()] };
+        let (f, d) = (n(&self.forward), n(&self.down));
+        let dotf = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        for (field, v) in [("forward", f), ("down", d)] {
+            let len = dotf(v, v).sqrt();
+            if (len - 1.0).abs() > AXES_TOLERANCE {
+                return Err(field_error(
+                    "wing",
+                    &self.name,
+                    field,
+                    format!("must be a unit vector; its length is {len} at the nominal point"),
+                ));
+            }
+        }
+        let c = dotf(f, d);
+        if c.abs() > AXES_TOLERANCE {
+            return Err(field_error(
+                "wing",
+                &self.name,
+                "down",
+                format!("must be perpendicular to `forward`; their dot product is {c}"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl<S: ModelScalar> Item<S> for Wing<S> {
+    fn kind(&self) -> &'static str {
+        "wing"
+    }
+
+    fn name(&self) -> &Name {
+        &self.name
+    }
+
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        vec![("body", super::Setting::Text(self.body.to_string()))]
+    }
+
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        visit3(f, "location", &self.location);
+        visit3(f, "forward", &self.forward);
+        visit3(f, "down", &self.down);
+        f(Field::scalar("area"), &self.area);
+        f(Field::scalar("chord"), &self.chord);
+        f(Field::scalar("span"), &self.span);
+        f(Field::scalar("density"), &self.density);
+        if let Some(v) = &self.airspeed {
+            f(Field::scalar("airspeed"), v);
+        }
+        for (names, row) in WING_DERIVATIVES.iter().zip(&self.derivatives) {
+            for (n, x) in names.iter().zip(row) {
+                f(Field::scalar(n), x);
+            }
+        }
+    }
+
+    fn bodies(&self) -> &[Name] {
+        std::slice::from_ref(&self.body)
+    }
+
+    /// Aerodynamic forces do not hold a body up: a wing alone leaves it unsupported.
+    fn supports(&self) -> bool {
+        false
+    }
+
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        if let Some(n) = self.unknown.first() {
+            return Err(field_error(
+                "wing",
+                &self.name,
+                "derivatives",
+                format!(
+                    "unknown derivative `{n}`; the derivatives are (AVL's body-axis names): {}",
+                    derivative_list()
+                ),
+            ));
+        }
+        if &*self.body == GROUND {
+            return Err(field_error(
+                "wing",
+                &self.name,
+                "body",
+                "a wing must be on a body, not on the ground".into(),
+            ));
+        }
+        self.check_positive("area", &self.area, "reference area")?;
+        self.check_positive("chord", &self.chord, "reference chord")?;
+        self.check_positive("span", &self.span, "reference span")?;
+        self.check_positive("density", &self.density, "air density")?;
+        self.check_axes()?;
+        match &self.airspeed {
+            Some(v) => self.check_positive("airspeed", v, "airspeed")?,
+            None => {
+                let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
+                let v = self.airspeed_with(&velocity).nominal();
+                // finite: the fields were checked before the items
+                if v <= 0.0 {
+                    return Err(field_error(
+                        "wing",
+                        &self.name,
+                        "airspeed",
+                        format!(
+                            "not given, and the nominal velocity of body `{}` along the wing's \
+                             forward axis is {v}: give the airspeed (positive)",
+                            self.body
+                        ),
+                    ));
+                }
+            }
+        }
+        if self.derivatives.iter().flatten().all(|d| d.is_zero()) {
+            cx.warn(format!(
+                "{} has no derivatives: it adds nothing",
+                label("wing", &self.name)
+            ));
+        }
+        Ok(())
+    }
+
+    /// The damping block at the point, on all six relative directions.
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        let velocity = cx
+            .body(&self.body)
+            .map_or(zero3(), |k| cx.bodies[k].velocity);
+        let block = self.damping(self.airspeed_with(&velocity));
+        let point = Point {
+            bodies: [self.body.clone(), name(GROUND)],
+            location: self.location,
+            forces: 3,
+            moments: 3,
+            axis: zero3(),
+            rolling_axis: zero3(),
+        };
+        let (rows, geometry) = cx.point(&point, "wing", &self.name);
+        let props: Vec<Vec<S>> = block.iter().map(|r| r.to_vec()).collect();
+        cx.add_rows_block(Term::Damping, &rows.rows, &props);
+        let air = self.air_velocity(&velocity);
+        if let (Some(k), false) = (geometry.bodies[0], air.iter().all(|x| x.is_zero())) {
+            // The stream turned by the body's rotation θ: Δ = θ × v_air = −[v_air]× θ at
+            // every point; its force −L[:, u v w]·Δ is a stiffness on θ.
+            let sk = skew(&air);
+            for (a, row) in rows.rows.iter().enumerate() {
+                for c in 0..3 {
+                    let terms: Vec<S> = (0..3)
+                        .zip(&sk)
+                        .filter(|&(t, s)| !block[a][t].is_zero() && !s[c].is_zero())
+                        .map(|(t, s)| -times(block[a][t], s[c]))
+                        .collect();
+                    if terms.is_empty() {
+                        continue;
+                    }
+                    let g = S::sum(&terms);
+                    for &(i, x) in row {
+                        cx.add(Term::LoadStiffness, i, 6 * k + 3 + c, times(x, g));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<S: ModelScalar> Model<S> {
+    /// The wings of the model, in the order they were added.
+    pub fn wings(&self) -> impl Iterator<Item = &Wing<S>> {
+        self.items_of("wing").filter_map(|x| {
+            let any: &dyn std::any::Any = x;
+            any.downcast_ref::<Wing<S>>()
+        })
+    }
+
+    /// The airspeed of `wing` in this model (given, or from its body's nominal velocity).
+    pub fn airspeed_of(&self, wing: &Wing<S>) -> S {
+        let velocity = self.body(&wing.body).map_or(zero3(), |b| b.velocity);
+        wing.airspeed_with(&velocity)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::items::tests::{Counter, check_fields_and_map};
+
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        let mut w = Wing::new("w")
+            .on("a")
+            .at(c.v())
+            .axes(c.v(), c.v())
+            .area(c.x())
+            .chord(c.x())
+            .span(c.x())
+            .density(c.x())
+            .airspeed(c.x());
+        for row in WING_DERIVATIVES {
+            for n in row {
+                w = w.derivative(n, c.x());
+            }
+        }
+        check_fields_and_map(&w);
+    }
+
+    /// A body on a slider moving at `speed` with `wing` on it.
+    fn model_with(wing: Wing<f64>, speed: f64) -> Model<f64> {
+        let mut m = Model::new("m");
+        m.add(
+            crate::Body::new("b")
+                .mass(1.0)
+                .moments([1.0; 3])
+                .velocity([speed, 0.0, 0.0]),
+        );
+        m.add(
+            crate::RigidPoint::new("slider")
+                .between("b", "ground")
+                .forces(2)
+                .moments(3)
+                .axis([0.0, 0.0, 1.0]),
+        );
+        m.add(wing);
+        m
+    }
+
+    fn error(wing: Wing<f64>, speed: f64) -> String {
+        model_with(wing, speed)
+            .validate()
+            .expect_err("invalid")
+            .to_string()
+    }
+
+    #[test]
+    fn bad_input_is_an_error_naming_the_wing_and_field() {
+        let w = || Wing::new("fin").on("b").derivative("CZw", -2.0);
+        assert!(model_with(w(), 10.0).validate().is_ok());
+        let cases: [(Wing<f64>, f64, &str); 9] = [
+            (
+                w().area(0.0),
+                10.0,
+                "wing `fin`, field `area`: the reference area must be positive",
+            ),
+            (w().chord(-1.0), 10.0, "field `chord`"),
+            (w().span(0.0), 10.0, "field `span`"),
+            (
+                w().derivative("CLa", 1.0),
+                10.0,
+                "field `derivatives`: unknown derivative `CLa`; the derivatives are (AVL's body-axis names): CXu CXv CXw",
+            ),
+            (w().on("nobody"), 10.0, "unknown body `nobody`"),
+            (
+                w().on("ground"),
+                10.0,
+                "field `body`: a wing must be on a body",
+            ),
+            (
+                w(),
+                0.0,
+                "field `airspeed`: not given, and the nominal velocity of body `b` along the wing's forward axis is 0",
+            ),
+            (
+                w().airspeed(0.0),
+                10.0,
+                "field `airspeed`: the airspeed must be positive",
+            ),
+            (
+                w().axes([1.0, 0.0, 0.0], [0.6, 0.0, -0.8]),
+                10.0,
+                "field `down`: must be perpendicular to `forward`",
+            ),
+        ];
+        for (wing, speed, want) in cases {
+            let e = error(wing, speed);
+            assert!(e.contains(want), "{e}\nshould contain: {want}");
+        }
+        let e = error(w().axes([2.0, 0.0, 0.0], [0.0, 0.0, -1.0]), 10.0);
+        assert!(
+            e.contains("field `forward`: must be a unit vector; its length is 2"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_wing_without_derivatives_is_a_warning() {
+        let w = model_with(Wing::new("fin").on("b"), 10.0)
+            .validate()
+            .unwrap();
+        assert!(
+            w.iter()
+                .any(|x| x.contains("wing `fin` has no derivatives")),
+            "{w:?}"
+        );
+    }
+
+    /// The default axes turn AVL's (x forward, y right, z down) into the model's (x forward,
+    /// y left, z up): entry (i, j) changes sign by sᵢsⱼ, s = (+, −, −, +, −, −); any other
+    /// orientation is the same block turned.
+    #[test]
+    #[allow(clippy::needless_range_loop)] // index arithmetic reads like the formula
+    fn the_block_is_the_avl_block_turned_into_model_axes() {
+        let mut w = Wing::new("w")
+            .on("b")
+            .area(0.7)
+            .chord(0.3)
+            .span(2.0)
+            .density(1.1);
+        let c = Counter::default();
+        for row in WING_DERIVATIVES {
+            for n in row {
+                w = w.derivative(n, c.x() - 18.0);
+            }
+        }
+        let v = 12.0;
+        let avl = eom_aero::Derivatives {
+            reference: eom_aero::Reference::new(0.7, 0.3, 2.0, [0.0; 3]),
+            coefficients: w.derivatives,
+        }
+        .dimensional(1.1, v);
+        let l = w.damping(v);
+        let s = [1.0, -1.0, -1.0, 1.0, -1.0, -1.0];
+        for i in 0..6 {
+            for j in 0..6 {
+                let want = -s[i] * s[j] * avl[i][j];
+                assert!(
+                    (l[i][j] - want).abs() <= 1e-12 * want.abs().max(1.0),
+                    "({i}, {j})"
+                );
+            }
+        }
+        // A fin mounted on its side (forward +x, down +y): rows/columns permute.
+        let q = w.clone().axes([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let r = q.rotation();
+        let l2 = q.damping(v);
+        for i in 0..6 {
+            for j in 0..6 {
+                let mut want = 0.0;
+                for a in 0..6 {
+                    for b in 0..6 {
+                        let t =
+                            |x: usize, y: usize| if x / 3 == y / 3 { r[x % 3][y % 3] } else { 0.0 };
+                        want -= t(a, i) * avl[a][b] * t(b, j);
+                    }
+                }
+                assert!(
+                    (l2[i][j] - want).abs() <= 1e-12 * want.abs().max(1.0),
+                    "({i}, {j})"
+                );
+            }
+        }
+        assert_eq!(r[1], [0.0, 0.0, -1.0], "right = down × forward");
+    }
+
+    #[test]
+    fn names_are_those_of_eom_aero() {
+        assert_eq!(WING_DERIVATIVES, eom_aero::Derivatives::names());
+        assert_eq!(wing_derivative_index("Cnr"), Some((5, 5)));
+        assert_eq!(wing_derivative_index("CLa"), None);
+    }
+}

@@ -1,0 +1,313 @@
+//! Zero eigenvalues that the structure proves: states, or pairs of states, on which nothing
+//! depends.
+//!
+//! A state whose column of A is exactly zero (no equation depends on it: a vehicle's lateral
+//! position, say) contributes an exact zero eigenvalue. So does a pair of states on which the
+//! equations depend only through their difference or sum — two columns that are exact
+//! negatives (or copies) of each other, as the headings of two bodies of a vehicle when only
+//! their relative yaw matters: the change of coordinates `x_j → x_j ∓ x_i` (exact, with
+//! integer coefficients) turns the pair into one state with a zero column and one with the
+//! combined column. Removing such states may leave further ones among the rest (the heading,
+//! on which only the lateral position depended), and so on. With the states found ordered
+//! last, in reverse order of finding, the transformed matrix is block lower-triangular
+//! `[[A_KK, 0], [A_RK, L]]` with `L` strictly lower triangular: the eigenvalues are those of
+//! `A_KK` and exactly `|R|` zeros.
+//!
+//! Left in the matrix, such a zero pair is defective (a Jordan block: the heading integrates
+//! into the lateral position), and an eigensolver splits it into `±√ε·‖A‖`, which pollutes
+//! small eigenvalues nearby (a bicycle's capsize root at 6 m/s lost three digits). Deflating
+//! it first keeps every other eigenvalue to the accuracy of `A_KK`.
+//!
+//! A structural zero of the reduction is an exact `0.0`. Two columns that depend on a
+//! difference of coordinates are negatives of each other up to the rounding of their separate
+//! computations: they count when every entry agrees to within [`PAIR_ULPS`] units in the last
+//! place, with the same zeros (pairs that agree so closely in every entry by accident do not
+//! occur), and are then made exact. A matrix with rounding noise in its zero columns (the
+//! robust path's orthonormal bases) is left as it is: its structural zeros are deflated
+//! orthogonally when their number is known ([`deflate_null_directions`]).
+
+/// Relative agreement, in units of `f64::EPSILON`, for two columns to count as equal up to sign.
+pub const PAIR_ULPS: f64 = 4096.0;
+
+/// One change of coordinates `x_j = x̃_j − s·x̃_i` (`s = ±1`): after it, state `i`'s column is
+/// `col_i − s·col_j`, zero on the states still kept.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Combine {
+    /// The state whose column becomes zero.
+    pub i: usize,
+    /// The state it is combined with.
+    pub j: usize,
+    /// `±1`.
+    pub s: f64,
+}
+
+/// The structural zero states of `a` (column-major n × n, transformed in place by the
+/// combinations found): `removed` marks them, `order` lists them in the order found, and
+/// `combos` the changes of coordinates applied (in order). `keys` is scratch (length n).
+pub(crate) fn deflate_in_place(
+    a: &mut [f64],
+    n: usize,
+    removed: &mut [bool],
+    order: &mut Vec<usize>,
+    combos: &mut Vec<Combine>,
+    keys: &mut Vec<(u64, usize)>,
+) {
+    removed.iter_mut().for_each(|r| *r = false);
+    order.clear();
+    combos.clear();
+    loop {
+        let before = order.len();
+        remove_zero_columns(a, n, removed, order);
+        if let Some(c) = find_pair(a, n, removed, keys) {
+            apply(a, n, c, removed);
+            combos.push(c);
+            // State i's column is now zero on the kept rows.
+            removed[c.i] = true;
+            order.push(c.i);
+        }
+        if order.len() == before {
+            return;
+        }
+    }
+}
+
+/// Removes states with a zero column (on the kept rows) until none is left.
+fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], order: &mut Vec<usize>) {
+    loop {
+        let before = order.len();
+        for j in 0..n {
+            if removed[j] {
+                continue;
+            }
+            let col = &a[j * n..(j + 1) * n];
+            if (0..n).all(|i| removed[i] || col[i] == 0.0) {
+                removed[j] = true;
+                order.push(j);
+            }
+        }
+        if order.len() == before {
+            return;
+        }
+    }
+}
+
+/// Two kept columns equal up to sign on the kept rows (the first such pair).
+fn find_pair(
+    a: &[f64],
+    n: usize,
+    removed: &[bool],
+    keys: &mut Vec<(u64, usize)>,
+) -> Option<Combine> {
+    keys.clear();
+    for j in (0..n).filter(|&j| !removed[j]) {
+        keys.push((column_key(&a[j * n..(j + 1) * n], removed), j));
+    }
+    keys.sort_unstable();
+    for w in keys.windows(2) {
+        let ((k1, i), (k2, j)) = (w[0], w[1]);
+        if k1 != k2 {
+            continue;
+        }
+        let (ci, cj) = (&a[i * n..(i + 1) * n], &a[j * n..(j + 1) * n]);
+        for s in [1.0, -1.0] {
+            let same = |r: usize| {
+                let (x, y) = (ci[r], s * cj[r]);
+                (x == 0.0) == (y == 0.0) && (x - y).abs() <= PAIR_ULPS * f64::EPSILON * x.abs()
+            };
+            if (0..n).all(|r| removed[r] || same(r)) {
+                return Some(Combine { i, j, s });
+            }
+        }
+    }
+    None
+}
+
+/// A hash of a column's kept entries that is invariant under a change of sign and under
+/// rounding differences below [`PAIR_ULPS`]: the zero pattern and, per entry, the sign relative
+/// to the first nonzero and the binary exponent of the magnitude rounded to a multiple of 2
+/// (nearly equal numbers straddling a power of two fall into neighbouring keys and are then not
+/// paired: a missed pair, never a wrong one).
+fn column_key(col: &[f64], removed: &[bool]) -> u64 {
+    let sign = col
+        .iter()
+        .zip(removed)
+        .find(|(x, r)| !**r && **x != 0.0)
+        .map_or(1.0, |(x, _)| x.signum());
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for (x, r) in col.iter().zip(removed) {
+        if !*r {
+            let v = sign * x;
+            let code: u64 = if v == 0.0 {
+                0
+            } else {
+                let e = (v.abs().log2().floor() as i64).div_euclid(2) as u64;
+                (e << 2) | if v > 0.0 { 1 } else { 2 }
+            };
+            h = (h ^ code).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    h
+}
+
+/// `A ← T⁻¹ A T` with `T = I − s·e_j e_iᵀ`: column i ← col_i − s·col_j, then
+/// row j ← row_j + s·row_i.
+fn apply(a: &mut [f64], n: usize, c: Combine, removed: &[bool]) {
+    // The kept entries of column i are s·(column j) (to rounding): make them exactly so.
+    for r in 0..n {
+        if !removed[r] {
+            a[c.i * n + r] = c.s * a[c.j * n + r];
+        }
+    }
+    for r in 0..n {
+        a[c.i * n + r] -= c.s * a[c.j * n + r];
+    }
+    for k in 0..n {
+        let add = c.s * a[k * n + c.i];
+        a[k * n + c.j] += add;
+    }
+}
+
+/// Copies the kept rows and columns of `a` (column-major n × n) into `out` (m × m).
+pub(crate) fn kept_block(a: &[f64], n: usize, removed: &[bool], out: &mut [f64]) -> usize {
+    let kept: usize = removed.iter().filter(|r| !**r).count();
+    let mut k = 0;
+    for j in (0..n).filter(|&j| !removed[j]) {
+        for i in (0..n).filter(|&i| !removed[i]) {
+            out[k] = a[j * n + i];
+            k += 1;
+        }
+    }
+    debug_assert_eq!(k, kept * kept);
+    kept
+}
+
+/// The number of zero eigenvalues the structure of `a` proves (see the module docs).
+pub fn structural_zero_count(a: &nalgebra::DMatrix<f64>) -> usize {
+    let n = a.nrows();
+    if a.ncols() != n {
+        return 0;
+    }
+    let mut t = a.as_slice().to_vec();
+    let (mut removed, mut order, mut combos, mut keys) = (vec![false; n], vec![], vec![], vec![]);
+    deflate_in_place(&mut t, n, &mut removed, &mut order, &mut combos, &mut keys);
+    order.len()
+}
+
+/// `k` null directions deflated orthogonally, for a matrix whose structural zero eigenvalues
+/// are known (`k` of them, from another basis of the same model) but not visible as exact
+/// zeros here: each step finds the right singular vector `v` of the smallest singular value,
+/// rotates it onto the first coordinate by a Householder reflection and drops that
+/// coordinate. The matrix returned has the other eigenvalues; the perturbation is of the order
+/// of the smallest singular value (rounding), not its square root.
+pub(crate) fn deflate_null_directions(
+    a: &nalgebra::DMatrix<f64>,
+    k: usize,
+) -> Option<nalgebra::DMatrix<f64>> {
+    let mut m = a.clone();
+    for _ in 0..k {
+        let n = m.nrows();
+        if n == 0 {
+            return None;
+        }
+        let svd = m.clone().svd(false, true);
+        let v_t = svd.v_t?;
+        let (idx, _) = svd
+            .singular_values
+            .iter()
+            .enumerate()
+            .min_by(|x, y| x.1.total_cmp(y.1))?;
+        let v: Vec<f64> = v_t.row(idx).iter().copied().collect();
+        // Householder H = I − 2 w wᵀ/(wᵀw), w = v − sign·e₁, maps v to sign·e₁.
+        let sign = if v[0] >= 0.0 { -1.0 } else { 1.0 };
+        let mut w = v.clone();
+        w[0] -= sign;
+        let ww: f64 = w.iter().map(|x| x * x).sum();
+        if ww == 0.0 {
+            m = m.remove_row(0).remove_column(0);
+            continue;
+        }
+        let h = nalgebra::DMatrix::from_fn(n, n, |i, j| {
+            f64::from(u8::from(i == j)) - 2.0 * w[i] * w[j] / ww
+        });
+        let t = &h * &m * &h;
+        m = t.remove_row(0).remove_column(0);
+    }
+    Some(m)
+}
+
+/// The structural zero eigenvalues of `a` described with the state names: a state on which
+/// nothing depends (`front frame.y`), or a pair of which only the difference (or sum) acts
+/// (`rear frame.rz + front frame.rz`: the heading of the pair).
+pub fn structural_zero_states(a: &nalgebra::DMatrix<f64>, states: &[String]) -> Vec<String> {
+    let n = a.nrows();
+    if a.ncols() != n {
+        return Vec::new();
+    }
+    let mut t = a.as_slice().to_vec();
+    let (mut removed, mut order, mut combos, mut keys) = (vec![false; n], vec![], vec![], vec![]);
+    deflate_in_place(&mut t, n, &mut removed, &mut order, &mut combos, &mut keys);
+    let name = |k: usize| {
+        states
+            .get(k)
+            .cloned()
+            .unwrap_or_else(|| format!("x{}", k + 1))
+    };
+    order
+        .iter()
+        .map(|&k| match combos.iter().find(|c| c.i == k) {
+            // x_j = x̃_j − s·x̃_i: the deflated direction is e_i − s·e_j.
+            Some(c) if c.s < 0.0 => format!("{} + {}", name(c.i), name(c.j)),
+            Some(c) => format!("{} − {}", name(c.i), name(c.j)),
+            None => name(k),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn column_major(rows: &[[f64; 4]]) -> Vec<f64> {
+        let n = rows.len();
+        (0..n)
+            .flat_map(|j| (0..n).map(move |i| rows[i][j]))
+            .collect()
+    }
+
+    #[test]
+    fn a_chain_of_ignorable_states_is_found_in_order() {
+        // x0 integrates x1; x2, x3 an oscillator; x0 and x1 ignorable.
+        let mut a = column_major(&[
+            [0.0, 1.0, 0.5, 0.0],
+            [0.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+            [0.0, 0.0, -4.0, -0.1],
+        ]);
+        let (mut removed, mut order, mut combos, mut keys) =
+            (vec![false; 4], vec![], vec![], vec![]);
+        deflate_in_place(&mut a, 4, &mut removed, &mut order, &mut combos, &mut keys);
+        assert_eq!(order, vec![0, 1]);
+        assert!(combos.is_empty());
+        let mut block = vec![0.0; 4];
+        assert_eq!(kept_block(&a, 4, &removed, &mut block), 2);
+        assert_eq!(block, vec![0.0, -4.0, 1.0, -0.1]);
+    }
+
+    #[test]
+    fn a_pair_that_acts_only_through_its_difference_is_combined() {
+        // Rows depend on x0 − x1 (two headings whose difference is a steer angle).
+        let mut a = column_major(&[
+            [-2.0, 2.0, 1.0, 0.0],
+            [3.0, -3.0, 0.0, 1.0],
+            [-5.0, 5.0, -1.0, 0.0],
+            [7.0, -7.0, 0.0, -1.0],
+        ]);
+        let (mut removed, mut order, mut combos, mut keys) =
+            (vec![false; 4], vec![], vec![], vec![]);
+        deflate_in_place(&mut a, 4, &mut removed, &mut order, &mut combos, &mut keys);
+        assert_eq!(order.len(), 1, "one exact zero eigenvalue");
+        assert_eq!(combos.len(), 1);
+        let c = combos[0];
+        assert!((0..4).all(|r| removed[r] || a[c.i * 4 + r] == 0.0));
+    }
+}
