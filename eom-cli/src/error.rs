@@ -99,6 +99,7 @@ impl CliError {
         match self {
             CliError::Catalogue(
                 CatalogueError::UnknownModel { .. }
+                | CatalogueError::ChainTooLong { .. }
                 | CatalogueError::UnknownParameter { .. }
                 | CatalogueError::BadValue { .. },
             )

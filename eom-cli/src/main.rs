@@ -15,6 +15,7 @@ mod codegen;
 mod error;
 mod format;
 mod list;
+mod output;
 mod params;
 mod plot;
 mod sweep;
@@ -372,6 +373,16 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                     problem: "at least one frequency is needed".into(),
                 });
             }
+            if let Some(n) = a.points.filter(|&n| n > params::MAX_FREQ_POINTS) {
+                return Err(CliError::BadArgument {
+                    argument: format!("--points {n}"),
+                    problem: format!(
+                        "more than the limit of {} frequencies (a Bode plot needs a few \
+                         hundred per decade at most)",
+                        params::MAX_FREQ_POINTS
+                    ),
+                });
+            }
             let plots = analyze_plots(&a)?;
             let bode = a.plot.is_some();
             let freq =
@@ -453,11 +464,11 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             match output {
                 None => text,
                 Some(path) => {
-                    std::fs::write(&path, &text).map_err(|source| CliError::Io {
-                        path: path.display().to_string(),
-                        source,
-                    })?;
-                    stderr.push_str(&format!("wrote {}\n", path.display()));
+                    let verb = match output::write_output(&path, &text)? {
+                        output::Written::Written => "wrote",
+                        output::Written::Unchanged => "unchanged",
+                    };
+                    stderr.push_str(&format!("{verb} {}\n", path.display()));
                     String::new()
                 }
             }

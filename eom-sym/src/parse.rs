@@ -511,15 +511,23 @@ impl<'a> Parser<'a> {
     }
 
     fn number(&self, text: &str, col: usize) -> PResult<Expr> {
+        // A literal too long to repeat is cut in the middle (its length given).
+        let (shown, hint) = match text.char_indices().nth(40) {
+            Some(_) => (
+                format!("{}…` ({} characters)", &text[..20], text.len()),
+                "...".to_string(),
+            ),
+            None => (format!("{text}`"), text.to_string()),
+        };
         match Rational::from_decimal(text) {
             Some(r) => Ok(Expr::from_rational(r)),
             None => Err(self.error(
                 col,
                 &format!(
-                    "an exact literal of at most {MAX_BITS} bits (write `float({text})` for a \
+                    "an exact literal of at most {MAX_BITS} bits (write `float({hint})` for a \
                      floating-point value)"
                 ),
-                &format!("`{text}`, which is too wide"),
+                &format!("`{shown}, which is too wide"),
             )),
         }
     }
@@ -967,6 +975,16 @@ mod tests {
             "{exp}"
         );
         assert_eq!(found, "`1e99999`, which is too wide");
+        // Four million digits are refused at once (the conversion is quadratic), the message
+        // short.
+        let long = "7".repeat(4_000_000);
+        let t = std::time::Instant::now();
+        let (_, _, found, _) = parse_err(&format!("m + {long}"), &s);
+        assert!(t.elapsed().as_secs_f64() < 5.0, "{:?}", t.elapsed());
+        assert_eq!(
+            found,
+            "`77777777777777777777…` (4000000 characters), which is too wide"
+        );
     }
 
     #[test]

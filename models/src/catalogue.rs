@@ -261,6 +261,20 @@ pub const MAX_CHAIN: usize = 5000;
 pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
     let cat = catalogue();
     if let Some(n) = name.strip_prefix("chain")
+        && !n.is_empty()
+        && n.bytes().all(|b| b.is_ascii_digit())
+        && n.parse::<usize>().ok().is_none_or(|k| k > MAX_CHAIN)
+    {
+        return Err(CatalogueError::ChainTooLong {
+            name: if name.len() > 40 {
+                format!("{}… ({} characters)", &name[..20], name.len())
+            } else {
+                name.to_string()
+            },
+            max: MAX_CHAIN,
+        });
+    }
+    if let Some(n) = name.strip_prefix("chain")
         && let Ok(k) = n.parse::<usize>()
         && (1..=MAX_CHAIN).contains(&k)
     {
