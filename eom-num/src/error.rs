@@ -10,6 +10,10 @@ pub enum NumError {
     /// A matrix contains NaN or infinite entries.
     #[error("non-finite entry in {0}")]
     NonFinite(String),
+    /// A matrix entry so large ([`crate::MAX_ENTRY`]) that the products inside the
+    /// factorisations would overflow: the message names the entry and its value.
+    #[error("entry too large: {0}")]
+    OutOfRange(String),
     /// An option or argument is out of its valid range (names the parameter).
     #[error("invalid option: {0}")]
     InvalidOption(String),

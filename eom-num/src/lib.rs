@@ -117,6 +117,11 @@
 
 #![warn(missing_docs)]
 
+/// Largest magnitude of a matrix entry the analyses accept (about the square root of
+/// `f64::MAX`, with margin): the products of two entries inside the factorisations stay
+/// finite.
+pub const MAX_ENTRY: f64 = 1e150;
+
 pub mod budget;
 pub mod deflate;
 pub mod descriptor;

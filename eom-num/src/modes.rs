@@ -165,7 +165,7 @@ pub fn eigenvalues_in(
             out.len()
         )));
     }
-    if a.iter().any(|x| !x.is_finite()) {
+    if a.iter().any(|x| !(x.abs() <= crate::MAX_ENTRY)) {
         return check_finite(a, "A");
     }
     if n == 0 {

@@ -81,14 +81,22 @@ pub struct Descriptor<T: Scalar = f64> {
 
 /// Checks that every entry of `m` is finite; the error names the matrix.
 pub(crate) fn check_finite(m: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
-    if let Some(k) = m.iter().position(|x| !x.is_finite()) {
+    if let Some(k) = m.iter().position(|x| !(x.abs() <= crate::MAX_ENTRY)) {
         let (i, j) = (k % m.nrows().max(1), k / m.nrows().max(1));
-        return Err(NumError::NonFinite(format!(
-            "{name}[{i}, {j}] = {} ({}×{} matrix)",
+        let at = format!(
+            "{name}[{i}, {j}] = {:?} ({}×{} matrix)",
             m[k],
             m.nrows(),
             m.ncols()
-        )));
+        );
+        if m[k].is_finite() {
+            return Err(NumError::OutOfRange(format!(
+                "{at}: larger in magnitude than {:e}, beyond which the products inside the \
+                 factorisations overflow (express the model in other units)",
+                crate::MAX_ENTRY
+            )));
+        }
+        return Err(NumError::NonFinite(at));
     }
     Ok(())
 }

@@ -49,8 +49,8 @@ pub enum CatalogueError {
     /// A chain longer than the catalogue builds ([`catalogue::MAX_CHAIN`]).
     #[error(
         "model `{name}`: a chain has at most {max} masses here (the analysis grows as the \
-         cube of the size: chain1000 takes seconds, chain{max} minutes and gigabytes); for a \
-         longer chain write a model file (`eom export chain10` shows the pattern)"
+         cube of the size); for a longer chain write a model file (`eom export chain10` \
+         shows the pattern)"
     )]
     ChainTooLong {
         /// The name asked for.
