@@ -382,7 +382,10 @@ pub fn analyze(
                 .method(Method::Symbolic)
                 .run()
                 .map_err(|e| match e {
-                    ModelError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion { source: e },
+                    ModelError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion {
+                        source: Box::new(e),
+                        alternatives: working_methods(&at_point),
+                    },
                     e => CliError::Model(e),
                 })?
         }
@@ -418,6 +421,16 @@ pub fn analyze(
         .collect();
     r.wings = crate::wings::wing_reports(&at_point.nominal()?, &eigenvalues, &mut r.warnings);
     Ok(r)
+}
+
+/// The methods that reduce the model at the point, tried before suggesting them (a
+/// suggestion that cannot work is worse than none).
+fn working_methods(at_point: &eom_model::Model<eom_sym::Expr>) -> Vec<&'static str> {
+    [(Method::Numeric, "numeric"), (Method::Robust, "robust")]
+        .into_iter()
+        .filter(|(m, _)| Linearizer::new(at_point).method(*m).run().is_ok())
+        .map(|(_, name)| name)
+        .collect()
 }
 
 /// The modes as reported: no mode shapes (nothing here shows them).

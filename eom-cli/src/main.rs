@@ -610,10 +610,12 @@ fn write_all(mut w: impl Write, text: &str, what: &str) -> Result<(), CliError> 
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = run(cli).and_then(|out| {
-        write_all(std::io::stderr().lock(), &out.stderr, "standard error")?;
-        write_all(std::io::stdout().lock(), &out.stdout, "standard output")
-    });
+    let result = params::memory_limit_from_env()
+        .and_then(|_| run(cli))
+        .and_then(|out| {
+            write_all(std::io::stderr().lock(), &out.stderr, "standard error")?;
+            write_all(std::io::stdout().lock(), &out.stdout, "standard output")
+        });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

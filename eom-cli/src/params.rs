@@ -210,6 +210,39 @@ fn has_nonzero_mantissa(t: &str) -> bool {
         .is_some_and(|m| m.bytes().any(|b| (b'1'..=b'9').contains(&b)))
 }
 
+/// Sets the memory limit of the analyses ([`eom_num::budget`]) from the environment variable
+/// `EOM_MEMORY_LIMIT`: bytes, or a number with the suffix K, M, G or T (binary units).
+pub fn memory_limit_from_env() -> Result<(), CliError> {
+    let Ok(text) = std::env::var("EOM_MEMORY_LIMIT") else {
+        return Ok(());
+    };
+    let bad = || CliError::BadArgument {
+        argument: format!("EOM_MEMORY_LIMIT={}", abbreviate(&text)),
+        problem: "expected a number of bytes, optionally with K, M, G or T (e.g. 32G)".into(),
+    };
+    let t = text.trim();
+    let (digits, shift) = match t.char_indices().last() {
+        Some((i, c)) if c.is_ascii_alphabetic() => {
+            let shift = match c.to_ascii_uppercase() {
+                'K' => 10,
+                'M' => 20,
+                'G' => 30,
+                'T' => 40,
+                _ => return Err(bad()),
+            };
+            (&t[..i], shift)
+        }
+        _ => (t, 0),
+    };
+    let n: usize = digits.trim().parse().map_err(|_| bad())?;
+    let bytes = n
+        .checked_shl(shift)
+        .filter(|b| b >> shift == n)
+        .ok_or_else(bad)?;
+    eom_num::budget::set_limit(bytes);
+    Ok(())
+}
+
 /// Largest number of values of a sweep (`--param NAME=START:STOP:COUNT`).
 pub const MAX_SWEEP_COUNT: usize = 1_000_000;
 

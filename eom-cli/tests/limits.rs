@@ -145,3 +145,35 @@ fn a_very_long_literal_is_refused_quickly() {
     assert!(t.elapsed().as_secs_f64() < 20.0, "{:?}", t.elapsed());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn memory_beyond_the_limit_is_refused_before_allocating() {
+    let r = std::process::Command::new(env!("CARGO_BIN_EXE_eom"))
+        .args(["analyze", "chain300"])
+        .env("EOM_MEMORY_LIMIT", "1M")
+        .output()
+        .expect("eom runs");
+    let stderr = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("too large") && stderr.contains("EOM_MEMORY_LIMIT"),
+        "{stderr}"
+    );
+    let r = std::process::Command::new(env!("CARGO_BIN_EXE_eom"))
+        .args(["analyze", "smd"])
+        .env("EOM_MEMORY_LIMIT", "lots")
+        .output()
+        .expect("eom runs");
+    assert_eq!(r.status.code(), Some(2));
+}
+
+#[test]
+fn entries_beyond_the_range_of_the_factorisations_are_named() {
+    let r = eom(&["analyze", "smd", "--set", "k=1e200"]);
+    assert_eq!(r.code, 1, "{}", r.stderr);
+    assert!(
+        r.stderr.contains("entry too large") && r.stderr.contains("1e200"),
+        "{}",
+        r.stderr
+    );
+}

@@ -53,7 +53,7 @@ use crate::NumError;
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
-use crate::statespace::{StateSpace, check_finite};
+use crate::statespace::{StateSpace, check_finite, in_range};
 
 fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
@@ -165,7 +165,7 @@ pub fn eigenvalues_in(
             out.len()
         )));
     }
-    if a.iter().any(|x| !(x.abs() <= crate::MAX_ENTRY)) {
+    if a.iter().any(|x| !in_range(*x)) {
         return check_finite(a, "A");
     }
     if n == 0 {
