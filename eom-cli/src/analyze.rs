@@ -361,20 +361,20 @@ pub(crate) fn ratio_unit(out: &str, inp: &str) -> String {
     }
 }
 
-/// Linearizes the model at the point and runs every analysis.
+/// Linearizes the model at the point.
 ///
 /// With [`Method::Symbolic`] the model is reduced with pivots chosen at the catalogue defaults
 /// and evaluated at the requested point, so a point outside the symbolic validity region is an
 /// error ([`eom_model::ModelError::PivotBreakdown`]); the other methods reduce at the point.
-pub fn analyze(
+pub fn linearize(
     choice: &ModelChoice,
     overrides: &[(String, f64)],
-    opts: &AnalyzeOptions,
-) -> Result<Analysis, CliError> {
+    method: Method,
+) -> Result<eom_model::Linearization, CliError> {
     let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     // Building at the point validates the names and values (positive masses, …).
     let at_point = choice.build(overrides)?;
-    let lin = match opts.method {
+    Ok(match method {
         Method::Symbolic => {
             let nominal = choice.build(&[])?;
             Linearizer::new(&nominal)
@@ -390,7 +390,17 @@ pub fn analyze(
                 })?
         }
         m => Linearizer::new(&at_point).method(m).run()?,
-    };
+    })
+}
+
+/// Every analysis of a linearization of the model at the point.
+pub fn analyze_linearized(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    opts: &AnalyzeOptions,
+    lin: &eom_model::Linearization,
+) -> Result<Analysis, CliError> {
+    let at_point = choice.build(overrides)?;
     let warnings = lin
         .warnings
         .iter()

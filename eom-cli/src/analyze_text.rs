@@ -69,6 +69,32 @@ fn signal_list(s: &[Signal]) -> String {
 impl Analysis {
     /// The human-readable report.
     pub fn to_text(&self) -> String {
+        let mut t = self.header_text();
+        t.push_str(&self.modes_text());
+        t.push_str(&self.minimal_text());
+        t.push_str(&self.gains_text());
+        t.push_str(&self.zeros_text());
+        t.push_str(&self.frequency_text());
+        if let Some(w) = &self.wings {
+            t.push_str(&crate::wings::wings_text(w));
+        }
+
+        if let Some(sens) = &self.sensitivity {
+            t.push_str(&sensitivity_text(sens));
+        }
+
+        t.push_str("Warnings\n");
+        if self.warnings.is_empty() {
+            t.push_str("  none\n");
+        }
+        for w in &self.warnings {
+            t.push_str(&format!("  - {w}\n"));
+        }
+        t
+    }
+
+    /// The model, its parameters and signals, and the states' names.
+    fn header_text(&self) -> String {
         let mut t = String::new();
         let units = |k: usize| {
             let u = &self.parameter_units[k].1;
@@ -99,6 +125,12 @@ impl Analysis {
         ));
         t.pop();
         t.push_str(")\n");
+        t
+    }
+
+    /// The modes table and the stability verdict.
+    fn modes_text(&self) -> String {
+        let mut t = String::new();
         t.push_str(&mode_table(&self.modes));
         t.push_str(
             "  freq = |λ|/2π (a real pole's corner frequency); damping = −Re λ/|λ| (±1 for a real \
@@ -146,7 +178,12 @@ impl Analysis {
             ));
         }
         t.push('\n');
+        t
+    }
 
+    /// The modes of the minimal realization and what it removed.
+    fn minimal_text(&self) -> String {
+        let mut t = String::new();
         match &self.minimal {
             Some(m) => {
                 t.push_str(&format!(
@@ -173,7 +210,12 @@ impl Analysis {
             None => t.push_str("Minimal realization: not computed (see the warnings)\n"),
         }
         t.push('\n');
+        t
+    }
 
+    /// The steady-state gains.
+    fn gains_text(&self) -> String {
+        let mut t = String::new();
         t.push_str("Steady-state gains (response to a constant input)\n");
         match &self.steady_state_gain {
             Some(gs) if gs.is_empty() => t.push_str("  (no input/output pairs)\n"),
@@ -208,7 +250,12 @@ impl Analysis {
             None => t.push_str("  not computed (see the warnings)\n"),
         }
         t.push('\n');
+        t
+    }
 
+    /// The transmission zeros.
+    fn zeros_text(&self) -> String {
+        let mut t = String::new();
         t.push_str("Transmission zeros (of the minimal realization)\n");
         match &self.zeros {
             None if self.inputs.is_empty() || self.outputs.is_empty() => {
@@ -232,7 +279,12 @@ impl Analysis {
             }
         }
         t.push('\n');
+        t
+    }
 
+    /// The frequency response table, if one was asked for.
+    fn frequency_text(&self) -> String {
+        let mut t = String::new();
         if let Some(fr) = &self.frequency_response {
             t.push_str(&format!(
                 "Frequency response ({} points; magnitude in dB, unwrapped phase in degrees)\n",
@@ -256,22 +308,6 @@ impl Analysis {
             let h: Vec<&str> = header.iter().map(String::as_str).collect();
             t.push_str(&table(&h, &rows, 2));
             t.push('\n');
-        }
-
-        if let Some(w) = &self.wings {
-            t.push_str(&crate::wings::wings_text(w));
-        }
-
-        if let Some(sens) = &self.sensitivity {
-            t.push_str(&sensitivity_text(sens));
-        }
-
-        t.push_str("Warnings\n");
-        if self.warnings.is_empty() {
-            t.push_str("  none\n");
-        }
-        for w in &self.warnings {
-            t.push_str(&format!("  - {w}\n"));
         }
         t
     }

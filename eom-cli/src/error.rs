@@ -63,6 +63,9 @@ pub enum CliError {
     #[cfg(not(feature = "codegen"))]
     #[error("{0}")]
     Unavailable(String),
+    /// A picture that this model cannot give (no mode moves a body, no map to the bodies).
+    #[error("{0}")]
+    NothingToDraw(String),
     /// Two computations that must agree do not (a bug, or an interface that changed under
     /// this crate).
     #[error("internal inconsistency: {0}")]

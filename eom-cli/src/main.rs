@@ -6,6 +6,7 @@
 //! validity region of the symbolic reduction with `--method symbolic`).
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 mod aero;
 mod analyze;
@@ -17,7 +18,10 @@ mod format;
 mod list;
 mod output;
 mod params;
+mod pictures;
 mod plot;
+mod progress;
+mod report;
 mod sweep;
 mod symbolic;
 mod wings;
@@ -56,6 +60,9 @@ use std::process::ExitCode;
         Exit codes: 0 success, 2 unknown model/parameter or malformed argument, 1 other failures."
 )]
 struct Cli {
+    /// No progress bars (they are drawn only when standard error is a terminal anyway)
+    #[arg(long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -145,6 +152,19 @@ enum Command {
         y right, z down) and the dimensional 6×6 ∂F/∂x at the density --rho and airspeed \
         --speed: the negative of the damping block a wing item adds.")]
     Aero(AeroArgs),
+    /// Write one self-contained HTML page about a model: parameters and items, a picture, the
+    /// modes with their shapes, gains, zeros, Bode and time responses, a sweep, closed forms
+    #[command(
+        long_about = "Write one self-contained HTML page about a model (no network, \
+        plots inline as SVG): the parameters and items, a picture of the model from its \
+        geometry, the modes table and every mode's shape (animated), the modes seen from the \
+        inputs and outputs, steady-state gains, transmission zeros, the Bode plot, step, \
+        impulse and free responses, with --sweep the eigenvalues over a parameter with the \
+        stability boundaries and the root locus, and for small models the closed forms \
+        (characteristic polynomial, ωn and ζ, stability conditions, transfer functions) in \
+        MathML with their LaTeX beside."
+    )]
+    Report(ReportArgs),
     /// Print a commented starter model file (redirect it into NAME.toml)
     New {
         /// The model's name
@@ -226,6 +246,22 @@ struct AnalyzeArgs {
     /// model, numeric eigenvectors; defective eigenvalues are flagged, not given a number)
     #[arg(long)]
     sensitivity: bool,
+    /// Draw the unit step and impulse responses of every output to every input into an SVG
+    /// file (the time span from the slowest mode)
+    #[arg(long, value_name = "FILE.svg")]
+    plot_step: Option<PathBuf>,
+    /// Draw the free response of every output started in one mode (x₀ = Re v; --mode K,
+    /// default the least damped oscillatory mode) into an SVG file
+    #[arg(long, value_name = "FILE.svg")]
+    plot_initial: Option<PathBuf>,
+    /// Draw the mode shapes from the model's geometry (the extremes of the motion, the
+    /// centres of rotation, animated in a browser) into an SVG file: every mode that moves a
+    /// body, or mode K with --mode K
+    #[arg(long, value_name = "FILE.svg")]
+    plot_modes: Option<PathBuf>,
+    /// The mode of --plot-initial and --plot-modes: its number in the modes table
+    #[arg(long, value_name = "K")]
+    mode: Option<usize>,
 }
 
 #[derive(Args, Debug)]
@@ -250,6 +286,30 @@ struct SweepArgs {
     /// --plot, draw both in one plot
     #[arg(long, value_name = "MODEL")]
     compare: Option<String>,
+    /// With --plot: add a panel of the real parts near zero, |Re λ| ≤ HALF in 1/s (`auto`,
+    /// the default: 5 % of the largest |Re λ| drawn)
+    #[arg(long, value_name = "HALF", num_args = 0..=1, default_missing_value = "auto")]
+    zoom: Option<String>,
+    /// Draw the root locus (the eigenvalues' paths in the complex plane, the parameter
+    /// labelled along them, the crossings of the imaginary axis marked) into an SVG file
+    #[arg(long, value_name = "FILE.svg")]
+    plot_locus: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+struct ReportArgs {
+    /// Model name (see `eom list`) or model file (.toml)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// Set a parameter (repeatable); the others keep their defaults
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Add a sweep of one parameter: eigenvalues over it, its boundaries, the root locus
+    #[arg(long, value_name = "NAME=START:STOP:COUNT")]
+    sweep: Option<String>,
+    /// Output directory (created if missing); the page is DIR/MODEL.html
+    #[arg(short, long, value_name = "DIR")]
+    output: PathBuf,
 }
 
 #[derive(Args, Debug)]
@@ -363,78 +423,17 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 Format::Json => json(&e)?,
             }
         }
-        Command::Analyze(a) => {
-            let choice = ModelChoice::resolve(&a.model)?;
-            let overrides = choice.parse_sets(&a.set)?;
-            let range = a.freq_range.as_deref().map(parse_freq_range).transpose()?;
-            if a.points == Some(0) {
-                return Err(CliError::BadArgument {
-                    argument: "--points 0".into(),
-                    problem: "at least one frequency is needed".into(),
-                });
-            }
-            if let Some(n) = a.points.filter(|&n| n > params::MAX_FREQ_POINTS) {
-                return Err(CliError::BadArgument {
-                    argument: format!("--points {n}"),
-                    problem: format!(
-                        "more than the limit of {} frequencies (a Bode plot needs a few \
-                         hundred per decade at most)",
-                        params::MAX_FREQ_POINTS
-                    ),
-                });
-            }
-            let plots = analyze_plots(&a)?;
-            let bode = a.plot.is_some();
-            let freq =
-                (a.freq || range.is_some() || a.points.is_some() || bode).then_some(FreqRequest {
-                    range,
-                    points: a.points,
-                });
-            let opts = AnalyzeOptions {
-                method: a.method.into(),
-                freq,
-                sensitivity: a.sensitivity,
-            };
-            let r = analyze::analyze(&choice, &overrides, &opts)?;
-            for (option, path) in plots {
-                let plot = if option == "--plot" {
-                    plot::bode::bode_of(&r)?
-                } else {
-                    plot::poles::pole_map_of(&r)?
-                };
-                plot.write(option, path)?;
-                stderr.push_str(&plot.notes_text(path));
-            }
-            match a.format {
-                Format::Text => r.to_text(),
-                Format::Json => json(&r)?,
-            }
-        }
-        Command::Sweep(s) if s.compare.is_some() => sweep_compare(&s, &mut stderr)?,
-        Command::Sweep(s) => {
-            let choice = ModelChoice::resolve(&s.model)?;
-            let spec = SweepSpec::parse(&s.param)?;
-            choice.param(&spec.name)?;
-            let overrides = choice.parse_sets(&s.set)?;
-            if let Some(path) = &s.plot {
-                check_sweep_plot(&s.param, &spec, path)?;
-            }
-            let r = sweep::sweep(&choice, &spec, &overrides)?;
-            if let Some(path) = &s.plot {
-                let unit = choice.param(&spec.name)?.unit.clone();
-                let plot = plot::sweep::sweep_plot(&r.model, &r.result, &unit)?;
-                plot.write("--plot", path)?;
-                stderr.push_str(&plot.notes_text(path));
-            }
-            match s.format {
-                SweepFormat::Text => r.to_text(),
-                SweepFormat::Json => json(&r)?,
-                SweepFormat::Csv => {
-                    // Keep the CSV clean; the evaluation note goes to standard error.
-                    stderr.push_str(&r.evaluation_note());
-                    r.to_csv()
-                }
-            }
+        Command::Analyze(a) => run_analyze(&a, &mut stderr)?,
+        Command::Sweep(s) if s.compare.is_some() => sweep_compare(&s, cli.quiet, &mut stderr)?,
+        Command::Sweep(s) => run_sweep(&s, cli.quiet, &mut stderr)?,
+        Command::Report(r) => {
+            let choice = ModelChoice::resolve(&r.model)?;
+            let overrides = choice.parse_sets(&r.set)?;
+            let spec = r.sweep.as_deref().map(SweepSpec::parse).transpose()?;
+            let path =
+                report::write_report(&choice, &overrides, spec.as_ref(), &r.output, cli.quiet)?;
+            stderr.push_str(&format!("wrote {}\n", path.display()));
+            String::new()
         }
         Command::Codegen(c) => {
             let choice = ModelChoice::resolve(&c.model)?;
@@ -520,9 +519,159 @@ fn run(cli: Cli) -> Result<Output, CliError> {
     Ok(Output { stdout, stderr })
 }
 
+/// `eom analyze`: the analysis, printed, and the plots asked for.
+fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError> {
+    let choice = ModelChoice::resolve(&a.model)?;
+    let overrides = choice.parse_sets(&a.set)?;
+    let range = a.freq_range.as_deref().map(parse_freq_range).transpose()?;
+    if a.points == Some(0) {
+        return Err(CliError::BadArgument {
+            argument: "--points 0".into(),
+            problem: "at least one frequency is needed".into(),
+        });
+    }
+    if let Some(n) = a.points.filter(|&n| n > params::MAX_FREQ_POINTS) {
+        return Err(CliError::BadArgument {
+            argument: format!("--points {n}"),
+            problem: format!(
+                "more than the limit of {} frequencies (a Bode plot needs a few hundred per \
+                 decade at most)",
+                params::MAX_FREQ_POINTS
+            ),
+        });
+    }
+    let plots = analyze_plots(a)?;
+    let bode = a.plot.is_some();
+    let freq = (a.freq || range.is_some() || a.points.is_some() || bode).then_some(FreqRequest {
+        range,
+        points: a.points,
+    });
+    let opts = AnalyzeOptions {
+        method: a.method.into(),
+        freq,
+        sensitivity: a.sensitivity,
+    };
+    let lin = analyze::linearize(&choice, &overrides, opts.method)?;
+    let r = analyze::analyze_linearized(&choice, &overrides, &opts, &lin)?;
+    for (option, path) in plots {
+        let plot = match option {
+            "--plot" => plot::bode::bode_of(&r)?,
+            "--plot-poles" => plot::poles::pole_map_of(&r)?,
+            _ => analyze_picture(a, option, &choice, &overrides, &lin)?,
+        };
+        plot.write(option, path)?;
+        stderr.push_str(&plot.notes_text(path));
+    }
+    Ok(match a.format {
+        Format::Text => r.to_text(),
+        Format::Json => json(&r)?,
+    })
+}
+
+/// The time-response and mode-shape pictures of `eom analyze`.
+fn analyze_picture(
+    a: &AnalyzeArgs,
+    option: &str,
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    lin: &eom_model::Linearization,
+) -> Result<plot::Plot, CliError> {
+    let ss = &lin.state_space;
+    let modes = pictures::modes_of(ss, lin.structural_zeros.len())?;
+    let name = &choice.name;
+    match option {
+        "--plot-step" => pictures::step_impulse_plot(name, ss),
+        "--plot-initial" => {
+            let k = match a.mode {
+                Some(k) => k,
+                None => pictures::default_mode(&modes).ok_or_else(|| {
+                    CliError::NothingToDraw(format!("the model `{name}` has no nonzero mode"))
+                })?,
+            };
+            pictures::initial_plot(name, ss, &modes, k)
+        }
+        _ => {
+            let model = choice.build(overrides)?.nominal()?;
+            let which = match a.mode {
+                Some(k) => vec![k],
+                None => pictures::drawable_modes(&modes),
+            };
+            if which.is_empty() {
+                return Err(CliError::NothingToDraw(format!(
+                    "no mode of `{name}` moves a body: nothing to draw"
+                )));
+            }
+            let parts = which
+                .iter()
+                .map(|k| pictures::mode_shape_svg(name, &model, ss, &modes, *k))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(plot::Plot {
+                svg: pictures::stack_svgs(&parts),
+                notes: Vec::new(),
+            })
+        }
+    }
+}
+
+/// `eom sweep MODEL`: the sweep, printed, and its plots.
+fn run_sweep(s: &SweepArgs, quiet: bool, stderr: &mut String) -> Result<String, CliError> {
+    let choice = ModelChoice::resolve(&s.model)?;
+    let spec = SweepSpec::parse(&s.param)?;
+    choice.param(&spec.name)?;
+    let overrides = choice.parse_sets(&s.set)?;
+    let zoom = sweep_plot_options(s, &spec)?;
+    let bar = progress::Progress::new(quiet, spec.count as u64, &format!("sweep {}", s.model));
+    let r = sweep::sweep_with(&choice, &spec, &overrides, &|| bar.tick())?;
+    bar.finish();
+    let unit = choice.param(&spec.name)?.unit.clone();
+    if let Some(path) = &s.plot {
+        let plot = plot::sweep::sweep_plot(&r.model, &r.result, &unit, zoom)?;
+        plot.write("--plot", path)?;
+        stderr.push_str(&plot.notes_text(path));
+    }
+    if let Some(path) = &s.plot_locus {
+        let plot = plot::locus::locus_plot(&r.model, &r.result, &unit)?;
+        plot.write("--plot-locus", path)?;
+        stderr.push_str(&plot.notes_text(path));
+    }
+    Ok(match s.format {
+        SweepFormat::Text => r.to_text(),
+        SweepFormat::Json => json(&r)?,
+        SweepFormat::Csv => {
+            // Keep the CSV clean; the evaluation note goes to standard error.
+            stderr.push_str(&r.evaluation_note());
+            r.to_csv()
+        }
+    })
+}
+
+/// Checks the plot options of `eom sweep` before the sweep runs; returns the zoom.
+fn sweep_plot_options(
+    s: &SweepArgs,
+    spec: &SweepSpec,
+) -> Result<Option<plot::zoom::Zoom>, CliError> {
+    if let Some(path) = &s.plot {
+        check_sweep_plot(&s.param, spec, path)?;
+    }
+    if let Some(path) = &s.plot_locus {
+        plot::check_target("--plot-locus", path)?;
+        if let Some(p) = &s.plot {
+            plot::check_distinct(("--plot", p), ("--plot-locus", path))?;
+        }
+    }
+    let zoom = s.zoom.as_deref().map(plot::zoom::Zoom::parse).transpose()?;
+    if zoom.is_some() && s.plot.is_none() {
+        return Err(CliError::BadArgument {
+            argument: "--zoom".into(),
+            problem: "the zoom is a panel of the --plot FILE.svg: give --plot too".into(),
+        });
+    }
+    Ok(zoom)
+}
+
 /// `eom sweep A --compare B`: both sweeps over the same grid, reported one after the other
 /// (JSON: `{"sweeps": [A, B]}`), drawn in one plot with `--plot`.
-fn sweep_compare(s: &SweepArgs, stderr: &mut String) -> Result<String, CliError> {
+fn sweep_compare(s: &SweepArgs, quiet: bool, stderr: &mut String) -> Result<String, CliError> {
     let other = s.compare.as_deref().unwrap_or_default();
     if s.format == SweepFormat::Csv {
         return Err(CliError::BadArgument {
@@ -531,15 +680,24 @@ fn sweep_compare(s: &SweepArgs, stderr: &mut String) -> Result<String, CliError>
         });
     }
     let spec = SweepSpec::parse(&s.param)?;
-    if let Some(path) = &s.plot {
-        check_sweep_plot(&s.param, &spec, path)?;
+    let zoom = sweep_plot_options(s, &spec)?;
+    if s.plot_locus.is_some() {
+        return Err(CliError::BadArgument {
+            argument: format!("--compare {other}"),
+            problem: "not with --plot-locus (one locus per model): sweep each model".into(),
+        });
     }
     let mut reports = Vec::new();
     for name in [s.model.as_str(), other] {
         let choice = ModelChoice::resolve(name)?;
         choice.param(&spec.name)?;
         let overrides = choice.parse_sets(&s.set)?;
-        reports.push((sweep::sweep(&choice, &spec, &overrides)?, choice));
+        let bar = progress::Progress::new(quiet, spec.count as u64, &format!("sweep {name}"));
+        reports.push((
+            sweep::sweep_with(&choice, &spec, &overrides, &|| bar.tick())?,
+            choice,
+        ));
+        bar.finish();
     }
     let (a, b) = (&reports[0], &reports[1]);
     if let Some(path) = &s.plot {
@@ -548,6 +706,7 @@ fn sweep_compare(s: &SweepArgs, stderr: &mut String) -> Result<String, CliError>
             (&a.0.model, &a.0.result),
             (&b.0.model, &b.0.result),
             &unit,
+            zoom,
         )?;
         plot.write("--plot", path)?;
         stderr.push_str(&plot.notes_text(path));
@@ -568,6 +727,9 @@ fn analyze_plots(a: &AnalyzeArgs) -> Result<Vec<(&'static str, &Path)>, CliError
     let plots: Vec<(&'static str, &Path)> = [
         ("--plot", a.plot.as_deref()),
         ("--plot-poles", a.plot_poles.as_deref()),
+        ("--plot-step", a.plot_step.as_deref()),
+        ("--plot-initial", a.plot_initial.as_deref()),
+        ("--plot-modes", a.plot_modes.as_deref()),
     ]
     .into_iter()
     .filter_map(|(o, p)| p.map(|p| (o, p)))
@@ -575,8 +737,17 @@ fn analyze_plots(a: &AnalyzeArgs) -> Result<Vec<(&'static str, &Path)>, CliError
     for (option, path) in &plots {
         plot::check_target(option, path)?;
     }
-    if let [first, second] = plots[..] {
-        plot::check_distinct(first, second)?;
+    for (k, first) in plots.iter().enumerate() {
+        for second in &plots[k + 1..] {
+            plot::check_distinct(*first, *second)?;
+        }
+    }
+    if a.mode.is_some() && a.plot_initial.is_none() && a.plot_modes.is_none() {
+        return Err(CliError::BadArgument {
+            argument: "--mode".into(),
+            problem: "it chooses the mode of --plot-initial or --plot-modes: give one of them"
+                .into(),
+        });
     }
     Ok(plots)
 }

@@ -127,11 +127,13 @@ fn check_range(
     Ok(())
 }
 
-/// Runs the sweep.
-pub fn sweep(
+/// Runs the sweep, calling `tick` once per evaluation of the state matrix (grid values and
+/// boundary refinements; from several threads).
+pub fn sweep_with(
     choice: &ModelChoice,
     spec: &SweepSpec,
     overrides: &[(String, f64)],
+    tick: &(dyn Fn() + Sync),
 ) -> Result<SweepReport, CliError> {
     let param = choice.param(&spec.name)?;
     if overrides.iter().any(|(k, _)| k == &spec.name) {
@@ -176,6 +178,7 @@ pub fn sweep(
         .with_tolerance(BOUNDARY_TOLERANCE);
     let result = grid
         .run(|x| -> Result<DMatrix<f64>, CliError> {
+            tick();
             let Some(c) = &compiled else {
                 return robust_state_matrix(&model, &spec.name, x);
             };

@@ -7,6 +7,7 @@
 
 use crate::error::CliError;
 use crate::params::ModelChoice;
+use crate::report::mathml;
 use eom_model::Linearizer;
 use eom_sym::closed::{
     Boundary, CharacteristicPolynomial, ClosedForms, ConditionSource, SecondOrder,
@@ -122,16 +123,20 @@ pub struct SymbolicReport {
     /// What was skipped and why.
     pub notes: Vec<String>,
     #[serde(skip)]
-    latex: LatexParts,
+    pub(crate) latex: LatexParts,
+    /// The same parts in MathML (for `eom report`).
+    #[serde(skip)]
+    pub(crate) mathml: LatexParts,
 }
 
+/// The closed forms as typeset text (LaTeX, or MathML for the report).
 #[derive(Clone, Debug, Default)]
-struct LatexParts {
-    polynomial: Option<String>,
-    second_order: Option<(String, String)>,
-    conditions: Vec<String>,
-    boundaries: Vec<String>,
-    transfer: Vec<(String, String, String)>,
+pub(crate) struct LatexParts {
+    pub(crate) polynomial: Option<String>,
+    pub(crate) second_order: Option<(String, String)>,
+    pub(crate) conditions: Vec<String>,
+    pub(crate) boundaries: Vec<String>,
+    pub(crate) transfer: Vec<(String, String, String)>,
 }
 
 /// Builds the report.
@@ -201,6 +206,7 @@ fn build_report(
         transfer_functions: Vec::new(),
         notes: Vec::new(),
         latex: LatexParts::default(),
+        mathml: LatexParts::default(),
     };
     let n = ss.a.nrows();
     let limit = req.max_states.unwrap_or(8);
@@ -306,12 +312,17 @@ fn closed_forms(
         );
     }
     report.latex.polynomial = Some(polynomial_latex(&p.polynomial.coefficients));
+    report.mathml.polynomial = Some(mathml::polynomial(&p.polynomial.coefficients, "s"));
     report.characteristic_polynomial = Some(polynomial_out(&p));
     if let Some(so) = cf.second_order(&p)? {
         report.second_order = Some(second_order_out(&so));
         report.latex.second_order = Some((
             Latex(so.natural_frequency).to_string(),
             Latex(so.damping_ratio).to_string(),
+        ));
+        report.mathml.second_order = Some((
+            mathml::mathml(so.natural_frequency),
+            mathml::mathml(so.damping_ratio),
         ));
     }
     if req.stability || req.solve_for.is_some() {
@@ -330,6 +341,10 @@ fn closed_forms(
                 .latex
                 .conditions
                 .push(format!("{} > 0", Latex(c.expression)));
+            report.mathml.conditions.push(format!(
+                "<mrow>{}<mo>&gt;</mo><mn>0</mn></mrow>",
+                mathml::mathml(c.expression)
+            ));
             if let Some(b) = &boundary {
                 report.latex.boundaries.push(boundary_latex(b));
             }
@@ -359,6 +374,15 @@ fn closed_forms(
                         "\\frac{{{}}}{{{}}}",
                         polynomial_latex(&tf.numerator.coefficients),
                         polynomial_latex(&tf.denominator.coefficients)
+                    ),
+                ));
+                report.mathml.transfer.push((
+                    o.clone(),
+                    i.clone(),
+                    format!(
+                        "<mfrac>{}{}</mfrac>",
+                        mathml::polynomial(&tf.numerator.coefficients, "s"),
+                        mathml::polynomial(&tf.denominator.coefficients, "s")
                     ),
                 ));
                 report.transfer_functions.push(transfer_out(&tf, o, i));

@@ -268,3 +268,53 @@ fn a_failed_write_exits_1_and_names_the_file() {
         &["cannot write the plot `/proc/eom-plot-test.svg` (--plot-poles)"],
     );
 }
+
+#[test]
+fn locus_zoom_and_mode_shapes_are_drawn() {
+    let dir = scratch("pictures");
+    let (locus, zoom, modes) = (
+        dir.join("locus.svg"),
+        dir.join("zoom.svg"),
+        dir.join("modes.svg"),
+    );
+    let r = eom(&[
+        "sweep",
+        "bicycle",
+        "--param",
+        "v=0:10:101",
+        "--plot",
+        zoom.to_str().unwrap(),
+        "--zoom",
+        "0.5",
+        "--plot-locus",
+        locus.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let svg = read_svg(&locus);
+    // The benchmark's weave and capsize speeds (Meijaard et al. 2007) at the crossings.
+    let speed = |label: &str| -> f64 {
+        let i = svg.find(label).unwrap_or_else(|| panic!("no `{label}`")) + label.len();
+        svg[i..].split(' ').next().unwrap().parse().unwrap()
+    };
+    assert!((speed("\nstabilizing: v = ") - 4.292_382_731_5).abs() < 1e-6);
+    assert!((speed("destabilizing: v = ") - 6.024_262_376_7).abs() < 1e-6);
+    let svg = read_svg(&zoom);
+    assert!(has_text(&svg, "Re λ near 0 [1/s]"));
+    let r = eom(&[
+        "analyze",
+        "quarter_car",
+        "--plot-modes",
+        modes.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let svg = read_svg(&modes);
+    // Two oscillatory modes (wheel hop, body bounce), one side view each, animated.
+    assert_eq!(svg.matches("side view").count(), 2);
+    assert!(svg.contains("<animate attributeName=\"y1\""));
+    assert_fails(&["analyze", "quarter_car", "--mode", "1"], 2, &["--mode"]);
+    assert_fails(
+        &["sweep", "shimmy", "--param", "x=0:1:11", "--zoom"],
+        2,
+        &["--zoom", "--plot"],
+    );
+}

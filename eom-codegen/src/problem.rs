@@ -84,8 +84,8 @@ pub(crate) struct Check {
 pub(crate) struct Problem {
     pub model: String,
     pub params: Vec<Param>,
-    /// Pool index of each parameter, in interface order.
-    pub param_index: Vec<u32>,
+    /// The parameters, in interface order.
+    pub param_exprs: Vec<Expr>,
     pub mats: Vec<MatrixSpec>,
     pub checks: Vec<Check>,
     pub names: SignalNames,
@@ -228,101 +228,11 @@ impl Problem {
             .iter()
             .map(|m| matrix_spec(m))
             .collect();
-        let mut checks: Vec<Check> = sym
-            .reduction
-            .checks
-            .iter()
-            .map(|c| match c {
-                ValidityCheck::Pivot { what, value, row } => Check {
-                    what: what.to_string(),
-                    pivot: true,
-                    value: *value,
-                    others: row.clone(),
-                    nominal_ratio: 0.0,
-                },
-                ValidityCheck::Negligible { what, value, scale } => Check {
-                    what: what.to_string(),
-                    pivot: false,
-                    value: *value,
-                    others: scale.clone(),
-                    nominal_ratio: 0.0,
-                },
-            })
-            .collect();
-
-        // Every expression, in a fixed order, for substitution and simplification.
-        let gather = |mats: &[MatrixSpec], checks: &[Check]| -> Vec<Expr> {
-            let mut v: Vec<Expr> = mats
-                .iter()
-                .flat_map(|m| m.entries.iter().map(|e| e.2))
-                .collect();
-            for c in checks {
-                v.push(c.value);
-                v.extend(&c.others);
-            }
-            v
-        };
-        let scatter = |mats: &mut [MatrixSpec], checks: &mut [Check], new: &[Expr]| {
-            let mut k = 0;
-            for m in mats.iter_mut() {
-                for e in m.entries.iter_mut() {
-                    e.2 = new[k];
-                    k += 1;
-                }
-                m.entries.retain(|e| !e.2.is_zero());
-            }
-            for c in checks.iter_mut() {
-                c.value = new[k];
-                k += 1;
-                for o in c.others.iter_mut() {
-                    *o = new[k];
-                    k += 1;
-                }
-            }
-        };
+        let mut checks = checks_of(sym);
 
         // Partial evaluation.
         let mut params: Vec<Expr> = sym.params.clone();
-        let mut fixed = Vec::new();
-        if !opts.fixed.is_empty() {
-            let mut map = Vec::new();
-            for (n, v) in &opts.fixed {
-                let p = params
-                    .iter()
-                    .copied()
-                    .find(|p| p.param_info().is_some_and(|i| &i.name == n))
-                    .ok_or_else(|| CodegenError::BadOption {
-                        option: "fix",
-                        problem: format!(
-                            "no parameter `{n}`; parameters are: {}",
-                            sym.params
-                                .iter()
-                                .filter_map(|p| p.param_info())
-                                .map(|i| i.name)
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
-                    })?;
-                if !v.is_finite() {
-                    return Err(CodegenError::BadOption {
-                        option: "fix",
-                        problem: format!("`{n}` = {v} is not finite"),
-                    });
-                }
-                map.push((p, Expr::float(*v)?));
-                fixed.push((n.clone(), *v));
-            }
-            let invalid = |e: eom_sym::SymError| CodegenError::BadOption {
-                option: "fix",
-                problem: format!("the fixed values leave an expression without a value: {e}"),
-            };
-            let new = subs_many(&gather(&mats, &checks), &map).map_err(invalid)?;
-            for e in &new {
-                e.check().map_err(invalid)?;
-            }
-            scatter(&mut mats, &mut checks, &new);
-            params.retain(|p| !map.iter().any(|(q, _)| q == p));
-        }
+        let fixed = fix_parameters(sym, opts, &mut params, &mut mats, &mut checks)?;
 
         // Simplification (bounded egg pass over everything at once; kept only if cheaper).
         let mut simplified = None;
@@ -334,64 +244,184 @@ impl Problem {
             }
             simplified = Some(out);
         }
-
-        // Checks: drop those that hold whatever the parameters (all numbers); a constant check
-        // that fails means the fixed values are outside the validity region.
-        let mut kept = Vec::new();
-        for mut c in checks {
-            let v = c.value.nominal();
-            let o: Vec<f64> = c.others.iter().map(|x| x.nominal()).collect();
-            c.nominal_ratio = ratio(v, &o);
-            let constant = c.value.is_number() && c.others.iter().all(|x| x.is_number());
-            if constant {
-                if ValidityCheck::<Expr>::holds(v, &o, c.pivot) {
-                    continue;
-                }
-                return Err(CodegenError::BadOption {
-                    option: "fix",
-                    problem: format!(
-                        "the fixed values leave the validity region: {} fails",
-                        c.what
-                    ),
-                });
-            }
-            kept.push(c);
-        }
-
-        let mut out_params = Vec::new();
-        let mut param_index = Vec::new();
-        let mut fields: Vec<String> = Vec::new();
-        for p in &params {
-            let info = p.param_info().ok_or_else(|| CodegenError::BadOption {
-                option: "params",
-                problem: format!("`{p}` is not a parameter"),
-            })?;
-            let mut field = field_ident(&info.name);
-            while fields.contains(&field) {
-                field.push('_');
-            }
-            fields.push(field.clone());
-            out_params.push(Param {
-                local: format!("p_{}", info.name),
-                name: info.name.clone(),
-                field,
-                nominal: p.nominal(),
-                unit: info.unit.clone().unwrap_or_default(),
-                description: info.description.clone().unwrap_or_default(),
-            });
-            param_index.push(p.param_index().expect("parameter"));
-        }
+        let checks = variable_checks(checks)?;
+        let (params, param_exprs) = param_specs(&params)?;
         Ok(Problem {
             model: name.unwrap_or("model").to_string(),
-            params: out_params,
-            param_index,
+            params,
+            param_exprs,
             mats,
-            checks: kept,
+            checks,
             names: ss.names.clone(),
             fixed,
             simplified,
         })
     }
+}
+
+/// The reduction's validity checks.
+fn checks_of(sym: &SymbolicStateSpace) -> Vec<Check> {
+    sym.reduction
+        .checks
+        .iter()
+        .map(|c| match c {
+            ValidityCheck::Pivot { what, value, row } => Check {
+                what: what.to_string(),
+                pivot: true,
+                value: *value,
+                others: row.clone(),
+                nominal_ratio: 0.0,
+            },
+            ValidityCheck::Negligible { what, value, scale } => Check {
+                what: what.to_string(),
+                pivot: false,
+                value: *value,
+                others: scale.clone(),
+                nominal_ratio: 0.0,
+            },
+        })
+        .collect()
+}
+
+/// Every expression, in a fixed order, for substitution and simplification.
+fn gather(mats: &[MatrixSpec], checks: &[Check]) -> Vec<Expr> {
+    let mut v: Vec<Expr> = mats
+        .iter()
+        .flat_map(|m| m.entries.iter().map(|e| e.2))
+        .collect();
+    for c in checks {
+        v.push(c.value);
+        v.extend(&c.others);
+    }
+    v
+}
+
+/// The inverse of [`gather`]: put `new` back in place, dropping entries that became zero.
+fn scatter(mats: &mut [MatrixSpec], checks: &mut [Check], new: &[Expr]) {
+    let mut k = 0;
+    for m in mats.iter_mut() {
+        for e in m.entries.iter_mut() {
+            e.2 = new[k];
+            k += 1;
+        }
+        m.entries.retain(|e| !e.2.is_zero());
+    }
+    for c in checks.iter_mut() {
+        c.value = new[k];
+        k += 1;
+        for o in c.others.iter_mut() {
+            *o = new[k];
+            k += 1;
+        }
+    }
+}
+
+/// Partial evaluation: substitute the fixed parameters' values everywhere and drop them from
+/// `params`; returns the fixed names and values.
+fn fix_parameters(
+    sym: &SymbolicStateSpace,
+    opts: &EmitOptions,
+    params: &mut Vec<Expr>,
+    mats: &mut [MatrixSpec],
+    checks: &mut [Check],
+) -> Result<Vec<(String, f64)>, CodegenError> {
+    let mut fixed = Vec::new();
+    if opts.fixed.is_empty() {
+        return Ok(fixed);
+    }
+    let mut map = Vec::new();
+    for (n, v) in &opts.fixed {
+        let p = params
+            .iter()
+            .copied()
+            .find(|p| p.param_info().is_some_and(|i| &i.name == n))
+            .ok_or_else(|| CodegenError::BadOption {
+                option: "fix",
+                problem: format!(
+                    "no parameter `{n}`; parameters are: {}",
+                    sym.params
+                        .iter()
+                        .filter_map(|p| p.param_info())
+                        .map(|i| i.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            })?;
+        if !v.is_finite() {
+            return Err(CodegenError::BadOption {
+                option: "fix",
+                problem: format!("`{n}` = {v} is not finite"),
+            });
+        }
+        map.push((p, Expr::float(*v)?));
+        fixed.push((n.clone(), *v));
+    }
+    let invalid = |e: eom_sym::SymError| CodegenError::BadOption {
+        option: "fix",
+        problem: format!("the fixed values leave an expression without a value: {e}"),
+    };
+    let new = subs_many(&gather(mats, checks), &map).map_err(invalid)?;
+    for e in &new {
+        e.check().map_err(invalid)?;
+    }
+    scatter(mats, checks, &new);
+    params.retain(|p| !map.iter().any(|(q, _)| q == p));
+    Ok(fixed)
+}
+
+/// The checks that depend on the parameters: those that hold whatever the parameters (all
+/// numbers) are dropped; a constant check that fails means the fixed values are outside the
+/// validity region.
+fn variable_checks(checks: Vec<Check>) -> Result<Vec<Check>, CodegenError> {
+    let mut kept = Vec::new();
+    for mut c in checks {
+        let v = c.value.nominal();
+        let o: Vec<f64> = c.others.iter().map(|x| x.nominal()).collect();
+        c.nominal_ratio = ratio(v, &o);
+        let constant = c.value.is_number() && c.others.iter().all(|x| x.is_number());
+        if constant {
+            if ValidityCheck::<Expr>::holds(v, &o, c.pivot) {
+                continue;
+            }
+            return Err(CodegenError::BadOption {
+                option: "fix",
+                problem: format!(
+                    "the fixed values leave the validity region: {} fails",
+                    c.what
+                ),
+            });
+        }
+        kept.push(c);
+    }
+    Ok(kept)
+}
+
+/// The generated code's parameters (unique field names) and their expressions.
+fn param_specs(params: &[Expr]) -> Result<(Vec<Param>, Vec<Expr>), CodegenError> {
+    let mut out_params = Vec::new();
+    let mut param_exprs = Vec::new();
+    let mut fields: Vec<String> = Vec::new();
+    for p in params {
+        let info = p.param_info().ok_or_else(|| CodegenError::BadOption {
+            option: "params",
+            problem: format!("`{p}` is not a parameter"),
+        })?;
+        let mut field = field_ident(&info.name);
+        while fields.contains(&field) {
+            field.push('_');
+        }
+        fields.push(field.clone());
+        out_params.push(Param {
+            local: format!("p_{}", info.name),
+            name: info.name.clone(),
+            field,
+            nominal: p.nominal(),
+            unit: info.unit.clone().unwrap_or_default(),
+            description: info.description.clone().unwrap_or_default(),
+        });
+        param_exprs.push(*p);
+    }
+    Ok((out_params, param_exprs))
 }
 
 #[cfg(test)]

@@ -1,15 +1,14 @@
 //! Fast evaluation of a symbolic state space: [`SymbolicStateSpace`] holds the expressions
 //! of a symbolic [`Reduction`] and a compiled tape of every entry of A, B, C, D, the map to
 //! physical coordinates and the validity checks; [`CompiledStateSpace`] is its numeric side
-//! (no expressions, `Send + Sync`), evaluated at many points by the interpreter and, after
-//! [`NATIVE_AFTER`] evaluations, by machine code.
+//! (no expressions, `Send + Sync`), evaluated at many points by the tape interpreter.
 
 use crate::error::ModelError;
 use crate::reduce::{CheckLabel, Reduction, ValidityCheck};
 use eom_num::{SignalNames, StateSpace};
 use eom_sym::SymError;
 use eom_sym::expr::Expr;
-use eom_sym::tape::{NativeTape, Tape};
+use eom_sym::tape::Tape;
 use nalgebra::DMatrix;
 
 /// A symbolic state-space model with its validity region, compiled for evaluation.
@@ -40,32 +39,15 @@ pub struct MatrixSize {
 /// The numeric side of a [`SymbolicStateSpace`]: a compiled tape of every entry of A, B, C,
 /// D and `phys` plus the validity checks. It holds no expressions, so it is `Send + Sync`
 /// and can be shared by the threads of a parallel sweep.
-///
-/// Tiered: after [`NATIVE_AFTER`] evaluations (counted over all clones) the tape is
-/// translated to machine code ([`NativeTape`], x86-64 Unix), which computes the same values
-/// bit for bit in about a third of the time; the translation costs about as much as that many
-/// evaluations save, so short uses never pay for it.
 #[derive(Clone, Debug)]
 pub struct CompiledStateSpace {
     tape: Tape,
-    tier: std::sync::Arc<Tier>,
     shapes: [(usize, usize); 5],
     n_matrix: usize,
     check_layout: Vec<(usize, usize, bool)>,
     check_labels: Vec<CheckLabel>,
     names: SignalNames,
     param_names: Vec<String>,
-}
-
-/// Evaluations of a [`CompiledStateSpace`] after which its tape is translated to machine code.
-pub const NATIVE_AFTER: usize = 1000;
-
-/// The evaluation count and, once it reaches [`NATIVE_AFTER`], the native code (`None` where
-/// the platform has none).
-#[derive(Debug, Default)]
-struct Tier {
-    calls: std::sync::atomic::AtomicUsize,
-    native: std::sync::OnceLock<Option<NativeTape>>,
 }
 
 impl SymbolicStateSpace {
@@ -103,7 +85,6 @@ impl SymbolicStateSpace {
         let tape = Tape::new(&roots, params)?;
         let compiled = CompiledStateSpace {
             tape,
-            tier: Default::default(),
             shapes,
             n_matrix,
             check_layout: layout,
@@ -235,22 +216,7 @@ impl CompiledStateSpace {
     ) -> Result<StateSpace<f64>, ModelError> {
         ws.out.resize(self.tape.n_outputs(), 0.0);
         ws.work.resize(self.tape.work_len(), 0.0);
-        let calls = self
-            .tier
-            .calls
-            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let native = if calls >= NATIVE_AFTER {
-            self.tier
-                .native
-                .get_or_init(|| NativeTape::new(&self.tape).ok())
-                .as_ref()
-        } else {
-            None
-        };
-        match native {
-            Some(n) => n.eval_into(values, &mut ws.out, &mut ws.work)?,
-            None => self.tape.eval_into(values, &mut ws.out, &mut ws.work)?,
-        }
+        self.tape.eval_into(values, &mut ws.out, &mut ws.work)?;
         let out = &ws.out;
         for ((start, len, pivot), label) in self.check_layout.iter().zip(&self.check_labels) {
             let v = out[*start];

@@ -97,6 +97,7 @@
 //! ```
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod aero;
 pub mod assemble;
@@ -120,9 +121,7 @@ pub use assemble::{
     Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Reaction, RowLabel, Rows, Term,
     assemble,
 };
-pub use compiled::{
-    CompiledStateSpace, EvalWorkspace, MatrixSize, NATIVE_AFTER, SymbolicStateSpace,
-};
+pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};

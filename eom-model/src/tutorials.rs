@@ -107,4 +107,31 @@
 /// let so = cf.second_order(&p).unwrap().unwrap();
 /// assert_eq!(so.damping_ratio.to_string(), "c/(2*sqrt(m)*sqrt(k))");
 /// ```
+///
+/// ## Under a wing
+///
+/// The same block under a horizontal wing in an air stream (the seed paper's example,
+/// `docs/references.md` §D): the wing's quasi-steady lift opposes the vertical velocity, and
+/// the damping becomes c + ρVS(CLα + CD)/2, the paper's eq. 13, now read off the model:
+///
+/// ```
+/// use eom_sym::closed::ClosedForms;
+/// let m = models::build("smd_wing", &[]).unwrap();
+/// let sym = eom_model::Linearizer::new(&m).symbolic().unwrap();
+/// let cf = ClosedForms::default();
+/// let p = cf.characteristic_polynomial(&sym.state_space().a).unwrap();
+/// let so = cf.second_order(&p).unwrap().unwrap();
+/// let s = |n: &str| m.scope.get(n).unwrap();
+/// let (rho, v, area) = (s("rho"), s("V"), s("S"));
+/// let damping = s("c") + rho * v * area * (s("CLa") + s("CD")) / 2i64;
+/// let want = damping / (2i64 * eom_sym::Expr::sqrt(s("m") * s("k")));
+/// // Equal as functions of the parameters (the printed forms may group terms differently).
+/// assert!(eom_sym::zero::is_identically_zero(so.damping_ratio - want));
+/// // Stable exactly when the total damping is positive.
+/// let conditions = cf.stability_conditions(&p).unwrap();
+/// assert_eq!(conditions.len(), 1);
+/// assert!(eom_sym::zero::is_identically_zero(
+///     conditions[0].expression - damping
+/// ) || eom_sym::zero::is_identically_zero(conditions[0].expression - 2i64 * damping));
+/// ```
 pub mod _01_closed_forms {}

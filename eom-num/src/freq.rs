@@ -706,7 +706,10 @@ impl HessenbergForm {
         {
             if std::arch::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU supports AVX2 (checked just above).
-                unsafe { batch_avx2(self, s, ws, out, &mut singular) };
+                #[allow(unsafe_code)]
+                unsafe {
+                    batch_avx2(self, s, ws, out, &mut singular)
+                };
             } else {
                 batch_baseline(self, s, ws, out, &mut singular);
             }

@@ -68,6 +68,7 @@
 //! | [`freq`] | frequency response of every input/output pair, magnitude and unwrapped phase |
 //! | [`gain`] | steady-state gains, with integrating outputs identified |
 //! | [`time`] | impulse, step and sampled-input responses by exact ZOH discretisation |
+//! | [`initial`] | the free response from an initial state, and the state that starts one mode alone |
 //! | [`minreal`] | minimal realization (orthogonal staircase), with the removed modes reported |
 //! | [`zeros`] | transmission zeros |
 //! | [`sweep`] | parameter sweeps: eigenvalue branches, stability boundaries, stable intervals |
@@ -116,6 +117,8 @@
 //! cleanly when unstable; eigenvalue order is deterministic.
 
 #![warn(missing_docs)]
+// One exception, allowed where it is: the AVX2 frequency-response kernel (`freq`).
+#![deny(unsafe_code)]
 
 /// Largest magnitude of a matrix entry the analyses accept (about the square root of
 /// `f64::MAX`, with margin): the products of two entries inside the factorisations stay
@@ -129,6 +132,7 @@ mod eigen;
 pub mod error;
 pub mod freq;
 pub mod gain;
+pub mod initial;
 pub mod linalg;
 pub mod minreal;
 pub mod modes;

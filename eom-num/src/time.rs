@@ -247,7 +247,7 @@ fn auto_horizon(
     Ok((t_end, dt, None))
 }
 
-fn grid(
+pub(crate) fn grid(
     ss: &StateSpace<f64>,
     opts: &TimeOptions,
 ) -> Result<(usize, f64, Option<String>), NumError> {

@@ -25,14 +25,11 @@
 //!   roots compiled by `Tape::new_reassociating` (fewer instructions; its values differ from
 //!   the others in rounding, and by much on this ill-conditioned DAG, which changes the cost
 //!   of `sin` too). `tape_eval_batch64` evaluates 64 points per call (in chunks of 16),
-//!   throughput in nodes × points: the time per node per point. `native_eval_into` and
-//!   `native_reassociating_eval_into`: the same two tapes translated to machine code
-//!   (`NativeTape`, x86-64 Unix), which computes the interpreter's values bit for bit; the
-//!   code size and translation time are printed once.
+//!   throughput in nodes × points: the time per node per point.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_sym::testing::{SplitMix, bounded_dag, params};
-use eom_sym::{Dd, Expr, ExprPool, NativeTape, Tape, TapeWorkspace, eval_generic};
+use eom_sym::{Dd, Expr, ExprPool, Tape, TapeWorkspace, eval_generic};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -246,42 +243,6 @@ fn eval_group(c: &mut Criterion, name: &str, ps: &[Expr], roots: &[Expr]) {
                 .unwrap()
         })
     });
-    // The same tapes as machine code (x86-64 Unix): the same values bit for bit.
-    match (NativeTape::new(&tape), NativeTape::new(&shared)) {
-        (Ok(native), Ok(native_shared)) => {
-            let (mut nout, mut tout) = (vec![0.0; tape.n_outputs()], vec![0.0; tape.n_outputs()]);
-            native.eval_into(&values, &mut nout, &mut work).unwrap();
-            tape.eval_into(&values, &mut tout, &mut work).unwrap();
-            assert!(
-                nout.iter()
-                    .zip(&tout)
-                    .all(|(a, b)| a.to_bits() == b.to_bits()),
-                "native and interpreted tapes differ"
-            );
-            let t0 = Instant::now();
-            let again = NativeTape::new(&tape).unwrap();
-            eprintln!(
-                "{name}: native code of {} bytes, translated in {:.2} ms",
-                again.code_len(),
-                t0.elapsed().as_secs_f64() * 1e3
-            );
-            g.bench_function("native_eval_into", |b| {
-                b.iter(|| {
-                    native
-                        .eval_into(black_box(&values), &mut nout, &mut work)
-                        .unwrap()
-                })
-            });
-            g.bench_function("native_reassociating_eval_into", |b| {
-                b.iter(|| {
-                    native_shared
-                        .eval_into(black_box(&values), &mut nout, &mut swork)
-                        .unwrap()
-                })
-            });
-        }
-        (Err(e), _) | (_, Err(e)) => eprintln!("{name}: no native tape here ({e})"),
-    }
     if out.iter().all(|v| v.is_finite()) {
         const POINTS: usize = 64;
         // The same point 64 times: the random DAG is chaotic (a relative change of 1e-7 in

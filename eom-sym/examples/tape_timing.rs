@@ -1,16 +1,16 @@
 //! Time the tape on the benchmark DAG of `benches/core.rs` (10 033 unique nodes, 50 roots,
 //! 20 parameters) as medians of short batches, which this noisy 2-core VM reports far more
-//! steadily than criterion's means: 200 batches of 20 evaluations each, interpreted
-//! ([`Tape::eval_into`]) and as machine code ([`NativeTape::eval_into`]), in turn.
+//! steadily than criterion's means: 200 batches of 20 evaluations each
+//! ([`Tape::eval_into`]), of the exact and of the reassociating tape.
 //!
 //! `cargo run --release -p eom-sym --example tape_timing`
 //!
-//! With arguments `interpreted N` or `native N` it only evaluates the exact tape `N` times
+//! With arguments `exact N` or `reassociating N` it only evaluates that tape `N` times
 //! (for instruction counts: run it under `valgrind --tool=callgrind` with two values of `N`
 //! and take the difference).
 
+use eom_sym::Tape;
 use eom_sym::testing::{bounded_dag, params};
-use eom_sym::{NativeTape, Tape};
 use std::time::Instant;
 
 /// Median and minimum over 200 batches of 20 calls, in seconds per call.
@@ -35,15 +35,14 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if let [how, n] = &args[..] {
         let n: usize = n.parse().expect("a count");
-        let tape = Tape::new(&roots, &ps).unwrap();
-        let native = NativeTape::new(&tape).unwrap();
+        let tape = match how.as_str() {
+            "reassociating" => Tape::new_reassociating(&roots, &ps).unwrap(),
+            _ => Tape::new(&roots, &ps).unwrap(),
+        };
         let mut work = vec![0.0; tape.work_len()];
         let mut out = vec![0.0; tape.n_outputs()];
         for _ in 0..n {
-            match how.as_str() {
-                "native" => native.eval_into(&values, &mut out, &mut work).unwrap(),
-                _ => tape.eval_into(&values, &mut out, &mut work).unwrap(),
-            }
+            tape.eval_into(&values, &mut out, &mut work).unwrap();
         }
         std::hint::black_box(&out);
         return;
@@ -56,46 +55,24 @@ fn main() {
         ),
     ] {
         let nodes = tape.n_nodes() as f64;
-        let native = match NativeTape::new(&tape) {
-            Ok(n) => Some(n),
-            Err(e) => {
-                println!("no native tape here: {e}");
-                None
-            }
-        };
         let mut work = vec![0.0; tape.work_len()];
         let mut out = vec![0.0; tape.n_outputs()];
         println!(
-            "{name} tape: {} nodes, {} instructions, {} bytes of machine code",
+            "{name} tape: {} nodes, {} instructions",
             tape.n_nodes(),
-            tape.len(),
-            native.as_ref().map_or(0, |n| n.code_len())
+            tape.len()
         );
         for round in 0..3 {
             let (med, min) = time(|| {
                 tape.eval_into(std::hint::black_box(&values), &mut out, &mut work)
                     .unwrap()
             });
-            print!(
-                "  round {round}: interpreted {:6.2} µs (min {:6.2}) = {:.2} ns/node",
+            println!(
+                "  round {round}: {:6.2} µs (min {:6.2}) = {:.2} ns/node",
                 med * 1e6,
                 min * 1e6,
                 med * 1e9 / nodes
             );
-            if let Some(native) = &native {
-                let (med, min) = time(|| {
-                    native
-                        .eval_into(std::hint::black_box(&values), &mut out, &mut work)
-                        .unwrap()
-                });
-                print!(
-                    "; native {:6.2} µs (min {:6.2}) = {:.2} ns/node",
-                    med * 1e6,
-                    min * 1e6,
-                    med * 1e9 / nodes
-                );
-            }
-            println!();
         }
     }
 }

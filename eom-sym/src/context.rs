@@ -271,42 +271,10 @@ fn import(e: Expr, target: u32) -> Expr {
 
 /// Rebuilds `e` with the constructors of the current pool, sharing what was already copied.
 fn copy(e: Expr, memo: &mut HashMap<Expr, Expr>) -> Expr {
-    use crate::expr::ExprView;
     if let Some(&c) = memo.get(&e) {
         return c;
     }
-    let c = match e.view() {
-        ExprView::Rational(r) => Expr::from_rational(r),
-        ExprView::Float(x) => crate::scalar::Scalar::from_f64(x),
-        ExprView::Constant(k) => Expr::constant(k),
-        ExprView::Param(_, info) => {
-            let found = with_pool(|p| p.find_param(&info).map(|id| p.expr(id)));
-            match found {
-                Some(x) => x,
-                None => Expr::new_param(info.clone()).unwrap_or_else(Expr::invalid),
-            }
-        }
-        ExprView::Sum { constant, terms } => {
-            let mut items = vec![copy(constant, memo)];
-            for (t, k) in terms {
-                let t = copy(t, memo);
-                let k = copy(k, memo);
-                items.push(k * t);
-            }
-            Expr::sum(items)
-        }
-        ExprView::Product { coef, factors } => {
-            let mut items = vec![copy(coef, memo)];
-            for (b, r) in factors {
-                items.push(copy(b, memo).pow_rational(r));
-            }
-            Expr::product(items)
-        }
-        ExprView::Pow(b, x) => copy(b, memo).pow(copy(x, memo)),
-        ExprView::Func(f, a) => copy(a, memo).apply(f),
-        ExprView::Atan2(y, x) => copy(y, memo).atan2(copy(x, memo)),
-        ExprView::Invalid(err) => Expr::invalid(err),
-    };
+    let c = Expr::from_view(e.view().map_children(|x| copy(x, memo)));
     memo.insert(e, c);
     c
 }

@@ -2,7 +2,6 @@
 
 use crate::error::SymError;
 use crate::expr::{Expr, ExprView, reachable};
-use crate::pool::Func;
 use crate::rational::Rational;
 use hashbrown::HashMap;
 
@@ -90,15 +89,7 @@ fn diff_in_pool(roots: &[Expr], p: Expr) -> Vec<Expr> {
                 if da.is_zero() {
                     zero
                 } else {
-                    let inner = match f {
-                        Func::Sin => a.cos(),
-                        Func::Cos => -a.sin(),
-                        Func::Tan => Expr::one() + a.tan().powi(2),
-                        Func::Exp => e,
-                        Func::Ln => a.recip(),
-                        Func::Abs => a / e,
-                    };
-                    inner * da
+                    f.derivative(a, e) * da
                 }
             }
             ExprView::Atan2(y, x) => {

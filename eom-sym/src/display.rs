@@ -517,7 +517,7 @@ fn latex_layout(e: Expr, out: &mut Vec<Piece>) -> Level {
         }
         ExprView::Func(f, a) => {
             out.extend([
-                Piece::Str(latex_func(f)),
+                Piece::Str(f.latex()),
                 Piece::Str("\\left("),
                 Piece::Node(a, Level::Sum),
                 Piece::Str("\\right)"),
@@ -541,17 +541,6 @@ fn latex_layout(e: Expr, out: &mut Vec<Piece>) -> Level {
             )));
             Level::Atom
         }
-    }
-}
-
-fn latex_func(f: Func) -> &'static str {
-    match f {
-        Func::Sin => "\\sin",
-        Func::Cos => "\\cos",
-        Func::Tan => "\\tan",
-        Func::Exp => "\\exp",
-        Func::Ln => "\\ln",
-        Func::Abs => "\\operatorname{abs}",
     }
 }
 
@@ -694,7 +683,7 @@ fn latex_factor((b, e): &(Expr, Rational), alone: bool, out: &mut Vec<Piece>) ->
         && e.is_integer()
     {
         out.extend([
-            Piece::Text(format!("{}^{{{exponent}}}\\left(", latex_func(f))),
+            Piece::Text(format!("{}^{{{exponent}}}\\left(", f.latex())),
             Piece::Node(a, Level::Sum),
             Piece::Str("\\right)"),
         ]);

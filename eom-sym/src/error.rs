@@ -44,6 +44,13 @@ pub enum SymError {
         /// What was not finite.
         what: String,
     },
+    /// A product of floating-point constants fell below the normal range: folding it would
+    /// change the value (the rewrite that asked for it is not made).
+    #[error("a floating-point constant underflowed: {what}")]
+    Underflow {
+        /// The product.
+        what: String,
+    },
     /// A parameter was declared with an invalid name or nominal value.
     #[error("parameter `{name}`: {problem}")]
     BadParameter {

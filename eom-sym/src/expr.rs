@@ -2,8 +2,9 @@
 
 use crate::context::{unify, unify2, with_pool, with_serial};
 use crate::error::SymError;
+pub use crate::pool::OpCount;
 use crate::pool::{
-    Assumption, Constant, Func, Id, MINUS_ONE, Node, ONE, ParamInfo, PoolData, Sign, ZERO,
+    Assumption, Constant, Func, Id, MINUS_ONE, Node, ONE, ParamInfo, PoolData, Shape, Sign, ZERO,
 };
 use crate::rational::Rational;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -99,6 +100,48 @@ pub enum ExprView {
     Atan2(Expr, Expr),
     /// An operation without a value, with the reason.
     Invalid(SymError),
+}
+
+impl ExprView {
+    /// The expressions this node is built from, in a fixed order: a sum's constant, then its
+    /// terms and their coefficients; a product's coefficient, then its bases (exponents are
+    /// rationals, not expressions); the arguments of powers and functions.
+    pub fn children(&self) -> Vec<Expr> {
+        match self {
+            ExprView::Sum { constant, terms } => std::iter::once(*constant)
+                .chain(terms.iter().flat_map(|&(t, c)| [t, c]))
+                .collect(),
+            ExprView::Product { coef, factors } => std::iter::once(*coef)
+                .chain(factors.iter().map(|f| f.0))
+                .collect(),
+            ExprView::Pow(a, b) | ExprView::Atan2(a, b) => vec![*a, *b],
+            ExprView::Func(_, a) => vec![*a],
+            ExprView::Rational(_)
+            | ExprView::Float(_)
+            | ExprView::Constant(_)
+            | ExprView::Param(..)
+            | ExprView::Invalid(_) => Vec::new(),
+        }
+    }
+
+    /// The same node over the children `f` maps them to, visited in the order of
+    /// [`ExprView::children`].
+    pub fn map_children(self, mut f: impl FnMut(Expr) -> Expr) -> ExprView {
+        match self {
+            ExprView::Sum { constant, terms } => ExprView::Sum {
+                constant: f(constant),
+                terms: terms.into_iter().map(|(t, c)| (f(t), f(c))).collect(),
+            },
+            ExprView::Product { coef, factors } => ExprView::Product {
+                coef: f(coef),
+                factors: factors.into_iter().map(|(b, r)| (f(b), r)).collect(),
+            },
+            ExprView::Pow(a, b) => ExprView::Pow(f(a), f(b)),
+            ExprView::Func(g, a) => ExprView::Func(g, f(a)),
+            ExprView::Atan2(y, x) => ExprView::Atan2(f(y), f(x)),
+            leaf => leaf,
+        }
+    }
 }
 
 impl Expr {
@@ -420,42 +463,70 @@ impl Expr {
     pub fn view(self) -> ExprView {
         self.with_pool(|p| {
             let e = |id: Id| p.expr(id);
-            match p.node(self.id) {
-                Node::Num(r) => ExprView::Rational(r.clone()),
-                Node::Float(f) => ExprView::Float(*f),
-                Node::Const(c) => ExprView::Constant(*c),
-                Node::Param(i) => ExprView::Param(*i, p.param(*i).clone()),
-                Node::Add(..) => {
-                    let (c0, pairs) = p.add_parts(self.id).expect("sum");
-                    ExprView::Sum {
-                        constant: e(c0),
-                        terms: pairs.chunks_exact(2).map(|t| (e(t[0]), e(t[1]))).collect(),
-                    }
-                }
-                Node::Mul(..) => {
-                    let (c, pairs) = p.mul_parts(self.id).expect("product");
-                    ExprView::Product {
-                        coef: e(c),
-                        factors: pairs
-                            .chunks_exact(2)
-                            .map(|t| (e(t[0]), p.rational_of(t[1]).expect("exp").clone()))
-                            .collect(),
-                    }
-                }
-                Node::Pow(a, b) => ExprView::Pow(e(*a), e(*b)),
-                Node::Func(f, a) => ExprView::Func(*f, e(*a)),
-                Node::Atan2(a, b) => ExprView::Atan2(e(*a), e(*b)),
-                Node::Invalid(i) => ExprView::Invalid(p.error(*i).clone()),
+            let pairs = |a: &[Id]| {
+                a[1..]
+                    .chunks_exact(2)
+                    .map(|t| (t[0], t[1]))
+                    .collect::<Vec<_>>()
+            };
+            match p.shape(self.id) {
+                Shape::Num(r) => ExprView::Rational(r.clone()),
+                Shape::Float(f) => ExprView::Float(f64::from_bits(f)),
+                Shape::Const(c) => ExprView::Constant(c),
+                Shape::Param(i) => ExprView::Param(i, p.param(i).clone()),
+                Shape::Add(a) => ExprView::Sum {
+                    constant: e(a[0]),
+                    terms: pairs(a).into_iter().map(|(t, c)| (e(t), e(c))).collect(),
+                },
+                Shape::Mul(a) => ExprView::Product {
+                    coef: e(a[0]),
+                    factors: pairs(a)
+                        .into_iter()
+                        .map(|(b, x)| (e(b), p.exponent(x)))
+                        .collect(),
+                },
+                Shape::Pow([a, b]) => ExprView::Pow(e(a), e(b)),
+                Shape::Func(f, [a]) => ExprView::Func(f, e(a)),
+                Shape::Atan2([y, x]) => ExprView::Atan2(e(y), e(x)),
+                Shape::Invalid(i) => ExprView::Invalid(p.error(i).clone()),
             }
         })
+    }
+
+    /// The expression of a view, built through the smart constructors (the inverse of
+    /// [`Expr::view`]; with [`ExprView::map_children`] it rebuilds a node over new children).
+    /// New leaves go to the current pool; a parameter is found there by its metadata, or
+    /// declared anew.
+    pub fn from_view(view: ExprView) -> Expr {
+        match view {
+            ExprView::Rational(r) => Expr::from_rational(r),
+            ExprView::Float(x) => crate::scalar::Scalar::from_f64(x),
+            ExprView::Constant(k) => Expr::constant(k),
+            ExprView::Param(_, info) => {
+                let found = with_pool(|p| p.find_param(&info).map(|id| p.expr(id)));
+                found.unwrap_or_else(|| Expr::new_param(info).unwrap_or_else(Expr::invalid))
+            }
+            ExprView::Sum { constant, terms } => {
+                Expr::sum(std::iter::once(constant).chain(terms.into_iter().map(|(t, k)| k * t)))
+            }
+            ExprView::Product { coef, factors } => Expr::product(
+                std::iter::once(coef).chain(factors.into_iter().map(|(b, r)| b.pow_rational(r))),
+            ),
+            ExprView::Pow(b, x) => b.pow(x),
+            ExprView::Func(f, a) => a.apply(f),
+            ExprView::Atan2(y, x) => y.atan2(x),
+            ExprView::Invalid(err) => Expr::invalid(err),
+        }
     }
 
     /// The direct children (operands, coefficients and exponents included).
     pub fn children(self) -> Vec<Expr> {
         self.with_pool(|p| {
-            let mut v = Vec::new();
-            p.for_each_child(self.id, |c| v.push(p.expr(c)));
-            v
+            p.shape(self.id)
+                .children()
+                .iter()
+                .map(|&c| p.expr(c))
+                .collect()
         })
     }
 
@@ -470,8 +541,8 @@ impl Expr {
         with_serial(serial, |p| {
             let mut v: Vec<u32> = ids
                 .iter()
-                .filter_map(|&i| match p.node(i) {
-                    Node::Param(k) => Some(*k),
+                .filter_map(|&i| match p.shape(i) {
+                    Shape::Param(k) => Some(k),
                     _ => None,
                 })
                 .collect();
@@ -498,79 +569,11 @@ impl Expr {
         with_serial(serial, |p| {
             let mut c = OpCount::default();
             for &i in &ids {
-                match p.node(i) {
-                    Node::Add(..) => {
-                        let (c0, pairs) = p.add_parts(i).expect("sum");
-                        let n = pairs.len() / 2 + usize::from(c0 != ZERO);
-                        c.add += n.saturating_sub(1);
-                        for t in pairs.chunks_exact(2) {
-                            if t[1] != ONE && t[1] != MINUS_ONE {
-                                c.mul += 1;
-                            }
-                        }
-                    }
-                    Node::Mul(..) => {
-                        let (coef, pairs) = p.mul_parts(i).expect("product");
-                        let mut n = pairs.len() / 2 + usize::from(coef != ONE && coef != MINUS_ONE);
-                        for t in pairs.chunks_exact(2) {
-                            let e = p.rational_of(t[1]).expect("exp");
-                            match e.as_small() {
-                                Some((k, 1)) if k > 0 => {
-                                    c.mul += pow_chain(k as u64) as usize;
-                                }
-                                Some((-1, 1)) => {
-                                    c.div += 1;
-                                    n -= 1;
-                                }
-                                Some((k, 1)) => {
-                                    c.div += 1;
-                                    n -= 1;
-                                    c.mul += pow_chain((-k) as u64) as usize;
-                                }
-                                Some((1, 2)) => c.func += 1,
-                                _ => c.pow += 1,
-                            }
-                        }
-                        c.mul += n.saturating_sub(1);
-                    }
-                    Node::Pow(..) => c.pow += 1,
-                    Node::Func(..) | Node::Atan2(..) => c.func += 1,
-                    _ => {}
-                }
+                c += p.shape(i).ops(|e| p.exponent(e));
             }
             c
         })
     }
-}
-
-/// Operation counts of straight-line code (see [`Expr::op_count`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct OpCount {
-    /// Additions and subtractions.
-    pub add: usize,
-    /// Multiplications.
-    pub mul: usize,
-    /// Divisions.
-    pub div: usize,
-    /// Elementary functions and square roots.
-    pub func: usize,
-    /// General powers.
-    pub pow: usize,
-}
-
-impl OpCount {
-    /// Total number of operations.
-    pub fn total(&self) -> usize {
-        self.add + self.mul + self.div + self.func + self.pow
-    }
-}
-
-/// Multiplications of a square-and-multiply chain for `x^k` (k ≥ 1).
-fn pow_chain(k: u64) -> u32 {
-    if k <= 1 {
-        return 0;
-    }
-    (63 - k.leading_zeros()) + k.count_ones() - 1
 }
 
 /// The nodes reachable from some roots, in the roots' common pool.
@@ -616,11 +619,7 @@ pub(crate) fn reachable_in(p: &PoolData, roots: impl Iterator<Item = Id>) -> Vec
             continue;
         }
         out.push(i);
-        p.for_each_child(i, |c| {
-            if !seen.contains(&c) {
-                stack.push(c)
-            }
-        });
+        stack.extend(p.shape(i).children().iter().filter(|c| !seen.contains(*c)));
     }
     out.sort_unstable();
     out

@@ -26,14 +26,15 @@
 //!   only identities that are safe (the table in [`pool`]). Nothing is ever expanded.
 //!   [`parse`] reads expressions as people write them; [`display`] prints them back (plain
 //!   text that re-parses to the same node, and LaTeX).
-//! * **Evaluation** (guide: [`tutorials::_01_evaluation`]): a compiled [`Tape`] (no allocation per call, batch form for sweeps), the
-//!   same tape as machine code ([`NativeTape`], x86-64 Unix: no compiler needed, identical
-//!   values, about twice as fast on large tapes), and
-//!   [`eval_generic`] in any [`Elementary`] scalar — `f64`, double-double [`Dd`] (the accuracy
-//!   reference), or [`Expr`] itself (substitution, [`Expr::subs`]). [`Expr::diff`] gives
-//!   derivatives for sensitivities.
-//!   Every `f64` path uses eom's own [`trig::sin`] and [`trig::cos`] (within an ulp, no
-//!   range branches), so all of them agree bit for bit.
+//! * **Evaluation** (guide: [`tutorials::_01_evaluation`]): a compiled [`Tape`] (no
+//!   allocation per call, batch form for sweeps) and [`eval_generic`] in any [`Elementary`]
+//!   scalar — `f64`, double-double [`Dd`] (the accuracy reference), or [`Expr`] itself
+//!   (substitution, [`Expr::subs`]). [`Expr::diff`] gives derivatives for sensitivities.
+//!   Every `f64` path (the tape, `eval_generic`, nominal values) evaluates a node through the
+//!   one definition of its shape and its functions ([`func`]), so all of them agree bit for
+//!   bit.
+//! * **Lowering** ([`lower`]): the DAG as straight-line code, shared by the tape (which
+//!   interprets it) and the code generator of `eom-codegen` (which renders it as Rust).
 //! * **The [`Scalar`] trait**: the assembly and elimination are generic over it. Structural
 //!   decisions come from [`Scalar::is_zero`] and [`Scalar::nominal`], so the symbolic, `f64`
 //!   and double-double runs make the same decisions and agree by construction.
@@ -46,6 +47,7 @@
 //!   closed forms.
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod closed;
 pub mod context;
@@ -54,6 +56,8 @@ pub mod diff;
 pub mod display;
 pub mod error;
 pub mod expr;
+pub mod func;
+pub mod lower;
 pub mod matrix;
 pub mod parse;
 pub mod pool;
@@ -65,7 +69,6 @@ pub mod subs;
 pub mod tape;
 #[doc(hidden)]
 pub mod testing;
-pub mod trig;
 pub mod tutorials;
 pub mod zero;
 
@@ -75,12 +78,13 @@ pub use diff::diff_many;
 pub use display::{ExprMatrix, Latex, display_matrix, latex_matrix};
 pub use error::SymError;
 pub use expr::{Expr, ExprView, OpCount};
+pub use func::{Call, Func, Parity};
 pub use matrix::{SparseMatrix, Triplets};
 pub use parse::parse;
-pub use pool::{Assumption, Constant, Func, ParamInfo, PoolStats, Sign};
+pub use pool::{Assumption, Constant, ParamInfo, PoolStats, Sign};
 pub use rational::Rational;
 pub use scalar::{Elementary, Scalar};
 pub use scope::Scope;
 pub use simplify::{CostModel, Simplifier, SimplifyOutcome, normalize_rational};
 pub use subs::subs_many;
-pub use tape::{NativeTape, Tape, TapeWorkspace, eval_generic, eval_nominal};
+pub use tape::{Tape, TapeWorkspace, eval_generic, eval_nominal};

@@ -107,12 +107,13 @@ impl Scalar for f64 {
     fn sqrt(self) -> f64 {
         f64::sqrt(self)
     }
-    // eom's own (see `trig`): every f64 evaluation path uses the same functions.
+    // The `libm` crate's (musl's) sine and cosine: every f64 evaluation path goes through
+    // these, and they are the same on every platform (the system's may differ by an ulp).
     fn sin(self) -> f64 {
-        crate::trig::sin(self)
+        libm::sin(self)
     }
     fn cos(self) -> f64 {
-        crate::trig::cos(self)
+        libm::cos(self)
     }
     fn abs(self) -> f64 {
         f64::abs(self)

@@ -17,8 +17,7 @@
 
 use crate::dd::Dd;
 use crate::expr::Expr;
-use crate::pool::{Constant, Func, Node, PoolData};
-use crate::rational::Rational;
+use crate::pool::{PoolData, Shape};
 use hashbrown::HashMap;
 
 const PROBES: usize = 2;
@@ -75,10 +74,6 @@ impl Probe {
     }
 }
 
-fn rational_dd(r: &Rational) -> Dd {
-    <Dd as crate::scalar::Scalar>::from_rational(r)
-}
-
 /// Evaluate node `id` at probe `k` in double-double (memoised), returning (value, Σ|terms|).
 fn value(pool: &PoolData, p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
     if let Some(v) = p.values.get(&id)
@@ -92,87 +87,40 @@ fn value(pool: &PoolData, p: &mut Probe, id: u32, k: usize) -> (Dd, f64) {
         if p.values.get(&n).is_some_and(|v| !v[k].0.hi.is_nan()) {
             continue;
         }
-        let mut children: Vec<u32> = Vec::new();
-        pool.for_each_child(n, |x| children.push(x));
+        let shape = pool.shape(n);
         if !ready {
             stack.push((n, true));
-            for c in children {
+            for &c in shape.children() {
                 if p.values.get(&c).is_none_or(|v| v[k].0.hi.is_nan()) {
                     stack.push((c, false));
                 }
             }
             continue;
         }
-        let get = |p: &Probe, c: u32| p.values[&c][k];
-        let node = pool.node(n).clone();
-        let res: (Dd, f64) = match node {
-            Node::Num(r) => {
-                let v = rational_dd(&r);
-                (v, v.abs().to_f64())
-            }
-            Node::Float(f) => (Dd::from_f64(f), f.abs()),
-            Node::Const(Constant::Pi) => (Dd::PI, std::f64::consts::PI),
-            Node::Const(Constant::E) => (Dd::E, std::f64::consts::E),
-            Node::Param(i) => {
+        let get = |c: u32| p.values[&c][k].0;
+        let res: (Dd, f64) = match shape {
+            Shape::Param(i) => {
                 let info = pool.param(i);
-                let (nominal, positive) = (
-                    info.nominal,
-                    matches!(info.assume, crate::pool::Assumption::Positive),
-                );
-                let v = p.param_value(i, nominal, positive, k);
+                let positive = matches!(info.assume, crate::pool::Assumption::Positive);
+                let v = p.param_value(i, info.nominal, positive, k);
                 (v, v.abs().to_f64())
             }
-            Node::Add(..) => {
-                let (c0, pairs) = pool.add_parts(n).expect("sum");
-                let mut s = get(p, c0).0;
-                let mut mag = s.abs().to_f64();
-                for t in pairs.chunks_exact(2) {
-                    let term = get(p, t[1]).0 * get(p, t[0]).0;
-                    mag += term.abs().to_f64();
-                    s += term;
-                }
-                (s, mag)
-            }
-            Node::Mul(..) => {
-                let (c, pairs) = pool.mul_parts(n).expect("product");
-                let pairs: Vec<(u32, Rational)> = pairs
-                    .chunks_exact(2)
-                    .map(|t| (t[0], pool.rational_of(t[1]).expect("exp").clone()))
-                    .collect();
-                let mut acc = get(p, c).0;
-                for (b, e) in pairs {
-                    let x = get(p, b).0;
-                    let f = match e.as_small() {
-                        Some((q, 1)) => x.powi(q),
-                        Some((1, 2)) => x.sqrt(),
-                        Some((-1, 2)) => Dd::ONE / x.sqrt(),
-                        _ => x.powf(rational_dd(&e)),
-                    };
-                    acc *= f;
-                }
-                (acc, acc.abs().to_f64())
-            }
-            Node::Pow(a, b) => {
-                let v = get(p, a).0.powf(get(p, b).0);
-                (v, v.abs().to_f64())
-            }
-            Node::Func(f, a) => {
-                let x = get(p, a).0;
-                let v = match f {
-                    Func::Sin => x.sin(),
-                    Func::Cos => x.cos(),
-                    Func::Tan => x.tan(),
-                    Func::Exp => x.exp(),
-                    Func::Ln => x.ln(),
-                    Func::Abs => x.abs(),
+            Shape::Invalid(_) => (Dd::from_f64(f64::NAN), f64::NAN),
+            _ => {
+                let v = shape
+                    .eval(get, |e| pool.exponent(e))
+                    .expect("a node with a value");
+                // A sum's magnitude: the sum of its terms' (the scale of its rounding).
+                let mag = match shape {
+                    Shape::Add(a) => a[1..]
+                        .chunks_exact(2)
+                        .fold(get(a[0]).abs().to_f64(), |m, t| {
+                            m + (get(t[1]) * get(t[0])).abs().to_f64()
+                        }),
+                    _ => v.abs().to_f64(),
                 };
-                (v, v.abs().to_f64())
+                (v, mag)
             }
-            Node::Atan2(a, b) => {
-                let v = get(p, a).0.atan2(get(p, b).0);
-                (v, v.abs().to_f64())
-            }
-            Node::Invalid(_) => (Dd::from_f64(f64::NAN), f64::NAN),
         };
         let entry = p
             .values

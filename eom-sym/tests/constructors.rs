@@ -683,3 +683,31 @@ fn substitution_keeps_named_constants() {
         assert_eq!(c.subs(&[]).unwrap(), c);
     }
 }
+
+/// Folding float constants must not change a value: a rewrite whose coefficient would underflow
+/// (distributing `float(1e-200)` over `m + 1e-200`, or pulling the content 1e-303 of a sum
+/// into `float(1.2e-289)`) is not made, and a product of float constants that underflows is
+/// an error, not a silent 0.
+#[test]
+fn float_folds_never_underflow_silently() {
+    use eom_sym::{Scope, parse};
+    let mut scope = Scope::new();
+    let m = scope.declare("m", -1e-200).expect("m");
+    scope.declare("x", 0.5).expect("x");
+    scope.declare("d", 1.0).expect("d");
+    // m + 1e-200 is exactly zero at m = −1e-200 (both are the same double only in the sum's
+    // exact arithmetic; the direct value is (−1e-200 + 1e-200)·1e-200 = 0).
+    let e = parse("float(1e-200)*(m+1e-200)", &scope).expect("parses");
+    let direct = 1e-200 * (m.nominal() + 1e-200);
+    assert_eq!(e.nominal(), direct, "{e}");
+    let e = parse("float(12e-290)*x*(385^x+1e-303*d)", &scope).expect("parses");
+    let direct = 12e-290 * 0.5 * (385f64.powf(0.5) + 1e-303);
+    assert!(direct != 0.0);
+    assert!(
+        ((e.nominal() - direct) / direct).abs() < 1e-14,
+        "{e}: {} vs {direct}",
+        e.nominal()
+    );
+    let err = parse("float(1e-200)*float(1e-200)*m", &scope).expect_err("underflows");
+    assert!(err.to_string().contains("underflow"), "{err}");
+}

@@ -27,6 +27,7 @@
 //! | `aircraft_ground` | a light taildragger on its landing gear with a wing and a tail (illustrative) | the three reduction paths |
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 mod applications;
 mod bicycle;

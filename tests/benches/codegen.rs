@@ -1,4 +1,4 @@
-//! Generated code against the tape interpreter (and its native-code form, `NativeTape`) on
+//! Generated code against the tape interpreter on
 //! the same expressions, in the same run:
 //! bicycle A..D with all parameters symbolic (libm and std math, f64 and f32), shimmy, chain50,
 //! and the generation time. Each iteration evaluates 64 distinct points near nominal (per-call
@@ -12,7 +12,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use eom_codegen::EmitOptions;
 use eom_model::{Linearizer, ValidityCheck};
-use eom_sym::{NativeTape, SymError, Tape};
+use eom_sym::{SymError, Tape};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
 
@@ -107,18 +107,10 @@ fn bench_tape(c: &mut Criterion, label: &str, model: &str) {
     let pts = points(&m.scope.nominal_values(), 64);
     let mut out = vec![0.0; tape.n_outputs()];
     let mut work = vec![0.0; tape.work_len()];
-    // The interpreter and, where the platform has it, the same tape as machine code.
-    let native = NativeTape::new(&tape).ok();
-    let mut kernels: Vec<(String, Kernel)> = vec![(
+    let kernels: Vec<(String, Kernel)> = vec![(
         label.to_string(),
         Box::new(|p, o, w| tape.eval_into(p, o, w)),
     )];
-    if let Some(n) = &native {
-        kernels.push((
-            label.replace("tape", "native tape"),
-            Box::new(|p, o, w| n.eval_into(p, o, w)),
-        ));
-    }
     let mut group = c.benchmark_group("per call");
     group.throughput(Throughput::Elements(64));
     for (name, eval) in &kernels {

@@ -328,3 +328,53 @@ fn bicycle_polynomial_at_random_points() {
         );
     }
 }
+
+/// The spring-mass-damper under a wing (docs/references.md §D): the polynomial is
+/// m s² + (c + ρVS(CLα + CD)/2) s + k symbolically, and agrees with the numeric eigenvalues at
+/// 1 000 random points; the damping ratio is the seed paper's eq. 13 and the only stability
+/// condition is the total damping.
+#[test]
+fn spring_mass_wing_is_the_closed_form_of_eq_13() {
+    let m = models::build("smd_wing", &[]).expect("smd_wing");
+    let cf = ClosedForms::default();
+    let p = cf
+        .characteristic_polynomial(&symbolic_a(&m))
+        .expect("charpoly");
+    let s = |n: &str| m.scope.get(n).expect("param");
+    let damping = s("c") + s("rho") * s("V") * s("S") * (s("CLa") + s("CD")) / 2i64;
+    let coefficients = &p.polynomial.coefficients;
+    assert_eq!(coefficients.len(), 3);
+    // Up to the common factor the normalisation chose: p(s)/lead = s² + damping/m s + k/m.
+    let lead = coefficients[2];
+    let zero = eom_sym::zero::is_identically_zero;
+    assert!(
+        zero(coefficients[1] * s("m") - damping * lead),
+        "{coefficients:?}"
+    );
+    assert!(
+        zero(coefficients[0] * s("m") - s("k") * lead),
+        "{coefficients:?}"
+    );
+    let mut rng = StdRng::seed_from_u64(13);
+    for _ in 0..1000 {
+        let at = random_point(&m, &mut rng, 0.5);
+        assert_same_polynomial(&m, &p, &at, 1e-12);
+    }
+    let so = cf
+        .second_order(&p)
+        .expect("second order")
+        .expect("degree 2");
+    let want = damping / (2i64 * Expr::sqrt(s("m") * s("k")));
+    assert!(zero(so.damping_ratio - want), "{}", so.damping_ratio);
+    let conditions = cf.stability_conditions(&p).expect("conditions");
+    assert_eq!(conditions.len(), 1, "{conditions:?}");
+    // The condition is the damping times a positive constant: the same ratio everywhere.
+    let ratio = conditions[0].expression / damping;
+    let mut first = None;
+    for _ in 0..100 {
+        let r = eval(&m, &[ratio], &random_point(&m, &mut rng, 0.5))[0];
+        assert!(r > 0.0, "{}", conditions[0].expression);
+        let r0 = *first.get_or_insert(r);
+        assert!((r - r0).abs() <= 1e-14 * r0, "{}", conditions[0].expression);
+    }
+}

@@ -3,6 +3,7 @@
 //! model's colour (solid for the first, dashed for the second), each model's stable intervals
 //! shaded in a light tint of its colour and its boundaries as dashed vertical lines.
 
+use super::zoom::Zoom;
 use super::{
     Area, Chart, Mark, Plot, axis_range, bounds, color, draw_legend, draw_mesh, drawing, plottable,
     render, runs, union, with_title, with_unit,
@@ -72,9 +73,14 @@ impl Side<'_> {
         chart: &mut Chart<'_, '_, RangedCoordf64, RangedCoordf64>,
         y: (f64, f64),
         imag: bool,
+        clip: Option<f64>,
     ) -> Result<(), CliError> {
         for c in self.curves(imag) {
-            for run in runs(c) {
+            let mut pieces = runs(c);
+            if let Some(half) = clip {
+                pieces = super::zoom::clipped(&pieces, half);
+            }
+            for run in pieces {
                 let style = self.color.stroke_width(super::CURVE_WIDTH);
                 if self.dashed && run.len() > 1 {
                     chart
@@ -114,14 +120,14 @@ impl Side<'_> {
     }
 }
 
-/// One panel with both models.
+/// One panel with both models (`clip`: the zoomed panel's half-width).
 fn panel(
     area: &Area<'_>,
     sides: &[Side<'_>; 2],
-    x: (f64, f64),
-    y: (f64, f64),
+    (x, y): ((f64, f64), (f64, f64)),
     descs: (&str, &str),
     imag: bool,
+    clip: Option<f64>,
 ) -> Result<(), CliError> {
     let mut chart = ChartBuilder::on(area)
         .margin(10)
@@ -142,16 +148,18 @@ fn panel(
             .map_err(drawing)?;
     }
     for s in sides {
-        s.draw(&mut chart, y, imag)?;
+        s.draw(&mut chart, y, imag, clip)?;
     }
     Ok(())
 }
 
-/// Draws the sweeps `a` and `b` of the same parameter (with `unit`) in one plot.
+/// Draws the sweeps `a` and `b` of the same parameter (with `unit`) in one plot; `zoom`
+/// adds a panel of the real parts near zero.
 pub fn compare_plot(
     a: (&str, &SweepResult),
     b: (&str, &SweepResult),
     unit: &str,
+    zoom: Option<Zoom>,
 ) -> Result<Plot, CliError> {
     let sides = [
         Side {
@@ -212,11 +220,41 @@ pub fn compare_plot(
     let param = &a.1.param;
     let title = format!("{} vs {}: eigenvalues over {param}", a.0, b.0);
     let x_desc = with_unit(param, unit);
-    let svg = render(SIZE, |root| {
+    let half = zoom.map(|z| z.half_width(&[a.1, b.1]));
+    let size = if half.is_some() {
+        super::sweep::ZOOM_SIZE
+    } else {
+        SIZE
+    };
+    let svg = render(size, |root| {
         let (charts, legend) = with_title(root, &title)?;
-        let (top, bottom) = charts.split_vertically(charts.dim_in_pixel().1 / 2);
-        panel(&top, &sides, x, y_re, (&x_desc, "Re λ [1/s]"), false)?;
-        panel(&bottom, &sides, x, y_hz, (&x_desc, "|Im λ|/2π [Hz]"), true)?;
+        let h = charts.dim_in_pixel().1;
+        let (top, rest) = charts.split_vertically(if half.is_some() { h / 3 } else { h / 2 });
+        panel(
+            &top,
+            &sides,
+            (x, y_re),
+            (&x_desc, "Re λ [1/s]"),
+            false,
+            None,
+        )?;
+        let bottom = match half {
+            Some(half) => {
+                let (middle, bottom) = rest.split_vertically(h / 3);
+                let desc = (x_desc.as_str(), super::sweep::ZOOM_DESC);
+                panel(&middle, &sides, (x, (-half, half)), desc, false, Some(half))?;
+                bottom
+            }
+            None => rest,
+        };
+        panel(
+            &bottom,
+            &sides,
+            (x, y_hz),
+            (&x_desc, "|Im λ|/2π [Hz]"),
+            true,
+            None,
+        )?;
         draw_legend(&legend, &rows)
     })?;
     Ok(Plot { svg, notes })

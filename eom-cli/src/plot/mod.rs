@@ -13,8 +13,13 @@
 
 pub mod bode;
 pub mod compare;
+pub mod geometry;
+pub mod locus;
 pub mod poles;
+pub mod shape;
 pub mod sweep;
+pub mod time;
+pub mod zoom;
 
 use crate::error::CliError;
 use crate::format::g;
@@ -244,6 +249,46 @@ pub(crate) fn runs(points: impl IntoIterator<Item = (f64, f64)>) -> Vec<Series> 
             current.push((x, y));
         } else if !current.is_empty() {
             out.push(std::mem::take(&mut current));
+        }
+    }
+    if !current.is_empty() {
+        out.push(current);
+    }
+    out
+}
+
+/// Cuts a polyline to the band `lo ≤ y ≤ hi`: the pieces inside, each ending where the line
+/// leaves the band (interpolated), so that a zoomed panel draws nothing outside its axes.
+pub(crate) fn clip_to_band(run: &[(f64, f64)], lo: f64, hi: f64) -> Vec<Series> {
+    let inside = |y: f64| (lo..=hi).contains(&y);
+    // Where the segment p→q meets y = edge.
+    let cut = |p: (f64, f64), q: (f64, f64), edge: f64| {
+        let t = (edge - p.1) / (q.1 - p.1);
+        (p.0 + t * (q.0 - p.0), edge)
+    };
+    let mut out: Vec<Series> = Vec::new();
+    let mut current: Series = Vec::new();
+    for (k, &q) in run.iter().enumerate() {
+        let prev = k.checked_sub(1).map(|j| run[j]);
+        match (prev, inside(q.1)) {
+            (None, true) => current.push(q),
+            (None, false) => {}
+            (Some(p), true) => {
+                if !inside(p.1) {
+                    current.push(cut(p, q, if p.1 > hi { hi } else { lo }));
+                }
+                current.push(q);
+            }
+            (Some(p), false) => {
+                if inside(p.1) {
+                    current.push(cut(p, q, if q.1 > hi { hi } else { lo }));
+                    out.push(std::mem::take(&mut current));
+                } else if (p.1 > hi) != (q.1 > hi) {
+                    // Straight across the band, from one side to the other.
+                    let (a, b) = if p.1 > hi { (hi, lo) } else { (lo, hi) };
+                    out.push(vec![cut(p, q, a), cut(p, q, b)]);
+                }
+            }
         }
     }
     if !current.is_empty() {
@@ -489,6 +534,19 @@ mod tests {
         );
         assert_eq!(left_out(pts), 3);
         assert!(runs([(0.0, f64::NAN)]).is_empty());
+    }
+
+    #[test]
+    fn clipping_keeps_the_band_and_interpolates_the_exits() {
+        let run = [(0.0, 0.0), (1.0, 2.0), (2.0, 0.0), (3.0, -4.0), (4.0, 4.0)];
+        let pieces = clip_to_band(&run, -1.0, 1.0);
+        assert_eq!(pieces.len(), 3, "{pieces:?}");
+        assert_eq!(pieces[0], vec![(0.0, 0.0), (0.5, 1.0)]);
+        assert_eq!(pieces[1], vec![(1.5, 1.0), (2.0, 0.0), (2.25, -1.0)]);
+        assert_eq!(pieces[2], vec![(3.375, -1.0), (3.625, 1.0)]);
+        for p in pieces.iter().flatten() {
+            assert!((-1.0..=1.0).contains(&p.1));
+        }
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! The damped frequency is drawn as |Im λ|/2π in Hz rather than Im λ: a conjugate pair then
 //! shares one curve, which halves the clutter, and Hz is the unit of the text tables.
 
+use super::zoom::Zoom;
 use super::{
     Area, Chart, Mark, Plot, STABLE_FILL, Series, axis_range, bounds, color, draw_legend,
     draw_mesh, draw_runs, drawing, plottable, render, runs, union, with_title, with_unit,
@@ -19,6 +20,12 @@ use std::f64::consts::TAU;
 
 /// Size of the sweep plot in pixels.
 const SIZE: (u32, u32) = (1100, 820);
+
+/// Size of the sweep plot with the zoomed panel, in pixels.
+pub(crate) const ZOOM_SIZE: (u32, u32) = (1100, 1150);
+
+/// Axis description of the zoomed panel.
+pub(crate) const ZOOM_DESC: &str = "Re λ near 0 [1/s]";
 
 /// Most boundaries and stable intervals listed one by one in the legend.
 const LISTED: usize = 8;
@@ -126,6 +133,8 @@ struct Panel<'r> {
     x_desc: String,
     y_desc: &'static str,
     zero_line: bool,
+    /// Cut the curves to `±half` (the zoomed panel).
+    clip: Option<f64>,
 }
 
 impl Panel<'_> {
@@ -149,7 +158,11 @@ impl Panel<'_> {
         }
         self.boundaries(&mut chart)?;
         for (k, b) in curves.iter().enumerate() {
-            draw_runs(&mut chart, &runs(pick(b).iter().copied()), color(k))?;
+            let mut pieces = runs(pick(b).iter().copied());
+            if let Some(half) = self.clip {
+                pieces = super::zoom::clipped(&pieces, half);
+            }
+            draw_runs(&mut chart, &pieces, color(k))?;
         }
         Ok(())
     }
@@ -189,9 +202,14 @@ impl Panel<'_> {
 }
 
 /// Draws the sweep plot of `model`; `unit` is the unit of the swept parameter (may be
-/// empty). Eigenvalues that cannot be drawn are left out with a note; a sweep without
-/// branches to draw gives empty axes with a note.
-pub fn sweep_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliError> {
+/// empty); `zoom` adds a panel of the real parts near zero. Eigenvalues that cannot be drawn
+/// are left out with a note; a sweep without branches to draw gives empty axes with a note.
+pub fn sweep_plot(
+    model: &str,
+    r: &SweepResult,
+    unit: &str,
+    zoom: Option<Zoom>,
+) -> Result<Plot, CliError> {
     let (curves, left_out) = branches(r);
     let mut notes = Vec::new();
     if curves.is_empty() {
@@ -213,19 +231,32 @@ pub fn sweep_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
     let rows = legend_rows(r, curves.len(), &notes);
     let title = format!("{model}: eigenvalues over {}", r.param);
     let x_desc = with_unit(&r.param, unit);
-    let svg = render(SIZE, |root| {
+    let half = zoom.map(|z| z.half_width(&[r]));
+    let size = if half.is_some() { ZOOM_SIZE } else { SIZE };
+    let svg = render(size, |root| {
         let (charts, legend) = with_title(root, &title)?;
-        let (top, bottom) = charts.split_vertically(charts.dim_in_pixel().1 / 2);
-        let panel = |y, y_desc, zero_line| Panel {
+        let panel = |y, y_desc, zero_line, clip| Panel {
             result: r,
             x,
             y,
             x_desc: x_desc.clone(),
             y_desc,
             zero_line,
+            clip,
         };
-        panel(y_re, "Re λ [1/s]", true).draw(&top, &curves, |b| &b.re)?;
-        panel(y_hz, "|Im λ|/2π [Hz]", false).draw(&bottom, &curves, |b| &b.hz)?;
+        let h = charts.dim_in_pixel().1;
+        let (top, rest) = charts.split_vertically(if half.is_some() { h / 3 } else { h / 2 });
+        panel(y_re, "Re λ [1/s]", true, None).draw(&top, &curves, |b| &b.re)?;
+        let bottom = match half {
+            Some(half) => {
+                let (middle, bottom) = rest.split_vertically(h / 3);
+                panel((-half, half), ZOOM_DESC, true, Some(half))
+                    .draw(&middle, &curves, |b| &b.re)?;
+                bottom
+            }
+            None => rest,
+        };
+        panel(y_hz, "|Im λ|/2π [Hz]", false, None).draw(&bottom, &curves, |b| &b.hz)?;
         draw_legend(&legend, &rows)
     })?;
     Ok(Plot { svg, notes })
@@ -281,7 +312,7 @@ mod tests {
             ],
             1,
         );
-        let p = sweep_plot("m", &r, "m/s").unwrap();
+        let p = sweep_plot("m", &r, "m/s", None).unwrap();
         assert!(p.svg.starts_with("<svg"), "{}", &p.svg[..60]);
         assert_eq!(p.notes.len(), 1, "{:?}", p.notes);
         assert!(
@@ -298,10 +329,10 @@ mod tests {
     #[test]
     fn a_single_point_and_no_branches_do_not_panic() {
         let r = result(vec![point(3.0, vec![Complex64::new(0.0, 0.0)])], 1);
-        let p = sweep_plot("m", &r, "").unwrap();
+        let p = sweep_plot("m", &r, "", None).unwrap();
         assert!(p.svg.contains("<circle"), "a lone value is a dot");
         let r = result(vec![point(0.0, vec![]), point(1.0, vec![])], 0);
-        let p = sweep_plot("m", &r, "").unwrap();
+        let p = sweep_plot("m", &r, "", None).unwrap();
         assert_eq!(curves(&p.svg), 0);
         assert!(
             p.notes[0].contains("no eigenvalue branches"),

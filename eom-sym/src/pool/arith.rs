@@ -2,6 +2,7 @@
 //! identities of the table in the [`pool`](super) module).
 
 use super::*;
+use crate::func::Parity;
 
 impl PoolData {
     // ---------------------------------------------------------------- sums
@@ -110,7 +111,7 @@ impl PoolData {
         key.clear();
         key.push(ONE);
         key.extend_from_slice(self.mul_parts(id).expect("product").1);
-        let id = self.intern(Key::Mul(&key));
+        let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
     }
@@ -153,7 +154,7 @@ impl PoolData {
             let cid = self.num(c);
             key.push(cid);
         }
-        let id = self.intern(Key::Add(&key));
+        let id = self.intern(Shape::Add(&key));
         self.key_buf = key;
         id
     }
@@ -209,7 +210,7 @@ impl PoolData {
                 key.push(ONE);
             }
         }
-        let id = self.intern(Key::Mul(&key));
+        let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
     }
@@ -285,50 +286,12 @@ impl PoolData {
     /// The canonical product `coef·Π factors`. `factors` is consumed (left in an unspecified
     /// state).
     fn finish_mul(&mut self, mut coef: Number, factors: &mut Vec<(Id, Rational)>) -> Id {
-        // Sum bases with integer exponents are made primitive (first coefficient one), the
-        // content going into the coefficient: `(2a + 2b)·x` and `2·((a + b)·x)` must be the
-        // same node although `2·(a + b)` alone is distributed. A lone sum to the first power
-        // is left alone: it is distributed below anyway.
-        if !(factors.len() == 1 && factors[0].1.is_one()) {
-            for f in factors.iter_mut() {
-                let Some(k) = f.1.to_i64().filter(|_| f.1.is_integer()) else {
-                    continue;
-                };
-                let Some((q, s)) = self.primitive_sum(f.0) else {
-                    continue;
-                };
-                match q.powi(k) {
-                    Some(Ok(qk)) => match coef.mul(&Number::Rat(qk)) {
-                        Ok(c) => coef = c,
-                        Err(err) => return self.invalid(err),
-                    },
-                    _ => return self.invalid(SymError::RationalOverflow),
-                }
-                f.0 = s;
-            }
+        if let Err(invalid) = self.primitive_sum_factors(&mut coef, factors) {
+            return invalid;
         }
-        // Sort by base, positive exponents before negative ones.
-        factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
-        // Merge equal bases in place.
-        let mut w = 0;
-        for i in 0..factors.len() {
-            if w > 0 {
-                let (b, lb) = (factors[i].0, factors[w - 1].0);
-                let same_sign = factors[w - 1].1.signum() == factors[i].1.signum();
-                if lb == b && (same_sign || self.sign(b).is_nonzero()) {
-                    match factors[w - 1].1.add(&factors[i].1) {
-                        Ok(s) => factors[w - 1].1 = s,
-                        Err(_) => return self.invalid(SymError::RationalOverflow),
-                    }
-                    continue;
-                }
-                // Same base, opposite sign, base may vanish: keep a second entry so that
-                // no division is cancelled (see the table in the module docs).
-            }
-            factors.swap(w, i);
-            w += 1;
+        if let Err(invalid) = self.merge_equal_bases(factors) {
+            return invalid;
         }
-        factors.truncate(w);
         // Fold numeric bases with integer exponents into the coefficient; drop x^0. The kept
         // factors are compacted in place; expansions (rare) go to `extra`.
         let mut kept = 0;
@@ -409,12 +372,16 @@ impl PoolData {
                 let mut terms = std::mem::take(&mut self.terms_buf);
                 terms.clear();
                 let id = match self.collect_add(b, &coef, &mut c0, &mut terms) {
-                    Ok(()) => self.finish_add(c0, &mut terms),
-                    Err(e) => self.invalid(e),
+                    Ok(()) => Some(self.finish_add(c0, &mut terms)),
+                    // A term's coefficient would underflow: keep the product undistributed.
+                    Err(SymError::Underflow { .. }) => None,
+                    Err(e) => Some(self.invalid(e)),
                 };
                 terms.clear();
                 self.terms_buf = terms;
-                return id;
+                if let Some(id) = id {
+                    return id;
+                }
             }
         }
         let mut key = std::mem::take(&mut self.key_buf);
@@ -425,9 +392,71 @@ impl PoolData {
             let eid = self.rational(e);
             key.push(eid);
         }
-        let id = self.intern(Key::Mul(&key));
+        let id = self.intern(Shape::Mul(&key));
         self.key_buf = key;
         id
+    }
+
+    /// Sum bases with integer exponents made primitive (first coefficient one), the content
+    /// going into `coef`; `Err` holds the invalid node of a failure.
+    fn primitive_sum_factors(
+        &mut self,
+        coef: &mut Number,
+        factors: &mut [(Id, Rational)],
+    ) -> Result<(), Id> {
+        // Sum bases with integer exponents are made primitive (first coefficient one), the
+        // content going into the coefficient: `(2a + 2b)·x` and `2·((a + b)·x)` must be the
+        // same node although `2·(a + b)` alone is distributed. A lone sum to the first power
+        // is left alone: it is distributed below anyway.
+        if !(factors.len() == 1 && factors[0].1.is_one()) {
+            for f in factors.iter_mut() {
+                let Some(k) = f.1.to_i64().filter(|_| f.1.is_integer()) else {
+                    continue;
+                };
+                let Some((q, s)) = self.primitive_sum(f.0) else {
+                    continue;
+                };
+                match q.powi(k) {
+                    Some(Ok(qk)) => match coef.mul(&Number::Rat(qk)) {
+                        Ok(c) => *coef = c,
+                        // The content would underflow the coefficient: keep the sum as it is.
+                        Err(SymError::Underflow { .. }) => continue,
+                        Err(err) => return Err(self.invalid(err)),
+                    },
+                    _ => return Err(self.invalid(SymError::RationalOverflow)),
+                }
+                f.0 = s;
+            }
+        }
+        Ok(())
+    }
+
+    /// Factors sorted by base and equal bases merged (where no division is cancelled);
+    /// `Err` holds the invalid node of a failure.
+    fn merge_equal_bases(&mut self, factors: &mut Vec<(Id, Rational)>) -> Result<(), Id> {
+        // Sort by base, positive exponents before negative ones.
+        factors.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.signum().cmp(&a.1.signum())));
+        // Merge equal bases in place.
+        let mut w = 0;
+        for i in 0..factors.len() {
+            if w > 0 {
+                let (b, lb) = (factors[i].0, factors[w - 1].0);
+                let same_sign = factors[w - 1].1.signum() == factors[i].1.signum();
+                if lb == b && (same_sign || self.sign(b).is_nonzero()) {
+                    match factors[w - 1].1.add(&factors[i].1) {
+                        Ok(s) => factors[w - 1].1 = s,
+                        Err(_) => return Err(self.invalid(SymError::RationalOverflow)),
+                    }
+                    continue;
+                }
+                // Same base, opposite sign, base may vanish: keep a second entry so that
+                // no division is cancelled (see the table in the module docs).
+            }
+            factors.swap(w, i);
+            w += 1;
+        }
+        factors.truncate(w);
+        Ok(())
     }
 
     /// A numeric base to an integer power.
@@ -475,13 +504,13 @@ impl PoolData {
                         what: format!("{} ^ {f}", bv.to_f64()),
                     });
                 }
-                self.intern(Key::Pow(base, exp))
+                self.intern(Shape::Pow([base, exp]))
             }
             _ => {
                 if base == ONE {
                     return ONE;
                 }
-                self.intern(Key::Pow(base, exp))
+                self.intern(Shape::Pow([base, exp]))
             }
         }
     }
@@ -558,7 +587,7 @@ impl PoolData {
                         };
                     }
                     let e = self.rational(r);
-                    self.intern(Key::Mul(&[ONE, base, e]))
+                    self.intern(Shape::Mul(&[ONE, base, e]))
                 }
             };
         }
@@ -646,7 +675,7 @@ impl PoolData {
             }
         }
         let eid = self.rational(e);
-        self.intern(Key::Mul(&[ONE, b, eid]))
+        self.intern(Shape::Mul(&[ONE, b, eid]))
     }
 
     // ---------------------------------------------------------------- functions
@@ -693,13 +722,13 @@ impl PoolData {
         }
         // Odd and even functions of a negated argument.
         if let Some(pos) = self.negated(a) {
-            match f {
-                Func::Cos | Func::Abs => return self.func(f, pos),
-                Func::Sin | Func::Tan => {
+            match f.parity() {
+                Parity::Even => return self.func(f, pos),
+                Parity::Odd => {
                     let v = self.func(f, pos);
                     return self.mul_n(&[MINUS_ONE, v]);
                 }
-                _ => {}
+                Parity::None => {}
             }
         }
         match f {
@@ -724,7 +753,7 @@ impl PoolData {
             }
             _ => {}
         }
-        self.intern(Key::Func(f, a))
+        self.intern(Shape::Func(f, [a]))
     }
 
     /// If `a = k·π` with rational `k`, return `k`.
@@ -770,7 +799,7 @@ impl PoolData {
             let v = a.atan2(*b);
             return self.float(v);
         }
-        self.intern(Key::Atan2(y, x))
+        self.intern(Shape::Atan2([y, x]))
     }
 }
 
@@ -807,14 +836,5 @@ pub(crate) fn dyadic(x: f64) -> Option<Rational> {
         Rational::new(scaled as i64, 1 << 20)
     } else {
         None
-    }
-}
-
-pub(crate) fn pow_f64(x: f64, e: &Rational) -> f64 {
-    match e.as_small() {
-        Some((n, 1)) if n.unsigned_abs() <= i32::MAX as u64 => x.powi(n as i32),
-        Some((1, 2)) => x.sqrt(),
-        Some((-1, 2)) => 1.0 / x.sqrt(),
-        _ => x.powf(e.to_f64()),
     }
 }

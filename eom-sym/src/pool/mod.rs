@@ -46,62 +46,24 @@
 //! report the error instead of a number: never a panic, never a silent NaN.
 
 mod arith;
+mod shape;
 mod sign;
 
+pub use shape::OpCount;
+pub(crate) use shape::{Shape, ShapeBuf, ShapeRef, power_ops};
 pub use sign::Sign;
-use sign::pow_sign;
+pub(crate) use sign::pow_sign;
 
-pub(crate) use arith::{dyadic, pow_f64};
+pub(crate) use arith::dyadic;
 
 use crate::error::SymError;
 use crate::expr::Expr;
+pub use crate::func::Func;
 use crate::rational::Rational;
 use hashbrown::HashTable;
 use std::hash::{BuildHasher, Hash, Hasher};
 
 pub(crate) type Id = u32;
-
-/// Elementary functions of one argument.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
-pub enum Func {
-    /// Sine.
-    Sin,
-    /// Cosine.
-    Cos,
-    /// Tangent.
-    Tan,
-    /// Exponential.
-    Exp,
-    /// Natural logarithm.
-    Ln,
-    /// Absolute value.
-    Abs,
-}
-
-impl Func {
-    /// The name used in text and by the parser.
-    pub fn name(self) -> &'static str {
-        match self {
-            Func::Sin => "sin",
-            Func::Cos => "cos",
-            Func::Tan => "tan",
-            Func::Exp => "exp",
-            Func::Ln => "ln",
-            Func::Abs => "abs",
-        }
-    }
-    /// Evaluate in `f64`.
-    pub fn eval_f64(self, x: f64) -> f64 {
-        match self {
-            Func::Sin => crate::trig::sin(x),
-            Func::Cos => crate::trig::cos(x),
-            Func::Tan => x.tan(),
-            Func::Exp => x.exp(),
-            Func::Ln => x.ln(),
-            Func::Abs => x.abs(),
-        }
-    }
-}
 
 /// Named mathematical constants.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
@@ -210,7 +172,18 @@ impl Number {
                 .mul(b)
                 .map(Number::Rat)
                 .map_err(|_| SymError::RationalOverflow),
-            _ => finite(self.to_f64() * o.to_f64()),
+            _ => {
+                let (a, b) = (self.to_f64(), o.to_f64());
+                let p = a * b;
+                // A product of nonzero constants that leaves the normal range lost digits
+                // (or all of them): not an exact fold.
+                if p.abs() < f64::MIN_POSITIVE && a != 0.0 && b != 0.0 {
+                    return Err(SymError::Underflow {
+                        what: format!("{a:e} × {b:e}"),
+                    });
+                }
+                finite(p)
+            }
         }
     }
 }
@@ -244,36 +217,21 @@ pub(crate) enum Node {
     Invalid(u32),
 }
 
-/// The lookup key of a stored node.
-fn key_at<'a>(nodes: &'a [Node], args: &'a [u32], id: Id) -> Key<'a> {
+/// The shape of a stored node (also its key in the hash-consing table).
+fn shape_at<'a>(nodes: &'a [Node], args: &'a [u32], id: Id) -> ShapeRef<'a> {
     let slice = |s: u32, l: u32| &args[s as usize..(s + l) as usize];
     match &nodes[id as usize] {
-        Node::Num(r) => Key::Num(r),
-        Node::Float(f) => Key::Float(f.to_bits()),
-        Node::Const(c) => Key::Const(*c),
-        Node::Param(p) => Key::Param(*p),
-        Node::Add(s, l) => Key::Add(slice(*s, *l)),
-        Node::Mul(s, l) => Key::Mul(slice(*s, *l)),
-        Node::Pow(a, b) => Key::Pow(*a, *b),
-        Node::Func(f, a) => Key::Func(*f, *a),
-        Node::Atan2(a, b) => Key::Atan2(*a, *b),
-        Node::Invalid(e) => Key::Invalid(*e),
+        Node::Num(r) => Shape::Num(r),
+        Node::Float(f) => Shape::Float(f.to_bits()),
+        Node::Const(c) => Shape::Const(*c),
+        Node::Param(p) => Shape::Param(*p),
+        Node::Add(s, l) => Shape::Add(slice(*s, *l)),
+        Node::Mul(s, l) => Shape::Mul(slice(*s, *l)),
+        Node::Pow(a, b) => Shape::Pow([*a, *b]),
+        Node::Func(f, a) => Shape::Func(*f, [*a]),
+        Node::Atan2(a, b) => Shape::Atan2([*a, *b]),
+        Node::Invalid(e) => Shape::Invalid(*e),
     }
-}
-
-/// Borrowed key used for hashing and lookup without allocation.
-#[derive(PartialEq, Hash)]
-enum Key<'a> {
-    Num(&'a Rational),
-    Float(u64),
-    Const(Constant),
-    Param(u32),
-    Add(&'a [u32]),
-    Mul(&'a [u32]),
-    Pow(Id, Id),
-    Func(Func, Id),
-    Atan2(Id, Id),
-    Invalid(u32),
 }
 
 #[derive(Default, Clone, Copy)]
@@ -504,60 +462,50 @@ impl PoolData {
             _ => None,
         }
     }
-    /// Children of a node in a fixed order (for traversals).
-    pub(crate) fn for_each_child(&self, id: Id, mut f: impl FnMut(Id)) {
-        match self.nodes[id as usize] {
-            Node::Add(s, l) | Node::Mul(s, l) => {
-                for &c in self.args_of(s, l) {
-                    f(c)
-                }
-            }
-            Node::Pow(a, b) | Node::Atan2(a, b) => {
-                f(a);
-                f(b)
-            }
-            Node::Func(_, a) => f(a),
-            _ => {}
-        }
+    /// The shape of node `id`: its kind and its children (see [`Shape`]).
+    pub(crate) fn shape(&self, id: Id) -> ShapeRef<'_> {
+        shape_at(&self.nodes, &self.args, id)
+    }
+    /// The rational exponent of a product's factor.
+    pub(crate) fn exponent(&self, id: Id) -> Rational {
+        self.rational_of(id)
+            .expect("product exponents are rational")
+            .clone()
     }
 
     // ---------------------------------------------------------------- interning
 
-    fn hash_key(key: &Key<'_>) -> u64 {
-        FxBuild.hash_one(key)
-    }
-
-    fn intern(&mut self, key: Key<'_>) -> Id {
+    fn intern(&mut self, key: ShapeRef<'_>) -> Id {
         self.interns += 1;
-        let h = Self::hash_key(&key);
+        let h = FxBuild.hash_one(key);
         let (nodes, args, hashes) = (&self.nodes, &self.args, &self.hashes);
         let found = self.table.find(h, |&id| {
-            hashes[id as usize] == h && key_at(nodes, args, id) == key
+            hashes[id as usize] == h && shape_at(nodes, args, id) == key
         });
         if let Some(&id) = found {
             return id;
         }
+        let (nom, sign) = self.analyse(key);
         let id = self.nodes.len() as Id;
         let node = match key {
-            Key::Num(r) => Node::Num(r.clone()),
-            Key::Float(b) => Node::Float(f64::from_bits(b)),
-            Key::Const(c) => Node::Const(c),
-            Key::Param(p) => Node::Param(p),
-            Key::Add(a) | Key::Mul(a) => {
+            Shape::Num(r) => Node::Num(r.clone()),
+            Shape::Float(b) => Node::Float(f64::from_bits(b)),
+            Shape::Const(c) => Node::Const(c),
+            Shape::Param(p) => Node::Param(p),
+            Shape::Add(a) | Shape::Mul(a) => {
                 let start = self.args.len() as u32;
                 self.args.extend_from_slice(a);
-                if matches!(key, Key::Add(_)) {
+                if matches!(key, Shape::Add(_)) {
                     Node::Add(start, a.len() as u32)
                 } else {
                     Node::Mul(start, a.len() as u32)
                 }
             }
-            Key::Pow(a, b) => Node::Pow(a, b),
-            Key::Func(f, a) => Node::Func(f, a),
-            Key::Atan2(a, b) => Node::Atan2(a, b),
-            Key::Invalid(e) => Node::Invalid(e),
+            Shape::Pow([a, b]) => Node::Pow(a, b),
+            Shape::Func(f, [a]) => Node::Func(f, a),
+            Shape::Atan2([a, b]) => Node::Atan2(a, b),
+            Shape::Invalid(e) => Node::Invalid(e),
         };
-        let (nom, sign) = self.analyse(&node);
         self.nodes.push(node);
         self.nominal.push(nom);
         self.sign.push(sign);
@@ -568,69 +516,35 @@ impl PoolData {
     }
 
     /// Nominal value and sign knowledge of a new node (children already analysed).
-    fn analyse(&self, node: &Node) -> (f64, Sign) {
-        match node {
-            Node::Num(r) => {
-                let v = r.to_f64();
-                (v, Sign::from_rational(r))
-            }
-            Node::Float(f) => (*f, Sign::of(*f)),
-            Node::Const(c) => (c.to_f64(), Sign::POSITIVE),
-            Node::Param(p) => {
-                let info = &self.params[*p as usize];
-                let s = match info.assume {
-                    Assumption::Real => Sign::ANY,
-                    Assumption::Nonzero => Sign::NONZERO,
-                    Assumption::Positive => Sign::POSITIVE,
-                    Assumption::Nonnegative => Sign::NONNEG,
-                };
-                (info.nominal, s)
-            }
-            Node::Add(s, l) => {
-                let a = self.args_of(*s, *l);
-                let mut v = self.nominal(a[0]);
-                let mut sg = self.sign(a[0]);
-                for p in a[1..].chunks_exact(2) {
-                    v += self.nominal(p[1]) * self.nominal(p[0]);
-                    sg = sg.add(self.sign(p[1]).mul(self.sign(p[0])));
-                }
-                (v, sg)
-            }
-            Node::Mul(s, l) => {
-                let a = self.args_of(*s, *l);
-                let mut v = self.nominal(a[0]);
-                let mut sg = self.sign(a[0]);
-                for p in a[1..].chunks_exact(2) {
-                    let e = self
-                        .rational_of(p[1])
-                        .expect("product exponents are rational");
-                    v *= pow_f64(self.nominal(p[0]), e);
-                    sg = sg.mul(pow_sign(self.sign(p[0]), e));
-                }
-                (v, sg)
-            }
-            Node::Pow(a, b) => {
-                let v = self.nominal(*a).powf(self.nominal(*b));
-                let s = if self.sign(*a).is_positive() {
-                    Sign::POSITIVE
-                } else {
-                    Sign::ANY
-                };
-                (v, s)
-            }
-            Node::Func(f, a) => {
-                let x = self.nominal(*a);
-                let s = match f {
-                    Func::Exp => Sign::POSITIVE,
-                    Func::Abs if self.sign(*a).is_nonzero() => Sign::POSITIVE,
-                    Func::Abs => Sign::NONNEG,
-                    _ => Sign::ANY,
-                };
-                (f.eval_f64(x), s)
-            }
-            Node::Atan2(a, b) => (self.nominal(*a).atan2(self.nominal(*b)), Sign::ANY),
-            Node::Invalid(_) => (f64::NAN, Sign::ANY),
-        }
+    fn analyse(&self, shape: ShapeRef<'_>) -> (f64, Sign) {
+        let nominal = match shape {
+            Shape::Param(p) => self.params[p as usize].nominal,
+            Shape::Invalid(_) => f64::NAN,
+            _ => shape
+                .eval(|i| self.nominal(i), |i| self.exponent(i))
+                .expect("a node with a value"),
+        };
+        let sign = match shape {
+            Shape::Num(r) => Sign::from_rational(r),
+            Shape::Float(_) => Sign::of(nominal),
+            Shape::Const(_) => Sign::POSITIVE,
+            Shape::Param(p) => match self.params[p as usize].assume {
+                Assumption::Real => Sign::ANY,
+                Assumption::Nonzero => Sign::NONZERO,
+                Assumption::Positive => Sign::POSITIVE,
+                Assumption::Nonnegative => Sign::NONNEG,
+            },
+            Shape::Add(a) => a[1..].chunks_exact(2).fold(self.sign(a[0]), |s, t| {
+                s.add(self.sign(t[1]).mul(self.sign(t[0])))
+            }),
+            Shape::Mul(a) => a[1..].chunks_exact(2).fold(self.sign(a[0]), |s, t| {
+                s.mul(pow_sign(self.sign(t[0]), &self.exponent(t[1])))
+            }),
+            Shape::Pow([a, _]) if self.sign(a).is_positive() => Sign::POSITIVE,
+            Shape::Func(f, [a]) => f.sign(self.sign(a)),
+            Shape::Pow(_) | Shape::Atan2(_) | Shape::Invalid(_) => Sign::ANY,
+        };
+        (nominal, sign)
     }
 
     // ---------------------------------------------------------------- leaves
@@ -644,11 +558,11 @@ impl PoolData {
                 self.interns += 1;
                 return *slot;
             }
-            let id = self.intern(Key::Num(&r));
+            let id = self.intern(Shape::Num(&r));
             self.small[(d - 1) as usize][(n + SMALL) as usize] = id;
             return id;
         }
-        self.intern(Key::Num(&r))
+        self.intern(Shape::Num(&r))
     }
 
     pub(crate) fn float(&mut self, x: f64) -> Id {
@@ -662,7 +576,7 @@ impl PoolData {
         if let Some(r) = dyadic(x) {
             return self.rational(r);
         }
-        self.intern(Key::Float(x.to_bits()))
+        self.intern(Shape::Float(x.to_bits()))
     }
 
     pub(crate) fn num(&mut self, n: Number) -> Id {
@@ -673,13 +587,13 @@ impl PoolData {
     }
 
     pub(crate) fn constant(&mut self, c: Constant) -> Id {
-        self.intern(Key::Const(c))
+        self.intern(Shape::Const(c))
     }
 
     pub(crate) fn new_param(&mut self, info: ParamInfo) -> Id {
         let index = self.params.len() as u32;
         self.params.push(info);
-        let id = self.intern(Key::Param(index));
+        let id = self.intern(Shape::Param(index));
         self.param_node.push(id);
         id
     }
@@ -695,7 +609,7 @@ impl PoolData {
     pub(crate) fn invalid(&mut self, e: SymError) -> Id {
         let index = self.errors.len() as u32;
         self.errors.push(e);
-        self.intern(Key::Invalid(index))
+        self.intern(Shape::Invalid(index))
     }
 
     fn first_invalid(&self, ids: &[Id]) -> Option<Id> {

@@ -78,6 +78,11 @@ impl Sign {
         Sign(s)
     }
     pub(crate) fn add(self, o: Sign) -> Sign {
+        // An empty set (a value defined nowhere, which only the simplifier's e-graph meets)
+        // says nothing about a sum.
+        if self.0 == 0 || o.0 == 0 {
+            return Sign::ANY;
+        }
         // Sum of sets: nonneg + nonneg is nonneg, positive if either is positive.
         if self.is_nonneg() && o.is_nonneg() {
             if self.is_positive() || o.is_positive() {
@@ -129,7 +134,30 @@ impl Sign {
             _ => Sign::ZERO_ONLY,
         }
     }
+    /// Both facts at once: `None` when they contradict (a value defined nowhere).
+    pub(crate) fn intersect(self, o: Sign) -> Option<Sign> {
+        let c = self.0 & o.0;
+        (c != 0).then_some(Sign(c))
+    }
     fn max_nonempty(self, fallback: Sign) -> Sign {
         if self.0 == 0 { fallback } else { self }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lattice_operations() {
+        let pos = Sign::POSITIVE;
+        assert!(pos.add(pos).is_positive());
+        assert!(pos.mul(pos.neg()).is_nonpos());
+        assert!(!pow_sign(Sign::ANY, &Rational::int(2)).is_nonzero());
+        assert!(pow_sign(pos.neg(), &Rational::int(-2)).is_positive());
+        assert_eq!(Sign::POSITIVE.intersect(Sign::NEGATIVE), None);
+        assert_eq!(Sign::NONNEG.intersect(Sign::NONZERO), Some(Sign::POSITIVE));
+        // An empty set (a class defined nowhere) makes a sum unknown, not zero.
+        assert_eq!(Sign(0).add(pos), Sign::ANY);
     }
 }

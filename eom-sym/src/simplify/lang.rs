@@ -8,7 +8,7 @@
 //! floating-point constants are opaque leaves that keep their pool id, so the rebuilt
 //! expression refers to exactly the same pool nodes.
 
-use crate::pool::{Func, Sign};
+use crate::pool::{Func, Sign, pow_sign};
 use crate::rational::Rational;
 use egg::{Analysis, DidMerge, EGraph, Id, Language};
 use std::fmt;
@@ -85,137 +85,6 @@ impl fmt::Display for Math {
     }
 }
 
-/// What is known about the sign of a class: a set of {negative, zero, positive}, the same
-/// semantics as the pool's [`Sign`] (the values the class takes wherever it is defined).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub(crate) struct Signs(u8);
-
-impl Signs {
-    const NEG: u8 = 1;
-    const ZERO: u8 = 2;
-    const POS: u8 = 4;
-    pub(crate) const ANY: Signs = Signs(7);
-    const POSITIVE: Signs = Signs(4);
-    const NONNEG: Signs = Signs(6);
-
-    /// From the pool's sign knowledge (the public predicates determine the set exactly).
-    pub(crate) fn from_sign(s: Sign) -> Signs {
-        let mut b = 0;
-        if !s.is_nonneg() {
-            b |= Self::NEG;
-        }
-        if !s.is_nonzero() {
-            b |= Self::ZERO;
-        }
-        if !s.is_nonpos() {
-            b |= Self::POS;
-        }
-        Signs(b)
-    }
-
-    fn of_rational(r: &Rational) -> Signs {
-        match r.signum() {
-            1 => Signs(Self::POS),
-            -1 => Signs(Self::NEG),
-            _ => Signs(Self::ZERO),
-        }
-    }
-
-    /// Both facts at once; an empty intersection (a class that is nowhere defined) keeps `a`.
-    pub(crate) fn intersect(a: Signs, b: Signs) -> Signs {
-        let c = a.0 & b.0;
-        if c == 0 { a } else { Signs(c) }
-    }
-
-    /// Provably nonzero (the condition the pool uses to cancel `x·x⁻¹`).
-    pub(crate) fn is_nonzero(self) -> bool {
-        self.0 & Self::ZERO == 0
-    }
-    fn is_nonneg(self) -> bool {
-        self.0 & Self::NEG == 0
-    }
-    fn is_nonpos(self) -> bool {
-        self.0 & Self::POS == 0
-    }
-    fn is_positive(self) -> bool {
-        self.0 == Self::POS
-    }
-    fn neg(self) -> Signs {
-        let mut s = self.0 & Self::ZERO;
-        if self.0 & Self::NEG != 0 {
-            s |= Self::POS;
-        }
-        if self.0 & Self::POS != 0 {
-            s |= Self::NEG;
-        }
-        Signs(s)
-    }
-    fn mul(self, o: Signs) -> Signs {
-        let mut s = 0;
-        for a in [Self::NEG, Self::ZERO, Self::POS] {
-            if self.0 & a == 0 {
-                continue;
-            }
-            for b in [Self::NEG, Self::ZERO, Self::POS] {
-                if o.0 & b == 0 {
-                    continue;
-                }
-                s |= match (a, b) {
-                    (Self::ZERO, _) | (_, Self::ZERO) => Self::ZERO,
-                    (x, y) if x == y => Self::POS,
-                    _ => Self::NEG,
-                };
-            }
-        }
-        Signs(s)
-    }
-    fn add(self, o: Signs) -> Signs {
-        if self.0 == 0 || o.0 == 0 {
-            return Signs::ANY;
-        }
-        if self.is_nonneg() && o.is_nonneg() {
-            if self.is_positive() || o.is_positive() {
-                Signs::POSITIVE
-            } else if self.0 == Self::ZERO && o.0 == Self::ZERO {
-                Signs(Self::ZERO)
-            } else {
-                Signs::NONNEG
-            }
-        } else if self.is_nonpos() && o.is_nonpos() {
-            self.neg().add(o.neg()).neg()
-        } else {
-            Signs::ANY
-        }
-    }
-    /// `x^e` for a rational exponent, where defined (mirrors the pool).
-    fn pow(self, e: &Rational) -> Signs {
-        let s = if e.is_negative() {
-            // Undefined at zero; where defined, the sign of x^|e|.
-            let t = Signs(self.0 & !Self::ZERO);
-            if t.0 == 0 { self } else { t }
-        } else {
-            self
-        };
-        match e.as_small() {
-            Some((n, 1)) if n % 2 == 0 => {
-                if s.is_nonzero() {
-                    Signs::POSITIVE
-                } else {
-                    Signs::NONNEG
-                }
-            }
-            Some((_, 1)) => s,
-            _ => {
-                if s.is_positive() {
-                    Signs::POSITIVE
-                } else {
-                    Signs::NONNEG
-                }
-            }
-        }
-    }
-}
-
 /// Analysis data of a class.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Data {
@@ -225,14 +94,14 @@ pub(crate) struct Data {
     /// because the pool distributes numeric coefficients over sums again.
     pub numeric: bool,
     /// Sign knowledge.
-    pub sign: Signs,
+    pub sign: Sign,
 }
 
 /// The e-class analysis. `atom_info` is filled by the converter with the numeric flag and
 /// sign of each pool leaf, so that `make` needs no access to the pool.
 #[derive(Default)]
 pub(crate) struct Meta {
-    pub atom_info: hashbrown::HashMap<u32, (bool, Signs)>,
+    pub atom_info: hashbrown::HashMap<u32, (bool, Sign)>,
 }
 
 impl Analysis<Math> for Meta {
@@ -244,7 +113,7 @@ impl Analysis<Math> for Meta {
             Math::Rat(r) => Data {
                 konst: Some(r.clone()),
                 numeric: true,
-                sign: Signs::of_rational(r),
+                sign: Sign::from_rational(r),
             },
             Math::Atom(a) => {
                 let (numeric, sign) = egraph
@@ -252,7 +121,7 @@ impl Analysis<Math> for Meta {
                     .atom_info
                     .get(a)
                     .copied()
-                    .unwrap_or((false, Signs::ANY));
+                    .unwrap_or((false, Sign::ANY));
                 Data {
                     konst: None,
                     numeric,
@@ -263,8 +132,8 @@ impl Analysis<Math> for Meta {
                 let s = c
                     .iter()
                     .map(sign)
-                    .reduce(Signs::add)
-                    .unwrap_or(Signs(Signs::ZERO));
+                    .reduce(Sign::add)
+                    .unwrap_or(Sign::ZERO_ONLY);
                 Data {
                     konst: None,
                     numeric: false,
@@ -275,8 +144,8 @@ impl Analysis<Math> for Meta {
                 let s = c
                     .iter()
                     .map(sign)
-                    .reduce(Signs::mul)
-                    .unwrap_or(Signs::POSITIVE);
+                    .reduce(Sign::mul)
+                    .unwrap_or(Sign::POSITIVE);
                 Data {
                     konst: None,
                     numeric: false,
@@ -285,9 +154,9 @@ impl Analysis<Math> for Meta {
             }
             Math::Pow([b, e]) => {
                 let s = match &egraph[*e].data.konst {
-                    Some(r) => sign(b).pow(r),
-                    None if sign(b).is_positive() => Signs::POSITIVE,
-                    None => Signs::ANY,
+                    Some(r) => pow_sign(sign(b), r),
+                    None if sign(b).is_positive() => Sign::POSITIVE,
+                    None => Sign::ANY,
                 };
                 Data {
                     konst: None,
@@ -295,23 +164,15 @@ impl Analysis<Math> for Meta {
                     sign: s,
                 }
             }
-            Math::Func(f, [a]) => {
-                let s = match f {
-                    Func::Exp => Signs::POSITIVE,
-                    Func::Abs if sign(a).is_nonzero() => Signs::POSITIVE,
-                    Func::Abs => Signs::NONNEG,
-                    _ => Signs::ANY,
-                };
-                Data {
-                    konst: None,
-                    numeric: false,
-                    sign: s,
-                }
-            }
+            Math::Func(f, [a]) => Data {
+                konst: None,
+                numeric: false,
+                sign: f.sign(sign(a)),
+            },
             Math::Atan2(_) => Data {
                 konst: None,
                 numeric: false,
-                sign: Signs::ANY,
+                sign: Sign::ANY,
             },
         }
     }
@@ -333,8 +194,7 @@ impl Analysis<Math> for Meta {
         }
         // Both are sound over-approximations of the same set of values: intersect. An empty
         // intersection can only come from a class that is nowhere defined; keep `a` then.
-        let both = Signs(a.sign.0 & b.sign.0);
-        if both.0 != 0 {
+        if let Some(both) = a.sign.intersect(b.sign) {
             if both != a.sign {
                 a.sign = both;
                 changed_a = true;
@@ -349,30 +209,3 @@ impl Analysis<Math> for Meta {
 
 /// The e-graph type of the simplifier.
 pub(crate) type Graph = EGraph<Math, Meta>;
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn signs_round_trip_the_pool_sign() {
-        for s in [
-            Sign::ANY,
-            Sign::POSITIVE,
-            Sign::NEGATIVE,
-            Sign::ZERO_ONLY,
-            Sign::NONNEG,
-            Sign::NONZERO,
-        ] {
-            let t = Signs::from_sign(s);
-            assert_eq!(t.is_nonzero(), s.is_nonzero());
-            assert_eq!(t.is_nonneg(), s.is_nonneg());
-            assert_eq!(t.is_nonpos(), s.is_nonpos());
-        }
-        let pos = Signs::POSITIVE;
-        assert!(pos.add(pos).is_positive());
-        assert!(pos.mul(pos.neg()).is_nonpos());
-        assert!(!Signs::ANY.pow(&Rational::int(2)).is_nonzero());
-        assert!(pos.neg().pow(&Rational::int(-2)).is_positive());
-    }
-}

@@ -84,7 +84,7 @@ use crate::pool::Node;
 use egg::{BackoffScheduler, Id, Runner};
 use extract::Index;
 use hashbrown::HashSet;
-use lang::{Graph, Math, Meta, Signs};
+use lang::{Graph, Math, Meta};
 use std::time::{Duration, Instant};
 
 /// Weights of the operation counts of [`Expr::op_count`]: the DAG cost the simplifier
@@ -398,9 +398,7 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, usize, Vec<(Id, Expr)>) {
         for &id in &ids {
             if let Node::Param(_) | Node::Const(_) | Node::Float(_) = p.node(id) {
                 let numeric = matches!(p.node(id), Node::Float(_));
-                eg.analysis
-                    .atom_info
-                    .insert(id, (numeric, Signs::from_sign(p.sign(id))));
+                eg.analysis.atom_info.insert(id, (numeric, p.sign(id)));
             }
         }
     });
@@ -465,8 +463,8 @@ fn to_egraph(roots: &[Expr]) -> (Graph, Vec<Id>, usize, Vec<(Id, Expr)>) {
         let cid = eg.add(node);
         // The pool's sign knowledge may be sharper than what `make` derives; both are sound, so
         // keep the intersection. Parents are added later and see it.
-        let both = Signs::intersect(eg[cid].data.sign, Signs::from_sign(e.sign()));
-        eg[cid].data.sign = both;
+        let here = eg[cid].data.sign;
+        eg[cid].data.sign = here.intersect(e.sign()).unwrap_or(here);
         map.insert(id, cid);
         originals.push((cid, e));
     }

@@ -2,6 +2,8 @@
 //! `build` turns it into an `Expr` in the test's thread.
 #![allow(dead_code)]
 
+pub mod bound;
+
 use eom_sym::Expr;
 use proptest::prelude::*;
 
@@ -88,4 +90,14 @@ pub fn params() -> Vec<Expr> {
         .enumerate()
         .map(|(i, &v)| Expr::param(&format!("p{i}"), v).unwrap())
         .collect()
+}
+
+pub fn has_float(r: &Recipe) -> bool {
+    use Recipe::*;
+    match r {
+        Float(_) => true,
+        Param(_) | Int(_) | Rat(..) => false,
+        Add(a, b) | Sub(a, b) | Mul(a, b) | Div(a, b) | Atan2(a, b) => has_float(a) || has_float(b),
+        Neg(a) | Powi(a, _) | Sqrt(a) | Sin(a) | Cos(a) | Exp(a) | Ln(a) | Abs(a) => has_float(a),
+    }
 }

@@ -1,0 +1,133 @@
+//! The HTML of the report: a page with its style and a small check script, sections,
+//! tables, figures. Everything is inline: the page loads nothing from anywhere.
+
+use crate::plot::shape::escape;
+
+/// The script at the top of the page: a script error or a console error puts `EOM-ERROR`
+/// into the title (where a headless browser's `--dump-dom` shows it); after loading, every
+/// `<svg>` whose drawn content has no extent is counted into `data-empty-svgs` of `<html>`,
+/// and `data-rendered` is set.
+const CHECK_SCRIPT: &str = r#"<script>
+(function () {
+  var errors = [];
+  function fail(m) { errors.push(String(m)); document.title = 'EOM-ERROR: ' + errors.join(' | '); }
+  window.addEventListener('error', function (e) { fail(e.message || 'resource error'); }, true);
+  window.addEventListener('unhandledrejection', function (e) { fail(e.reason); });
+  var ce = console.error;
+  console.error = function () { fail(Array.prototype.join.call(arguments, ' ')); ce.apply(console, arguments); };
+  window.addEventListener('load', function () {
+    var empty = 0, svgs = document.querySelectorAll('figure > svg');
+    for (var i = 0; i < svgs.length; i++) {
+      var b = svgs[i].getBBox();
+      if (!(b.width > 0 && b.height > 0) || svgs[i].querySelectorAll('line,polyline,path,circle,rect').length === 0) { empty++; }
+    }
+    document.documentElement.setAttribute('data-figures', String(svgs.length));
+    document.documentElement.setAttribute('data-empty-svgs', String(empty));
+    document.documentElement.setAttribute('data-rendered', errors.length ? 'with-errors' : 'yes');
+  });
+})();
+</script>"#;
+
+const STYLE: &str = r#"<style>
+body { font-family: sans-serif; max-width: 1180px; margin: 1em auto; padding: 0 1em; color: #222; }
+h1 { font-size: 1.7em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
+table { border-collapse: collapse; margin: 0.6em 0; }
+th, td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: right; }
+th { background: #f2f2f2; } td.l, th.l { text-align: left; }
+figure { margin: 1em 0; } figure > svg { max-width: 100%; height: auto; border: 1px solid #eee; }
+figcaption { color: #555; font-size: 0.9em; }
+.formula { display: flex; gap: 1.5em; align-items: center; flex-wrap: wrap; margin: 0.6em 0; }
+.formula pre { background: #f6f6f6; padding: 0.4em; max-width: 520px; overflow-x: auto; font-size: 0.8em; }
+.note { color: #8a3b00; } nav a { margin-right: 0.8em; }
+</style>"#;
+
+/// A page being written.
+#[derive(Default)]
+pub struct Page {
+    body: String,
+    toc: Vec<(String, String)>,
+}
+
+impl Page {
+    /// Starts a section with a heading (and an entry in the contents).
+    pub fn section(&mut self, id: &str, title: &str) {
+        self.toc.push((id.to_string(), title.to_string()));
+        self.body.push_str(&format!(
+            "<h2 id=\"{}\">{}</h2>\n",
+            escape(id),
+            escape(title)
+        ));
+    }
+
+    /// A paragraph of plain text.
+    pub fn text(&mut self, t: &str) {
+        self.body.push_str(&format!("<p>{}</p>\n", escape(t)));
+    }
+
+    /// A note (warning) paragraph.
+    pub fn note(&mut self, t: &str) {
+        self.body
+            .push_str(&format!("<p class=\"note\">{}</p>\n", escape(t)));
+    }
+
+    /// A table: the first `left` columns left-aligned (names), the others right-aligned.
+    pub fn table(&mut self, head: &[&str], rows: &[Vec<String>], left: usize) {
+        let cls = |k: usize| if k < left { " class=\"l\"" } else { "" };
+        let mut t = String::from("<table><tr>");
+        for (k, h) in head.iter().enumerate() {
+            t.push_str(&format!("<th{}>{}</th>", cls(k), escape(h)));
+        }
+        t.push_str("</tr>\n");
+        for r in rows {
+            t.push_str("<tr>");
+            for (k, c) in r.iter().enumerate() {
+                t.push_str(&format!("<td{}>{}</td>", cls(k), escape(c)));
+            }
+            t.push_str("</tr>\n");
+        }
+        t.push_str("</table>\n");
+        self.body.push_str(&t);
+    }
+
+    /// A figure: an SVG document inline, with a caption.
+    pub fn figure(&mut self, svg: &str, caption: &str) {
+        // The XML declaration (if any) is not allowed inside HTML.
+        let svg = svg
+            .trim_start()
+            .strip_prefix("<?xml")
+            .and_then(|r| r.find("?>").map(|i| &r[i + 2..]))
+            .unwrap_or(svg);
+        self.body.push_str(&format!(
+            "<figure>{}<figcaption>{}</figcaption></figure>\n",
+            svg.trim(),
+            escape(caption)
+        ));
+    }
+
+    /// A formula: MathML (inner content) with its LaTeX beside it for copying.
+    pub fn formula(&mut self, label: &str, mathml: &str, latex: &str) {
+        self.body.push_str(&format!(
+            "<div class=\"formula\"><div>{}</div>{}<pre>{}</pre></div>\n",
+            escape(label),
+            super::mathml::block(mathml),
+            escape(latex)
+        ));
+    }
+
+    /// The whole document.
+    pub fn finish(self, title: &str, intro: &str) -> String {
+        let toc: String = self
+            .toc
+            .iter()
+            .map(|(id, t)| format!("<a href=\"#{}\">{}</a>", escape(id), escape(t)))
+            .collect();
+        format!(
+            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+             <title>{t}</title>{CHECK_SCRIPT}{STYLE}</head>\n<body>\n<h1>{t}</h1>\n<p>{}</p>\n\
+             <nav>{toc}</nav>\n{}\n</body></html>\n",
+            escape(intro),
+            self.body,
+            t = escape(title),
+        )
+    }
+}

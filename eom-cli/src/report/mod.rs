@@ -1,0 +1,131 @@
+//! `eom report MODEL -o DIR`: one self-contained HTML page about a model at a point (and,
+//! with `--sweep`, over a parameter): the analyses of `eom analyze` and `eom sweep` and the
+//! closed forms of `eom symbolic`, computed by the same library code, with every picture
+//! inline as SVG and the formulas as MathML.
+
+pub mod html;
+pub mod mathml;
+mod sections;
+
+use crate::analyze::{self, AnalyzeOptions, FreqRequest};
+use crate::error::CliError;
+use crate::params::{ModelChoice, SweepSpec};
+use crate::progress::Progress;
+use crate::sweep::SweepReport;
+use eom_model::Method;
+use std::path::{Path, PathBuf};
+
+/// Largest number of states for which the closed forms are shown (beyond, they are long
+/// and slow to derive).
+pub const CLOSED_FORM_STATES: usize = 4;
+
+/// Stages of the progress bar.
+const STAGES: u64 = 7;
+
+/// Computes everything and writes `DIR/NAME.html` (the directory is created if missing);
+/// returns the path written.
+pub fn write_report(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    sweep: Option<&SweepSpec>,
+    dir: &Path,
+    quiet: bool,
+) -> Result<PathBuf, CliError> {
+    if let Some(spec) = sweep {
+        choice.param(&spec.name)?;
+        let (lo, hi) = spec.bounds();
+        if spec.count < 2 || lo == hi {
+            return Err(CliError::BadArgument {
+                argument: format!("--sweep {}", spec.name),
+                problem: "a sweep needs at least two values (COUNT ≥ 2) with START ≠ STOP".into(),
+            });
+        }
+    }
+    let io = |source| CliError::Io {
+        path: dir.display().to_string(),
+        source,
+    };
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let bar = Progress::new(
+        quiet,
+        STAGES + sweep.map_or(0, |s| s.count as u64),
+        &format!("report {}", choice.name),
+    );
+    let html = page(choice, overrides, sweep, &bar)?;
+    bar.finish();
+    let stem = Path::new(&choice.name)
+        .file_stem()
+        .map_or_else(|| "model".to_string(), |s| s.to_string_lossy().into_owned());
+    let path = dir.join(format!("{stem}.html"));
+    std::fs::write(&path, html).map_err(|source| CliError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    Ok(path)
+}
+
+/// The page.
+fn page(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    sweep: Option<&SweepSpec>,
+    bar: &Progress,
+) -> Result<String, CliError> {
+    let opts = AnalyzeOptions {
+        method: Method::Numeric,
+        freq: Some(FreqRequest {
+            range: None,
+            points: None,
+        }),
+        sensitivity: false,
+    };
+    bar.stage("linearize");
+    let lin = analyze::linearize(choice, overrides, opts.method)?;
+    bar.stage("analyze");
+    let analysis = analyze::analyze_linearized(choice, overrides, &opts, &lin)?;
+    let model = choice.build(overrides)?.nominal()?;
+    let swept: Option<SweepReport> = match sweep {
+        Some(spec) => {
+            bar.stage("sweep");
+            let others: Vec<(String, f64)> = overrides
+                .iter()
+                .filter(|(k, _)| k != &spec.name)
+                .cloned()
+                .collect();
+            Some(crate::sweep::sweep_with(choice, spec, &others, &|| {
+                bar.tick()
+            })?)
+        }
+        None => None,
+    };
+    let mut p = html::Page::default();
+    let cx = sections::Context {
+        choice,
+        analysis: &analysis,
+        lin: &lin,
+        model: &model,
+    };
+    bar.stage("model and modes");
+    sections::model(&mut p, &cx);
+    sections::modes(&mut p, &cx)?;
+    bar.stage("responses");
+    sections::io_view(&mut p, &cx);
+    sections::responses(&mut p, &cx)?;
+    if let (Some(s), Some(spec)) = (&swept, sweep) {
+        sections::sweep(&mut p, &cx, s, spec)?;
+    }
+    bar.stage("closed forms");
+    sections::closed_forms(&mut p, &cx)?;
+    sections::warnings(&mut p, &cx);
+    let intro = format!(
+        "{} states, {} inputs, {} outputs; {} at this point. Written by eom {}; every picture \
+         is inline SVG, every formula MathML (with its LaTeX beside it), nothing is loaded \
+         from elsewhere.",
+        analysis.states,
+        analysis.inputs.len(),
+        analysis.outputs.len(),
+        analysis.stability,
+        env!("CARGO_PKG_VERSION")
+    );
+    Ok(p.finish(&format!("eom report: {}", choice.name), &intro))
+}
