@@ -19,8 +19,7 @@ use eom_num::gain::{Gain, steady_state_gain};
 use eom_num::minreal::{
     MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
 };
-use eom_num::modes::ModeOptions;
-use eom_num::modes::{Mode, ModeKind, Modes, Stability};
+use eom_num::modes::{Mode, ModeKind, ModeOptions, Modes, Stability};
 use eom_num::zeros::transmission_zeros;
 use num_complex::Complex64;
 use serde::{Serialize, Serializer};
@@ -383,7 +382,10 @@ pub fn linearize(
                 .method(Method::Symbolic)
                 .run()
                 .map_err(|e| match e {
-                    ModelError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion { source: e },
+                    ModelError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion {
+                        source: Box::new(e),
+                        alternatives: working_methods(&at_point),
+                    },
                     e => CliError::Model(e),
                 })?
         }
@@ -431,6 +433,24 @@ pub fn analyze_linearized(
     Ok(r)
 }
 
+/// The methods that reduce the model at the point, tried before suggesting them (a
+/// suggestion that cannot work is worse than none).
+fn working_methods(at_point: &eom_model::Model<eom_sym::Expr>) -> Vec<&'static str> {
+    [(Method::Numeric, "numeric"), (Method::Robust, "robust")]
+        .into_iter()
+        .filter(|(m, _)| Linearizer::new(at_point).method(*m).run().is_ok())
+        .map(|(_, name)| name)
+        .collect()
+}
+
+/// The modes as reported: no mode shapes (nothing here shows them).
+fn mode_options() -> ModeOptions {
+    ModeOptions {
+        shapes: false,
+        ..ModeOptions::default()
+    }
+}
+
 /// The analyses of a state-space model (model name, method and parameters left empty).
 fn analyze_state_space(
     ss: &StateSpace<f64>,
@@ -440,7 +460,7 @@ fn analyze_state_space(
 ) -> Result<Analysis, CliError> {
     let opts = ModeOptions {
         structural_zeros,
-        ..ModeOptions::default()
+        ..mode_options()
     };
     let modes = Modes::compute_with(ss, &opts)?;
     let n = &ss.names;
@@ -530,7 +550,12 @@ fn minimal_view(
                 .join(", ")
         ));
     }
-    let mmodes = Modes::compute(ssm)?;
+    // Nothing removed: the same model, the same modes.
+    let mmodes = if rep.states_out == rep.states_in {
+        modes.clone()
+    } else {
+        Modes::compute_with(ssm, &mode_options())?
+    };
     let removed = rep
         .removed
         .iter()

@@ -24,7 +24,7 @@ pub struct CodegenRequest {
 
 /// Generates the module for the model (with `overrides` as the nominal values, where the
 /// pivots are chosen and the default of `Params::NOMINAL`), writes it to `path` (only when its
-/// content changes) and returns the summary to print.
+/// content changes, see [`crate::output::write_output`]) and returns the summary to print.
 #[cfg(feature = "codegen")]
 pub fn codegen(
     choice: &ModelChoice,
@@ -47,8 +47,8 @@ pub fn codegen(
         opts = opts.module(m);
     }
     let emitted = eom_codegen::emit_model(&model, &opts)?;
-    eom_codegen::build::write_if_changed(path, &emitted.source)?;
-    Ok(summary(&emitted, path, req))
+    let written = crate::output::write_output(path, &emitted.source)?;
+    Ok(summary(&emitted, path, req, written))
 }
 
 /// Without the `codegen` feature: checks the model and parameters (so that usage errors are
@@ -71,7 +71,12 @@ pub fn codegen(
 
 /// The summary printed after writing.
 #[cfg(feature = "codegen")]
-fn summary(e: &eom_codegen::Emitted, path: &Path, req: &CodegenRequest) -> String {
+fn summary(
+    e: &eom_codegen::Emitted,
+    path: &Path,
+    req: &CodegenRequest,
+    written: crate::output::Written,
+) -> String {
     use eom_codegen::Simplification;
     let s = &e.stats;
     let lines = e.source.lines().count();
@@ -80,8 +85,12 @@ fn summary(e: &eom_codegen::Emitted, path: &Path, req: &CodegenRequest) -> Strin
     } else {
         "std math"
     };
+    let verb = match written {
+        crate::output::Written::Written => "wrote",
+        crate::output::Written::Unchanged => "unchanged (the file already holds this code)",
+    };
     let mut t = format!(
-        "wrote {} ({lines} lines): module `{}`, {}, {math}, {} validity check(s)\n",
+        "{verb} {} ({lines} lines): module `{}`, {}, {math}, {} validity check(s)\n",
         path.display(),
         e.module,
         if req.f32 { "f32" } else { "f64" },

@@ -37,12 +37,14 @@ pub enum CliError {
     /// `--method symbolic` at a point outside the validity region of the symbolic reduction.
     #[error(
         "{source}\n  (--method symbolic reduces the model with pivots chosen at its default \
-         parameter values and evaluates the result at the point; here use --method numeric, \
-         which chooses the pivots at the point, or --method robust)"
+             parameter values and evaluates the result at the point; {})",
+        suggestion(alternatives)
     )]
     OutsideSymbolicRegion {
         /// The failed validity check.
-        source: ModelError,
+        source: Box<ModelError>,
+        /// The methods that were tried and reduce the model at this point.
+        alternatives: Vec<&'static str>,
     },
     /// A wing file could not be read or solved (the message names the file, line and field).
     #[error(transparent)]
@@ -102,6 +104,7 @@ impl CliError {
         match self {
             CliError::Catalogue(
                 CatalogueError::UnknownModel { .. }
+                | CatalogueError::ChainTooLong { .. }
                 | CatalogueError::UnknownParameter { .. }
                 | CatalogueError::BadValue { .. },
             )
@@ -114,7 +117,24 @@ impl CliError {
                 | eom_aero::AeroError::MissingField { .. }
                 | eom_aero::AeroError::Io { .. },
             ) => EXIT_USAGE,
+            // A model beyond the memory limit: the size of the input, not a failure.
+            CliError::Num(NumError::TooLarge(_)) => EXIT_USAGE,
+            CliError::Sweep(e) if matches!(**e, SweepError::Setup(NumError::TooLarge(_))) => {
+                EXIT_USAGE
+            }
             _ => EXIT_FAILURE,
         }
+    }
+}
+
+/// The advice after a symbolic reduction failed: only methods that were tried and work.
+fn suggestion(alternatives: &[&str]) -> String {
+    match alternatives {
+        [] => "the numeric and robust methods fail at this point too".into(),
+        [one] => format!("here --method {one} works"),
+        _ => format!(
+            "here use --method {}, which choose the pivots at the point",
+            alternatives.join(" or --method ")
+        ),
     }
 }

@@ -16,6 +16,7 @@ mod codegen;
 mod error;
 mod format;
 mod list;
+mod output;
 mod params;
 mod pictures;
 mod plot;
@@ -462,11 +463,11 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             match output {
                 None => text,
                 Some(path) => {
-                    std::fs::write(&path, &text).map_err(|source| CliError::Io {
-                        path: path.display().to_string(),
-                        source,
-                    })?;
-                    stderr.push_str(&format!("wrote {}\n", path.display()));
+                    let verb = match output::write_output(&path, &text)? {
+                        output::Written::Written => "wrote",
+                        output::Written::Unchanged => "unchanged",
+                    };
+                    stderr.push_str(&format!("{verb} {}\n", path.display()));
                     String::new()
                 }
             }
@@ -527,6 +528,16 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         return Err(CliError::BadArgument {
             argument: "--points 0".into(),
             problem: "at least one frequency is needed".into(),
+        });
+    }
+    if let Some(n) = a.points.filter(|&n| n > params::MAX_FREQ_POINTS) {
+        return Err(CliError::BadArgument {
+            argument: format!("--points {n}"),
+            problem: format!(
+                "more than the limit of {} frequencies (a Bode plot needs a few hundred per \
+                 decade at most)",
+                params::MAX_FREQ_POINTS
+            ),
         });
     }
     let plots = analyze_plots(a)?;
@@ -770,10 +781,12 @@ fn write_all(mut w: impl Write, text: &str, what: &str) -> Result<(), CliError> 
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = run(cli).and_then(|out| {
-        write_all(std::io::stderr().lock(), &out.stderr, "standard error")?;
-        write_all(std::io::stdout().lock(), &out.stdout, "standard output")
-    });
+    let result = params::memory_limit_from_env()
+        .and_then(|_| run(cli))
+        .and_then(|out| {
+            write_all(std::io::stderr().lock(), &out.stderr, "standard error")?;
+            write_all(std::io::stdout().lock(), &out.stdout, "standard output")
+        });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

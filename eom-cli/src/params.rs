@@ -136,7 +136,7 @@ impl ModelChoice {
         let mut out: Vec<(String, f64)> = Vec::with_capacity(sets.len());
         for s in sets {
             let bad = |problem: String| CliError::BadArgument {
-                argument: format!("--set {s}"),
+                argument: format!("--set {}", abbreviate(s)),
                 problem: format!(
                     "{problem}; the parameters of model `{}` are: {}",
                     self.name,
@@ -161,16 +161,93 @@ impl ModelChoice {
     }
 }
 
-/// Parses a finite number; the error says what was found.
+/// Parses a finite number; the error says what was found: a value that overflowed to ±∞ or
+/// underflowed to 0 when converted to `f64` says so (rather than going on with ∞ or 0).
 pub fn parse_number(text: &str) -> Result<f64, String> {
     let t = text.trim();
+    let shown = abbreviate(t);
     match t.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        Ok(v) => Err(format!("the value `{t}` is {v}, a finite number is needed")),
+        Ok(v) if v.is_infinite() && has_digit(t) => Err(format!(
+            "the value `{shown}` overflows: the largest finite number is about {:e}",
+            f64::MAX
+        )),
+        Ok(v) if !v.is_finite() => Err(format!(
+            "the value `{shown}` is {v}, a finite number is needed"
+        )),
+        Ok(v) if v == 0.0 && has_nonzero_mantissa(t) => Err(format!(
+            "the value `{shown}` underflows to 0: the smallest positive number is about {:e}",
+            f64::from_bits(1)
+        )),
+        Ok(v) => Ok(v),
         Err(_) if t.is_empty() => Err("the value is missing".into()),
-        Err(_) => Err(format!("`{t}` is not a number")),
+        Err(_) => Err(format!("`{shown}` is not a number")),
     }
 }
+
+/// Longest argument text repeated in a message; longer text is cut in the middle.
+const SHOWN_CHARS: usize = 40;
+
+/// `text` itself when short, else its first and last characters and its length.
+pub fn abbreviate(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= SHOWN_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(SHOWN_CHARS / 2).collect();
+    let tail: String = text.chars().skip(n - SHOWN_CHARS / 4).collect();
+    format!("{head}…{tail} ({n} characters)")
+}
+
+fn has_digit(t: &str) -> bool {
+    t.bytes().any(|b| b.is_ascii_digit())
+}
+
+/// Whether the mantissa (before any exponent) has a nonzero digit: then a parsed 0 is an
+/// underflow, not a zero.
+fn has_nonzero_mantissa(t: &str) -> bool {
+    t.split(['e', 'E'])
+        .next()
+        .is_some_and(|m| m.bytes().any(|b| (b'1'..=b'9').contains(&b)))
+}
+
+/// Sets the memory limit of the analyses ([`eom_num::budget`]) from the environment variable
+/// `EOM_MEMORY_LIMIT`: bytes, or a number with the suffix K, M, G or T (binary units).
+pub fn memory_limit_from_env() -> Result<(), CliError> {
+    let Ok(text) = std::env::var("EOM_MEMORY_LIMIT") else {
+        return Ok(());
+    };
+    let bad = || CliError::BadArgument {
+        argument: format!("EOM_MEMORY_LIMIT={}", abbreviate(&text)),
+        problem: "expected a number of bytes, optionally with K, M, G or T (e.g. 32G)".into(),
+    };
+    let t = text.trim();
+    let (digits, shift) = match t.char_indices().last() {
+        Some((i, c)) if c.is_ascii_alphabetic() => {
+            let shift = match c.to_ascii_uppercase() {
+                'K' => 10,
+                'M' => 20,
+                'G' => 30,
+                'T' => 40,
+                _ => return Err(bad()),
+            };
+            (&t[..i], shift)
+        }
+        _ => (t, 0),
+    };
+    let n: usize = digits.trim().parse().map_err(|_| bad())?;
+    let bytes = n
+        .checked_shl(shift)
+        .filter(|b| b >> shift == n)
+        .ok_or_else(bad)?;
+    eom_num::budget::set_limit(bytes);
+    Ok(())
+}
+
+/// Largest number of values of a sweep (`--param NAME=START:STOP:COUNT`).
+pub const MAX_SWEEP_COUNT: usize = 1_000_000;
+
+/// Largest number of frequencies of `--points` (the library's own limit of a grid).
+pub const MAX_FREQ_POINTS: usize = eom_num::freq::MAX_POINTS;
 
 /// A parameter sweep `NAME=START:STOP:COUNT`.
 #[derive(Clone, Debug, PartialEq)]
@@ -189,7 +266,7 @@ impl SweepSpec {
     /// Parses `NAME=START:STOP:COUNT` (the name is checked against the model later).
     pub fn parse(text: &str) -> Result<SweepSpec, CliError> {
         let bad = |problem: String| CliError::BadArgument {
-            argument: format!("--param {text}"),
+            argument: format!("--param {}", abbreviate(text)),
             problem,
         };
         let Some((name, range)) = text.split_once('=') else {
@@ -210,18 +287,39 @@ impl SweepSpec {
         };
         let start = parse_number(start).map_err(|e| bad(format!("START: {e}")))?;
         let stop = parse_number(stop).map_err(|e| bad(format!("STOP: {e}")))?;
-        let count: usize = count.trim().parse().map_err(|_| {
-            bad(format!(
-                "COUNT: `{}` is not a whole number ≥ 1",
-                count.trim()
-            ))
+        let count: usize = count.trim().parse().map_err(|e: std::num::ParseIntError| {
+            if *e.kind() == std::num::IntErrorKind::PosOverflow {
+                bad(format!(
+                    "COUNT: `{}` is too large (the limit is {MAX_SWEEP_COUNT} values)",
+                    abbreviate(count.trim())
+                ))
+            } else {
+                bad(format!(
+                    "COUNT: `{}` is not a whole number ≥ 1",
+                    abbreviate(count.trim())
+                ))
+            }
         })?;
         if count == 0 {
             return Err(bad("COUNT must be at least 1".into()));
         }
+        if count > MAX_SWEEP_COUNT {
+            return Err(bad(format!(
+                "COUNT = {count} exceeds the limit of {MAX_SWEEP_COUNT} values (the stability \
+                 boundaries are located to 1e-10 between grid points anyway); sweep a narrower \
+                 range or split it into several runs"
+            )));
+        }
         if count > 1 && start == stop {
             return Err(bad(format!(
-                "START and STOP are both {start}: {count} points need two different ends"
+                "START and STOP are both {start:?}: {count} points need two different ends"
+            )));
+        }
+        if !(stop - start).is_finite() {
+            return Err(bad(format!(
+                "the range {start:?} … {stop:?} is wider than the largest finite number \
+                 (about {:e}): the grid spacing would overflow",
+                f64::MAX
             )));
         }
         Ok(SweepSpec {
@@ -241,7 +339,7 @@ impl SweepSpec {
 /// Parses a frequency range `LOW:HIGH` in Hz (`0 < LOW < HIGH`).
 pub fn parse_freq_range(text: &str) -> Result<(f64, f64), CliError> {
     let bad = |problem: String| CliError::BadArgument {
-        argument: format!("--freq-range {text}"),
+        argument: format!("--freq-range {}", abbreviate(text)),
         problem,
     };
     let Some((lo, hi)) = text.split_once(':') else {
@@ -253,7 +351,7 @@ pub fn parse_freq_range(text: &str) -> Result<(f64, f64), CliError> {
     let hi = parse_number(hi).map_err(|e| bad(format!("HIGH: {e}")))?;
     if !(lo > 0.0 && hi > lo) {
         return Err(bad(format!(
-            "need 0 < LOW < HIGH (a logarithmic grid), got LOW = {lo}, HIGH = {hi}"
+            "need 0 < LOW < HIGH (a logarithmic grid), got LOW = {lo:?}, HIGH = {hi:?}"
         )));
     }
     Ok((lo, hi))
@@ -278,6 +376,10 @@ mod tests {
             "v=1:1:3",
             "=0:1:2",
             "v=0:1:2.5",
+            "v=0:1:1000001",
+            "v=0:1:99999999999999999999999",
+            "v=-1e308:1e308:3",
+            "v=1e400:1:3",
         ] {
             assert!(
                 matches!(SweepSpec::parse(bad), Err(CliError::BadArgument { .. })),
@@ -299,5 +401,25 @@ mod tests {
             m.parse_sets(&["k=2".into(), " c = 0.5".into()]).unwrap(),
             vec![("k".to_string(), 2.0), ("c".to_string(), 0.5)]
         );
+    }
+
+    #[test]
+    fn values_that_overflow_or_underflow_say_so_in_short_form() {
+        let e = parse_number("1e-400").unwrap_err();
+        assert!(e.contains("underflows to 0") && e.contains("5e-324"), "{e}");
+        let e = parse_number("-2e999").unwrap_err();
+        assert!(
+            e.contains("overflows") && e.contains("1.7976931348623157e308"),
+            "{e}"
+        );
+        assert_eq!(parse_number("0e-400"), Ok(0.0));
+        assert_eq!(parse_number("0.000"), Ok(0.0));
+        let long = "1".repeat(5000);
+        let e = parse_number(&format!("{long}x")).unwrap_err();
+        assert!(e.len() < 200 && e.contains("5001 characters"), "{e}");
+        let e = SweepSpec::parse("v=-1e308:1e308:3")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("-1e308") && !e.contains("000000000"), "{e}");
     }
 }

@@ -10,6 +10,10 @@ pub enum NumError {
     /// A matrix contains NaN or infinite entries.
     #[error("non-finite entry in {0}")]
     NonFinite(String),
+    /// A matrix entry so large ([`crate::MAX_ENTRY`]) that the products inside the
+    /// factorisations would overflow: the message names the entry and its value.
+    #[error("entry too large: {0}")]
+    OutOfRange(String),
     /// An option or argument is out of its valid range (names the parameter).
     #[error("invalid option: {0}")]
     InvalidOption(String),
@@ -28,4 +32,8 @@ pub enum NumError {
     /// singular); only index-1 pencils are reduced.
     #[error("descriptor index > 1: {0}")]
     HigherIndex(String),
+    /// The analysis would need more memory than the limit ([`crate::budget`]); the message
+    /// names the step, the predicted size, the limit and how to raise it.
+    #[error("too large: {0}")]
+    TooLarge(String),
 }

@@ -784,6 +784,11 @@ impl FrequencyResponse {
         let (_, m, p) = form.dims();
         let nf = omega.len();
         let pm = p * m;
+        // Complex values, magnitudes and phases of every pair at every frequency.
+        crate::budget::check(
+            "the frequency response",
+            crate::budget::product(&[pm.max(1), nf, 16 + 8 + 8]),
+        )?;
         let mut values = vec![Complex64::new(0.0, 0.0); pm * nf];
         let mut singular = vec![false; nf];
         let mut g = vec![Complex64::new(0.0, 0.0); LANES * pm];

@@ -61,6 +61,7 @@
 //! | module | answers |
 //! |---|---|
 //! | [`statespace`] | the model types [`StateSpace`] (with `phys`, the map to body coordinates, and [`SignalNames`]) and [`Descriptor`] |
+//! | [`budget`] | memory predicted before large allocations, refused above a limit |
 //! | [`linalg`] | SVD rank and nullspace decisions with their gap, equilibration of mixed units, condition numbers, balancing, nalgebra ↔ faer |
 //! | [`descriptor`] | descriptor → state space for index-1 pencils, finite generalized eigenvalues |
 //! | [`modes`] | eigenvalues (also without allocation), modal quantities, mode shapes, instantaneous centres of rotation |
@@ -119,8 +120,15 @@
 // One exception, allowed where it is: the AVX2 frequency-response kernel (`freq`).
 #![deny(unsafe_code)]
 
+/// Largest magnitude of a matrix entry the analyses accept (about the square root of
+/// `f64::MAX`, with margin): the products of two entries inside the factorisations stay
+/// finite.
+pub const MAX_ENTRY: f64 = 1e150;
+
+pub mod budget;
 pub mod deflate;
 pub mod descriptor;
+mod eigen;
 pub mod error;
 pub mod freq;
 pub mod gain;
@@ -129,6 +137,7 @@ pub mod linalg;
 pub mod minreal;
 pub mod modes;
 pub mod sensitivity;
+mod staircase;
 pub mod statespace;
 pub mod sweep;
 pub mod time;

@@ -477,6 +477,7 @@ pub fn balance_in_place(a: &mut [f64], n: usize, scale: &mut [f64]) {
         return;
     }
     const RADIX: f64 = 2.0;
+    const MAX_FACTOR: f64 = 1e150;
     let mut converged = false;
     let mut sweeps = 0;
     while !converged && sweeps < 100 {
@@ -492,18 +493,22 @@ pub fn balance_in_place(a: &mut [f64], n: usize, scale: &mut [f64]) {
                     r += a[k * n + i].abs();
                 }
             }
-            if c == 0.0 || r == 0.0 {
+            // A norm that overflowed (entries near f64::MAX) cannot be balanced: with an
+            // infinite norm the loops below would never end.
+            if c == 0.0 || r == 0.0 || !(c + r).is_finite() {
                 continue;
             }
             let s = c + r;
             let mut f = 1.0;
             let (mut cc, mut rr) = (c, r);
-            while cc < rr / RADIX {
+            // The factor stays within the exponent range, so the scaled entries stay finite
+            // and nonzero.
+            while cc < rr / RADIX && f < MAX_FACTOR {
                 cc *= RADIX;
                 rr /= RADIX;
                 f *= RADIX;
             }
-            while cc >= rr * RADIX {
+            while cc >= rr * RADIX && f > 1.0 / MAX_FACTOR {
                 cc /= RADIX;
                 rr *= RADIX;
                 f /= RADIX;
@@ -524,6 +529,21 @@ pub fn balance_in_place(a: &mut [f64], n: usize, scale: &mut [f64]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn balancing_ends_when_a_norm_overflows() {
+        // Column 0's off-diagonal norm overflows to ∞ (two entries near f64::MAX).
+        let n = 3;
+        let mut a = vec![0.0, 1e308, 1e308, 1.0, 0.0, 1.0, 1.0, 1.0, 0.0];
+        let mut scale = vec![0.0; n];
+        balance_in_place(&mut a, n, &mut scale);
+        assert!(a.iter().all(|x| x.is_finite()) && scale.iter().all(|s| *s > 0.0));
+        // Extreme but finite: balanced within the exponent range, the product kept.
+        let mut b = vec![0.0, 1e-300, 1e300, 0.0];
+        balance_in_place(&mut b, 2, &mut scale[..2]);
+        assert!(b.iter().all(|x| x.is_finite()), "{b:?}");
+        assert!((b[1] * b[2] - 1.0).abs() < 1e-12, "{b:?}");
+    }
 
     #[test]
     fn decide_conventions() {

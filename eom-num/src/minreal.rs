@@ -45,6 +45,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::NumError;
+use crate::staircase::staircase;
 use crate::statespace::StateSpace;
 
 /// Options of [`minimal_realization`].
@@ -374,13 +375,22 @@ pub fn controllability_staircase(
 ) -> Result<Staircase, NumError> {
     check_triple(a, b, c)?;
     check_tol(tol)?;
-    staircase(
+    let s = staircase(
         a.clone(),
         b.clone(),
         c.clone(),
         tol,
         RankStage::Controllability,
-    )
+    )?;
+    Ok(Staircase {
+        q: s.q(),
+        a: s.a,
+        b: s.b,
+        c: s.c,
+        blocks: s.blocks,
+        kept: s.kept,
+        decisions: s.decisions,
+    })
 }
 
 /// Observability staircase of `(A, B, C)` with absolute rank tolerance `tol`: an orthogonal
@@ -404,92 +414,14 @@ pub fn observability_staircase(
         RankStage::Observability,
     )?;
     Ok(Staircase {
+        q: s.q(),
         a: s.a.transpose(),
         b: s.c.transpose(),
         c: s.b.transpose(),
-        q: s.q,
         blocks: s.blocks,
         kept: s.kept,
         decisions: s.decisions,
     })
-}
-
-fn staircase(
-    mut a: DMatrix<f64>,
-    mut b: DMatrix<f64>,
-    mut c: DMatrix<f64>,
-    tol: f64,
-    stage: RankStage,
-) -> Result<Staircase, NumError> {
-    let n = a.nrows();
-    let mut q = DMatrix::<f64>::identity(n, n);
-    let mut blocks = Vec::new();
-    let mut decisions = Vec::new();
-    // Rows [0, off) are settled; the next block is rows off.. of B (first step) or of the
-    // columns (prev0..prev1) of A that were added last.
-    let mut off = 0;
-    let mut prev = (0, 0);
-    let mut step = 0;
-    while off < n {
-        let r = n - off;
-        let block: DMatrix<f64> = if step == 0 {
-            b.rows(off, r).clone_owned()
-        } else {
-            a.view((off, prev.0), (r, prev.1 - prev.0)).clone_owned()
-        };
-        let (u, s) = if block.ncols() == 0 {
-            (DMatrix::identity(r, r), Vec::new())
-        } else {
-            svd_full_u(&block)?
-        };
-        let decision = RankDecision::new(stage, step, r, block.ncols(), s, tol);
-        let rank = decision.rank;
-        decisions.push(decision);
-        if rank > 0 {
-            // Rotate the remaining rows so that the block's range comes first.
-            let ut = u.transpose();
-            let rows = a.rows(off, r).clone_owned();
-            a.rows_mut(off, r).copy_from(&(&ut * rows));
-            let cols = a.columns(off, r).clone_owned();
-            a.columns_mut(off, r).copy_from(&(cols * &u));
-            let rows = b.rows(off, r).clone_owned();
-            b.rows_mut(off, r).copy_from(&(&ut * rows));
-            let cols = c.columns(off, r).clone_owned();
-            c.columns_mut(off, r).copy_from(&(cols * &u));
-            let cols = q.columns(off, r).clone_owned();
-            q.columns_mut(off, r).copy_from(&(cols * &u));
-        }
-        // The part of the block below its rank is zero by decision: make it exact.
-        if step == 0 {
-            b.rows_mut(off + rank, r - rank).fill(0.0);
-        } else {
-            a.view_mut((off + rank, prev.0), (r - rank, prev.1 - prev.0))
-                .fill(0.0);
-        }
-        if rank == 0 {
-            break;
-        }
-        blocks.push(rank);
-        prev = (off, off + rank);
-        off += rank;
-        step += 1;
-    }
-    Ok(Staircase {
-        a,
-        b,
-        c,
-        q,
-        blocks,
-        kept: off,
-        decisions,
-    })
-}
-
-/// Full SVD of a non-empty block: the square left factor and the singular values (largest
-/// first).
-pub(crate) fn svd_full_u(m: &DMatrix<f64>) -> Result<(DMatrix<f64>, Vec<f64>), NumError> {
-    let (u, s, _) = svd_full(m)?;
-    Ok((u, s))
 }
 
 /// `(U, σ, V)` of a full SVD.
@@ -740,8 +672,8 @@ pub fn minimal_realization(
         stability_threshold,
         opts.pbh_check.then_some((&a0, &c0)),
     )?);
-    let mut decisions = sc.decisions;
-    decisions.extend(so.decisions);
+    let mut decisions = sc.decisions.clone();
+    decisions.extend(so.decisions.iter().cloned());
     let report = MinrealReport {
         states_in: n,
         states_out: no,
@@ -762,12 +694,16 @@ pub fn minimal_realization(
     let a_min = a2.view((0, 0), (no, no)).clone_owned();
     let b_min = so.c.transpose().rows(0, no).clone_owned();
     let c_min = so.b.transpose().columns(0, no).clone_owned();
-    // Old state x = diag(s) · q_c[:, ..nc] · q_o[:, ..no] · z.
-    let mut t = sc.q.columns(0, nc) * so.q.columns(0, no);
-    for (i, &f) in report.scaling.iter().enumerate() {
-        t.row_mut(i).scale_mut(f);
+    // Old state x = diag(s) · q_c[:, ..nc] · q_o[:, ..no] · z, applied to phys factor by
+    // factor (the q's are never formed).
+    let mut phys = ss.phys.clone();
+    for (j, &f) in report.scaling.iter().enumerate() {
+        phys.column_mut(j).scale_mut(f);
     }
-    let phys = &ss.phys * &t;
+    sc.apply_right(&mut phys);
+    let mut phys = phys.columns(0, nc).clone_owned();
+    so.apply_right(&mut phys);
+    let phys = phys.columns(0, no).clone_owned();
     let mut names = ss.names.clone();
     names.states = if ss.names.states.is_empty() {
         Vec::new()

@@ -45,14 +45,15 @@ use std::f64::consts::PI;
 use faer::diag::DiagMut;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::evd::{ComputeEigenvectors, evd_real, evd_scratch};
-use faer::{Mat, MatRef, Par};
+use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
 use crate::NumError;
 use crate::deflate;
+use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
-use crate::statespace::{StateSpace, check_finite};
+use crate::statespace::{StateSpace, check_finite, in_range};
 
 fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
@@ -107,7 +108,7 @@ impl std::fmt::Debug for EigenvaluesWorkspace {
     }
 }
 
-fn eig_scratch(n: usize, vectors: bool) -> StackReq {
+pub(crate) fn eig_scratch(n: usize, vectors: bool) -> StackReq {
     let v = if vectors {
         ComputeEigenvectors::Yes
     } else {
@@ -164,7 +165,7 @@ pub fn eigenvalues_in(
             out.len()
         )));
     }
-    if a.iter().any(|x| !x.is_finite()) {
+    if a.iter().any(|x| !in_range(*x)) {
         return check_finite(a, "A");
     }
     if n == 0 {
@@ -205,267 +206,6 @@ pub fn eigenvalues_in(
     }
     out.sort_unstable_by(cmp_re_im);
     Ok(())
-}
-
-/// A full eigendecomposition with condition numbers (internal, shared with `freq` and `time`).
-pub(crate) struct Eigen {
-    /// Eigenvalues sorted by (re, im).
-    pub values: Vec<Complex64>,
-    /// Right eigenvectors (columns, original coordinates, unit 2-norm).
-    pub right: DMatrix<Complex64>,
-    /// Left eigenvectors (columns `y` with `yᴴA = λyᴴ`, original coordinates, unit 2-norm).
-    pub left: DMatrix<Complex64>,
-    /// Eigenvalue condition numbers κᵢ (computed on the balanced matrix).
-    pub condition: Vec<f64>,
-    /// Frobenius norm of the balanced matrix.
-    pub norm: f64,
-}
-
-/// Eigenvalues, right and left eigenvectors and condition numbers of `a` (balanced first if
-/// asked), with the structural zero eigenvalues deflated first (see `deflate`): their vectors
-/// are unit vectors of the states found, and their condition numbers 1/ε (they may be
-/// defective: a sensitivity is not defined for them).
-pub(crate) fn eigen_full(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
-    check_square(a, "A")?;
-    check_finite(a, "A")?;
-    let n = a.nrows();
-    let mut t = a.clone();
-    let (mut removed, mut order, mut combos, mut keys) = (vec![false; n], vec![], vec![], vec![]);
-    deflate::deflate_in_place(
-        t.as_mut_slice(),
-        n,
-        &mut removed,
-        &mut order,
-        &mut combos,
-        &mut keys,
-    );
-    if order.is_empty() {
-        return eigen_dense(a, balance);
-    }
-    let kept: Vec<usize> = (0..n).filter(|&i| !removed[i]).collect();
-    let sub = DMatrix::from_fn(kept.len(), kept.len(), |i, j| t[(kept[i], kept[j])]);
-    let e = eigen_dense(&sub, balance)?;
-    let mut e = lift(&t, e, &kept, &order);
-    undo_combinations(&mut e, &combos);
-    Ok(e)
-}
-
-/// Where `A` shows fewer exact structural zeros than `k` are known, the other eigenvalues from
-/// the orthogonally deflated matrix ([`deflate::deflate_null_directions`]), matched to the
-/// decomposition's, and the `k` nearest zero set to exactly zero (flagged as not simple).
-fn known_zeros(a: &DMatrix<f64>, eig: &mut Eigen, k: usize) -> Result<(), NumError> {
-    let exact = eig
-        .values
-        .iter()
-        .filter(|v| **v == Complex64::new(0.0, 0.0))
-        .count();
-    if k == 0 || exact >= k || k > a.nrows() {
-        return Ok(());
-    }
-    let Some(rest) = deflate::deflate_null_directions(a, k) else {
-        return Ok(());
-    };
-    let mut others = eigenvalues(&rest)?;
-    let n = eig.values.len();
-    let mut by_size: Vec<usize> = (0..n).collect();
-    by_size.sort_by(|&x, &y| eig.values[x].norm().total_cmp(&eig.values[y].norm()));
-    let mut free = vec![true; n];
-    for &z in by_size.iter().take(k) {
-        eig.values[z] = Complex64::new(0.0, 0.0);
-        eig.condition[z] = 1.0 / f64::EPSILON;
-        free[z] = false;
-    }
-    // Each remaining eigenvalue takes the nearest deflated one.
-    for (i, _) in free.iter().enumerate().filter(|(_, f)| **f) {
-        if others.is_empty() {
-            break;
-        }
-        let (j, _) = others
-            .iter()
-            .enumerate()
-            .min_by(|x, y| {
-                (x.1 - eig.values[i])
-                    .norm()
-                    .total_cmp(&(y.1 - eig.values[i]).norm())
-            })
-            .expect("nonempty");
-        eig.values[i] = others.swap_remove(j);
-    }
-    let n = eig.values.len();
-    let mut perm: Vec<usize> = (0..n).collect();
-    perm.sort_by(|&x, &y| cmp_re_im(&eig.values[x], &eig.values[y]));
-    eig.values = perm.iter().map(|&k| eig.values[k]).collect();
-    eig.condition = perm.iter().map(|&k| eig.condition[k]).collect();
-    eig.right = DMatrix::from_fn(n, n, |i, j| eig.right[(i, perm[j])]);
-    eig.left = DMatrix::from_fn(n, n, |i, j| eig.left[(i, perm[j])]);
-    Ok(())
-}
-
-/// Vectors of the transformed matrix back to the original coordinates: `x = T x̃`,
-/// `y = T⁻ᴴ ỹ` for each change of coordinates, last first.
-fn undo_combinations(e: &mut Eigen, combos: &[deflate::Combine]) {
-    if combos.is_empty() {
-        return;
-    }
-    let n = e.right.nrows();
-    for k in 0..n {
-        for c in combos.iter().rev() {
-            let xi = e.right[(c.i, k)];
-            e.right[(c.j, k)] -= xi * c.s;
-            let yj = e.left[(c.j, k)];
-            e.left[(c.i, k)] += yj * c.s;
-        }
-        for m in [&mut e.right, &mut e.left] {
-            let nn = m.column(k).norm();
-            if nn > 0.0 {
-                m.column_mut(k).unscale_mut(nn);
-            }
-        }
-    }
-}
-
-/// The decomposition of the kept block extended to the whole matrix (see `eigen_full`).
-fn lift(a: &DMatrix<f64>, e: Eigen, kept: &[usize], order: &[usize]) -> Eigen {
-    let n = a.nrows();
-    let zero = Complex64::new(0.0, 0.0);
-    let mut right = DMatrix::<Complex64>::zeros(n, n);
-    let mut left = DMatrix::<Complex64>::zeros(n, n);
-    let mut values = Vec::with_capacity(n);
-    let mut condition = Vec::with_capacity(n);
-    for k in 0..kept.len() {
-        let lambda = e.values[k];
-        for (i, &ki) in kept.iter().enumerate() {
-            right[(ki, k)] = e.right[(i, k)];
-            left[(ki, k)] = e.left[(i, k)];
-        }
-        // Rows of the removed states, last found first: λ x_r = Σ a_rj x_j.
-        if lambda != zero {
-            for &r in order.iter().rev() {
-                let s: Complex64 = (0..n).map(|j| right[(j, k)] * a[(r, j)]).sum();
-                right[(r, k)] = s / lambda;
-            }
-        }
-        let nn = right.column(k).norm();
-        if nn > 0.0 {
-            right.column_mut(k).unscale_mut(nn);
-        }
-        values.push(lambda);
-        condition.push(e.condition[k]);
-    }
-    for (t, &r) in order.iter().enumerate() {
-        let k = kept.len() + t;
-        right[(r, k)] = Complex64::new(1.0, 0.0);
-        left[(r, k)] = Complex64::new(1.0, 0.0);
-        values.push(zero);
-        condition.push(1.0 / f64::EPSILON);
-    }
-    let mut perm: Vec<usize> = (0..n).collect();
-    perm.sort_by(|&x, &y| cmp_re_im(&values[x], &values[y]));
-    Eigen {
-        values: perm.iter().map(|&k| values[k]).collect(),
-        right: DMatrix::from_fn(n, n, |i, j| right[(i, perm[j])]),
-        left: DMatrix::from_fn(n, n, |i, j| left[(i, perm[j])]),
-        condition: perm.iter().map(|&k| condition[k]).collect(),
-        norm: e.norm,
-    }
-}
-
-/// [`eigen_full`] without the deflation.
-fn eigen_dense(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
-    let n = a.nrows();
-    let mut ab = a.as_slice().to_vec();
-    let mut scale = vec![1.0; n];
-    if balance {
-        balance_in_place(&mut ab, n, &mut scale);
-    }
-    let mut re = vec![0.0; n];
-    let mut im = vec![0.0; n];
-    let mut ul = Mat::<f64>::zeros(n, n);
-    let mut ur = Mat::<f64>::zeros(n, n);
-    if n > 0 {
-        let mut buf = MemBuffer::new(eig_scratch(n, true));
-        evd_real(
-            MatRef::from_column_major_slice(&ab, n, n),
-            DiagMut::from_slice_mut(&mut re),
-            DiagMut::from_slice_mut(&mut im),
-            Some(ul.as_mut()),
-            Some(ur.as_mut()),
-            Par::Seq,
-            MemStack::new(&mut buf),
-            Default::default(),
-        )
-        .map_err(|_| {
-            NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
-        })?;
-    }
-    let norm = ab.iter().map(|x| x * x).sum::<f64>().sqrt();
-    // Unpack faer's real storage: a pair (j, j+1) holds Re and Im of the vector of λ_j
-    // (Im λ_j > 0), the conjugate belongs to λ_{j+1}. Same packing for left vectors.
-    let mut values = Vec::with_capacity(n);
-    let mut xr = DMatrix::<Complex64>::zeros(n, n);
-    let mut yl = DMatrix::<Complex64>::zeros(n, n);
-    let mut j = 0;
-    while j < n {
-        if im[j] == 0.0 || j + 1 == n {
-            values.push(Complex64::new(re[j], 0.0));
-            for i in 0..n {
-                xr[(i, j)] = Complex64::new(ur[(i, j)], 0.0);
-                yl[(i, j)] = Complex64::new(ul[(i, j)], 0.0);
-            }
-            j += 1;
-        } else {
-            values.push(Complex64::new(re[j], im[j]));
-            values.push(Complex64::new(re[j], -im[j]));
-            for i in 0..n {
-                xr[(i, j)] = Complex64::new(ur[(i, j)], ur[(i, j + 1)]);
-                xr[(i, j + 1)] = Complex64::new(ur[(i, j)], -ur[(i, j + 1)]);
-                yl[(i, j)] = Complex64::new(ul[(i, j)], ul[(i, j + 1)]);
-                yl[(i, j + 1)] = Complex64::new(ul[(i, j)], -ul[(i, j + 1)]);
-            }
-            j += 2;
-        }
-    }
-    let mut condition = vec![0.0; n];
-    for (k, cond) in condition.iter_mut().enumerate() {
-        let x = xr.column(k);
-        let y = yl.column(k);
-        let dot: Complex64 = y.iter().zip(x.iter()).map(|(a, b)| a.conj() * b).sum();
-        let c = x.norm() * y.norm() / dot.norm();
-        // An exactly defective eigenvalue gives yᴴx = 0: cap at 1/ε (fully undetermined).
-        *cond = if c.is_finite() {
-            c.min(1.0 / f64::EPSILON)
-        } else {
-            1.0 / f64::EPSILON
-        };
-    }
-    // Back to original coordinates x = D x̃, y = D⁻¹ ỹ, unit 2-norm.
-    for k in 0..n {
-        let mut col = xr.column_mut(k);
-        for i in 0..n {
-            col[i] *= scale[i];
-        }
-        let nn = col.norm();
-        if nn > 0.0 {
-            col.unscale_mut(nn);
-        }
-        let mut col = yl.column_mut(k);
-        for i in 0..n {
-            col[i] /= scale[i];
-        }
-        let nn = col.norm();
-        if nn > 0.0 {
-            col.unscale_mut(nn);
-        }
-    }
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| cmp_re_im(&values[a], &values[b]));
-    Ok(Eigen {
-        values: order.iter().map(|&k| values[k]).collect(),
-        right: DMatrix::from_fn(n, n, |i, j| xr[(i, order[j])]),
-        left: DMatrix::from_fn(n, n, |i, j| yl[(i, order[j])]),
-        condition: order.iter().map(|&k| condition[k]).collect(),
-        norm,
-    })
 }
 
 /// What kind of motion a mode is.
@@ -559,6 +299,10 @@ pub struct ModeOptions {
     pub structural_zeros: usize,
     /// The factor `tol_factor` in `tol = tol_factor · n · ε · ‖Ã‖ · κ` (default 10).
     pub tol_factor: f64,
+    /// Compute the mode shapes and instantaneous centres (default `true`; without, every
+    /// [`Mode::shape`] is empty and [`Mode::centres`] too, which saves a product of the
+    /// physical map with every eigenvector and the memory of the shapes).
+    pub shapes: bool,
 }
 
 impl Default for ModeOptions {
@@ -567,6 +311,7 @@ impl Default for ModeOptions {
             balance: true,
             tol_factor: 10.0,
             structural_zeros: 0,
+            shapes: true,
         }
     }
 }
@@ -601,62 +346,26 @@ impl Modes {
         }
         ss.validate()?;
         let n = ss.states();
-        let mut eig = eigen_full(&ss.a, opts.balance)?;
-        known_zeros(&ss.a, &mut eig, opts.structural_zeros)?;
-        let nb = if ss.phys.nrows().is_multiple_of(6) {
-            ss.phys.nrows() / 6
+        let mut eig = eigen_full(&ss.a, opts.balance, false)?;
+        eig.known_zeros(&ss.a, opts.structural_zeros)?;
+        let rows = ss.phys.nrows();
+        let shapes = if opts.shapes && rows > 0 {
+            crate::budget::check(
+                "the mode shapes",
+                crate::budget::product(&[rows, n, 16 + 8]),
+            )?;
+            eig.map_right(&ss.phys)
         } else {
-            0
+            Vec::new()
         };
-        let phys_c = ss.phys.map(|x| Complex64::new(x, 0.0));
+        let mut shapes = shapes.into_iter();
         let mut modes = Vec::with_capacity(n);
         for k in 0..n {
-            let lambda = eig.values[k];
             let tol = opts.tol_factor * n as f64 * f64::EPSILON * eig.norm * eig.condition[k];
-            let mut mode = classify(lambda, tol);
+            let mut mode = classify(eig.values[k], tol);
             mode.condition = eig.condition[k];
-            if ss.phys.nrows() > 0 {
-                let mut shape = &phys_c * eig.right.column(k);
-                let (idx, big) = shape.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, z)| {
-                    if z.norm() > bv {
-                        (i, z.norm())
-                    } else {
-                        (bi, bv)
-                    }
-                });
-                if big > 0.0 {
-                    let f = shape[idx] * 2.0;
-                    shape.iter_mut().for_each(|z| *z /= f);
-                    shape[idx] = Complex64::new(0.5, 0.0);
-                    mode.reference_index = Some(idx);
-                    for b in 0..nb {
-                        let name = ss
-                            .names
-                            .bodies
-                            .get(b)
-                            .cloned()
-                            .unwrap_or_else(|| format!("body {}", b + 1));
-                        mode.centres.push(instant_centre(
-                            name,
-                            &shape.as_slice()[6 * b..6 * b + 6],
-                            n,
-                        ));
-                    }
-                } else {
-                    for b in 0..nb {
-                        mode.centres.push(InstantCentre {
-                            body: ss
-                                .names
-                                .bodies
-                                .get(b)
-                                .cloned()
-                                .unwrap_or_else(|| format!("body {}", b + 1)),
-                            radius: None,
-                            axis: None,
-                        });
-                    }
-                }
-                mode.shape = shape;
+            if let Some(shape) = shapes.next() {
+                set_shape(&mut mode, shape, ss, n);
             }
             modes.push(mode);
         }
@@ -684,11 +393,57 @@ impl Modes {
     }
 }
 
+/// The mode shape `phys · x` scaled so that its largest entry is exactly 0.5, and the
+/// instantaneous centre of every body (six rows of `phys` each).
+fn set_shape(mode: &mut Mode, mut shape: DVector<Complex64>, ss: &StateSpace<f64>, n: usize) {
+    let nb = if ss.phys.nrows().is_multiple_of(6) {
+        ss.phys.nrows() / 6
+    } else {
+        0
+    };
+    let body = |b: usize| {
+        ss.names
+            .bodies
+            .get(b)
+            .cloned()
+            .unwrap_or_else(|| format!("body {}", b + 1))
+    };
+    let (idx, big) = shape.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, z)| {
+        if z.norm() > bv {
+            (i, z.norm())
+        } else {
+            (bi, bv)
+        }
+    });
+    if big > 0.0 {
+        let f = shape[idx] * 2.0;
+        shape.iter_mut().for_each(|z| *z /= f);
+        shape[idx] = Complex64::new(0.5, 0.0);
+        mode.reference_index = Some(idx);
+        for b in 0..nb {
+            mode.centres.push(instant_centre(
+                body(b),
+                &shape.as_slice()[6 * b..6 * b + 6],
+                n,
+            ));
+        }
+    } else {
+        for b in 0..nb {
+            mode.centres.push(InstantCentre {
+                body: body(b),
+                radius: None,
+                axis: None,
+            });
+        }
+    }
+    mode.shape = shape;
+}
+
 /// Modes of a bare matrix (no shapes), with default options: used for automatic frequency
 /// ranges and time horizons.
 pub(crate) fn classify_matrix(a: &DMatrix<f64>) -> Result<Vec<Mode>, NumError> {
     let n = a.nrows();
-    let eig = eigen_full(a, true)?;
+    let eig = eigen_full(a, true, false)?;
     let f = ModeOptions::default().tol_factor;
     Ok((0..n)
         .map(|k| {

@@ -6,8 +6,8 @@
 //! eigenvalue condition number `κ = ‖x‖‖y‖/|yᴴx|` measures this; where it exceeds
 //! [`DEFECTIVE_CONDITION`] no number is given.
 
+use crate::eigen::eigen_full;
 use crate::error::NumError;
-use crate::modes::eigen_full;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -43,11 +43,12 @@ pub fn eigenvalue_sensitivities(
             a.ncols()
         )));
     }
-    let e = eigen_full(a, true)?;
+    let e = eigen_full(a, true, true)?;
+    let (right, left) = (e.right(), e.left());
     let n = a.nrows();
     let mut out = Vec::with_capacity(n);
     for k in 0..n {
-        let (x, y) = (e.right.column(k), e.left.column(k));
+        let (x, y) = (right.column(k), left.column(k));
         let dot: Complex64 = y.iter().zip(x.iter()).map(|(a, b)| a.conj() * b).sum();
         let condition = e.condition[k];
         let derivatives = (condition <= DEFECTIVE_CONDITION && dot.norm() > 0.0).then(|| {

@@ -79,16 +79,30 @@ pub struct Descriptor<T: Scalar = f64> {
     pub d: DMatrix<T>,
 }
 
-/// Checks that every entry of `m` is finite; the error names the matrix.
+/// Whether an entry is finite and at most [`crate::MAX_ENTRY`] in magnitude.
+pub(crate) fn in_range(x: f64) -> bool {
+    x.is_finite() && x.abs() <= crate::MAX_ENTRY
+}
+
+/// Checks that every entry of `m` is finite and within [`crate::MAX_ENTRY`]; the error names
+/// the matrix and the entry.
 pub(crate) fn check_finite(m: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
-    if let Some(k) = m.iter().position(|x| !x.is_finite()) {
+    if let Some(k) = m.iter().position(|x| !in_range(*x)) {
         let (i, j) = (k % m.nrows().max(1), k / m.nrows().max(1));
-        return Err(NumError::NonFinite(format!(
-            "{name}[{i}, {j}] = {} ({}×{} matrix)",
+        let at = format!(
+            "{name}[{i}, {j}] = {:?} ({}×{} matrix)",
             m[k],
             m.nrows(),
             m.ncols()
-        )));
+        );
+        if m[k].is_finite() {
+            return Err(NumError::OutOfRange(format!(
+                "{at}: larger in magnitude than {:e}, beyond which the products inside the \
+                 factorisations overflow (express the model in other units)",
+                crate::MAX_ENTRY
+            )));
+        }
+        return Err(NumError::NonFinite(at));
     }
     Ok(())
 }

@@ -37,6 +37,52 @@ fn regular_a_gives_the_static_compliance() {
     assert!(g.warnings.is_empty(), "{:?}", g.warnings);
 }
 
+/// A clearly regular A is decided by the certificate of its inverse: the reported bounds
+/// must bracket the singular values (computed here by nalgebra's SVD), and the gains match
+/// `D − C A⁻¹ B` (nalgebra's LU). A regular A within reach of the threshold goes to the SVD.
+#[test]
+fn clearly_regular_a_is_certified_and_a_nearly_singular_one_goes_to_the_svd() {
+    let mut r = rng(9);
+    let n = 40;
+    let a = closed_forms::random_matrix(&mut r, n, n) - DMatrix::identity(n, n) * 3.0;
+    let b = closed_forms::random_matrix(&mut r, n, 2);
+    let c = closed_forms::random_matrix(&mut r, 3, n);
+    let ss = StateSpace::new(a.clone(), b.clone(), c.clone(), DMatrix::zeros(3, 2)).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert!(g.certificate.is_some());
+    assert!(g.a_rank.margin >= 1e4, "{}", g.a_rank.margin);
+    let want = -(&c * a.clone().lu().solve(&b).unwrap());
+    for i in 0..3 {
+        for j in 0..2 {
+            assert!(
+                close(g.get(i, j), want[(i, j)]),
+                "{:?} {}",
+                g.get(i, j),
+                want[(i, j)]
+            );
+        }
+    }
+    // The bounds are those of the balanced A; a diagonal A is left as it is by balancing,
+    // so its singular values (nalgebra's SVD) must lie within them.
+    let d = DMatrix::from_diagonal(&nalgebra::DVector::from_fn(n, |i, _| 1.0 + i as f64));
+    let ss = StateSpace::new(d.clone(), b.clone(), c.clone(), DMatrix::zeros(3, 2)).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    let cert = g.certificate.expect("clearly regular");
+    let sv = d.singular_values();
+    let (smax, smin) = (sv.max(), sv.min());
+    assert!(cert.sigma_min_lower <= smin * (1.0 + 1e-12) && cert.sigma_max_upper >= smax);
+    assert!(g.condition >= smax / smin);
+    // σ_min = 1e-9 σ_max: regular by the SVD (threshold 10·n·ε·σ_max ≈ 1e-13 σ_max) but not
+    // by a margin of 1e4 over the bounds — the SVD decides, with its singular values.
+    let mut e = d.clone();
+    e[(0, 0)] = 1e-9 * n as f64;
+    let ss = StateSpace::new(e, b, c, DMatrix::zeros(3, 2)).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert!(g.certificate.is_none());
+    assert_eq!(g.a_rank.rank, n);
+    assert_eq!(g.a_rank.singular_values.len(), n);
+}
+
 /// Modal form Λ = diag(0, −a), hidden by a random similarity T: A = T Λ T⁻¹, B = T Bm,
 /// C = Cm T⁻¹. Gains follow from the modal form by hand.
 #[test]

@@ -449,6 +449,141 @@ fn staircases_are_orthogonal_and_structured() {
     assert!((so.c.clone() - &sys.c * &so.q).norm() < 1e-12);
 }
 
+/// A Kalman-form system whose reachable part is a chain: the input drives the first co
+/// state, each reachable state the next (unit links plus a small upper triangle; the co
+/// states first, then the controllable-unobservable ones), the output sees the last co state
+/// and the observable uncontrollable block. Returns the system and the eigenvalues of the
+/// four blocks.
+///
+/// Why a chain: a single-input staircase is a Krylov process, and perturbations of the order
+/// of rounding grow along it by about ‖A‖/h per step (h the staircase block, here the
+/// link). On a random dense reachable block of size 25, or a symmetric tridiagonal one of
+/// size 34, the blocks that are zero in exact arithmetic already come out near 1e-8 · ‖A‖ by
+/// any orthogonal staircase (this one or a step-by-step SVD). The chain's links dominate its
+/// norm, which keeps every decision clear-cut for reachable parts of a few dozen states.
+/// Hidden by a random orthogonal similarity.
+fn chain_kalman_system(
+    seed: u64,
+    sizes: [usize; 4],
+    m: usize,
+) -> (StateSpace<f64>, [Vec<Complex64>; 4]) {
+    let mut r = rng(seed);
+    let n: usize = sizes.iter().sum();
+    let off: Vec<usize> = (0..=4).map(|i| sizes[..i].iter().sum()).collect();
+    let mut a = DMatrix::zeros(n, n);
+    let mut eigs: [Vec<Complex64>; 4] = Default::default();
+    for (k, eig) in eigs.iter_mut().enumerate() {
+        let sz = sizes[k];
+        let rnd = rand_mat(&mut r, sz, sz);
+        let blk = if k < 2 {
+            DMatrix::from_fn(sz, sz, |i, j| match i {
+                _ if i == j + 1 => 1.0,
+                _ if i <= j => 0.05 * rnd[(i, j)],
+                _ => 0.0,
+            })
+        } else {
+            // Spectral radius about 0.5: perturbations do not outgrow the chain.
+            rnd * (0.5 / (sz as f64).sqrt())
+        };
+        *eig = eig_nalgebra(&blk);
+        a.view_mut((off[k], off[k]), (sz, sz)).copy_from(&blk);
+    }
+    if sizes[0] > 0 && sizes[1] > 0 {
+        a[(off[1], off[1] - 1)] = 1.0; // the last co state drives the first cno state
+    }
+    for (i, j) in [(0, 2), (1, 2), (1, 3), (3, 2)] {
+        let blk = rand_mat(&mut r, sizes[i], sizes[j]) * (0.1 / (sizes[j].max(1) as f64).sqrt());
+        a.view_mut((off[i], off[j]), (sizes[i], sizes[j]))
+            .copy_from(&blk);
+    }
+    let mut b = DMatrix::zeros(n, m);
+    for j in 0..m {
+        b[(0, j)] = 1.0 / (j + 1) as f64; // rank one when m > 1
+    }
+    let mut c = DMatrix::zeros(1, n);
+    c[(0, off[1] - 1)] = 1.0;
+    c.columns_mut(off[2], sizes[2])
+        .copy_from(&rand_mat(&mut r, 1, sizes[2]));
+    let q = rand_orth(&mut r, n);
+    let d = DMatrix::zeros(1, m);
+    let sys = ss(q.transpose() * a * &q, q.transpose() * b, c * &q, d);
+    (sys, eigs)
+}
+
+/// Systems large enough for the staircase's blocked Hessenberg tail (one-column blocks from
+/// some step on, in both staircases): single input, and two inputs through a rank-one B. The
+/// minimal order, the removed eigenvalues (blocks built independently) and the transfer
+/// function must come out as for the small systems. (The co chain is kept short: the transfer
+/// function of a long chain, ~1/sᵏ, cannot be evaluated accurately by any method.)
+#[test]
+fn large_systems_reduce_through_the_blocked_tail() {
+    // The last two are large enough for faer's blocked Hessenberg reduction (≥ 256).
+    for (seed, sizes, m) in [
+        (61, [8, 12, 9, 3], 1),
+        (62, [6, 0, 30, 0], 1),
+        (63, [10, 20, 2, 1], 2),
+        (64, [10, 20, 200, 40], 1),
+        (65, [8, 30, 150, 80], 2),
+    ] {
+        let (sys, eigs) = chain_kalman_system(seed, sizes, m);
+        let (min, rep) = minimal_realization(&sys, &MinrealOptions::default()).unwrap();
+        assert_eq!(min.states(), sizes[0], "seed {seed}");
+        assert_eq!(rep.uncontrollable, sizes[2] + sizes[3], "seed {seed}");
+        assert_eq!(rep.unobservable, sizes[1], "seed {seed}");
+        assert!(rep.fragile_decisions(1e3).is_empty(), "seed {seed}");
+        let removed = |kind: RemovedKind| -> Vec<Complex64> {
+            (rep.removed.iter())
+                .filter(|r| r.kind == kind)
+                .map(|r| r.eigenvalue)
+                .collect()
+        };
+        let mut want_unc = eigs[2].clone();
+        want_unc.extend(eigs[3].iter().copied());
+        for (got, want, what) in [
+            (
+                removed(RemovedKind::Uncontrollable),
+                &want_unc,
+                "uncontrollable",
+            ),
+            (removed(RemovedKind::Unobservable), &eigs[1], "unobservable"),
+        ] {
+            let dist = set_distance(&got, want).unwrap();
+            assert!(dist < 1e-9, "seed {seed}: {what} off by {dist:e}");
+        }
+        let err = tf_rel_error(&min, &sys, &points());
+        assert!(err < 1e-10, "seed {seed}: transfer function error {err:e}");
+        assert!(
+            rep.removed
+                .iter()
+                .all(|r| r.pbh_residual.is_some_and(|v| v < 1e-13)),
+            "seed {seed}"
+        );
+    }
+}
+
+#[test]
+fn large_staircases_are_orthogonal_and_structured() {
+    let (sys, _) = chain_kalman_system(71, [30, 4, 6, 2], 1);
+    let n = sys.states();
+    let st = controllability_staircase(&sys.a, &sys.b, &sys.c, 1e-10).unwrap();
+    assert_eq!(st.kept, 34);
+    assert_eq!(st.blocks, vec![1; 34]);
+    let qtq = st.q.transpose() * &st.q;
+    assert!((qtq - DMatrix::<f64>::identity(n, n)).norm() < 1e-13);
+    assert!((st.q.transpose() * &sys.a * &st.q - &st.a).norm() < 1e-12 * sys.a.norm());
+    assert!((st.q.transpose() * &sys.b - &st.b).norm() < 1e-12 * sys.b.norm());
+    assert!((&sys.c * &st.q - &st.c).norm() < 1e-12 * sys.c.norm());
+    // Controller Hessenberg form: zero below the subdiagonal, and the uncontrollable block
+    // decoupled exactly.
+    for j in 0..n {
+        for i in j + 2..n {
+            assert_eq!(st.a[(i, j)], 0.0, "({i}, {j})");
+        }
+    }
+    assert_eq!(st.a.view((34, 0), (8, 34)).norm(), 0.0);
+    assert_eq!(st.b.rows(1, n - 1).norm(), 0.0);
+}
+
 #[test]
 fn bad_input_gets_typed_errors() {
     let mut sys = ss(

@@ -126,13 +126,21 @@ impl Rational {
         {
             return None;
         }
-        let digits = format!("{int_part}{frac_part}");
-        let mut num: BigInt = digits.parse().ok()?;
         let scale = exp.checked_sub(frac_part.len() as i64)?;
         // 10^|scale| must stay inside MAX_BITS (log2 10 ≈ 3.32).
         if scale.unsigned_abs() > MAX_BITS / 3 {
             return None;
         }
+        // More than MAX_BITS significant digits cannot fit even after dividing by 10^|scale|:
+        // refused before the (quadratic) conversion of the digits.
+        let significant = (int_part.bytes().chain(frac_part.bytes()))
+            .skip_while(|&b| b == b'0')
+            .count();
+        if significant as u64 > MAX_BITS {
+            return None;
+        }
+        let digits = format!("{int_part}{frac_part}");
+        let mut num: BigInt = digits.parse().ok()?;
         let ten = BigInt::from(10);
         let p = num_traits::pow(ten, scale.unsigned_abs() as usize);
         let r = if scale >= 0 {

@@ -254,12 +254,28 @@ pub fn catalogue() -> Vec<ModelInfo> {
     .collect()
 }
 
-/// Largest chain size accepted by name.
-pub const MAX_CHAIN: usize = 5000;
+/// Largest chain size accepted by name: the size whose `eom analyze` meets the time and
+/// memory targets of the README's performance section (every step grows as the cube of the
+/// size). Longer chains can be written as model files.
+pub const MAX_CHAIN: usize = 1000;
 
 /// The catalogue entry and size for a model name (`chain50` → the chain entry, 50).
 pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
     let cat = catalogue();
+    if let Some(n) = name.strip_prefix("chain")
+        && !n.is_empty()
+        && n.bytes().all(|b| b.is_ascii_digit())
+        && n.parse::<usize>().ok().is_none_or(|k| k > MAX_CHAIN)
+    {
+        return Err(CatalogueError::ChainTooLong {
+            name: if name.len() > 40 {
+                format!("{}… ({} characters)", &name[..20], name.len())
+            } else {
+                name.to_string()
+            },
+            max: MAX_CHAIN,
+        });
+    }
     if let Some(n) = name.strip_prefix("chain")
         && let Ok(k) = n.parse::<usize>()
         && (1..=MAX_CHAIN).contains(&k)

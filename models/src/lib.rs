@@ -47,6 +47,18 @@ pub enum CatalogueError {
         /// The names that exist.
         known: Vec<String>,
     },
+    /// A chain longer than the catalogue builds ([`catalogue::MAX_CHAIN`]).
+    #[error(
+        "model `{name}`: a chain has at most {max} masses here (the analysis grows as the \
+         cube of the size); for a longer chain write a model file (`eom export chain10` \
+         shows the pattern)"
+    )]
+    ChainTooLong {
+        /// The name asked for.
+        name: String,
+        /// The largest chain.
+        max: usize,
+    },
     /// A parameter that the model does not have.
     #[error("model `{model}` has no parameter `{name}`; its parameters are: {}", known.join(", "))]
     UnknownParameter {
@@ -58,7 +70,7 @@ pub enum CatalogueError {
         known: Vec<String>,
     },
     /// A parameter value that the model cannot take.
-    #[error("model `{model}`, parameter `{name}` = {value}: {problem}")]
+    #[error("model `{model}`, parameter `{name}` = {value:?}: {problem}")]
     BadValue {
         /// The model.
         model: String,

@@ -421,6 +421,11 @@ pub(crate) fn string_error(
     text: &str,
     e: &SymError,
 ) -> ModelError {
+    // An expression too long to repeat is cut (the column still points into it).
+    let shown = match text.char_indices().nth(80) {
+        Some((cut, _)) => format!("{}…` ({} characters)", &text[..cut], text.chars().count()),
+        None => format!("{text}`"),
+    };
     let (at, problem) = match e {
         SymError::Parse {
             column,
@@ -436,10 +441,10 @@ pub(crate) fn string_error(
                 .sum();
             (
                 span.start + 1 + offset,
-                format!("in `{text}`: expected {expected}, found {found}"),
+                format!("in `{shown}: expected {expected}, found {found}"),
             )
         }
-        other => (span.start, format!("in `{text}`: {other}")),
+        other => (span.start, format!("in `{shown}: {other}")),
     };
     ctx.error(&(at..at), context, problem)
 }

@@ -56,7 +56,7 @@ use assign::assign_pinned;
 #[derive(Debug, thiserror::Error)]
 pub enum SweepError<E> {
     /// The model function failed.
-    #[error("the model failed at {param} = {value}: {source}")]
+    #[error("the model failed at {param} = {value:?}: {source}")]
     Model {
         /// Name of the swept parameter.
         param: String,
@@ -66,7 +66,7 @@ pub enum SweepError<E> {
         source: E,
     },
     /// A numeric step failed (bad shape or entries of A, no convergence).
-    #[error("at {param} = {value}: {source}")]
+    #[error("at {param} = {value:?}: {source}")]
     Numeric {
         /// Name of the swept parameter.
         param: String,
@@ -363,16 +363,29 @@ impl Sweep {
         F: Fn(f64) -> Result<DMatrix<f64>, E> + Sync,
         E: Send,
     {
-        let evals: Vec<Result<Eval, SweepError<E>>> = self
-            .values
+        // The first point alone: its size predicts the memory of the whole sweep (matrices
+        // while evaluating, the eigenvalues of every point, the tracked branches).
+        let first = ctx.eval(self.values[0], &mut None, None)?;
+        let n = first.eig.len();
+        crate::budget::check(
+            &format!(
+                "a sweep of {} values of a {n}-state model",
+                self.values.len()
+            ),
+            crate::budget::product(&[self.values.len(), n.max(1), 16 * 4]).saturating_add(
+                crate::budget::product(&[rayon::current_num_threads(), n, n, 8 * 3]),
+            ),
+        )
+        .map_err(SweepError::Setup)?;
+        let evals: Vec<Result<Eval, SweepError<E>>> = self.values[1..]
             .par_iter()
             .map_init(|| None, |ws, &x| ctx.eval(x, ws, None))
             .collect();
-        let mut pts = Vec::with_capacity(evals.len());
+        let mut pts = Vec::with_capacity(self.values.len());
+        pts.push(first);
         for e in evals {
             pts.push(e?);
         }
-        let n = pts[0].eig.len();
         for (p, &x) in pts.iter().zip(&self.values) {
             if p.eig.len() != n {
                 return Err(ctx.numeric(

@@ -511,15 +511,23 @@ impl<'a> Parser<'a> {
     }
 
     fn number(&self, text: &str, col: usize) -> PResult<Expr> {
+        // A literal too long to repeat is cut in the middle (its length given).
+        let (shown, hint) = match text.char_indices().nth(40) {
+            Some(_) => (
+                format!("{}…` ({} characters)", &text[..20], text.len()),
+                "...".to_string(),
+            ),
+            None => (format!("{text}`"), text.to_string()),
+        };
         match Rational::from_decimal(text) {
             Some(r) => Ok(Expr::from_rational(r)),
             None => Err(self.error(
                 col,
                 &format!(
-                    "an exact literal of at most {MAX_BITS} bits (write `float({text})` for a \
+                    "an exact literal of at most {MAX_BITS} bits (write `float({hint})` for a \
                      floating-point value)"
                 ),
-                &format!("`{text}`, which is too wide"),
+                &format!("`{shown}, which is too wide"),
             )),
         }
     }

@@ -247,6 +247,16 @@ fn literal_too_wide() {
         "{exp}"
     );
     assert_eq!(found, "`1e99999`, which is too wide");
+    // Four million digits are refused at once (the conversion is quadratic), the message
+    // short.
+    let long = "7".repeat(4_000_000);
+    let t = std::time::Instant::now();
+    let (_, _, found, _) = parse_err(&format!("m + {long}"), &s);
+    assert!(t.elapsed().as_secs_f64() < 5.0, "{:?}", t.elapsed());
+    assert_eq!(
+        found,
+        "`77777777777777777777…` (4000000 characters), which is too wide"
+    );
 }
 
 #[test]
