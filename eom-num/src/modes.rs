@@ -265,7 +265,15 @@ fn known_zeros(a: &DMatrix<f64>, eig: &mut Eigen, k: usize) -> Result<(), NumErr
     let Some(rest) = deflate::deflate_null_directions(a, k) else {
         return Ok(());
     };
-    let mut others = eigenvalues(&rest)?;
+    // Values and condition numbers both from the deflated matrix: in the full one the
+    // structural zeros, split by rounding, make every eigenvalue near them look ill-conditioned
+    // (a small simple pole such as a bicycle's capsize would be taken for zero).
+    let deflated = eigen_dense(&rest, true)?;
+    let mut others: Vec<(Complex64, f64)> = deflated
+        .values
+        .into_iter()
+        .zip(deflated.condition)
+        .collect();
     let n = eig.values.len();
     let mut by_size: Vec<usize> = (0..n).collect();
     by_size.sort_by(|&x, &y| eig.values[x].norm().total_cmp(&eig.values[y].norm()));
@@ -284,12 +292,12 @@ fn known_zeros(a: &DMatrix<f64>, eig: &mut Eigen, k: usize) -> Result<(), NumErr
             .iter()
             .enumerate()
             .min_by(|x, y| {
-                (x.1 - eig.values[i])
+                (x.1.0 - eig.values[i])
                     .norm()
-                    .total_cmp(&(y.1 - eig.values[i]).norm())
+                    .total_cmp(&(y.1.0 - eig.values[i]).norm())
             })
             .expect("nonempty");
-        eig.values[i] = others.swap_remove(j);
+        (eig.values[i], eig.condition[i]) = others.swap_remove(j);
     }
     let n = eig.values.len();
     let mut perm: Vec<usize> = (0..n).collect();
@@ -398,7 +406,7 @@ fn eigen_dense(a: &DMatrix<f64>, balance: bool) -> Result<Eigen, NumError> {
             NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
         })?;
     }
-    let norm = ab.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let norm = crate::linalg::frobenius_norm(&ab);
     // Unpack faer's real storage: a pair (j, j+1) holds Re and Im of the vector of λ_j
     // (Im λ_j > 0), the conjugate belongs to λ_{j+1}. Same packing for left vectors.
     let mut values = Vec::with_capacity(n);

@@ -7,10 +7,11 @@
 //!    [`rank`](super::rank)) finds the rows that are combinations of the others (an
 //!    over-constrained mechanism such as a planar loop of hinges built in 3-D). They are set
 //!    aside; steps 3–5 solve the structure as if they had been removed by hand.
-//! 3. **Force balance**: `[Jᵀ Hᵀ | −F]` and the known-preload rows, its pivots chosen by
-//!    complete pivoting on the nondimensionalised matrix (moment equations divided by the
-//!    model's length scale, columns scaled to unit size) and replayed in the scalar type. If it
-//!    determines every multiplier, the structure is statically determinate.
+//! 3. **Force balance**: `[Jᵀ Hᵀ | −F]` and the known-preload rows, eliminated with the
+//!    sparse elimination's own pivots when they pass a rank decision on the nondimensionalised
+//!    matrix (moment equations divided by the model's length scale, columns scaled to unit
+//!    size), else with pivots chosen there by complete pivoting and replayed in the scalar
+//!    type. If it determines every multiplier, the structure is statically determinate.
 //! 4. Otherwise **elastic compatibility**: the redundant multipliers follow from the
 //!    deformation `x` of the structure, `[0 J; Jᵀ K_e] [μ; x] = [0; −F]` with the known
 //!    preloads as extra unknowns (a singular system is an error naming the constraint rows);
@@ -67,6 +68,18 @@ pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-9;
 /// Relative residual up to which the given geometry is accepted as the equilibrium, with a
 /// warning (a geometric offset of about this fraction of the model's size).
 pub const NEAR_EQUILIBRIUM: f64 = 1e-3;
+
+/// The sparse elimination's own pivots are kept when the square matrix they select is at
+/// least this fraction as well conditioned (smallest singular value, nondimensionalised) as
+/// the one complete pivoting selects.
+const OWN_PIVOTS: f64 = 1e-2;
+
+/// The smallest singular value of the square submatrix of `a` at the pivots' rows and columns.
+fn smallest_singular_value(a: &DMatrix<f64>, pivots: &[(usize, usize)]) -> f64 {
+    let k = pivots.len();
+    let sub = DMatrix::from_fn(k, k, |i, j| a[(pivots[i].0, pivots[j].1)]);
+    rank(&sub).1.last().copied().unwrap_or(f64::INFINITY)
+}
 
 /// `λ_c`, `λ_e`, how they were found, and warnings.
 pub(crate) type StaticsResult<S> = (Vec<S>, Vec<S>, Statics, Vec<String>);
@@ -230,8 +243,18 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
     }
     equilibrate_columns(&mut a);
     let (r, _) = rank(&a);
-    let plan = plan_of(complete_pivots(&a, r), nrows);
-    rref(rows, nu, &[], Some(&plan))
+    // The sparse elimination's own pivots (fewest fill-ins, so the smallest expressions) when
+    // they are as many as the numerical rank and independent on the nondimensionalised
+    // matrix; otherwise (e.g. a pivot on a moment of a negligible lever arm) complete pivoting.
+    let own = rref(rows.clone(), nu, &[], None)?;
+    let complete = complete_pivots(&a, r);
+    if own.plan.pivots.len() == r
+        && smallest_singular_value(&a, &own.plan.pivots)
+            >= OWN_PIVOTS * smallest_singular_value(&a, &complete)
+    {
+        return Ok(own);
+    }
+    rref(rows, nu, &[], Some(&plan_of(complete, nrows)))
 }
 
 /// The solution of a reduced system with `n` unknowns and every unknown a pivot: the
