@@ -111,7 +111,10 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
     let sc = 2 * q + t;
     let mut warnings = a.warnings.clone();
     let (r, lc, rank, gap) = if sc > 0 {
-        complements(&j, &nmat, &v, m, &mut warnings)?
+        match complements(&j, &nmat, &v, m, &mut warnings)? {
+            Some(c) => c,
+            None => joint_complements(&j, &nmat, &v, m, &mut warnings)?,
+        }
     } else {
         (
             DMatrix::identity(nz, nz),
@@ -191,14 +194,15 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
 }
 
 /// The complements `R`, `L` per block (see the module documentation), the total rank of the
-/// constraints and the smaller gap of the two rank decisions.
+/// constraints and the smaller gap of the two rank decisions; `None` when some admissible
+/// position admits no velocity on these blocks (then [`joint_complements`] decides).
 fn complements(
     j: &DMatrix<f64>,
     nmat: &DMatrix<f64>,
     v: &DMatrix<f64>,
     m: usize,
     warnings: &mut Vec<String>,
-) -> Result<(DMatrix<f64>, DMatrix<f64>, usize, f64), ModelError> {
+) -> Result<Option<Complements>, ModelError> {
     let d = j.ncols();
     let (q, t) = (j.nrows(), nmat.nrows());
     let complement = |mat: &DMatrix<f64>| -> Result<(DMatrix<f64>, f64), ModelError> {
@@ -232,10 +236,9 @@ fn complements(
         let resid = (&jr * &y - &rhs).amax();
         let scale = rhs.amax().max(jr.amax() * y.amax()) + f64::MIN_POSITIVE;
         if resid > 1e-8 * scale {
-            return Err(ModelError::Singular(format!(
-                "the position and velocity constraints are inconsistent: the rate of the position constraints J w = J V p cannot be met together with the velocity constraints (residual {:.3e} of {scale:.3e}); a redundant constraint is inconsistent at the velocity level",
-                resid
-            )));
+            // Not every admissible position admits a velocity on the block complements
+            // (the rank decisions of the blocks and of the whole differ): the joint one.
+            return Ok(None);
         }
         &rows * y
     } else {
@@ -260,7 +263,50 @@ fn complements(
             gap_p.min(gap_w)
         ));
     }
-    Ok((r, l, rank, gap_p.min(gap_w)))
+    Ok(Some((r, l, rank, gap_p.min(gap_w))))
+}
+
+/// `R`, `L`, the rank of the constraints and the gap of its decision.
+type Complements = (DMatrix<f64>, DMatrix<f64>, usize, f64);
+
+/// The complements of the whole constraint matrices at once, `R = null(J_r)`, `L = null(J_l)`
+/// (used when the block construction is inconsistent).
+fn joint_complements(
+    j: &DMatrix<f64>,
+    nmat: &DMatrix<f64>,
+    v: &DMatrix<f64>,
+    m: usize,
+    warnings: &mut Vec<String>,
+) -> Result<Complements, ModelError> {
+    let d = j.ncols();
+    let (q, t) = (j.nrows(), nmat.nrows());
+    let (sc, nz) = (2 * q + t, 2 * d + m);
+    let mut jr = DMatrix::<f64>::zeros(sc, nz);
+    put(&mut jr, 0, 0, j, 1.0);
+    put(&mut jr, q, 0, &(j * v), -1.0);
+    put(&mut jr, q, d, j, 1.0);
+    put(&mut jr, 2 * q, d, nmat, 1.0);
+    let mut jl = DMatrix::<f64>::zeros(sc, nz);
+    put(&mut jl, 0, 0, j, 1.0);
+    put(&mut jl, q, d, j, 1.0);
+    put(&mut jl, 2 * q, d, nmat, 1.0);
+    let nr = nullspace_equilibrated(&jr, RankTolerance::Default, Equilibrate::Both)?;
+    let nl = nullspace_equilibrated(&jl, RankTolerance::Default, Equilibrate::Both)?;
+    if nr.basis.ncols() != nl.basis.ncols() {
+        return Err(ModelError::Singular(format!(
+            "the position and velocity constraints have different ranks ({} and {}): a redundant constraint is inconsistent at the velocity level",
+            sc - nr.basis.ncols(),
+            sc - nl.basis.ncols()
+        )));
+    }
+    if nr.rank < sc {
+        warnings.push(format!(
+            "{} of {sc} constraint rows are redundant (rank decision gap {:.3e})",
+            sc - nr.rank,
+            nr.gap
+        ));
+    }
+    Ok((nr.basis, nl.basis, nr.rank, nr.gap))
 }
 
 /// Step 2: the output rows on `z` and how each output is read from them.
