@@ -507,6 +507,20 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         for &r in &rj.plan.redundant {
             self.report.redundant.push(jlabel(r).to_string());
         }
+        if !rj.plan.redundant.is_empty() {
+            let names: Vec<String> = rj
+                .plan
+                .redundant
+                .iter()
+                .map(|&r| jlabel(r).to_string())
+                .collect();
+            self.report.warnings.push(format!(
+                "reduction: {} redundant position constraint row(s) ({}): combinations of the other rows at the nominal point (remaining entries below {:.0e} of the row's size), removed",
+                names.len(),
+                names.join(", "),
+                super::eliminate::NEGLIGIBLE
+            ));
+        }
         let (indep_p, indep_pos) = independent(&rj, n);
         let np = indep_p.len();
         let mut rp = Triplets::with_capacity(n, np, np + pivot_nnz(&rj));

@@ -3,10 +3,17 @@
 //!
 //! 1. **Constrained descriptor** ([`constrained_descriptor`]): the first-order model in the
 //!    full state `z = [p; w; s]` (`s` the input states), projected on the right complement
-//!    `R = null(J_r)` of the position and velocity constraints and the left complement
-//!    `L = null(J_l)`, as in the descriptor construction of the EoM software (Minaker et
-//!    al.), but with the rank decisions taken on equilibrated matrices (scale-aware, not
-//!    dependent on units).
+//!    `R` of the position and velocity constraints and the left complement `L`, as in the
+//!    descriptor construction of the EoM software (Minaker et al.), but with the rank
+//!    decisions taken on equilibrated matrices (scale-aware, not dependent on units) and the
+//!    complements built per block: `P = null(J)` for the positions, `W = null([J; N])` for the
+//!    velocities, `R = [P 0 0; G W 0; 0 0 I]` with `G` the least-norm velocity that the
+//!    position constraint's rate `J w = J V p` requires, `L = diag(P, W, I)`. A single SVD
+//!    complement of the whole constraint matrix would be as valid, but it mixes positions and
+//!    velocities (of different units) in every state, so the state matrix could not be
+//!    balanced and its eigenvalues' condition numbers, and the tolerances of every modal
+//!    decision made on them, grew by orders of magnitude (a stiff chain's slightly damped mode
+//!    was called marginal).
 //! 2. **Output rows** on `z`: the displacement and velocity outputs directly, and the velocity
 //!    outputs that the acceleration sensors differentiate afterwards.
 //! 3. **Descriptor reduction** by eom-num's scale-aware index-1 reduction
@@ -21,7 +28,7 @@ use super::assemble::Assembled;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
 use eom_num::descriptor::{DescriptorOptions, DescriptorReport, descriptor_to_state_space};
-use eom_num::linalg::{Equilibrate, RankTolerance, nullspace_equilibrated};
+use eom_num::linalg::{Equilibrate, RankTolerance, nullspace, nullspace_equilibrated};
 use eom_num::{Descriptor, SignalNames, StateSpace};
 use eom_sym::matrix::SparseMatrix;
 use nalgebra::DMatrix;
@@ -104,32 +111,10 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
     let sc = 2 * q + t;
     let mut warnings = a.warnings.clone();
     let (r, lc, rank, gap) = if sc > 0 {
-        let mut jr = DMatrix::<f64>::zeros(sc, nz);
-        put(&mut jr, 0, 0, &j, 1.0);
-        put(&mut jr, q, 0, &(&j * &v), -1.0);
-        put(&mut jr, q, d, &j, 1.0);
-        put(&mut jr, 2 * q, d, &nmat, 1.0);
-        let mut jl = DMatrix::<f64>::zeros(sc, nz);
-        put(&mut jl, 0, 0, &j, 1.0);
-        put(&mut jl, q, d, &j, 1.0);
-        put(&mut jl, 2 * q, d, &nmat, 1.0);
-        let nr = nullspace_equilibrated(&jr, RankTolerance::Default, Equilibrate::Both)?;
-        let nl = nullspace_equilibrated(&jl, RankTolerance::Default, Equilibrate::Both)?;
-        if nr.basis.ncols() != nl.basis.ncols() {
-            return Err(ModelError::Singular(format!(
-                "the position and velocity constraints have different ranks ({} and {}): a redundant constraint is inconsistent at the velocity level",
-                sc - nr.basis.ncols(),
-                sc - nl.basis.ncols()
-            )));
+        match complements(&j, &nmat, &v, m, &mut warnings)? {
+            Some(c) => c,
+            None => joint_complements(&j, &nmat, &v, m, &mut warnings)?,
         }
-        if nr.rank < sc {
-            warnings.push(format!(
-                "{} of {sc} constraint rows are redundant (rank decision gap {:.3e})",
-                sc - nr.rank,
-                nr.gap
-            ));
-        }
-        (nr.basis.clone(), nl.basis, nr.rank, nr.gap)
     } else {
         (
             DMatrix::identity(nz, nz),
@@ -206,6 +191,122 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
             warnings,
         },
     ))
+}
+
+/// The complements `R`, `L` per block (see the module documentation), the total rank of the
+/// constraints and the smaller gap of the two rank decisions; `None` when some admissible
+/// position admits no velocity on these blocks (then [`joint_complements`] decides).
+fn complements(
+    j: &DMatrix<f64>,
+    nmat: &DMatrix<f64>,
+    v: &DMatrix<f64>,
+    m: usize,
+    warnings: &mut Vec<String>,
+) -> Result<Option<Complements>, ModelError> {
+    let d = j.ncols();
+    let (q, t) = (j.nrows(), nmat.nrows());
+    let complement = |mat: &DMatrix<f64>| -> Result<(DMatrix<f64>, f64), ModelError> {
+        if mat.nrows() == 0 {
+            return Ok((DMatrix::identity(d, d), f64::INFINITY));
+        }
+        let ns = nullspace_equilibrated(mat, RankTolerance::Default, Equilibrate::Both)?;
+        Ok((ns.basis, ns.gap))
+    };
+    let (p, gap_p) = complement(j)?;
+    let mut jn = DMatrix::<f64>::zeros(q + t, d);
+    put(&mut jn, 0, 0, j, 1.0);
+    put(&mut jn, q, 0, nmat, 1.0);
+    let (w, gap_w) = complement(&jn)?;
+    let (np, nw) = (p.ncols(), w.ncols());
+    // G: w = G x_p in the row space of [J; N] with [J; N] w = [J V P x_p; 0].
+    let mut rhs = DMatrix::<f64>::zeros(q + t, np);
+    put(&mut rhs, 0, 0, &(j * v * &p), 1.0);
+    let g = if nw < d && np > 0 {
+        let rows = if nw == 0 {
+            DMatrix::identity(d, d)
+        } else {
+            nullspace(&w.transpose(), RankTolerance::Default)?.basis
+        };
+        let jr = &jn * &rows;
+        let y = jr
+            .clone()
+            .svd(true, true)
+            .solve(&rhs, 0.0)
+            .map_err(|e| ModelError::Singular(format!("velocity complement: {e}")))?;
+        let resid = (&jr * &y - &rhs).amax();
+        let scale = rhs.amax().max(jr.amax() * y.amax()) + f64::MIN_POSITIVE;
+        if resid > 1e-8 * scale {
+            // Not every admissible position admits a velocity on the block complements
+            // (the rank decisions of the blocks and of the whole differ): the joint one.
+            return Ok(None);
+        }
+        &rows * y
+    } else {
+        DMatrix::zeros(d, np)
+    };
+    let ncols = np + nw + m;
+    let mut r = DMatrix::<f64>::zeros(2 * d + m, ncols);
+    put(&mut r, 0, 0, &p, 1.0);
+    put(&mut r, d, 0, &g, 1.0);
+    put(&mut r, d, np, &w, 1.0);
+    put(&mut r, 2 * d, np + nw, &DMatrix::identity(m, m), 1.0);
+    let mut l = DMatrix::<f64>::zeros(2 * d + m, ncols);
+    put(&mut l, 0, 0, &p, 1.0);
+    put(&mut l, d, np, &w, 1.0);
+    put(&mut l, 2 * d, np + nw, &DMatrix::identity(m, m), 1.0);
+    let sc = 2 * q + t;
+    let rank = 2 * d - np - nw;
+    if rank < sc {
+        warnings.push(format!(
+            "{} of {sc} constraint rows are redundant (rank decision gap {:.3e})",
+            sc - rank,
+            gap_p.min(gap_w)
+        ));
+    }
+    Ok(Some((r, l, rank, gap_p.min(gap_w))))
+}
+
+/// `R`, `L`, the rank of the constraints and the gap of its decision.
+type Complements = (DMatrix<f64>, DMatrix<f64>, usize, f64);
+
+/// The complements of the whole constraint matrices at once, `R = null(J_r)`, `L = null(J_l)`
+/// (used when the block construction is inconsistent).
+fn joint_complements(
+    j: &DMatrix<f64>,
+    nmat: &DMatrix<f64>,
+    v: &DMatrix<f64>,
+    m: usize,
+    warnings: &mut Vec<String>,
+) -> Result<Complements, ModelError> {
+    let d = j.ncols();
+    let (q, t) = (j.nrows(), nmat.nrows());
+    let (sc, nz) = (2 * q + t, 2 * d + m);
+    let mut jr = DMatrix::<f64>::zeros(sc, nz);
+    put(&mut jr, 0, 0, j, 1.0);
+    put(&mut jr, q, 0, &(j * v), -1.0);
+    put(&mut jr, q, d, j, 1.0);
+    put(&mut jr, 2 * q, d, nmat, 1.0);
+    let mut jl = DMatrix::<f64>::zeros(sc, nz);
+    put(&mut jl, 0, 0, j, 1.0);
+    put(&mut jl, q, d, j, 1.0);
+    put(&mut jl, 2 * q, d, nmat, 1.0);
+    let nr = nullspace_equilibrated(&jr, RankTolerance::Default, Equilibrate::Both)?;
+    let nl = nullspace_equilibrated(&jl, RankTolerance::Default, Equilibrate::Both)?;
+    if nr.basis.ncols() != nl.basis.ncols() {
+        return Err(ModelError::Singular(format!(
+            "the position and velocity constraints have different ranks ({} and {}): a redundant constraint is inconsistent at the velocity level",
+            sc - nr.basis.ncols(),
+            sc - nl.basis.ncols()
+        )));
+    }
+    if nr.rank < sc {
+        warnings.push(format!(
+            "{} of {sc} constraint rows are redundant (rank decision gap {:.3e})",
+            sc - nr.rank,
+            nr.gap
+        ));
+    }
+    Ok((nr.basis, nl.basis, nr.rank, nr.gap))
 }
 
 /// Step 2: the output rows on `z` and how each output is read from them.

@@ -147,7 +147,7 @@ fn eigen_packed(a: &DMatrix<f64>, balance: bool, keep_left: bool) -> Result<Eige
             NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
         })?;
     }
-    let norm = ab.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let norm = crate::linalg::frobenius_norm(ab.as_slice());
     drop(ab);
     let mut values = Vec::with_capacity(n);
     let mut slots = Vec::with_capacity(n);
@@ -332,7 +332,16 @@ impl Eigen {
         let Some(rest) = deflate::deflate_null_directions(a, k) else {
             return Ok(());
         };
-        let mut others = crate::modes::eigenvalues(&rest)?;
+        // Values and condition numbers both from the deflated matrix: in the full one the
+        // structural zeros, split by rounding, make every eigenvalue near them look
+        // ill-conditioned (a small simple pole such as a bicycle's capsize would be taken for
+        // zero).
+        let deflated = eigen_packed(&rest, true, true)?;
+        let mut others: Vec<(Complex64, f64)> = deflated
+            .values
+            .into_iter()
+            .zip(deflated.condition)
+            .collect();
         let n = self.len();
         let mut by_size: Vec<usize> = (0..n).collect();
         by_size.sort_by(|&x, &y| self.values[x].norm().total_cmp(&self.values[y].norm()));
@@ -345,13 +354,13 @@ impl Eigen {
         // Each remaining eigenvalue takes the nearest deflated one.
         for i in (0..n).filter(|&i| free[i]) {
             let Some((j, _)) = others.iter().enumerate().min_by(|x, y| {
-                (x.1 - self.values[i])
+                (x.1.0 - self.values[i])
                     .norm()
-                    .total_cmp(&(y.1 - self.values[i]).norm())
+                    .total_cmp(&(y.1.0 - self.values[i]).norm())
             }) else {
                 break;
             };
-            self.values[i] = others.swap_remove(j);
+            (self.values[i], self.condition[i]) = others.swap_remove(j);
         }
         let mut perm: Vec<usize> = (0..n).collect();
         perm.sort_by(|&x, &y| cmp_re_im(&self.values[x], &self.values[y]));

@@ -463,6 +463,17 @@ pub(crate) fn max_abs(m: &DMatrix<f64>) -> f64 {
     m.iter().fold(0.0f64, |a, x| a.max(x.abs()))
 }
 
+/// The 2-norm of `x` (a matrix's Frobenius norm, given its entries) without overflow or
+/// underflow: the squares are summed relative to the largest entry, so entries up to
+/// `f64::MAX` give a finite norm (a plain sum of squares overflows from about 1e154).
+pub fn frobenius_norm(x: &[f64]) -> f64 {
+    let big = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if big == 0.0 || !big.is_finite() {
+        return big;
+    }
+    big * x.iter().map(|v| (v / big) * (v / big)).sum::<f64>().sqrt()
+}
+
 /// Balances a square matrix in place by a diagonal similarity `D⁻¹ A D` (powers of two,
 /// Parlett & Reinsch 1969), so that each row and column have comparable norms. Eigenvalues
 /// are unchanged; eigenvalue accuracy improves for badly scaled (mixed-unit) matrices.
@@ -543,6 +554,14 @@ mod tests {
         balance_in_place(&mut b, 2, &mut scale[..2]);
         assert!(b.iter().all(|x| x.is_finite()), "{b:?}");
         assert!((b[1] * b[2] - 1.0).abs() < 1e-12, "{b:?}");
+    }
+
+    #[test]
+    fn frobenius_norm_of_huge_and_tiny_entries() {
+        assert!((frobenius_norm(&[3e200, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
+        assert!((frobenius_norm(&[3e-200, -4e-200]) / 5e-200 - 1.0).abs() < 1e-15);
+        assert_eq!(frobenius_norm(&[]), 0.0);
+        assert!(frobenius_norm(&[1e308, 1e308]).is_finite());
     }
 
     #[test]

@@ -30,7 +30,10 @@
 //!   axis), not an SVD null space that depends on rounding;
 //! * the equilibrium check is relative per equation, not an absolute sum of squares;
 //! * a statically indeterminate structure uses the elastic compatibility equations and reports
-//!   the indeterminacy; a singular compatibility system is an error, not a minimum-norm guess;
+//!   the indeterminacy; only the self-stress of redundant rigid rows, which nothing
+//!   determines, is chosen by minimum norm, with a warning naming the rows;
+//! * rank and equilibrium decisions of the statics are made on nondimensionalised equations
+//!   (moments over the model's length scale), so a negligible geometric offset is negligible;
 //! * a body spinning about an axis that is not an axis of symmetry is an error (the
 //!   constant-coefficient linearization in the non-spinning frame does not exist), instead of a
 //!   silently incomplete gyroscopic term;
@@ -41,6 +44,7 @@
 //!   tests on its norm.
 
 mod context;
+pub mod rank;
 pub mod statics;
 pub mod tangent;
 
@@ -161,7 +165,8 @@ pub fn assemble<S: ModelScalar>(model: &Model<S>) -> Result<Assembled<S>, ModelE
     let warnings = model.validate()?;
     let mut cx = item_terms(model, warnings)?;
     let k_el = std::mem::replace(&mut cx.stiffness, Triplets::new(0, 0)).build();
-    let (lambda_c, lambda_e, statics) = statics(&cx, &k_el)?;
+    let (lambda_c, lambda_e, statics, warnings) = statics(&cx, &k_el)?;
+    cx.warnings.extend(warnings);
     let (k_t, preloads) = tangent_stiffness(&cx, &lambda_c, &lambda_e);
     result(model, cx, k_el, k_t, preloads, statics)
 }

@@ -3,22 +3,42 @@
 //! `Jᵀλ_c + Hᵀλ_e = −F`, with the springs' known preloads.
 //!
 //! 1. No loads and no known preloads: every preload is zero.
-//! 2. **Force balance**: a Gauss–Jordan elimination of `[Jᵀ Hᵀ | −F]` and the known-preload
-//!    rows. If it determines every multiplier, the structure is statically determinate.
-//! 3. Otherwise **elastic compatibility**: the redundant multipliers follow from the
+//! 2. **Redundant rigid rows**: a rank decision on the nondimensionalised `J` (see
+//!    [`rank`](super::rank)) finds the rows that are combinations of the others (an
+//!    over-constrained mechanism such as a planar loop of hinges built in 3-D). They are set
+//!    aside; steps 3–5 solve the structure as if they had been removed by hand.
+//! 3. **Force balance**: `[Jᵀ Hᵀ | −F]` and the known-preload rows, eliminated with the
+//!    sparse elimination's own pivots when they pass a rank decision on the nondimensionalised
+//!    matrix (moment equations divided by the model's length scale, columns scaled to unit
+//!    size), else with pivots chosen there by complete pivoting and replayed in the scalar
+//!    type. If it determines every multiplier, the structure is statically determinate.
+//! 4. Otherwise **elastic compatibility**: the redundant multipliers follow from the
 //!    deformation `x` of the structure, `[0 J; Jᵀ K_e] [μ; x] = [0; −F]` with the known
-//!    preloads as extra unknowns (a singular system is an error naming the constraint rows,
-//!    never a minimum-norm guess); the elastic forces are `P H x` per item.
-//! 4. **Equilibrium check**, relative per equation: `|F_i + Σ T_ij λ_j| ≤ 10⁻⁹ (|F_i| +
-//!    Σ |T_ij λ_j|)`; the given geometry must be the loaded equilibrium.
+//!    preloads as extra unknowns (a singular system is an error naming the constraint rows);
+//!    the elastic forces are `P H x` per item.
+//! 5. **Minimum norm**: the multipliers of redundant rigid rows are not determined by
+//!    anything (a self-stress of rigid parts); of all the solutions eom takes the one of least
+//!    norm in the nondimensionalised multipliers, and warns that it is not unique (the
+//!    symbolic path, whose results must hold at every parameter point, reports an error
+//!    instead when the self-stress is not zero).
+//! 6. **Equilibrium check**, scale-aware: the residual of each equation, moments divided by the
+//!    length scale, relative to the largest such term of the same body. Up to
+//!    [`EQUILIBRIUM_TOLERANCE`] it is rounding; up to [`NEAR_EQUILIBRIUM`] the geometry is
+//!    taken as the equilibrium with a warning that names the residual (a negligible geometric
+//!    offset, e.g. a coordinate written `0.5*sin(2π)`); beyond, it is an error.
 
 use super::context::{ItemRow, KnownPreload};
+use super::rank::{
+    RANK_TOLERANCE, complete_pivots, coordinate_weight, equilibrate_columns, length_scale, plan_of,
+    rank, redundant_rows, self_stress_basis,
+};
 use super::{RowLabel, Statics};
 use crate::eliminate::{Row, RowStore, Rref, rref};
 use crate::error::ModelError;
 use crate::items::Body;
 use eom_sym::matrix::SparseMatrix;
 use eom_sym::scalar::Scalar;
+use nalgebra::{DMatrix, DVector};
 
 /// What the statics needs of the assembly.
 pub(crate) struct StaticsProblem<'a, S> {
@@ -42,8 +62,27 @@ pub(crate) struct StaticsProblem<'a, S> {
     pub(crate) bodies: &'a [Body<S>],
 }
 
-/// `λ_c`, `λ_e` and how they were found.
-pub(crate) type StaticsResult<S> = (Vec<S>, Vec<S>, Statics);
+/// Relative residual (see the module documentation) below which an equation holds.
+pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-9;
+
+/// Relative residual up to which the given geometry is accepted as the equilibrium, with a
+/// warning (a geometric offset of about this fraction of the model's size).
+pub const NEAR_EQUILIBRIUM: f64 = 1e-3;
+
+/// The sparse elimination's own pivots are kept when the square matrix they select is at
+/// least this fraction as well conditioned (smallest singular value, nondimensionalised) as
+/// the one complete pivoting selects.
+const OWN_PIVOTS: f64 = 1e-2;
+
+/// The smallest singular value of the square submatrix of `a` at the pivots' rows and columns.
+fn smallest_singular_value(a: &DMatrix<f64>, pivots: &[(usize, usize)]) -> Result<f64, ModelError> {
+    let k = pivots.len();
+    let sub = DMatrix::from_fn(k, k, |i, j| a[(pivots[i].0, pivots[j].1)]);
+    Ok(rank(&sub)?.1.last().copied().unwrap_or(f64::INFINITY))
+}
+
+/// `λ_c`, `λ_e`, how they were found, and warnings.
+pub(crate) type StaticsResult<S> = (Vec<S>, Vec<S>, Statics, Vec<String>);
 
 /// Solve the static preloads (see the module documentation).
 pub(crate) fn solve_statics<S: Scalar>(
@@ -53,28 +92,116 @@ pub(crate) fn solve_statics<S: Scalar>(
     let s = p.h_rows.len();
     // 1. Unloaded.
     if p.applied.iter().all(Scalar::is_zero) && p.known.iter().all(|k| k.1.is_zero()) {
-        return Ok((vec![S::zero(); q], vec![S::zero(); s], Statics::Unloaded));
+        return Ok((
+            vec![S::zero(); q],
+            vec![S::zero(); s],
+            Statics::Unloaded,
+            Vec::new(),
+        ));
     }
-    let nu = q + s;
-    // 2. Force balance.
-    let red = force_balance(p)?;
-    let rank = red.plan.pivots.len();
-    let (lc, le, kind) = if rank == nu {
-        let sol = solution(&red, nu);
-        (sol[..q].to_vec(), sol[q..].to_vec(), Statics::Determinate)
-    } else {
-        // 3. Elastic compatibility.
-        let (mu, le) = compatibility(p, rank)?;
-        (mu, le, Statics::Indeterminate)
+    let length = length_scale(p.j_rows.iter().chain(p.h_rows.iter()));
+    // 2. Redundant rigid rows, set aside.
+    let (redundant, sv, row_weight) = redundant_rows(p.j_rows, p.dim, length)?;
+    let keep: Vec<usize> = (0..q).filter(|i| !redundant.contains(i)).collect();
+    let j_kept: Vec<ItemRow<S>> = keep.iter().map(|&i| p.j_rows[i]).collect();
+    let labels_kept: Vec<RowLabel> = keep.iter().map(|&i| p.j_labels[i].clone()).collect();
+    let sub = StaticsProblem {
+        j_rows: &j_kept,
+        j_labels: &labels_kept,
+        ..*p
     };
-    // 4. Equilibrium.
-    check_equilibrium(p, &lc, &le)?;
-    Ok((lc, le, kind))
+    // 3.–4. The structure without them.
+    let (lc_kept, le, mut kind) = determinate_or_compatible(&sub, length)?;
+    let mut lc = vec![S::zero(); q];
+    for (k, &i) in keep.iter().enumerate() {
+        lc[i] = lc_kept[k];
+    }
+    let mut warnings = Vec::new();
+    // 5. Minimum norm over the self-stresses of the redundant rows.
+    if !redundant.is_empty() {
+        kind = Statics::Indeterminate;
+        let moved = minimum_norm(p, &mut lc, &row_weight, redundant.len(), length)?;
+        warnings.push(redundancy_warning(p, &redundant, &sv, moved));
+    }
+    // 6. Equilibrium.
+    check_equilibrium(p, &lc, &le, length, &mut warnings)?;
+    Ok((lc, le, kind, warnings))
+}
+
+/// Steps 3–4 on a problem without redundant rigid rows.
+fn determinate_or_compatible<S: Scalar>(
+    p: &StaticsProblem<'_, S>,
+    length: f64,
+) -> Result<(Vec<S>, Vec<S>, Statics), ModelError> {
+    let q = p.j_rows.len();
+    let nu = q + p.h_rows.len();
+    let red = force_balance(p, length)?;
+    let rank = red.plan.pivots.len();
+    if rank == nu {
+        let sol = solution(&red, nu);
+        Ok((sol[..q].to_vec(), sol[q..].to_vec(), Statics::Determinate))
+    } else {
+        let (mu, le) = compatibility(p, rank)?;
+        Ok((mu, le, Statics::Indeterminate))
+    }
+}
+
+/// Step 5: move `λ_c` to the least-norm solution, `μ ← μ − N Nᵀ μ` in the nondimensionalised
+/// multipliers `μ = λ / w` (`N`: orthonormal self-stresses); the largest change relative to
+/// the largest multiplier. The symbolic path cannot carry a choice made at one point.
+fn minimum_norm<S: Scalar>(
+    p: &StaticsProblem<'_, S>,
+    lc: &mut [S],
+    row_weight: &[f64],
+    count: usize,
+    length: f64,
+) -> Result<f64, ModelError> {
+    let n = self_stress_basis(p.j_rows, p.dim, length, row_weight, count)?;
+    let mu = DVector::from_iterator(
+        lc.len(),
+        lc.iter().zip(row_weight).map(|(l, w)| l.nominal() / w),
+    );
+    let delta = -(&n * (n.transpose() * &mu));
+    let top = mu.amax();
+    let moved = if top > 0.0 { delta.amax() / top } else { 0.0 };
+    if S::SYMBOLIC && moved > RANK_TOLERANCE {
+        return Err(ModelError::Unsupported(format!(
+            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic path cannot choose among them for every parameter value; use the numeric or robust path, which take the minimum-norm preloads"
+        )));
+    }
+    if !S::SYMBOLIC {
+        for (i, l) in lc.iter_mut().enumerate() {
+            *l = *l + S::from_f64(delta[i] * row_weight[i]);
+        }
+    }
+    Ok(moved)
+}
+
+/// The warning of step 5: which rows, why, and what was done.
+fn redundancy_warning<S>(
+    p: &StaticsProblem<'_, S>,
+    redundant: &[usize],
+    sv: &[f64],
+    moved: f64,
+) -> String {
+    let names: Vec<String> = redundant
+        .iter()
+        .map(|&i| p.j_labels[i].to_string())
+        .collect();
+    let top = sv.first().copied().unwrap_or(1.0);
+    let rank = sv.len() - redundant.len().min(sv.len());
+    let kept_small = sv.get(rank.saturating_sub(1)).map_or(0.0, |x| x / top);
+    let dropped = sv.get(rank).map_or(0.0, |x| x / top);
+    format!(
+        "statics: {} redundant constraint row(s) ({}): combinations of the other holonomic rows (singular values of the scaled Jacobian: smallest kept {kept_small:.1e}, largest dropped {dropped:.1e} of the largest, threshold {RANK_TOLERANCE:.0e}); their preloads are not unique: the minimum-norm preloads are used (self-stress removed: {moved:.1e} of the largest preload), and the geometric stiffness depends on that choice",
+        names.len(),
+        names.join(", ")
+    )
 }
 
 /// Step 2: the reduced rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known
 /// preloads `[0 S | preload]`.
-fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>) -> Result<Rref<S>, ModelError> {
+fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rref<S>, ModelError> {
     let d = p.dim;
     let q = p.j_rows.len();
     let nu = q + p.h_rows.len();
@@ -101,7 +228,33 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>) -> Result<Rref<S>, ModelE
             rows.push_row(&[one, (nu, pre)]);
         }
     }
-    rref(rows, nu, &[], None)
+    // The pivots: complete pivoting on the nondimensionalised matrix, to its numerical rank.
+    let nrows = rows.nrows();
+    let mut a = DMatrix::<f64>::zeros(nrows, nu);
+    for i in 0..nrows {
+        let w = if i < d {
+            coordinate_weight(i, length)
+        } else {
+            1.0
+        };
+        for &(c, v) in rows.row(i).iter().filter(|e| e.0 < nu) {
+            a[(i, c)] = v.nominal() * w;
+        }
+    }
+    equilibrate_columns(&mut a);
+    let (r, _) = rank(&a)?;
+    // The sparse elimination's own pivots (fewest fill-ins, so the smallest expressions) when
+    // they are as many as the numerical rank and independent on the nondimensionalised
+    // matrix; otherwise (e.g. a pivot on a moment of a negligible lever arm) complete pivoting.
+    let own = rref(rows.clone(), nu, &[], None)?;
+    let complete = complete_pivots(&a, r);
+    if own.plan.pivots.len() == r
+        && smallest_singular_value(&a, &own.plan.pivots)?
+            >= OWN_PIVOTS * smallest_singular_value(&a, &complete)?
+    {
+        return Ok(own);
+    }
+    rref(rows, nu, &[], Some(&plan_of(complete, nrows)))
 }
 
 /// The solution of a reduced system with `n` unknowns and every unknown a pivot: the
@@ -219,11 +372,13 @@ fn elastic_forces<S: Scalar>(p: &StaticsProblem<'_, S>, x: &[S], free: &[S]) -> 
     le
 }
 
-/// Step 4: the relative equilibrium check per equation.
+/// Step 6: the scale-aware equilibrium check.
 fn check_equilibrium<S: Scalar>(
     p: &StaticsProblem<'_, S>,
     lc: &[S],
     le: &[S],
+    length: f64,
+    warnings: &mut Vec<String>,
 ) -> Result<(), ModelError> {
     let lam: Vec<S> = lc.iter().chain(le.iter()).copied().collect();
     // Accumulated from the item rows (the columns of Tᵀ) in the order of λ, so each equation
@@ -238,13 +393,42 @@ fn check_equilibrium<S: Scalar>(
             mag[i] += t.abs();
         }
     }
+    // Each body's scale: its largest force, or moment over the length scale.
+    let w = |i: usize| coordinate_weight(i, length);
+    let body_scale: Vec<f64> = mag
+        .chunks(6)
+        .enumerate()
+        .map(|(b, m)| {
+            (0..m.len())
+                .map(|k| m[k] * w(6 * b + k))
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let mut worst: Option<(usize, f64)> = None;
     for (i, (&res, &mag)) in res.iter().zip(&mag).enumerate() {
-        if res.is_nan() || res.abs() > 1e-9 * mag + 1e-300 {
+        let ratio = (res.abs() * w(i)) / body_scale[i / 6];
+        let ratio = if res.abs() <= 1e-300 { 0.0 } else { ratio };
+        if res.is_nan() || ratio.is_nan() || ratio > NEAR_EQUILIBRIUM {
             return Err(ModelError::Equilibrium(format!(
-                "{}: residual {res:.6e} (of terms summing to {mag:.6e} in magnitude). The given geometry is not an equilibrium with these constraints (eom uses the given geometry as the loaded equilibrium: add a support, or give spring preloads that balance the loads)",
-                coordinate_label(p, i)
+                "{}: residual {res:.6e} (of terms summing to {mag:.6e} in magnitude; {ratio:.1e} of the body's largest {}). The given geometry is not an equilibrium with these constraints (eom uses the given geometry as the loaded equilibrium: add a support, or give spring preloads that balance the loads)",
+                coordinate_label(p, i),
+                if length == 1.0 {
+                    "force or moment"
+                } else {
+                    "force, or moment over the model's length scale"
+                }
             )));
         }
+        if ratio > EQUILIBRIUM_TOLERANCE && worst.is_none_or(|(_, r)| ratio > r) {
+            worst = Some((i, ratio));
+        }
+    }
+    if let Some((i, ratio)) = worst {
+        warnings.push(format!(
+            "statics: the given geometry is close to, but not exactly, an equilibrium: {} residual {:.3e}, {ratio:.1e} of the body's largest force or moment (model length scale {length:.3e}); the residual load is left out of the linearization",
+            coordinate_label(p, i),
+            res[i]
+        ));
     }
     Ok(())
 }
