@@ -124,3 +124,27 @@ fn a_stiff_chain_is_stable_on_every_path() {
     assert_eq!(verdicts[0], "stable");
     assert_eq!(verdicts[0], verdicts[1]);
 }
+
+/// k = 1e-100 N/m: the spring is below what A's rounding can tell from none, and the gains
+/// say so as at k = 1e-20 (the position integrates the force at 1/c = 10 m/N per s, the
+/// velocity settles at F/c), never the 0 m/N and 0 N/N they once printed.
+#[test]
+fn a_negligible_stiffness_gives_integrating_gains_not_zero() {
+    for k in ["1e-20", "1e-100"] {
+        let v = analyze_json(&["smd", "--set", &format!("k={k}")]);
+        let gains = v["steady_state_gain"].as_array().expect("gains");
+        let z = gains.iter().find(|g| g["output"] == "z").expect("z / f");
+        let slope = z["integrating"]["coefficient"]
+            .as_f64()
+            .expect("integrating");
+        assert!((slope - 10.0).abs() < 1e-12, "k = {k}: {z}");
+        let zdot = gains
+            .iter()
+            .find(|g| g["output"] == "z dot")
+            .expect("z dot / f");
+        assert!(
+            (zdot["value"].as_f64().expect("finite") - 10.0).abs() < 1e-12,
+            "{zdot}"
+        );
+    }
+}

@@ -155,6 +155,15 @@ pub fn steady_state_gain_with(
     let mut av = ss.a.as_slice().to_vec();
     let mut sc = vec![1.0; n];
     balance_in_place(&mut av, n, &mut sc);
+    let spread =
+        sc.iter().fold(1.0f64, |m, s| m.max(*s)) / sc.iter().fold(1.0f64, |m, s| m.min(*s));
+    if spread > 1.0 / f64::EPSILON {
+        // Scalings beyond 1/ε push the couplings of a nearly singular A's zero modes below
+        // every threshold (a spring of 1e-100 N/m gave gains of 0 instead of integrating):
+        // decide in the model's own coordinates instead.
+        av.copy_from_slice(ss.a.as_slice());
+        sc.iter_mut().for_each(|s| *s = 1.0);
+    }
     let a = DMatrix::from_vec(n, n, av);
     let b = DMatrix::from_fn(n, m, |i, j| ss.b[(i, j)] / sc[i]);
     let c = DMatrix::from_fn(p, n, |i, j| ss.c[(i, j)] * sc[j]);
