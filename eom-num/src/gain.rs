@@ -195,29 +195,8 @@ pub fn steady_state_gain_with(
 
     // Zero-eigenvalue subspaces: right chain ker A^k, left chain ker (Aᵀ)^k.
     let mut decisions = Vec::new();
-    let chain = |mat: &DMatrix<f64>,
-                 decisions: &mut Vec<Rank>|
-     -> Result<(DMatrix<f64>, usize), NumError> {
-        let mut k = DMatrix::<f64>::zeros(n, 0);
-        let mut steps = 0;
-        loop {
-            // {x : M x ∈ span K} = ker((I − K Kᵀ) M).
-            let proj = if k.ncols() == 0 {
-                mat.clone()
-            } else {
-                mat - &k * (k.transpose() * mat)
-            };
-            let ns = nullspace(&proj, RankTolerance::Absolute(thr))?;
-            decisions.push(ns.decision());
-            if ns.basis.ncols() <= k.ncols() || steps >= n {
-                return Ok((k, steps));
-            }
-            k = ns.basis;
-            steps += 1;
-        }
-    };
-    let (v0, nu) = chain(&a, &mut decisions)?;
-    let (l0, nu_l) = chain(&a.transpose(), &mut decisions)?;
+    let (v0, nu) = zero_chain(&a, thr, &mut decisions)?;
+    let (l0, nu_l) = zero_chain(&a.transpose(), thr, &mut decisions)?;
     let q = v0.ncols();
     for d in &decisions {
         if d.is_near_tolerance(100.0) {
@@ -298,24 +277,19 @@ pub fn steady_state_gain_with(
         .first()
         .copied()
         .unwrap_or(0.0);
-    let cn: Vec<f64> = (0..p).map(|i| c.row(i).norm()).collect();
-    let bn: Vec<f64> = (0..m).map(|j| b.column(j).norm()).collect();
-    let mut order = DMatrix::<usize>::zeros(p, m);
-    let mut coef = DMatrix::<f64>::zeros(p, m);
-    let mut nk_bz = bz.clone(); // Nᵏ W₀ B
-    for k in 0..q {
-        let mk = &cz * &nk_bz;
-        let scale_k = 10.0 * n as f64 * f64::EPSILON * w0n * smax.powi(k as i32);
-        for i in 0..p {
-            for j in 0..m {
-                if mk[(i, j)].abs() > scale_k * cn[i] * bn[j] {
-                    order[(i, j)] = k + 1;
-                    coef[(i, j)] = mk[(i, j)];
-                }
-            }
-        }
-        nk_bz = &nmat * nk_bz;
-    }
+    let scale = 10.0 * n as f64 * f64::EPSILON * w0n;
+    let (order, coef) = integrating_orders(
+        &Zeros {
+            nmat: &nmat,
+            bz: &bz,
+            cz: &cz,
+            q,
+        },
+        &b,
+        &c,
+        scale,
+        smax,
+    );
     let gains = DMatrix::from_fn(p, m, |i, j| {
         if order[(i, j)] > 0 {
             Gain::Integrating {
@@ -337,6 +311,73 @@ pub fn steady_state_gain_with(
         warnings,
         certificate: None,
     })
+}
+
+/// The zero-eigenvalue chain of `mat`: a basis of `ker mat^ν` and the index ν, each nullspace
+/// decision recorded.
+fn zero_chain(
+    mat: &DMatrix<f64>,
+    thr: f64,
+    decisions: &mut Vec<Rank>,
+) -> Result<(DMatrix<f64>, usize), NumError> {
+    let n = mat.nrows();
+    let mut k = DMatrix::<f64>::zeros(n, 0);
+    let mut steps = 0;
+    loop {
+        // {x : M x ∈ span K} = ker((I − K Kᵀ) M).
+        let proj = if k.ncols() == 0 {
+            mat.clone()
+        } else {
+            mat - &k * (k.transpose() * mat)
+        };
+        let ns = nullspace(&proj, RankTolerance::Absolute(thr))?;
+        decisions.push(ns.decision());
+        if ns.basis.ncols() <= k.ncols() || steps >= n {
+            return Ok((k, steps));
+        }
+        k = ns.basis;
+        steps += 1;
+    }
+}
+
+/// The zero-mode part of a singular A: `N = W₀ A V₀` (q × q), `W₀ B` and `C V₀`.
+struct Zeros<'a> {
+    nmat: &'a DMatrix<f64>,
+    bz: &'a DMatrix<f64>,
+    cz: &'a DMatrix<f64>,
+    q: usize,
+}
+
+/// For each output/input pair, the order of its pole at s = 0 (0: none) and its coefficient:
+/// the first Markov-like coefficient `Mₖ = C V₀ Nᵏ W₀ B` above its rounding level
+/// (`scale · σ_max(A)ᵏ · ‖cᵢ‖ · ‖bⱼ‖`).
+fn integrating_orders(
+    z: &Zeros<'_>,
+    b: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    scale: f64,
+    smax: f64,
+) -> (DMatrix<usize>, DMatrix<f64>) {
+    let (p, m) = (c.nrows(), b.ncols());
+    let cn: Vec<f64> = (0..p).map(|i| c.row(i).norm()).collect();
+    let bn: Vec<f64> = (0..m).map(|j| b.column(j).norm()).collect();
+    let mut order = DMatrix::<usize>::zeros(p, m);
+    let mut coef = DMatrix::<f64>::zeros(p, m);
+    let mut nk_bz = z.bz.clone(); // Nᵏ W₀ B
+    for k in 0..z.q {
+        let mk = z.cz * &nk_bz;
+        let scale_k = scale * smax.powi(k as i32);
+        for i in 0..p {
+            for j in 0..m {
+                if mk[(i, j)].abs() > scale_k * cn[i] * bn[j] {
+                    order[(i, j)] = k + 1;
+                    coef[(i, j)] = mk[(i, j)];
+                }
+            }
+        }
+        nk_bz = z.nmat * nk_bz;
+    }
+    (order, coef)
 }
 
 /// Margin by which the certificate of [`certify_regular`] must clear the rank threshold.
