@@ -246,31 +246,7 @@ pub fn steady_state_gain_with(
     let c1 = &c * &v1;
 
     // Finite part.
-    let s1 = singular_values(&a1)?;
-    let condition = if s1.is_empty() {
-        1.0
-    } else if s1[s1.len() - 1] > 0.0 {
-        s1[0] / s1[s1.len() - 1]
-    } else {
-        f64::INFINITY
-    };
-    if condition > opts.warn_condition {
-        warnings.push(format!(
-            "A without its zero modes has condition number {condition:.3e}"
-        ));
-    }
-    let fin = if n - q == 0 {
-        ss.d.clone()
-    } else {
-        let x = a1.clone().lu().solve(&b1).ok_or_else(|| {
-            NumError::Singular(format!(
-                "A restricted to its nonzero modes ({}×{}) is singular",
-                n - q,
-                n - q
-            ))
-        })?;
-        &ss.d - &c1 * x
-    };
+    let (fin, condition) = finite_part(&a1, &b1, &c1, &ss.d, opts, &mut warnings)?;
 
     // Markov-like coefficients Mₖ = C V₀ Nᵏ W₀ B and their rounding-level tolerances.
     let w0n = singular_values(&w0.into_owned())?
@@ -311,6 +287,43 @@ pub fn steady_state_gain_with(
         warnings,
         certificate: None,
     })
+}
+
+/// The gain of the nonzero modes, `D − C₁ A₁⁻¹ B₁`, and the condition number of `A₁`.
+fn finite_part(
+    a1: &DMatrix<f64>,
+    b1: &DMatrix<f64>,
+    c1: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    opts: &GainOptions,
+    warnings: &mut Vec<String>,
+) -> Result<(DMatrix<f64>, f64), NumError> {
+    let s1 = singular_values(a1)?;
+    let condition = if s1.is_empty() {
+        1.0
+    } else if s1[s1.len() - 1] > 0.0 {
+        s1[0] / s1[s1.len() - 1]
+    } else {
+        f64::INFINITY
+    };
+    if condition > opts.warn_condition {
+        warnings.push(format!(
+            "A without its zero modes has condition number {condition:.3e}"
+        ));
+    }
+    let fin = if a1.nrows() == 0 {
+        d.clone()
+    } else {
+        let x = a1.clone().lu().solve(b1).ok_or_else(|| {
+            NumError::Singular(format!(
+                "A restricted to its nonzero modes ({}×{}) is singular",
+                a1.nrows(),
+                a1.nrows()
+            ))
+        })?;
+        d - c1 * x
+    };
+    Ok((fin, condition))
 }
 
 /// The zero-eigenvalue chain of `mat`: a basis of `ker mat^ν` and the index ν, each nullspace
