@@ -27,22 +27,13 @@
 //! moment reference (AVL's geometry axes x aft, y right, z up map to the model's −x, −y, z).
 
 use crate::CatalogueError;
-use crate::catalogue::{ModelInfo, ParamSpec};
+use crate::catalogue::ModelInfo;
+use crate::catalogue::p;
 use crate::wings::lattice_derivatives;
 use eom_aero::{Configuration, Derivatives, Reference, Surface};
 use eom_model::*;
-use eom_sym::{Assumption, Expr};
+use eom_sym::Expr;
 use std::sync::OnceLock;
-
-const fn p(name: &'static str, default: f64, unit: &'static str, d: &'static str) -> ParamSpec {
-    ParamSpec {
-        name,
-        default,
-        unit,
-        description: d,
-        assume: Assumption::Positive,
-    }
-}
 
 /// The catalogue entries of this module.
 pub(crate) fn entries() -> Vec<ModelInfo> {

@@ -11,37 +11,9 @@
 
 use crate::CatalogueError;
 use crate::catalogue::ParamSpec;
+use crate::catalogue::{p, real};
 use eom_model::*;
-use eom_sym::{Assumption, Expr};
-
-const fn p(
-    name: &'static str,
-    default: f64,
-    unit: &'static str,
-    description: &'static str,
-) -> ParamSpec {
-    ParamSpec {
-        name,
-        default,
-        unit,
-        description,
-        assume: Assumption::Positive,
-    }
-}
-const fn real(
-    name: &'static str,
-    default: f64,
-    unit: &'static str,
-    description: &'static str,
-) -> ParamSpec {
-    ParamSpec {
-        name,
-        default,
-        unit,
-        description,
-        assume: Assumption::Real,
-    }
-}
+use eom_sym::Expr;
 
 /// The 27 benchmark parameters (Table 1) with the forward speed `v`.
 pub(crate) fn params() -> Vec<ParamSpec> {

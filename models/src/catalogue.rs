@@ -19,7 +19,8 @@ pub struct ParamSpec {
     pub assume: Assumption,
 }
 
-const fn p(
+/// A parameter that must be positive (masses, lengths, stiffnesses).
+pub(crate) const fn p(
     name: &'static str,
     default: f64,
     unit: &'static str,
@@ -33,7 +34,8 @@ const fn p(
         assume: Assumption::Positive,
     }
 }
-const fn real(
+/// A parameter that may take any finite value.
+pub(crate) const fn real(
     name: &'static str,
     default: f64,
     unit: &'static str,

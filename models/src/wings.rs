@@ -14,30 +14,11 @@
 
 use crate::CatalogueError;
 use crate::catalogue::{ModelInfo, ParamSpec};
+use crate::catalogue::{p, real};
 use eom_aero::{Configuration, Derivatives, Reference, Section, SolverOptions, Surface};
 use eom_model::*;
-use eom_sym::{Assumption, Expr};
+use eom_sym::Expr;
 use std::sync::OnceLock;
-
-const fn p(name: &'static str, default: f64, unit: &'static str, d: &'static str) -> ParamSpec {
-    ParamSpec {
-        name,
-        default,
-        unit,
-        description: d,
-        assume: Assumption::Positive,
-    }
-}
-
-const fn real(name: &'static str, default: f64, unit: &'static str, d: &'static str) -> ParamSpec {
-    ParamSpec {
-        name,
-        default,
-        unit,
-        description: d,
-        assume: Assumption::Real,
-    }
-}
 
 /// The seed fin's CYv (per unit v/V).
 pub const FIN_CYV: f64 = -2.4812897959183673;
