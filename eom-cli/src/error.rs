@@ -87,6 +87,10 @@ pub enum CliError {
         /// Why not.
         source: std::io::Error,
     },
+    /// A benchmark of `eom bench` could not be run (its reference could not be formed, or
+    /// its chart drawn).
+    #[error("bench: {0}")]
+    Bench(String),
     /// Reading or writing a file or a stream.
     #[error("{path}: {source}")]
     Io {

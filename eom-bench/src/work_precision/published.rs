@@ -33,7 +33,10 @@ impl Published {
         let speed = names.iter().position(|n| n == "v").ok_or_else(|| {
             WorkPrecisionError::Reference("the bicycle has no parameter v".into())
         })?;
-        let table = crate::read_csv(include_str!("../../data/bicycle_eigs_126_speeds.csv"));
+        // The table is the tests crate's reference data (its README cites the source).
+        let table = crate::compare::read_csv(include_str!(
+            "../../../tests/data/bicycle_eigs_126_speeds.csv"
+        ));
         let mut cases = Vec::new();
         for row in table.iter().filter(|r| {
             let v = r[0];
@@ -49,8 +52,10 @@ impl Published {
         let mut reference_err = 0.0f64;
         for (values, want) in &cases {
             let r = refm.at(values)?;
-            reference_err =
-                reference_err.max(crate::max_abs_error(&lean_steer(&r.eigenvalues), want));
+            reference_err = reference_err.max(crate::compare::max_abs_error(
+                &lean_steer(&r.eigenvalues),
+                want,
+            ));
         }
         Ok(Published {
             cases,
@@ -65,7 +70,7 @@ impl Published {
         for (values, want) in &self.cases {
             match eval(values)? {
                 Some((_, e)) => {
-                    worst = worst.max(crate::max_abs_error(&lean_steer(&e), want));
+                    worst = worst.max(crate::compare::max_abs_error(&lean_steer(&e), want));
                 }
                 None => return Ok(f64::INFINITY),
             }

@@ -299,9 +299,9 @@ pub fn eigenvalue_error(got: &[Complex64], want: &[Complex64]) -> (f64, f64) {
         .iter()
         .fold(0.0f64, |m, z| m.max(z.norm()))
         .max(f64::MIN_POSITIVE);
-    crate::match_eigenvalues(got, want)
-        .iter()
-        .fold((0.0f64, 0.0f64), |(all, nonzero), (g, e)| {
+    crate::compare::match_eigenvalues(got, want).iter().fold(
+        (0.0f64, 0.0f64),
+        |(all, nonzero), (g, e)| {
             let d = (g - e).norm();
             if d == 0.0 {
                 (all, nonzero)
@@ -310,7 +310,8 @@ pub fn eigenvalue_error(got: &[Complex64], want: &[Complex64]) -> (f64, f64) {
             } else {
                 (all.max(d / e.norm()), nonzero.max(d / e.norm()))
             }
-        })
+        },
+    )
 }
 
 /// Every method on one built-in model: time per A and errors against the double-double

@@ -1,0 +1,103 @@
+//! `eom bench`: the benchmarks of `eom-bench` on the user's machine. `accuracy` is the
+//! work-precision comparison of every way eom offers to get eigenvalues.
+
+use crate::error::CliError;
+use crate::output::{Written, write_output};
+use crate::progress::Progress;
+use eom_bench::work_precision::{self, MODELS, Options, WorkPrecisionError};
+use std::path::Path;
+use std::time::Duration;
+
+/// What `eom bench accuracy` was asked for.
+pub struct AccuracyRequest {
+    /// Models (default: the benchmark's list).
+    pub models: Vec<String>,
+    /// Random parameter points per model.
+    pub points: usize,
+    /// Minimum time spent timing each method, in milliseconds.
+    pub min_time_ms: u64,
+    /// Output directory (created if missing).
+    pub dir: Option<std::path::PathBuf>,
+}
+
+/// The largest number of random points per model (each costs a double-double reference).
+pub const MAX_POINTS: usize = 10_000;
+
+/// Run the work-precision benchmark; returns the Markdown table, and writes the CSV, the
+/// table and the chart into the directory when one is given (a note per file on `stderr`).
+pub fn accuracy(
+    req: &AccuracyRequest,
+    quiet: bool,
+    stderr: &mut String,
+) -> Result<String, CliError> {
+    if req.points == 0 || req.points > MAX_POINTS {
+        return Err(CliError::BadArgument {
+            argument: format!("--points {}", req.points),
+            problem: format!("between 1 and {MAX_POINTS} random points per model"),
+        });
+    }
+    let models: Vec<String> = if req.models.is_empty() {
+        MODELS.iter().map(|m| m.to_string()).collect()
+    } else {
+        req.models.clone()
+    };
+    for m in &models {
+        if !MODELS.contains(&m.as_str()) {
+            return Err(CliError::BadArgument {
+                argument: m.clone(),
+                problem: format!(
+                    "not a model of the accuracy benchmark (its generated code is compiled \
+                     in): {}",
+                    MODELS.join(", ")
+                ),
+            });
+        }
+    }
+    let opts = Options {
+        points: req.points,
+        min_time: Duration::from_millis(req.min_time_ms),
+        ..Options::default()
+    };
+    let bar = Progress::new(quiet, models.len() as u64, "bench accuracy");
+    let mut rows = Vec::new();
+    for m in &models {
+        bar.stage(m);
+        rows.extend(work_precision::run_model(m, &opts).map_err(bench_error)?);
+    }
+    bar.finish();
+    let md = work_precision::output::markdown(&rows, 1e-12);
+    if let Some(dir) = &req.dir {
+        std::fs::create_dir_all(dir).map_err(|e| CliError::Io {
+            path: dir.display().to_string(),
+            source: e,
+        })?;
+        let chart = work_precision::chart::svg(&rows).map_err(bench_error)?;
+        for (name, text) in [
+            ("work_precision.csv", work_precision::output::csv(&rows)),
+            ("work_precision.md", md.clone()),
+            ("work_precision.svg", chart),
+        ] {
+            note(&dir.join(name), &text, stderr)?;
+        }
+    }
+    Ok(md)
+}
+
+fn note(path: &Path, text: &str, stderr: &mut String) -> Result<(), CliError> {
+    let verb = match write_output(path, text)? {
+        Written::Written => "wrote",
+        Written::Unchanged => "unchanged",
+    };
+    stderr.push_str(&format!("{verb} {}\n", path.display()));
+    Ok(())
+}
+
+/// A benchmark failure as a CLI error (model and numeric errors keep their type).
+fn bench_error(e: WorkPrecisionError) -> CliError {
+    match e {
+        WorkPrecisionError::Model(e) => CliError::Model(e),
+        WorkPrecisionError::Num(e) => CliError::Num(e),
+        WorkPrecisionError::Sym(e) => CliError::Sym(e),
+        other => CliError::Bench(other.to_string()),
+    }
+}
