@@ -11,11 +11,12 @@
 use crate::error::CliError;
 use crate::format::{ReIm, eigenvalue, g, re_im};
 use crate::params::ModelChoice;
+use crate::timing::step;
 use eom_model::ModelError;
 use eom_model::{Linearizer, Method};
 use eom_num::StateSpace;
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
-use eom_num::gain::{Gain, steady_state_gain};
+use eom_num::gain::{Gain, SteadyStateGain, steady_state_gain};
 use eom_num::minreal::{
     MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
 };
@@ -373,12 +374,21 @@ pub fn linearize(
 ) -> Result<eom_model::Linearization, CliError> {
     let ov: Vec<(&str, f64)> = overrides.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     // Building at the point validates the names and values (positive masses, …).
-    let at_point = choice.build(overrides)?;
+    let at_point = step("build model", || choice.build(overrides))?;
+    step("linearize", || linearize_at(choice, &ov, method, at_point))
+}
+
+fn linearize_at(
+    choice: &ModelChoice,
+    ov: &[(&str, f64)],
+    method: Method,
+    at_point: eom_model::Model<eom_sym::Expr>,
+) -> Result<eom_model::Linearization, CliError> {
     Ok(match method {
         Method::Symbolic => {
             let nominal = choice.build(&[])?;
             Linearizer::new(&nominal)
-                .at(&ov)
+                .at(ov)
                 .method(Method::Symbolic)
                 .run()
                 .map_err(|e| match e {
@@ -462,12 +472,30 @@ fn analyze_state_space(
         structural_zeros,
         ..mode_options()
     };
-    let modes = Modes::compute_with(ss, &opts)?;
     let n = &ss.names;
     let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
     let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
-
-    let reduced = minimal_realization(ss, &MinrealOptions::default());
+    // Each analysis is a dense O(n³) step on a large model, and all are independent but the
+    // zeros, which are those of the minimal realization: two chains, one per core.
+    let ((modes, gain), (reduced, zeros)) = rayon::join(
+        || {
+            let modes = step("modes", || Modes::compute_with(ss, &opts));
+            (modes, step("gains", || steady_state_gain(ss)))
+        },
+        || {
+            let reduced = step("minimal realization", || {
+                minimal_realization(ss, &MinrealOptions::default())
+            });
+            let zeros = (ss.inputs() > 0 && ss.outputs() > 0).then(|| {
+                step("zeros", || match &reduced {
+                    Ok((m, _)) => transmission_zeros(m),
+                    Err(e) => Err(e.clone()),
+                })
+            });
+            (reduced, zeros)
+        },
+    );
+    let modes = modes?;
     let minimal = match reduced
         .as_ref()
         .map_err(|e| CliError::Num(e.clone()))
@@ -479,22 +507,22 @@ fn analyze_state_space(
             None
         }
     };
-    let steady_state_gain = match gains(ss, &inputs, &outputs, &mut warnings) {
+    let steady_state_gain = match gain
+        .map_err(CliError::from)
+        .map(|g| gain_entries(&g, &inputs, &outputs, &mut warnings))
+    {
         Ok(g) => Some(g),
         Err(e) => {
             warnings.push(format!("steady-state gains not computed: {e}"));
             None
         }
     };
-    let zeros = if ss.inputs() == 0 || ss.outputs() == 0 {
-        None
-    } else {
-        match reduced.and_then(|(m, _)| transmission_zeros(&m)) {
-            Ok(z) => Some(re_im(&z)),
-            Err(e) => {
-                warnings.push(format!("transmission zeros not computed: {e}"));
-                None
-            }
+    let zeros = match zeros {
+        None => None,
+        Some(Ok(z)) => Some(re_im(&z)),
+        Some(Err(e)) => {
+            warnings.push(format!("transmission zeros not computed: {e}"));
+            None
         }
     };
     let frequency_response = match freq {
@@ -635,13 +663,12 @@ fn removed_note(z: Complex64, why: RemovedKind, st: ModeStability, kind: ModeKin
     }
 }
 
-fn gains(
-    ss: &StateSpace<f64>,
+fn gain_entries(
+    gain: &SteadyStateGain,
     inputs: &[Signal],
     outputs: &[Signal],
     warnings: &mut Vec<String>,
-) -> Result<Vec<GainEntry>, CliError> {
-    let gain = steady_state_gain(ss)?;
+) -> Vec<GainEntry> {
     warnings.extend(
         gain.warnings
             .iter()
@@ -665,7 +692,7 @@ fn gains(
             });
         }
     }
-    Ok(out)
+    out
 }
 
 /// `n` logarithmically spaced values from `lo` to `hi`, both included.

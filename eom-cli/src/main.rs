@@ -25,6 +25,7 @@ mod progress;
 mod report;
 mod sweep;
 mod symbolic;
+mod timing;
 mod wings;
 
 use crate::analyze::{AnalyzeOptions, FreqRequest};
@@ -349,7 +350,8 @@ struct ReportArgs {
     /// Add a sweep of one parameter: eigenvalues over it, its boundaries, the root locus
     #[arg(long, value_name = "NAME=START:STOP:COUNT")]
     sweep: Option<String>,
-    /// Output directory (created if missing); the page is DIR/MODEL.html
+    /// Output directory (created if missing, when its parent exists); the page is
+    /// DIR/MODEL.html
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
 }
@@ -472,9 +474,15 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             let choice = ModelChoice::resolve(&r.model)?;
             let overrides = choice.parse_sets(&r.set)?;
             let spec = r.sweep.as_deref().map(SweepSpec::parse).transpose()?;
-            let path =
-                report::write_report(&choice, &overrides, spec.as_ref(), &r.output, cli.quiet)?;
-            stderr.push_str(&format!("wrote {}\n", path.display()));
+            let w = report::write_report(&choice, &overrides, spec.as_ref(), &r.output, cli.quiet)?;
+            if w.created_dir {
+                stderr.push_str(&format!("created directory {}\n", r.output.display()));
+            }
+            let verb = match w.written {
+                output::Written::Written => "wrote",
+                output::Written::Unchanged => "unchanged",
+            };
+            stderr.push_str(&format!("{verb} {}\n", w.path.display()));
             String::new()
         }
         Command::Codegen(c) => {

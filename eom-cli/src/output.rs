@@ -1,8 +1,10 @@
-//! Writing a generated file (`eom codegen -o PATH`, `eom export -o PATH`) safely: the existing
-//! file is read (to leave it untouched when it already holds the text) only when it is a
-//! regular file of exactly the new text's size; anything else (a device such as `/dev/full`,
-//! a FIFO, a terminal) is opened for writing without blocking and written once; a missing
-//! directory is an error naming it, never created silently.
+//! Writing a generated file (`eom codegen -o PATH`, `eom export -o PATH`, `eom report -o DIR`)
+//! safely: the existing file is read (to leave it untouched when it already holds the text)
+//! only when it is a regular file of exactly the new text's size; anything else (a device such
+//! as `/dev/full`, a FIFO, a terminal) is opened for writing without blocking and written
+//! once; a missing directory is an error naming it, never created silently (the one exception,
+//! the output directory `eom report` is given, is created only when its parent exists, and
+//! said so).
 
 use std::fs::{File, OpenOptions};
 use std::io::{ErrorKind, Read, Write};
@@ -74,6 +76,52 @@ pub fn write_output(path: &Path, text: &str) -> Result<Written, CliError> {
     let file = opts.open(path).map_err(|e| io_error(path, explain(e)))?;
     write_patiently(file, text.as_bytes(), regular).map_err(|e| io_error(path, explain(e)))?;
     Ok(Written::Written)
+}
+
+/// An output directory named on the command line (`eom report -o DIR`), checked before the
+/// work starts: `Ok(false)` when it is an existing directory, `Ok(true)` when it is missing
+/// but its parent exists (then [`create_output_dir`] makes it once there is something to
+/// write). Anything else is an error naming the path: a missing parent (never created), a
+/// path that is not a directory.
+pub fn check_output_dir(dir: &Path) -> Result<bool, CliError> {
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => return Ok(false),
+        Ok(_) => {
+            return Err(io_error(
+                dir,
+                std::io::Error::new(ErrorKind::NotADirectory, "is not a directory"),
+            ));
+        }
+        Err(e) if e.kind() != ErrorKind::NotFound => return Err(io_error(dir, e)),
+        Err(_) => {}
+    }
+    if let Some(parent) = dir.parent().filter(|d| !d.as_os_str().is_empty())
+        && !parent.is_dir()
+    {
+        return Err(io_error(
+            parent,
+            std::io::Error::new(
+                ErrorKind::NotFound,
+                format!(
+                    "the directory containing the output directory {} does not exist (create \
+                     it first)",
+                    dir.display()
+                ),
+            ),
+        ));
+    }
+    Ok(true)
+}
+
+/// Creates the output directory [`check_output_dir`] found missing (one level: its parent
+/// exists).
+pub fn create_output_dir(dir: &Path) -> Result<(), CliError> {
+    match std::fs::create_dir(dir) {
+        Ok(()) => Ok(()),
+        // Made in the meantime by someone else: as good.
+        Err(e) if e.kind() == ErrorKind::AlreadyExists && dir.is_dir() => Ok(()),
+        Err(e) => Err(io_error(dir, e)),
+    }
 }
 
 /// Whether the regular file at `path` holds exactly `text` (read up to its known size).

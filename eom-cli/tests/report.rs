@@ -125,3 +125,67 @@ fn bad_report_arguments_fail_before_writing() {
     assert_eq!(r.code, 2, "{}", r.stderr);
     assert!(std::fs::read_dir(&dir).unwrap().next().is_none());
 }
+
+/// The page goes through the safe writer of `eom codegen -o`: the output directory is created
+/// only when its parent exists (and said so), a missing parent is an error before any work and
+/// nothing is created, an unchanged page is left alone, a FIFO without a reader does not block.
+#[test]
+fn the_page_is_written_safely() {
+    let dir = scratch("safe");
+    let missing = dir.join("no/such");
+    let r = eom(&["report", "smd", "-o", missing.to_str().unwrap()]);
+    assert_eq!(r.code, 1, "{}", r.stderr);
+    let parent = dir.join("no").display().to_string();
+    assert!(
+        r.stderr.contains(&parent) && r.stderr.contains("does not exist"),
+        "{}",
+        r.stderr
+    );
+    assert!(!dir.join("no").exists(), "a directory was created");
+
+    let out = dir.join("pages");
+    let d = out.to_str().unwrap();
+    let first = eom(&["report", "smd", "-o", d]);
+    assert_eq!(first.code, 0, "{}", first.stderr);
+    assert!(
+        first.stderr.contains(&format!("created directory {d}")),
+        "{}",
+        first.stderr
+    );
+    assert!(first.stderr.contains("wrote "), "{}", first.stderr);
+    let page = std::fs::read_to_string(out.join("smd.html")).expect("the page");
+    assert!(page.contains("<html"), "not a page");
+    let second = eom(&["report", "smd", "-o", d]);
+    assert_eq!(second.code, 0, "{}", second.stderr);
+    assert!(second.stderr.contains("unchanged"), "{}", second.stderr);
+    assert!(!second.stderr.contains("created"), "{}", second.stderr);
+
+    // A regular file where the directory should be.
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").expect("file");
+    let r = eom(&["report", "smd", "-o", file.to_str().unwrap()]);
+    assert_eq!(r.code, 1, "{}", r.stderr);
+    assert!(r.stderr.contains("not a directory"), "{}", r.stderr);
+
+    #[cfg(unix)]
+    {
+        let fifo_dir = dir.join("fifo");
+        std::fs::create_dir(&fifo_dir).expect("fifo dir");
+        let made = std::process::Command::new("mkfifo")
+            .arg(fifo_dir.join("smd.html"))
+            .status()
+            .expect("mkfifo runs");
+        assert!(made.success());
+        let (tx, rx) = std::sync::mpsc::channel();
+        let path = fifo_dir.display().to_string();
+        std::thread::spawn(move || {
+            tx.send(eom(&["report", "smd", "-o", &path])).ok();
+        });
+        let r = rx
+            .recv_timeout(std::time::Duration::from_secs(120))
+            .expect("eom report -o DIR with a FIFO returns instead of blocking");
+        assert_eq!(r.code, 1, "{}", r.stderr);
+        assert!(r.stderr.contains("no process is reading"), "{}", r.stderr);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -72,15 +72,37 @@ fn clearly_regular_a_is_certified_and_a_nearly_singular_one_goes_to_the_svd() {
     let (smax, smin) = (sv.max(), sv.min());
     assert!(cert.sigma_min_lower <= smin * (1.0 + 1e-12) && cert.sigma_max_upper >= smax);
     assert!(g.condition >= smax / smin);
-    // σ_min = 1e-9 σ_max: regular by the SVD (threshold 10·n·ε·σ_max ≈ 1e-13 σ_max) but not
+    // σ_min = 1e-10 σ_max: regular by the SVD (threshold 10·n·ε·σ_max ≈ 1e-13 σ_max) but not
     // by a margin of 1e4 over the bounds — the SVD decides, with its singular values.
     let mut e = d.clone();
-    e[(0, 0)] = 1e-9 * n as f64;
+    e[(0, 0)] = 1e-10 * n as f64;
     let ss = StateSpace::new(e, b, c, DMatrix::zeros(3, 2)).unwrap();
     let g = steady_state_gain(&ss).unwrap();
     assert!(g.certificate.is_none());
     assert_eq!(g.a_rank.rank, n);
     assert_eq!(g.a_rank.singular_values.len(), n);
+}
+
+/// Many equal singular values: ‖A‖_F = √n σ_max overestimates σ_max twenty-fold at n = 400,
+/// which put σ_min = 5e-8 σ_max within the certificate's margin; the bound √(‖A‖₁‖A‖_∞)
+/// does not (the threshold is 10·n·ε·σ_max ≈ 9e-13 σ_max), so the certificate decides, and
+/// its bounds bracket the singular values.
+#[test]
+fn the_certificate_bounds_sigma_max_by_row_and_column_sums() {
+    let n = 400;
+    let mut a = DMatrix::<f64>::identity(n, n);
+    a[(n - 1, n - 1)] = 5e-8;
+    let mut b = DMatrix::<f64>::zeros(n, 1);
+    b[(n - 1, 0)] = 1.0;
+    let c = b.transpose();
+    let ss = StateSpace::new(a.clone(), b, c, DMatrix::zeros(1, 1)).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    let cert = g.certificate.expect("certified");
+    assert!(cert.sigma_max_upper >= 1.0 && cert.sigma_max_upper <= 1.0 + 1e-12);
+    assert!(cert.sigma_min_lower <= 5e-8 * (1.0 + 1e-12));
+    assert!(cert.sigma_min_lower >= 5e-8 * (1.0 - 1e-12));
+    assert_eq!(g.a_rank.rank, n);
+    assert!(close(g.get(0, 0), -1.0 / 5e-8), "{:?}", g.get(0, 0));
 }
 
 /// Modal form Λ = diag(0, −a), hidden by a random similarity T: A = T Λ T⁻¹, B = T Bm,

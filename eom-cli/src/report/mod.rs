@@ -9,6 +9,7 @@ mod sections;
 
 use crate::analyze::{self, AnalyzeOptions, FreqRequest};
 use crate::error::CliError;
+use crate::output;
 use crate::params::{ModelChoice, SweepSpec};
 use crate::progress::Progress;
 use crate::sweep::SweepReport;
@@ -22,15 +23,27 @@ pub const CLOSED_FORM_STATES: usize = 4;
 /// Stages of the progress bar.
 const STAGES: u64 = 7;
 
-/// Computes everything and writes `DIR/NAME.html` (the directory is created if missing);
-/// returns the path written.
+/// What [`write_report`] did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Written {
+    /// The page, `DIR/NAME.html`.
+    pub path: PathBuf,
+    /// Whether the output directory was created (it was missing, its parent was not).
+    pub created_dir: bool,
+    /// Whether the page was written or already held exactly this text.
+    pub written: output::Written,
+}
+
+/// Computes everything and writes `DIR/NAME.html` by [`output::write_output`] (a FIFO or a
+/// device is not blocked on, an unchanged page is left as it is). A missing `DIR` is created
+/// when its parent exists; a missing parent is an error, checked before the work starts.
 pub fn write_report(
     choice: &ModelChoice,
     overrides: &[(String, f64)],
     sweep: Option<&SweepSpec>,
     dir: &Path,
     quiet: bool,
-) -> Result<PathBuf, CliError> {
+) -> Result<Written, CliError> {
     if let Some(spec) = sweep {
         choice.param(&spec.name)?;
         let (lo, hi) = spec.bounds();
@@ -41,11 +54,7 @@ pub fn write_report(
             });
         }
     }
-    let io = |source| CliError::Io {
-        path: dir.display().to_string(),
-        source,
-    };
-    std::fs::create_dir_all(dir).map_err(io)?;
+    let created_dir = output::check_output_dir(dir)?;
     let bar = Progress::new(
         quiet,
         STAGES + sweep.map_or(0, |s| s.count as u64),
@@ -57,11 +66,15 @@ pub fn write_report(
         .file_stem()
         .map_or_else(|| "model".to_string(), |s| s.to_string_lossy().into_owned());
     let path = dir.join(format!("{stem}.html"));
-    std::fs::write(&path, html).map_err(|source| CliError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
-    Ok(path)
+    if created_dir {
+        output::create_output_dir(dir)?;
+    }
+    let written = output::write_output(&path, &html)?;
+    Ok(Written {
+        path,
+        created_dir,
+        written,
+    })
 }
 
 /// The page.
