@@ -29,13 +29,14 @@ use reference::{Reference, ReferenceModel};
 use std::time::Duration;
 
 /// The models of the benchmark.
-pub const MODELS: [&str; 8] = [
+pub const MODELS: [&str; 9] = [
     "smd",
     "shimmy",
     "bicycle",
     "quarter_car",
     "top",
     "chain50",
+    "chainp50",
     "smd_wing",
     "shimmy_wing",
 ];
