@@ -9,8 +9,8 @@
 //! four lean/steer eigenvalues against the benchmark's (Meijaard et al. 2007, Table 2 speeds,
 //! 17-digit values of `tests/data/bicycle_eigs_126_speeds.csv`).
 //!
-//! `cargo run --release -p tests --example work_precision -- -o DIR` writes the CSV, the
-//! Markdown table and the SVG chart ([`output`], [`chart`]).
+//! `eom bench accuracy -o DIR` writes the CSV, the Markdown table and the SVG chart
+//! ([`output`], [`chart`]).
 
 pub mod chart;
 pub mod generated;
