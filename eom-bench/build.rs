@@ -7,13 +7,14 @@ use eom_codegen::build::{Generate, write_if_changed};
 use std::path::PathBuf;
 
 /// The models generated in both precisions (the benchmark's model list).
-const MODELS: [&str; 8] = [
+const MODELS: [&str; 9] = [
     "smd",
     "shimmy",
     "bicycle",
     "quarter_car",
     "top",
     "chain50",
+    "chainp50",
     "smd_wing",
     "shimmy_wing",
 ];

@@ -82,7 +82,7 @@ int main(int argc, char **argv) {
     int e = bicycle_rs(bicycle_nom, A, B, C, D);
     printf("Rust bicycle (err %d) A (col-major 6x6) at nominal:", e);
     for (int i = 0; i < 36; i++) printf("%s%.9g", i % 6 ? " " : "\n  ", A[i]);
-    printf("\n  B:"); for (int i = 0; i < 6; i++) printf(" %.9g", B[i]);
+    printf("\n  B:"); for (int i = 0; i < 12; i++) printf(" %.9g", B[i]);
     printf("\n  C:"); for (int i = 0; i < 12; i++) printf(" %.9g", C[i]);
     printf("\n");
     typedef int (*shimmy_fn)(const double *, double *, double *, double *, double *);

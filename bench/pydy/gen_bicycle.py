@@ -3,8 +3,8 @@ check it numerically against the Meijaard et al. (2007) benchmark, and run
 PyDy's C code generator (cse=True) on
 
   * bicycle4: A (4x4, [phi, delta, phid, deltad]) and B (4x2, [T_phi, T_delta])
-  * bicycle6: A (6x6, [psi, y, phi, delta, phid, deltad]), B (6x1, T_delta),
-              C (2x6, outputs [delta, phi]), D (2x1)  -- the same shapes as our
+  * bicycle6: A (6x6, [psi, y, phi, delta, phid, deltad]), B (6x2, [T_phi, T_delta]),
+              C (2x6, outputs [delta, phi]), D (2x2)  -- the same shapes as our
               generated `bicycle` module (different but equivalent state choice).
 
 The psi row is the sympy-linearized yaw kinematics (row q1' of the full
@@ -103,11 +103,11 @@ A6 = sm.zeros(6, 6)
 A6[0, 2:6] = yaw_row
 A6[1, 0] = v                       # y' = v psi
 A6[2:6, 2:6] = A4
-B6 = sm.zeros(6, 1)
-B6[2:6, 0] = B4[:, 1]
+B6 = sm.zeros(6, 2)
+B6[2:6, :] = B4                    # [T_phi, T_delta], as eom's bicycle
 C6 = sm.zeros(2, 6)
 C6[0, 3] = 1                       # delta
 C6[1, 2] = 1                       # phi
-D6 = sm.zeros(2, 1)
+D6 = sm.zeros(2, 2)
 print('yaw row:', sm.simplify(yaw_row))
 write_pydy('bicycle6', list(P), [A6, B6, C6, D6])

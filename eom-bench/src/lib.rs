@@ -4,6 +4,9 @@
 //!   eigenvalues — the numeric and robust reductions, the symbolic reduction on the tape, and
 //!   the generated code compiled into this crate by its `build.rs` — timed, and checked against
 //!   a double-double reference of the same model and against published values;
+//! * [`throughput`] (`eom bench throughput`): a sweep of many random parameter points of the
+//!   bicycle through its generated code and the eigenvalues, in parallel, with its points per
+//!   second;
 //! * [`compare`]: reading reference tables and matching eigenvalues, shared with the
 //!   cross-crate tests.
 //!
@@ -14,4 +17,5 @@
 #![forbid(unsafe_code)]
 
 pub mod compare;
+pub mod throughput;
 pub mod work_precision;

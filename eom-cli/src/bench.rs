@@ -1,5 +1,6 @@
 //! `eom bench`: the benchmarks of `eom-bench` on the user's machine. `accuracy` is the
-//! work-precision comparison of every way eom offers to get eigenvalues.
+//! work-precision comparison of every way eom offers to get eigenvalues; `throughput` the
+//! points per second of a parallel parameter sweep of the bicycle.
 
 use crate::error::CliError;
 use crate::output::{Written, write_output};
@@ -100,4 +101,32 @@ fn bench_error(e: WorkPrecisionError) -> CliError {
         WorkPrecisionError::Sym(e) => CliError::Sym(e),
         other => CliError::Bench(other.to_string()),
     }
+}
+
+/// The largest number of points of `eom bench throughput`.
+pub const MAX_THROUGHPUT_POINTS: usize = 1_000_000_000;
+
+/// Run the throughput sweep of the bicycle (`eom bench throughput`); returns the report.
+pub fn throughput(points: usize, threads: Option<usize>) -> Result<String, CliError> {
+    use eom_bench::throughput::{self as tp, Options};
+    if points == 0 || points > MAX_THROUGHPUT_POINTS {
+        return Err(CliError::BadArgument {
+            argument: format!("--points {points}"),
+            problem: format!("between 1 and {MAX_THROUGHPUT_POINTS} points"),
+        });
+    }
+    if threads == Some(0) {
+        return Err(CliError::BadArgument {
+            argument: "--threads 0".into(),
+            problem: "at least one thread".into(),
+        });
+    }
+    let defaults = Options::default();
+    let opts = Options {
+        points,
+        threads: threads.unwrap_or(defaults.threads),
+        ..defaults
+    };
+    let t = tp::run(&opts).map_err(|e| CliError::Bench(e.to_string()))?;
+    Ok(tp::to_text(&t))
 }

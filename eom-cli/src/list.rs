@@ -73,7 +73,8 @@ pub fn to_text(entries: &[ModelEntry]) -> String {
     );
     for m in entries {
         let name = if m.pattern {
-            format!("{} (N ≥ 1, e.g. chain10, chain50)", m.name)
+            let stem = m.name.trim_end_matches('N');
+            format!("{} (N ≥ 1, e.g. {stem}10, {stem}50)", m.name)
         } else {
             m.name.clone()
         };

@@ -168,7 +168,7 @@ enum Command {
     )]
     Report(ReportArgs),
     /// Benchmarks on this machine: `accuracy`, the time and the eigenvalue error of every way
-    /// eom offers to get eigenvalues
+    /// eom offers to get eigenvalues; `throughput`, points per second of a parameter sweep
     #[command(subcommand)]
     Bench(BenchCommand),
     /// Print a commented starter model file (redirect it into NAME.toml)
@@ -197,12 +197,33 @@ enum BenchCommand {
         the chart work_precision.svg (log error against log time, one panel per model)."
     )]
     Accuracy(BenchAccuracyArgs),
+    /// Throughput: a sweep of random parameter points of the bicycle through its generated
+    /// f64 code and the eigenvalues, in parallel; points per second in total and per thread
+    #[command(long_about = "Throughput of a parameter sweep on this machine.\n\n\
+        The bicycle's generated f64 code (eval_ab, compiled into this binary) and the \
+        eigenvalues of its A at N random parameter points (all 27 parameters within ±20 % of \
+        nominal, the speed too, so both stable and unstable points occur; point k depends only \
+        on the seed and k), on T threads with rayon. Prints the wall time, the points per \
+        second in total and per thread, the thread time per point of drawing the point, of the \
+        generated code and of the eigenvalues, and what the sweep found: failures, the stable \
+        points and the range of the largest real part of the non-zero eigenvalues.")]
+    Throughput(BenchThroughputArgs),
+}
+
+#[derive(Args, Debug)]
+struct BenchThroughputArgs {
+    /// Random parameter points
+    #[arg(long, value_name = "N", default_value_t = 1_000_000)]
+    points: usize,
+    /// Worker threads (default: the machine's available parallelism)
+    #[arg(long, value_name = "T")]
+    threads: Option<usize>,
 }
 
 #[derive(Args, Debug)]
 struct BenchAccuracyArgs {
     /// Models (default: all of the benchmark's: smd, shimmy, bicycle, quarter_car, top,
-    /// chain50, smd_wing, shimmy_wing)
+    /// chain50, chainp50, smd_wing, shimmy_wing)
     #[arg(value_name = "MODEL")]
     models: Vec<String>,
     /// Random parameter points per model (models with more than 40 states use at most 4)
@@ -515,6 +536,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             };
             bench::accuracy(&req, cli.quiet, &mut stderr)?
         }
+        Command::Bench(BenchCommand::Throughput(t)) => bench::throughput(t.points, t.threads)?,
         Command::Export { model, set, output } => {
             let choice = ModelChoice::resolve(&model)?;
             let overrides = choice.parse_sets(&set)?;

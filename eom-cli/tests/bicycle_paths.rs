@@ -154,3 +154,57 @@ fn structural_zeros_are_found_at_random_points_on_every_path() {
         }
     }
 }
+
+/// The steady-state gains `eom analyze bicycle` prints for both published inputs: a constant
+/// f = [T_phi, T_delta] holds q = (g K0 + v² K2)⁻¹ f, with the benchmark's K0 and K2
+/// (Meijaard et al. 2007, Appendix A, the values for Table 1 to 14 decimals;
+/// docs/references.md §A), on every path, at speeds where the bicycle is stable and not.
+#[test]
+#[allow(clippy::excessive_precision)]
+fn printed_gains_are_the_published_static_compliance() {
+    let k0 = [
+        [-80.95, -2.59951685249872],
+        [-2.59951685249872, -0.80329488458618],
+    ];
+    let k2 = [[0.0, 76.59734589573222], [0.0, 2.65431523794604]];
+    let g = 9.81;
+    for v in [2.0, 5.0, 8.0] {
+        let k = |i: usize, j: usize| g * k0[i][j] + v * v * k2[i][j];
+        let det = k(0, 0) * k(1, 1) - k(0, 1) * k(1, 0);
+        // Rows [phi, delta], columns [T_phi, T_delta].
+        let want = [
+            [k(1, 1) / det, -k(0, 1) / det],
+            [-k(1, 0) / det, k(0, 0) / det],
+        ];
+        for method in ["symbolic", "numeric", "robust"] {
+            let j = eom_json(&[
+                "analyze",
+                "bicycle",
+                "--set",
+                &format!("v={v}"),
+                "--method",
+                method,
+                "--format",
+                "json",
+            ]);
+            let gains = j["steady_state_gain"].as_array().expect("gains");
+            assert_eq!(gains.len(), 4, "{method} v = {v}: {gains:?}");
+            for (r, out) in ["phi", "delta"].iter().enumerate() {
+                for (c, inp) in ["T_phi", "T_delta"].iter().enumerate() {
+                    let got = gains
+                        .iter()
+                        .find(|x| x["output"] == *out && x["input"] == *inp)
+                        .unwrap_or_else(|| panic!("no gain {out} / {inp}: {gains:?}"))["value"]
+                        .as_f64()
+                        .expect("a number");
+                    let err = (got - want[r][c]).abs() / want[r][c].abs();
+                    assert!(
+                        err < 1e-9,
+                        "{method} v = {v}: {out} / {inp} = {got} vs {} ({err:e})",
+                        want[r][c]
+                    );
+                }
+            }
+        }
+    }
+}

@@ -34,6 +34,7 @@ fn unknown_model_exits_2_and_lists_the_models() {
         "top",
         "disk",
         "chainN",
+        "chainpN",
     ];
     for args in [
         &["analyze", "shimy"][..],

@@ -19,6 +19,10 @@ fn list_shows_every_model_and_parameter() {
         }
     }
     assert!(r.stdout.contains("chainN (N ≥ 1, e.g. chain10, chain50)"));
+    assert!(
+        r.stdout
+            .contains("chainpN (N ≥ 1, e.g. chainp10, chainp50)")
+    );
     for h in ["parameter", "default", "unit", "allowed", "description"] {
         assert!(r.stdout.contains(h));
     }

@@ -12,11 +12,12 @@ fn main() {
         .expect("bicycle");
     let mut index = String::new();
     for info in models::catalogue() {
-        let name = if info.name == "chainN" {
-            "chain10"
-        } else {
-            info.name
+        // A pattern (`chainN`, `chainpN`) at size 10.
+        let name = match info.name.strip_suffix('N') {
+            Some(stem) => format!("{stem}10"),
+            None => info.name.to_string(),
         };
+        let name = name.as_str();
         for (ty, g) in [("f64", builtin(name)), ("f32", builtin(name).f32())] {
             let file = format!("check_{name}_{ty}.rs");
             g.module(&format!("{name}_{ty}"))

@@ -6,8 +6,10 @@
 //! Four bodies — rear frame B, front fork and handlebar H, wheels R and F — joined by the
 //! steer hinge and two axle hinges; each wheel touches the road at a point that is fixed
 //! vertically and longitudinally (holonomic) and cannot slip sideways (nonholonomic); the rear
-//! frame's forward motion is prescribed. Input: steer torque; outputs: steer angle and roll
-//! angle. The benchmark's Table 1 values are the defaults.
+//! frame's forward motion is prescribed. Inputs, as the benchmark's forcing vector
+//! f = [T_phi, T_delta]: the lean torque on the rear frame about the roll axis (reacted by the
+//! ground) and the steer torque; outputs: steer angle and roll angle. The benchmark's Table 1
+//! values are the defaults.
 
 use crate::CatalogueError;
 use crate::catalogue::ParamSpec;
@@ -170,8 +172,17 @@ pub(crate) fn build(md: &mut Model<Expr>, ps: &[Expr], _: usize) -> Result<(), C
             .axis(y_axis()),
     );
 
-    // Steer torque on the front frame about the steer axis (reaction on the rear frame), and
-    // the steer and roll angles (roll positive to the right, as in the benchmark).
+    // The lean torque: a couple on the rear frame about the roll axis x, reacted by the ground
+    // (collocated with the roll sensor, so a positive T_phi does positive work on phi). Steer
+    // torque on the front frame about the steer axis (reaction on the rear frame), and the
+    // steer and roll angles (roll positive to the right, as in the benchmark).
+    md.add(
+        Actuator::new("T_phi")
+            .between("rear frame", "ground")
+            .ends(vec3(xb, 0, zb), vec3(xb - 1, 0, zb))
+            .twist()
+            .units("N m"),
+    );
     let head_up = [
         head[0] - axis[0] * Expr::rational(1, 4)?,
         Expr::zero(),

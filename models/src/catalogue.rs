@@ -55,7 +55,7 @@ pub(crate) type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), Cat
 /// A built-in model.
 #[derive(Clone, Debug)]
 pub struct ModelInfo {
-    /// Name (for chains: the pattern `chainN`).
+    /// Name (for chains: the patterns `chainN` and `chainpN`).
     pub name: &'static str,
     /// One-line description.
     pub description: &'static str,
@@ -249,6 +249,7 @@ pub fn catalogue() -> Vec<ModelInfo> {
             ],
             builder: chain,
         },
+        crate::chainp::entry(),
     ]
     .into_iter()
     .chain(crate::wings::entries())
@@ -261,42 +262,50 @@ pub fn catalogue() -> Vec<ModelInfo> {
 /// size). Longer chains can be written as model files.
 pub const MAX_CHAIN: usize = 1000;
 
-/// The catalogue entry and size for a model name (`chain50` → the chain entry, 50).
+/// The catalogue entry and size for a model name (`chain50` → the chain entry, 50;
+/// `chainp50` → the chain with per-element parameters, 50, its parameters numbered).
 pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
     let cat = catalogue();
-    if let Some(n) = name.strip_prefix("chain")
-        && !n.is_empty()
-        && n.bytes().all(|b| b.is_ascii_digit())
-        && n.parse::<usize>().ok().is_none_or(|k| k > MAX_CHAIN)
-    {
-        return Err(CatalogueError::ChainTooLong {
-            name: if name.len() > 40 {
-                format!("{}… ({} characters)", &name[..20], name.len())
-            } else {
-                name.to_string()
-            },
-            max: MAX_CHAIN,
-        });
-    }
-    if let Some(n) = name.strip_prefix("chain")
-        && let Ok(k) = n.parse::<usize>()
-        && (1..=MAX_CHAIN).contains(&k)
-    {
-        let info = cat
+    // `chainp` before `chain`: both patterns are a stem and a size.
+    for (stem, pattern) in [("chainp", "chainpN"), ("chain", "chainN")] {
+        let Some(n) = name.strip_prefix(stem) else {
+            continue;
+        };
+        if n.is_empty() || !n.bytes().all(|b| b.is_ascii_digit()) {
+            continue;
+        }
+        let size = n.parse::<usize>().ok().filter(|k| *k <= MAX_CHAIN);
+        let Some(size) = size else {
+            return Err(CatalogueError::ChainTooLong {
+                name: if name.len() > 40 {
+                    format!("{}… ({} characters)", &name[..20], name.len())
+                } else {
+                    name.to_string()
+                },
+                max: MAX_CHAIN,
+            });
+        };
+        if size == 0 {
+            break;
+        }
+        let mut info = cat
             .into_iter()
-            .find(|m| m.name == "chainN")
+            .find(|m| m.name == pattern)
             .expect("chain entry");
-        return Ok((info, k));
+        if pattern == "chainpN" {
+            info.params = crate::chainp::params(size);
+        }
+        return Ok((info, size));
     }
     match cat.iter().position(|m| m.name == name) {
-        Some(i) if name != "chainN" => Ok((cat[i].clone(), 0)),
+        Some(i) if !is_pattern(name) => Ok((cat[i].clone(), 0)),
         _ => Err(CatalogueError::UnknownModel {
             name: name.to_string(),
             known: cat
                 .iter()
                 .map(|m| {
-                    if m.name == "chainN" {
-                        format!("chainN (N = 1..{MAX_CHAIN})")
+                    if is_pattern(m.name) {
+                        format!("{} (N = 1..{MAX_CHAIN})", m.name)
                     } else {
                         m.name.to_string()
                     }
@@ -304,6 +313,11 @@ pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
                 .collect(),
         }),
     }
+}
+
+/// Whether a catalogue name is a pattern with a size N (`chainN`, `chainpN`).
+fn is_pattern(name: &str) -> bool {
+    matches!(name, "chainN" | "chainpN")
 }
 
 /// Build a model by name with parameter overrides.
@@ -632,7 +646,16 @@ fn disk(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError
 
 fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), CatalogueError> {
     let [m, k, c] = [p[0], p[1], p[2]];
-    for i in 0..n {
+    chain_items(md, &vec![(m, k, c); n]);
+    Ok(())
+}
+
+/// The items of a chain: mass i on its slider, link i (spring and damper) to mass i − 1 (link 1
+/// to ground), the force on and the position of the last mass; `elements[i]` is the mass, the
+/// stiffness and the damping of element i + 1.
+pub(crate) fn chain_items(md: &mut Model<Expr>, elements: &[(Expr, Expr, Expr)]) {
+    let n = elements.len();
+    for (i, &(m, k, c)) in elements.iter().enumerate() {
         let name = format!("mass{}", i + 1);
         let x = (i + 1) as i64;
         md.add(Body::new(&name).mass(m).at(vec3(x, 0, 0)));
@@ -669,5 +692,4 @@ fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), CatalogueErro
             .between(&last, "ground")
             .ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)),
     );
-    Ok(())
 }

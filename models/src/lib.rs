@@ -20,6 +20,7 @@
 //! | `top` | heavy symmetric top on a fixed point | closed form |
 //! | `disk` | rolling disk | closed form |
 //! | `chainN` | N masses in series (e.g. `chain50`) | closed form |
+//! | `chainpN` | the chain with its own m, k, c per element (`chainp50`: 150 parameters) | the matrices M, C, K by hand |
 //! | `smd_wing` | the spring–mass–damper under a horizontal wing (the wing item's seed example) | closed form |
 //! | `shimmy_wing` | the shimmy with a vertical fin at the spring point, given derivatives | the seed paper's damping entries; closed-form cubic |
 //! | `shimmy_fin` | the same fin, derivatives from eom-aero's vortex lattice | within 0.3 % of the paper's entries |
@@ -32,6 +33,7 @@
 mod applications;
 mod bicycle;
 mod catalogue;
+mod chainp;
 pub mod wings;
 
 pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};

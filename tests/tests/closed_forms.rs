@@ -189,6 +189,66 @@ fn chain_of_masses() {
     }
 }
 
+/// The chain with its own m, k, c per element (`chainpN`): at the defaults its eigenvalues
+/// are those of `chainN` (and of the closed form above); at per-element values they are those of
+/// [0 I; −M⁻¹K −M⁻¹C] with M = diag(m_i) and K, C the tridiagonal link matrices written out
+/// here (link i between masses i − 1 and i, link 1 to ground).
+#[test]
+fn chain_with_parameters_per_element() {
+    let nominal = |name: &str| {
+        let m = models::build(name, &[]).unwrap();
+        let ss = Linearizer::new(&m)
+            .method(Method::Numeric)
+            .run()
+            .unwrap()
+            .state_space;
+        eig(&ss)
+    };
+    let p50 = models::build("chainp50", &[]).unwrap();
+    assert_eq!(p50.scope.names().len(), 150);
+    let err = max_relative_error(&nominal("chainp50"), &nominal("chain50"), 1e-300);
+    assert!(err < 1e-12, "chainp50 vs chain50 at the defaults: {err:e}");
+
+    let n = 7;
+    let value = |stem: &str, i: usize| 0.5 + 0.1 * i as f64 + if stem == "k" { 1.0 } else { 0.0 };
+    let (mut at, mut m, mut k, mut c) = (Vec::new(), vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    for i in 0..n {
+        m[i] = value("m", i);
+        k[i] = value("k", i) * (1.0 + 0.3 * (i % 3) as f64);
+        c[i] = 0.02 * (i + 1) as f64;
+        at.push((format!("m{}", i + 1), m[i]));
+        at.push((format!("k{}", i + 1), k[i]));
+        at.push((format!("c{}", i + 1), c[i]));
+    }
+    // Link i joins mass i − 1 (ground for i = 0) and mass i.
+    let link = |x: &[f64]| {
+        nalgebra::DMatrix::from_fn(n, n, |r, s| {
+            let mut v = 0.0;
+            if r == s {
+                v += x[r] + if r + 1 < n { x[r + 1] } else { 0.0 };
+            } else if r + 1 == s {
+                v -= x[s];
+            } else if s + 1 == r {
+                v -= x[r];
+            }
+            v
+        })
+    };
+    let minv = nalgebra::DMatrix::from_fn(n, n, |r, s| if r == s { 1.0 / m[r] } else { 0.0 });
+    let mut a = nalgebra::DMatrix::zeros(2 * n, 2 * n);
+    a.view_mut((0, n), (n, n))
+        .copy_from(&nalgebra::DMatrix::identity(n, n));
+    a.view_mut((n, 0), (n, n)).copy_from(&(-&minv * link(&k)));
+    a.view_mut((n, n), (n, n)).copy_from(&(-&minv * link(&c)));
+    let want = eom_num::modes::eigenvalues(&a).unwrap();
+    let at: Vec<(&str, f64)> = at.iter().map(|(s, v)| (s.as_str(), *v)).collect();
+    for method in METHODS {
+        let ss = state_space(&format!("chainp{n}"), &at, method);
+        let err = max_relative_error(&eig(&ss), &want, 1e-300);
+        assert!(err < 1e-11, "chainp{n} {method:?}: {err:e}");
+    }
+}
+
 /// Quarter car: det(M s² + C s + K) with M = diag(ms, mu), C = [[cs, −cs], [−cs, cs + ct]],
 /// K = [[ks, −ks], [−ks, ks + kt]] — the closed-form quartic, whose roots (companion matrix)
 /// are compared with the model's eigenvalues.

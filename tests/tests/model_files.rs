@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 13] = [
+const BUILTINS: [&str; 14] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -18,6 +18,7 @@ const BUILTINS: [&str; 13] = [
     "top",
     "disk",
     "chain10",
+    "chainp10",
     "smd_wing",
     "shimmy_wing",
     "shimmy_fin",

@@ -96,10 +96,10 @@ fn value(rng: &mut StdRng, d: f64) -> f64 {
 /// One random model name and parameter point.
 fn pick(rng: &mut StdRng, names: &[&'static str]) -> (String, Vec<(&'static str, f64)>) {
     let name = names[rng.random_range(0..names.len())];
-    let name = if name == "chainN" {
-        format!("chain{}", rng.random_range(1..=40))
-    } else {
-        name.to_string()
+    // A pattern (`chainN`, `chainpN`) at a random size.
+    let name = match name.strip_suffix('N') {
+        Some(stem) => format!("{stem}{}", rng.random_range(1..=40)),
+        None => name.to_string(),
     };
     let (info, _) = models::find(&name).expect("a catalogue name");
     let mut at = Vec::new();

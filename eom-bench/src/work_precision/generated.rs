@@ -10,6 +10,9 @@ mod code {
     include!(concat!(env!("OUT_DIR"), "/generated.rs"));
 }
 
+/// The bicycle's generated `f64` module (for the throughput sweep).
+pub(crate) use code::gen64::bicycle as bicycle64;
+
 /// One generated module of one model.
 #[derive(Clone, Copy)]
 pub struct GenKernel {
@@ -88,6 +91,10 @@ pub fn kernels(model: &str) -> Vec<GenKernel> {
         "chain50" => vec![
             kernel!(F64, gen64::chain50, f64),
             kernel!(F32, gen32::chain50, f32),
+        ],
+        "chainp50" => vec![
+            kernel!(F64, gen64::chainp50, f64),
+            kernel!(F32, gen32::chainp50, f32),
         ],
         "smd_wing" => vec![
             kernel!(F64, gen64::smd_wing, f64),

@@ -9,8 +9,8 @@
 //! four lean/steer eigenvalues against the benchmark's (Meijaard et al. 2007, Table 2 speeds,
 //! 17-digit values of `tests/data/bicycle_eigs_126_speeds.csv`).
 //!
-//! `cargo run --release -p tests --example work_precision -- -o DIR` writes the CSV, the
-//! Markdown table and the SVG chart ([`output`], [`chart`]).
+//! `eom bench accuracy -o DIR` writes the CSV, the Markdown table and the SVG chart
+//! ([`output`], [`chart`]).
 
 pub mod chart;
 pub mod generated;
@@ -29,13 +29,14 @@ use reference::{Reference, ReferenceModel};
 use std::time::Duration;
 
 /// The models of the benchmark.
-pub const MODELS: [&str; 8] = [
+pub const MODELS: [&str; 9] = [
     "smd",
     "shimmy",
     "bicycle",
     "quarter_car",
     "top",
     "chain50",
+    "chainp50",
     "smd_wing",
     "shimmy_wing",
 ];

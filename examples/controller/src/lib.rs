@@ -37,6 +37,16 @@ const V: usize = {
     k
 };
 
+/// Index of the steer torque `T_delta` among the inputs (the bicycle's inputs are the
+/// benchmark's `[T_phi, T_delta]`; this controller steers only).
+const STEER: usize = {
+    let mut k = 0;
+    while !matches!(bicycle::INPUT_NAMES[k].as_bytes(), b"T_delta") {
+        k += 1;
+    }
+    k
+};
+
 /// What one tick produces.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Command {
@@ -106,7 +116,7 @@ impl Controller {
         // Predict the next state with the model at this speed (explicit Euler).
         let mut next = *x;
         for (i, n) in next.iter_mut().enumerate() {
-            let mut dx = self.b[i] * torque;
+            let mut dx = self.b[i + STEER * N_STATES] * torque;
             for (j, xj) in x.iter().enumerate() {
                 dx += self.a[i + j * N_STATES] * xj;
             }
@@ -117,7 +127,7 @@ impl Controller {
             .iter()
             .position(|n| *n == "phi")
             .unwrap_or(0);
-        let mut lean = self.d[lean_row] * torque;
+        let mut lean = self.d[lean_row + STEER * N_OUTPUTS] * torque;
         for (j, xj) in x.iter().enumerate() {
             lean += self.c[lean_row + j * N_OUTPUTS] * xj;
         }

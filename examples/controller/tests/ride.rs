@@ -16,6 +16,10 @@ fn steer_into_the_lean_settles_over_a_speed_ramp() {
         .iter()
         .position(|n| *n == "front frame.rx")
         .expect("lean");
+    let steer = plant::INPUT_NAMES
+        .iter()
+        .position(|n| *n == "T_delta")
+        .expect("steer torque input");
     let (mut a, mut b, mut w) = (
         [0.0; plant::A_LEN],
         [0.0; plant::B_LEN],
@@ -41,7 +45,7 @@ fn steer_into_the_lean_settles_over_a_speed_ramp() {
         for _ in 0..10 {
             let dx: Vec<f64> = (0..plant::N_STATES)
                 .map(|i| {
-                    b[i] * f64::from(cmd.torque)
+                    b[i + steer * plant::N_STATES] * f64::from(cmd.torque)
                         + (0..plant::N_STATES)
                             .map(|j| a[i + j * plant::N_STATES] * x[j])
                             .sum::<f64>()

@@ -26,6 +26,10 @@ fn ride(speed: impl Fn(f64) -> f64, print: bool) -> f32 {
         .iter()
         .position(|n| *n == "front frame.rx")
         .expect("lean state");
+    let steer = plant::INPUT_NAMES
+        .iter()
+        .position(|n| *n == "T_delta")
+        .expect("steer torque input");
     let (mut a, mut b, mut w) = (
         [0.0; plant::A_LEN],
         [0.0; plant::B_LEN],
@@ -64,7 +68,7 @@ fn ride(speed: impl Fn(f64) -> f64, print: bool) -> f32 {
         for _ in 0..10 {
             let mut dx = [0.0; plant::N_STATES];
             for (i, d) in dx.iter_mut().enumerate() {
-                *d = b[i] * f64::from(cmd.torque)
+                *d = b[i + steer * plant::N_STATES] * f64::from(cmd.torque)
                     + (0..plant::N_STATES)
                         .map(|j| a[i + j * plant::N_STATES] * x[j])
                         .sum::<f64>();
