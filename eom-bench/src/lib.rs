@@ -4,6 +4,9 @@
 //!   eigenvalues — the numeric and robust reductions, the symbolic reduction on the tape, and
 //!   the generated code compiled into this crate by its `build.rs` — timed, and checked against
 //!   a double-double reference of the same model and against published values;
+//! * [`stress`] (`eom bench stress`): the failure map — sweeps into the regions where
+//!   methods break, each method at each point classed accurate, reported failure or silently
+//!   wrong;
 //! * [`compare`]: reading reference tables and matching eigenvalues, shared with the
 //!   cross-crate tests.
 //!
@@ -14,4 +17,5 @@
 #![forbid(unsafe_code)]
 
 pub mod compare;
+pub mod stress;
 pub mod work_precision;
