@@ -182,7 +182,7 @@ fn elimination(model: &Model<Expr>, at: &[(&str, f64)], method: Method) -> Metho
     } else {
         0
     };
-    modes(&lin.state_space, zeros, doubts(&lin.warnings))
+    modes(&lin.state_space, zeros, doubts(&lin.warnings), true)
 }
 
 /// The symbolic reduction formed at the region's nominal point, evaluated at the point.
@@ -195,7 +195,7 @@ fn symbolic(
         Err(e) => return MethodResult::Failed(e.to_string()),
     };
     match sym.compiled().evaluate(values) {
-        Ok(ss) => modes(&ss, 0, doubts(&sym.reduction.report.warnings)),
+        Ok(ss) => modes(&ss, 0, doubts(&sym.reduction.report.warnings), true),
         Err(e) => MethodResult::Failed(e.to_string()),
     }
 }
@@ -204,7 +204,8 @@ fn doubts(warnings: &[String]) -> Vec<String> {
     warnings.iter().filter(|w| is_doubt(w)).cloned().collect()
 }
 
-/// Eigenvalues and verdict of a bare state matrix (the generated code's A).
+/// Eigenvalues and verdict of a bare state matrix (the generated code's A: its user gets A
+/// only, so no accuracy estimate counts as a report).
 fn from_a(a: DMatrix<f64>, doubts: Vec<String>) -> MethodResult {
     let n = a.nrows();
     match StateSpace::new(
@@ -213,23 +214,46 @@ fn from_a(a: DMatrix<f64>, doubts: Vec<String>) -> MethodResult {
         DMatrix::zeros(0, n),
         DMatrix::zeros(0, 0),
     ) {
-        Ok(ss) => modes(&ss, 0, doubts),
+        Ok(ss) => modes(&ss, 0, doubts, false),
         Err(e) => MethodResult::Failed(e.to_string()),
     }
 }
 
-fn modes(ss: &StateSpace<f64>, structural_zeros: usize, doubts: Vec<String>) -> MethodResult {
+/// Eigenvalues and verdict as `eom analyze` gives them; with `accuracy_reported`, a mode
+/// whose estimated relative accuracy (`Mode::accuracy`, which `eom analyze` warns about) is
+/// worse than the tolerance is a doubt.
+fn modes(
+    ss: &StateSpace<f64>,
+    structural_zeros: usize,
+    mut doubts: Vec<String>,
+    accuracy_reported: bool,
+) -> MethodResult {
     let opts = ModeOptions {
         structural_zeros,
         shapes: false,
         ..ModeOptions::default()
     };
     match Modes::compute_with(ss, &opts) {
-        Ok(m) => MethodResult::Done {
-            eigenvalues: m.eigenvalues(),
-            verdict: verdict_of(m.modes.iter().map(|x| x.stability)),
-            doubts,
-        },
+        Ok(m) => {
+            if accuracy_reported {
+                doubts.extend(
+                    m.modes
+                        .iter()
+                        .filter(|x| x.accuracy > classify::TOLERANCE)
+                        .map(|x| {
+                            format!(
+                                "eigenvalue {:.6e}: relative accuracy about {:.1e}",
+                                x.eigenvalue, x.accuracy
+                            )
+                        }),
+                );
+            }
+            MethodResult::Done {
+                eigenvalues: m.eigenvalues(),
+                verdict: verdict_of(m.modes.iter().map(|x| x.stability)),
+                doubts,
+            }
+        }
         Err(e) => MethodResult::Failed(e.to_string()),
     }
 }
