@@ -119,7 +119,17 @@ fn hinges_reference(d: f64) -> Vec<Complex64> {
 
 /// The regions; `quick` takes fewer points per region (the CI grid).
 pub fn regions(quick: bool) -> Vec<Region> {
-    let n = |full: usize, q: usize| if quick { q } else { full };
+    [builtin_regions(quick), structural_regions(quick)].concat()
+}
+
+/// Points per region: `full`, or `q` on the quick grid.
+fn points(quick: bool, full: usize, q: usize) -> usize {
+    if quick { q } else { full }
+}
+
+/// Parameter sweeps of built-in models (their generated code is one of the methods).
+fn builtin_regions(quick: bool) -> Vec<Region> {
+    let n = |full, q| points(quick, full, q);
     let coalescence = if quick {
         vec![0.684]
     } else {
@@ -170,6 +180,21 @@ pub fn regions(quick: bool) -> Vec<Region> {
             source: Source::Builtin("quarter_car"),
             reference: ReferenceKind::DoubleDouble,
         },
+        Region {
+            name: "quarter_car_stiffness",
+            what: "tyre stiffness 1e-8…1e8 times nominal (ratio to the suspension 1e-7…1e9)",
+            param: "kt",
+            values: logspace(1.8e-3, 1.8e13, n(33, 5)),
+            source: Source::Builtin("quarter_car"),
+            reference: ReferenceKind::DoubleDouble,
+        },
+    ]
+}
+
+/// Structural cases built as model files.
+fn structural_regions(quick: bool) -> Vec<Region> {
+    let n = |full, q| points(quick, full, q);
+    vec![
         Region {
             name: "chain_stiffness",
             what: "one spring of a four-mass chain 1e-10…1e10 times the others",
