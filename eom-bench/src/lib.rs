@@ -7,6 +7,9 @@
 //! * [`throughput`] (`eom bench throughput`): a sweep of many random parameter points of the
 //!   bicycle through its generated code and the eigenvalues, in parallel, with its points per
 //!   second;
+//! * [`stress`] (`eom bench stress`): the failure map — sweeps into the regions where
+//!   methods break, each method at each point classed accurate, reported failure or silently
+//!   wrong;
 //! * [`compare`]: reading reference tables and matching eigenvalues, shared with the
 //!   cross-crate tests.
 //!
@@ -17,5 +20,6 @@
 #![forbid(unsafe_code)]
 
 pub mod compare;
+pub mod stress;
 pub mod throughput;
 pub mod work_precision;

@@ -496,6 +496,7 @@ fn analyze_state_space(
         },
     );
     let modes = modes?;
+    warnings.extend(accuracy_warnings(&modes));
     let minimal = match reduced
         .as_ref()
         .map_err(|e| CliError::Num(e.clone()))
@@ -551,6 +552,28 @@ fn analyze_state_space(
         sensitivity: None,
         structural_zeros: Vec::new(),
     })
+}
+
+/// Eigenvalues whose estimated relative accuracy (`Mode::accuracy`) is worse than this are
+/// reported.
+pub const ACCURACY_WARNING: f64 = 1e-6;
+
+/// A warning per eigenvalue (one of each conjugate pair) that the rounding of A's entries
+/// alone makes uncertain beyond [`ACCURACY_WARNING`] of itself.
+fn accuracy_warnings(modes: &Modes) -> Vec<String> {
+    modes
+        .distinct()
+        .filter(|m| m.accuracy > ACCURACY_WARNING)
+        .map(|m| {
+            format!(
+                "eigenvalue {}: accurate to only about {} of itself: rounding the state \
+                 matrix's entries alone moves it that much (scales differing widely, e.g. one \
+                 element far stiffer or softer than the others)",
+                eigenvalue(m.eigenvalue, 6, m.eigenvalue.im != 0.0),
+                g(m.accuracy, 2)
+            )
+        })
+        .collect()
 }
 
 fn minimal_view(

@@ -130,3 +130,39 @@ pub fn throughput(points: usize, threads: Option<usize>) -> Result<String, CliEr
     let t = tp::run(&opts).map_err(|e| CliError::Bench(e.to_string()))?;
     Ok(tp::to_text(&t))
 }
+
+/// What `eom bench stress` was asked for.
+pub struct StressRequest {
+    /// The reduced grid (a few points per region, seconds).
+    pub quick: bool,
+    /// Output directory (created if missing).
+    pub dir: Option<std::path::PathBuf>,
+}
+
+/// Run the failure map; returns the Markdown table of counts, and writes the cells
+/// (`stress.csv`), the counts (`stress_counts.csv`), the table (`stress.md`) and the map
+/// (`stress.svg`) into the directory when one is given (a note per file on `stderr`).
+pub fn stress(req: &StressRequest, quiet: bool, stderr: &mut String) -> Result<String, CliError> {
+    use eom_bench::stress;
+    let regions = stress::regions::regions(req.quick).len();
+    let bar = Progress::new(quiet, regions as u64, "bench stress");
+    let map = stress::run(req.quick, &mut |r| bar.stage(r))
+        .map_err(|e| CliError::Bench(e.to_string()))?;
+    bar.finish();
+    let md = stress::output::markdown(&map);
+    if let Some(dir) = &req.dir {
+        std::fs::create_dir_all(dir).map_err(|e| CliError::Io {
+            path: dir.display().to_string(),
+            source: e,
+        })?;
+        for (name, text) in [
+            ("stress.csv", stress::output::cells_csv(&map)),
+            ("stress_counts.csv", stress::output::counts_csv(&map)),
+            ("stress.md", md.clone()),
+            ("stress.svg", stress::output::svg(&map)),
+        ] {
+            note(&dir.join(name), &text, stderr)?;
+        }
+    }
+    Ok(md)
+}

@@ -168,7 +168,8 @@ enum Command {
     )]
     Report(ReportArgs),
     /// Benchmarks on this machine: `accuracy`, the time and the eigenvalue error of every way
-    /// eom offers to get eigenvalues; `throughput`, points per second of a parameter sweep
+    /// eom offers to get eigenvalues; `throughput`, points per second of a parameter sweep;
+    /// `stress`, the map of where each method fails
     #[command(subcommand)]
     Bench(BenchCommand),
     /// Print a commented starter model file (redirect it into NAME.toml)
@@ -208,6 +209,25 @@ enum BenchCommand {
         generated code and of the eigenvalues, and what the sweep found: failures, the stable \
         points and the range of the largest real part of the non-zero eigenvalues.")]
     Throughput(BenchThroughputArgs),
+    /// The failure map: sweeps into the regions where methods break (speed to 0 with
+    /// nonholonomic contacts, extreme stiffness ratios, a nearly massless body, coalescing
+    /// eigenvalues, far from the symbolic nominal point, geometric offsets, redundant and nearly
+    /// redundant constraints), each method at each point classed accurate, reported failure or
+    /// silently wrong
+    #[command(
+        long_about = "The failure map of every way eom offers to get eigenvalues.\n\n\
+        Each region sweeps one parameter of a model into a range where methods break. At every \
+        point the numeric and robust reductions, the symbolic reduction formed at the region's \
+        nominal point (evaluated on the tape) and, for the built-in models whose code is \
+        compiled in, the generated f64 code are each classed: accurate (eigenvalues within 1e-6 \
+        relative of the reference, an eigenvalue below 1e-6 of the spectral radius against that \
+        floor, and the same stability verdict), reported failure (an error, or a warning that \
+        the result is doubtful) or silently wrong (neither). References: a double-double \
+        evaluation of the model's symbolic reduction formed at the point, or a closed form. \
+        Prints the table of counts; with -o DIR also writes stress.csv (every cell), \
+        stress_counts.csv, stress.md and the map stress.svg. See docs/stress.md."
+    )]
+    Stress(BenchStressArgs),
 }
 
 #[derive(Args, Debug)]
@@ -218,6 +238,16 @@ struct BenchThroughputArgs {
     /// Worker threads (default: the machine's available parallelism)
     #[arg(long, value_name = "T")]
     threads: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+struct BenchStressArgs {
+    /// The reduced grid (a few points per region; what CI runs)
+    #[arg(long)]
+    quick: bool,
+    /// Output directory for the CSVs, the Markdown table and the SVG map (created if missing)
+    #[arg(short, long, value_name = "DIR")]
+    output: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -537,6 +567,13 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             bench::accuracy(&req, cli.quiet, &mut stderr)?
         }
         Command::Bench(BenchCommand::Throughput(t)) => bench::throughput(t.points, t.threads)?,
+        Command::Bench(BenchCommand::Stress(b)) => {
+            let req = bench::StressRequest {
+                quick: b.quick,
+                dir: b.output,
+            };
+            bench::stress(&req, cli.quiet, &mut stderr)?
+        }
         Command::Export { model, set, output } => {
             let choice = ModelChoice::resolve(&model)?;
             let overrides = choice.parse_sets(&set)?;
