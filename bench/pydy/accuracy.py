@@ -1,4 +1,4 @@
-"""Rounding error of PyDy's generated C for the bicycle (bicycle6: A 6x6, B 6x1) against a
+"""Rounding error of PyDy's generated C for the bicycle (bicycle6: A 6x6, B 6x2) against a
 30-digit evaluation of the same sympy expressions, at 1024 points within +-20 % of nominal
 (all 27 parameters, independently uniform). Needs bicycle_lin.pkl (derive_bicycle.py) and
 pydy_bicycle6.c (gen_bicycle.py); compiles the C alone with gcc -O2 into a shared library.
@@ -33,8 +33,8 @@ A6 = sm.zeros(6, 6)
 A6[0, 2:6] = A_full.extract([0], [1, 2, 3, 4])
 A6[1, 0] = v
 A6[2:6, 2:6] = A4
-B6 = sm.zeros(6, 1)
-B6[2:6, 0] = B4[:, 1]
+B6 = sm.zeros(6, 2)
+B6[2:6, :] = B4  # [T_phi, T_delta], as gen_bicycle.py
 nominal = [1.02, 0.08, np.pi / 10, 9.81, 5.0, 0.3, 2.0, 0.0603, 0.12, 0.3, -0.9, 85.0,
            9.2, 11.0, 2.8, 2.4, 0.9, -0.7, 4.0, 0.05892, 0.06, 0.00708, -0.00756,
            0.35, 3.0, 0.1405, 0.28]
@@ -46,8 +46,8 @@ dbl = ctypes.POINTER(ctypes.c_double)
 lib.bicycle6_pydy.argtypes = [dbl] * 5
 
 entries = [(i, j) for i in range(6) for j in range(6) if A6[i, j] != 0]
-bentries = [(i, 0) for i in range(6) if B6[i, 0] != 0]
-exprs = [A6[i, j] for i, j in entries] + [B6[i, 0] for i, _ in bentries]
+bentries = [(i, j) for i in range(6) for j in range(2) if B6[i, j] != 0]
+exprs = [A6[i, j] for i, j in entries] + [B6[i, j] for i, j in bentries]
 rows = [i for i, _ in entries] + [i for i, _ in bentries]
 ref_fn = sm.lambdify([P], exprs, modules='mpmath', cse=True)
 
@@ -65,10 +65,10 @@ def raise_(key, e, n, x):
 for k in range(N):
     p = [x * rng.uniform(0.8, 1.2) for x in nominal]
     pin = (ctypes.c_double * 27)(*p)
-    a, b = (ctypes.c_double * 36)(), (ctypes.c_double * 6)()
-    c, dd = (ctypes.c_double * 12)(), (ctypes.c_double * 2)()
+    a, b = (ctypes.c_double * 36)(), (ctypes.c_double * 12)()
+    c, dd = (ctypes.c_double * 12)(), (ctypes.c_double * 4)()
     lib.bicycle6_pydy(pin, a, b, c, dd)
-    got = [a[6 * i + j] for i, j in entries] + [b[i] for i, _ in bentries]
+    got = [a[6 * i + j] for i, j in entries] + [b[2 * i + j] for i, j in bentries]
     ref = ref_fn([mpmath.mpf(x) for x in p])
     rowmax = {}
     for r, x in zip(rows, ref):
@@ -82,7 +82,7 @@ for k in range(N):
 
 def label(key):
     e, (n, x) = worst[key]
-    at = ('A[%d,%d]' % entries[n]) if n < nA else ('B[%d,0]' % bentries[n - nA][0])
+    at = ('A[%d,%d]' % entries[n]) if n < nA else ('B[%d,%d]' % bentries[n - nA])
     return '%.3e (%s = %.4g)' % (e, at, x)
 
 
