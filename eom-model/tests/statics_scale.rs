@@ -274,6 +274,8 @@ fn hinge_about(name: &str, b1: &str, b2: &str, at: [f64; 3], axis: [f64; 3]) -> 
 /// by the Denavit–Hartenberg loop closure; point masses 1.1…1.5 kg at the links' midpoints
 /// with isotropic moments 0.05 kg m², a torsion spring 5 N m/rad and damper 0.1 N m s/rad at
 /// hinge 1. `tests/data/bricard_reference.py` computes it all in 50 digits with mpmath.
+// The 17 digits as the reference printed them.
+#[allow(clippy::excessive_precision)]
 fn bricard() -> String {
     const JOINTS: [([f64; 3], [f64; 3]); 6] = [
         ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
@@ -340,6 +342,7 @@ fn bricard() -> String {
 }
 
 #[test]
+#[allow(clippy::excessive_precision)]
 fn bricard_linkage_moves_with_one_degree_of_freedom() {
     // λ = (−c ± √(c² − 4 m k)) / 2m with the effective inertia m = 2.89210019455361372887 of
     // the motion (joint rates 1, −0.32252, 1, −0.32252, …), from the null space of the six
