@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 13] = [
+const BUILTINS: [&str; 14] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -23,6 +23,7 @@ const BUILTINS: [&str; 13] = [
     "shimmy_fin",
     "ride_wings",
     "aircraft_ground",
+    "truck_trailer",
 ];
 
 fn path(name: &str) -> PathBuf {
