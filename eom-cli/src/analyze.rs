@@ -487,7 +487,10 @@ fn analyze_state_space(
                 structural_zeros,
                 ..GainOptions::default()
             };
-            (modes, step("gains", || steady_state_gain_with(ss, &gain_opts)))
+            (
+                modes,
+                step("gains", || steady_state_gain_with(ss, &gain_opts)),
+            )
         },
         || {
             let reduced = step("minimal realization", || {
