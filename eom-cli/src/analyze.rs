@@ -16,7 +16,7 @@ use eom_model::ModelError;
 use eom_model::{Linearizer, Method};
 use eom_num::StateSpace;
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
-use eom_num::gain::{Gain, SteadyStateGain, steady_state_gain};
+use eom_num::gain::{Gain, GainOptions, SteadyStateGain, steady_state_gain_with};
 use eom_num::minreal::{
     MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
 };
@@ -480,7 +480,17 @@ fn analyze_state_space(
     let ((modes, gain), (reduced, zeros)) = rayon::join(
         || {
             let modes = step("modes", || Modes::compute_with(ss, &opts));
-            (modes, step("gains", || steady_state_gain(ss)))
+            // The zero eigenvalues the structure proves (counted on the elimination path's
+            // matrix) inform the rank decision on the robust path's A, which hides them in
+            // rounding.
+            let gain_opts = GainOptions {
+                structural_zeros,
+                ..GainOptions::default()
+            };
+            (
+                modes,
+                step("gains", || steady_state_gain_with(ss, &gain_opts)),
+            )
         },
         || {
             let reduced = step("minimal realization", || {

@@ -32,6 +32,11 @@ pub enum NumError {
     /// singular); only index-1 pencils are reduced.
     #[error("descriptor index > 1: {0}")]
     HigherIndex(String),
+    /// A rank decision that the result depends on lies so close to its tolerance that another
+    /// admissible tolerance gives a different answer (the message gives both): the result
+    /// cannot be trusted either way.
+    #[error("ambiguous rank decision: {0}")]
+    AmbiguousRank(String),
     /// The analysis would need more memory than the limit ([`crate::budget`]); the message
     /// names the step, the predicted size, the limit and how to raise it.
     #[error("too large: {0}")]

@@ -76,6 +76,12 @@ pub struct GainOptions {
     pub rank_tol: RankTolerance,
     /// Condition numbers above this produce a warning (default 1e8).
     pub warn_condition: f64,
+    /// The number of zero eigenvalues the model's structure proves (default 0: unknown), e.g.
+    /// from the elimination path at the same point (`Linearization::structural_zeros` of
+    /// eom-model). A basis that hides them in rounding (the robust path's) can make the rank
+    /// decision on A call a defective zero pair, split into `±δ`, regular: see
+    /// [`steady_state_gain_with`].
+    pub structural_zeros: usize,
 }
 
 impl Default for GainOptions {
@@ -83,6 +89,7 @@ impl Default for GainOptions {
         GainOptions {
             rank_tol: RankTolerance::Default,
             warn_condition: 1e8,
+            structural_zeros: 0,
         }
     }
 }
@@ -139,7 +146,16 @@ pub fn steady_state_gain(ss: &StateSpace<f64>) -> Result<SteadyStateGain, NumErr
 
 /// [`steady_state_gain`] with options.
 ///
-/// Errors: as [`steady_state_gain`], plus [`NumError::InvalidOption`] for a bad tolerance.
+/// When the rank decision on A lies within [`AMBIGUITY_FACTOR`] of its threshold, or finds
+/// fewer zero eigenvalues than [`GainOptions::structural_zeros`], the gains are computed
+/// again with every threshold raised by that factor. Equal gains (to 1e-9 of the largest):
+/// the first result. Different gains, where the raised threshold finds the zero eigenvalues
+/// the structure proves: that result, with a warning (a defective zero pair split by
+/// rounding into `±δ` is not a pair of genuine modes, and `C A⁻¹ B` would amplify the
+/// rounding in their couplings by `1/δ²`). Otherwise [`NumError::AmbiguousRank`].
+///
+/// Errors: as [`steady_state_gain`], plus [`NumError::InvalidOption`] for a bad tolerance
+/// and [`NumError::AmbiguousRank`].
 pub fn steady_state_gain_with(
     ss: &StateSpace<f64>,
     opts: &GainOptions,
@@ -152,6 +168,91 @@ pub fn steady_state_gain_with(
             opts.warn_condition
         )));
     }
+    let first = gain_at_tolerance(ss, opts, 1.0)?;
+    let fragile = first.a_rank.is_near_tolerance(AMBIGUITY_FACTOR);
+    let too_few = first.zero_dimension < opts.structural_zeros;
+    if !fragile && !too_few {
+        return Ok(first);
+    }
+    // The decision on A is fragile, or contradicts the structure: decide again with the
+    // threshold raised by the factor that counts as near, and compare.
+    let second = gain_at_tolerance(ss, opts, AMBIGUITY_FACTOR)?;
+    if same_gains(&first.gains, &second.gains) {
+        return Ok(first);
+    }
+    if too_few && second.zero_dimension >= opts.structural_zeros {
+        let mut out = second;
+        out.warnings.push(format!(
+            "A was decided to have {} zero eigenvalue(s) at the default tolerance, fewer than \
+             the {} its structure proves (a defective zero pair split by rounding); decided at \
+             a tolerance {AMBIGUITY_FACTOR} times larger, which finds {}",
+            first.zero_dimension, opts.structural_zeros, out.zero_dimension
+        ));
+        return Ok(out);
+    }
+    Err(NumError::AmbiguousRank(format!(
+        "the rank of A ({n}×{n}) was decided within a factor {:.3} of its threshold, and a \
+         threshold {AMBIGUITY_FACTOR} times larger ({} zero eigenvalue(s) instead of {}) gives \
+         other gains ({} instead of {})",
+        first.a_rank.margin,
+        second.zero_dimension,
+        first.zero_dimension,
+        describe(&second.gains),
+        describe(&first.gains),
+        n = ss.states()
+    )))
+}
+
+/// A rank decision within this factor of its threshold is checked by deciding again at a
+/// threshold this much larger (the factor at which decisions are reported as near).
+pub const AMBIGUITY_FACTOR: f64 = 100.0;
+
+/// Relative agreement of two sets of finite gains (to the largest of them) for the rank
+/// decision behind them not to matter.
+const SAME_GAIN_REL: f64 = 1e-9;
+
+/// Whether two gain matrices agree: the same kinds, integrating orders, and finite values
+/// and coefficients within [`SAME_GAIN_REL`] of the largest of their kind.
+fn same_gains(x: &DMatrix<Gain>, y: &DMatrix<Gain>) -> bool {
+    let scale = x.iter().chain(y.iter()).fold(0.0f64, |m, g| match g {
+        Gain::Finite(v) => m.max(v.abs()),
+        Gain::Integrating { .. } => m,
+    });
+    let close = |a: f64, b: f64, s: f64| (a - b).abs() <= SAME_GAIN_REL * s;
+    x.iter().zip(y.iter()).all(|(a, b)| match (a, b) {
+        (Gain::Finite(a), Gain::Finite(b)) => close(*a, *b, scale),
+        (
+            Gain::Integrating {
+                order: o1,
+                coefficient: c1,
+            },
+            Gain::Integrating {
+                order: o2,
+                coefficient: c2,
+            },
+        ) => o1 == o2 && close(*c1, *c2, c1.abs().max(c2.abs())),
+        _ => false,
+    })
+}
+
+/// The gains in one line, for messages.
+fn describe(g: &DMatrix<Gain>) -> String {
+    let items: Vec<String> = g
+        .iter()
+        .map(|x| match x {
+            Gain::Finite(v) => format!("{v:.6e}"),
+            Gain::Integrating { order, .. } => format!("integrating (order {order})"),
+        })
+        .collect();
+    format!("[{}]", items.join(", "))
+}
+
+/// The gains with every rank threshold multiplied by `factor`.
+fn gain_at_tolerance(
+    ss: &StateSpace<f64>,
+    opts: &GainOptions,
+    factor: f64,
+) -> Result<SteadyStateGain, NumError> {
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
     // Balance: Ã = D⁻¹ A D, B̃ = D⁻¹ B, C̃ = C D.
     let mut av = ss.a.as_slice().to_vec();
@@ -170,12 +271,12 @@ pub fn steady_state_gain_with(
     let b = DMatrix::from_fn(n, m, |i, j| ss.b[(i, j)] / sc[i]);
     let c = DMatrix::from_fn(p, n, |i, j| ss.c[(i, j)] * sc[j]);
     let mut warnings = Vec::new();
-    if let Some(cert) = certify_regular(&a, &opts.rank_tol)? {
+    if let Some(cert) = certify_regular(&a, &opts.rank_tol, factor)? {
         return regular(ss, &b, &c, cert, opts, warnings);
     }
     let sv = singular_values(&a)?;
     let smax = sv.first().copied().unwrap_or(0.0);
-    let thr = opts.rank_tol.threshold(smax, n, n);
+    let thr = factor * opts.rank_tol.threshold(smax, n, n);
     let a_rank = decide(sv.clone(), thr);
     if a_rank.is_near_tolerance(100.0) {
         warnings.push(format!(
@@ -248,14 +349,29 @@ pub fn steady_state_gain_with(
     let c1 = &c * &v1;
 
     // Finite part.
-    let (fin, condition) = finite_part(&a1, &b1, &c1, &ss.d, opts, &mut warnings)?;
+    let (fin, condition, a1_min) = finite_part(&a1, &b1, &c1, &ss.d, opts, &mut warnings)?;
 
     // Markov-like coefficients Mₖ = C V₀ Nᵏ W₀ B and their rounding-level tolerances.
     let w0n = singular_values(&w0.into_owned())?
         .first()
         .copied()
         .unwrap_or(0.0);
-    let scale = 10.0 * n as f64 * f64::EPSILON * w0n;
+    // The coefficients' rounding level, relative to ‖A‖ as the rank threshold is (10·n·ε at
+    // the default tolerance): a threshold raised to count a split zero pair as zero also
+    // counts its couplings to the outputs, of the same origin, as zero.
+    let relative = if smax > 0.0 {
+        thr / smax
+    } else {
+        10.0 * n as f64 * f64::EPSILON
+    };
+    // The split's basis V₀ is known to the backward error over the separation of the zero
+    // modes from the others (σ_min of A₁): so are the coefficients.
+    let separation = if a1_min > 0.0 && a1_min < smax {
+        smax / a1_min
+    } else {
+        1.0
+    };
+    let scale = relative.max(10.0 * n as f64 * f64::EPSILON) * separation * w0n;
     let (order, coef) = integrating_orders(
         &Zeros {
             nmat: &nmat,
@@ -291,7 +407,8 @@ pub fn steady_state_gain_with(
     })
 }
 
-/// The gain of the nonzero modes, `D − C₁ A₁⁻¹ B₁`, and the condition number of `A₁`.
+/// The gain of the nonzero modes, `D − C₁ A₁⁻¹ B₁`, the condition number of `A₁` and its
+/// smallest singular value.
 fn finite_part(
     a1: &DMatrix<f64>,
     b1: &DMatrix<f64>,
@@ -299,8 +416,9 @@ fn finite_part(
     d: &DMatrix<f64>,
     opts: &GainOptions,
     warnings: &mut Vec<String>,
-) -> Result<(DMatrix<f64>, f64), NumError> {
+) -> Result<(DMatrix<f64>, f64, f64), NumError> {
     let s1 = singular_values(a1)?;
+    let smallest = s1.last().copied().unwrap_or(0.0);
     let condition = if s1.is_empty() {
         1.0
     } else if s1[s1.len() - 1] > 0.0 {
@@ -325,7 +443,7 @@ fn finite_part(
         })?;
         d - c1 * x
     };
-    Ok((fin, condition))
+    Ok((fin, condition, smallest))
 }
 
 /// The zero-eigenvalue chain of `mat`: a basis of `ker mat^ν` and the index ν, each nullspace
@@ -452,7 +570,11 @@ pub fn spectral_norm_bound(m: MatRef<'_, f64>) -> f64 {
 /// [`CERTIFICATE_MARGIN`] (far more than the relative error of the computed inverse, about
 /// `n ε κ(A)`, can change). `None` (then the SVD decides) when it does not, or when the LU
 /// breaks down. O(n³) in matrix products, a fraction of an SVD's cost.
-fn certify_regular(a: &DMatrix<f64>, tol: &RankTolerance) -> Result<Option<Regular>, NumError> {
+fn certify_regular(
+    a: &DMatrix<f64>,
+    tol: &RankTolerance,
+    factor: f64,
+) -> Result<Option<Regular>, NumError> {
     let n = a.nrows();
     if n == 0 {
         return Ok(None);
@@ -469,7 +591,7 @@ fn certify_regular(a: &DMatrix<f64>, tol: &RankTolerance) -> Result<Option<Regul
         sigma_min_lower: 1.0 / inv_norm,
         sigma_max_upper: a_norm,
     };
-    let thr = tol.threshold(a_norm, n, n);
+    let thr = factor * tol.threshold(a_norm, n, n);
     if bounds.sigma_min_lower <= CERTIFICATE_MARGIN * thr {
         return Ok(None);
     }

@@ -25,6 +25,7 @@
 //! | `shimmy_wing` | the shimmy with a vertical fin at the spring point, given derivatives | the seed paper's damping entries; closed-form cubic |
 //! | `shimmy_fin` | the same fin, derivatives from eom-aero's vortex lattice | within 0.3 % of the paper's entries |
 //! | `ride_wings` | a car's bounce–pitch ride model with a front and a rear wing (illustrative) | a two-degree-of-freedom model derived by hand |
+//! | `truck_trailer` | truck with a one-axle trailer, linear single-track tyres (Minaker 2019) | closed-form steady-state yaw-rate gain; hand-written single-track equations |
 //! | `aircraft_ground` | a light taildragger on its landing gear with a wing and a tail (illustrative) | the three reduction paths |
 
 #![warn(missing_docs)]
@@ -34,6 +35,7 @@ mod applications;
 mod bicycle;
 mod catalogue;
 mod chainp;
+mod vehicles;
 pub mod wings;
 
 pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};

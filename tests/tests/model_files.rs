@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 14] = [
+const BUILTINS: [&str; 15] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -24,6 +24,7 @@ const BUILTINS: [&str; 14] = [
     "shimmy_fin",
     "ride_wings",
     "aircraft_ground",
+    "truck_trailer",
 ];
 
 fn path(name: &str) -> PathBuf {
