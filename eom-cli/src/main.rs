@@ -508,6 +508,29 @@ fn json<T: serde::Serialize>(v: &T) -> Result<String, CliError> {
     Ok(s)
 }
 
+/// `eom bench …`: the benchmarks' output (notes of written files on `stderr`).
+fn run_bench(b: BenchCommand, quiet: bool, stderr: &mut String) -> Result<String, CliError> {
+    Ok(match b {
+        BenchCommand::Accuracy(b) => {
+            let req = bench::AccuracyRequest {
+                models: b.models,
+                points: b.points,
+                min_time_ms: b.min_time,
+                dir: b.output,
+            };
+            bench::accuracy(&req, quiet, stderr)?
+        }
+        BenchCommand::Throughput(t) => bench::throughput(t.points, t.threads)?,
+        BenchCommand::Stress(b) => {
+            let req = bench::StressRequest {
+                quick: b.quick,
+                dir: b.output,
+            };
+            bench::stress(&req, quiet, stderr)?
+        }
+    })
+}
+
 fn run(cli: Cli) -> Result<Output, CliError> {
     let mut stderr = String::new();
     let stdout = match cli.command {
@@ -557,23 +580,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             }
         }
         Command::New { name } => check::starter(&name),
-        Command::Bench(BenchCommand::Accuracy(b)) => {
-            let req = bench::AccuracyRequest {
-                models: b.models,
-                points: b.points,
-                min_time_ms: b.min_time,
-                dir: b.output,
-            };
-            bench::accuracy(&req, cli.quiet, &mut stderr)?
-        }
-        Command::Bench(BenchCommand::Throughput(t)) => bench::throughput(t.points, t.threads)?,
-        Command::Bench(BenchCommand::Stress(b)) => {
-            let req = bench::StressRequest {
-                quick: b.quick,
-                dir: b.output,
-            };
-            bench::stress(&req, cli.quiet, &mut stderr)?
-        }
+        Command::Bench(b) => run_bench(b, cli.quiet, &mut stderr)?,
         Command::Export { model, set, output } => {
             let choice = ModelChoice::resolve(&model)?;
             let overrides = choice.parse_sets(&set)?;

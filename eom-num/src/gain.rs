@@ -254,22 +254,7 @@ fn gain_at_tolerance(
     factor: f64,
 ) -> Result<SteadyStateGain, NumError> {
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
-    // Balance: Ã = D⁻¹ A D, B̃ = D⁻¹ B, C̃ = C D.
-    let mut av = ss.a.as_slice().to_vec();
-    let mut sc = vec![1.0; n];
-    balance_in_place(&mut av, n, &mut sc);
-    let spread =
-        sc.iter().fold(1.0f64, |m, s| m.max(*s)) / sc.iter().fold(1.0f64, |m, s| m.min(*s));
-    if spread > 1.0 / f64::EPSILON {
-        // Scalings beyond 1/ε push the couplings of a nearly singular A's zero modes below
-        // every threshold (a spring of 1e-100 N/m gave gains of 0 instead of integrating):
-        // decide in the model's own coordinates instead.
-        av.copy_from_slice(ss.a.as_slice());
-        sc.iter_mut().for_each(|s| *s = 1.0);
-    }
-    let a = DMatrix::from_vec(n, n, av);
-    let b = DMatrix::from_fn(n, m, |i, j| ss.b[(i, j)] / sc[i]);
-    let c = DMatrix::from_fn(p, n, |i, j| ss.c[(i, j)] * sc[j]);
+    let (a, b, c) = balanced(ss);
     let mut warnings = Vec::new();
     if let Some(cert) = certify_regular(&a, &opts.rank_tol, factor)? {
         return regular(ss, &b, &c, cert, opts, warnings);
@@ -296,49 +281,15 @@ fn gain_at_tolerance(
         return regular(ss, &b, &c, cert, opts, warnings);
     }
 
-    // Zero-eigenvalue subspaces: right chain ker A^k, left chain ker (Aᵀ)^k.
-    let mut decisions = Vec::new();
-    let (v0, nu) = zero_chain(&a, thr, &mut decisions)?;
-    let (l0, nu_l) = zero_chain(&a.transpose(), thr, &mut decisions)?;
+    let ZeroSplit {
+        v0,
+        v1,
+        w,
+        index: nu,
+        decisions,
+        separation_condition,
+    } = zero_split(&a, thr, opts, &mut warnings)?;
     let q = v0.ncols();
-    for d in &decisions {
-        if d.is_near_tolerance(100.0) {
-            warnings.push(format!(
-                "a nullspace decision of the zero-eigenvalue chain (rank {}) was within a \
-                 factor {:.3} of the threshold",
-                d.rank, d.margin
-            ));
-        }
-    }
-    if l0.ncols() != q || nu_l != nu {
-        return Err(NumError::Singular(format!(
-            "A ({n}×{n}) is singular but its zero-eigenvalue subspace is ill-determined: the \
-             right chain gives dimension {q} (index {nu}), the left chain {} (index {nu_l})",
-            l0.ncols()
-        )));
-    }
-    // V₁ = (ker (Aᵀ)^ν)⊥ = range(A^ν).
-    let v1 = if q == 0 {
-        DMatrix::identity(n, n)
-    } else {
-        nullspace(&l0.transpose(), RankTolerance::Default)?.basis
-    };
-    let mut t = DMatrix::<f64>::zeros(n, n);
-    t.columns_mut(0, q).copy_from(&v0);
-    t.columns_mut(q, n - q).copy_from(&v1);
-    let st = singular_values(&t)?;
-    let separation_condition = st[0] / st[n - 1];
-    if !separation_condition.is_finite() || separation_condition > opts.warn_condition {
-        warnings.push(format!(
-            "the zero modes are poorly separated from the others (cond [V₀ V₁] = \
-             {separation_condition:.3e})"
-        ));
-    }
-    let w = t.clone().lu().try_inverse().ok_or_else(|| {
-        NumError::Singular(format!(
-            "the basis [V₀ V₁] of the zero/nonzero eigenvalue split of A ({n}×{n}) is singular"
-        ))
-    })?;
     let w0 = w.rows(0, q);
     let w1 = w.rows(q, n - q);
     let nmat = w0 * &a * &v0;
@@ -405,6 +356,101 @@ fn gain_at_tolerance(
         warnings,
         certificate: None,
     })
+}
+
+/// The zero/nonzero eigenvalue split of A: the right basis `[V₀ V₁]` (V₀ spans the
+/// zero-eigenvalue chain ker A^ν, V₁ = range(A^ν)), its inverse `w`, and the decisions made.
+struct ZeroSplit {
+    v0: DMatrix<f64>,
+    v1: DMatrix<f64>,
+    w: DMatrix<f64>,
+    index: usize,
+    decisions: Vec<Rank>,
+    separation_condition: f64,
+}
+
+/// Splits A at rank threshold `thr` by its zero-eigenvalue chains (right ker A^k, left
+/// ker (Aᵀ)^k), which must agree; decisions near the threshold and a poor separation are
+/// warned about.
+fn zero_split(
+    a: &DMatrix<f64>,
+    thr: f64,
+    opts: &GainOptions,
+    warnings: &mut Vec<String>,
+) -> Result<ZeroSplit, NumError> {
+    let n = a.nrows();
+    let mut decisions = Vec::new();
+    let (v0, nu) = zero_chain(a, thr, &mut decisions)?;
+    let (l0, nu_l) = zero_chain(&a.transpose(), thr, &mut decisions)?;
+    let q = v0.ncols();
+    for d in &decisions {
+        if d.is_near_tolerance(100.0) {
+            warnings.push(format!(
+                "a nullspace decision of the zero-eigenvalue chain (rank {}) was within a \
+                 factor {:.3} of the threshold",
+                d.rank, d.margin
+            ));
+        }
+    }
+    if l0.ncols() != q || nu_l != nu {
+        return Err(NumError::Singular(format!(
+            "A ({n}×{n}) is singular but its zero-eigenvalue subspace is ill-determined: the \
+             right chain gives dimension {q} (index {nu}), the left chain {} (index {nu_l})",
+            l0.ncols()
+        )));
+    }
+    // V₁ = (ker (Aᵀ)^ν)⊥ = range(A^ν).
+    let v1 = if q == 0 {
+        DMatrix::identity(n, n)
+    } else {
+        nullspace(&l0.transpose(), RankTolerance::Default)?.basis
+    };
+    let mut t = DMatrix::<f64>::zeros(n, n);
+    t.columns_mut(0, q).copy_from(&v0);
+    t.columns_mut(q, n - q).copy_from(&v1);
+    let st = singular_values(&t)?;
+    let separation_condition = st[0] / st[n - 1];
+    if !separation_condition.is_finite() || separation_condition > opts.warn_condition {
+        warnings.push(format!(
+            "the zero modes are poorly separated from the others (cond [V₀ V₁] = \
+             {separation_condition:.3e})"
+        ));
+    }
+    let w = t.clone().lu().try_inverse().ok_or_else(|| {
+        NumError::Singular(format!(
+            "the basis [V₀ V₁] of the zero/nonzero eigenvalue split of A ({n}×{n}) is singular"
+        ))
+    })?;
+    Ok(ZeroSplit {
+        v0,
+        v1,
+        w,
+        index: nu,
+        decisions,
+        separation_condition,
+    })
+}
+
+/// The balanced system: Ã = D⁻¹ A D, B̃ = D⁻¹ B, C̃ = C D, with D from [`balance_in_place`]
+/// — or A, B, C themselves when the scaling would spread beyond 1/ε.
+fn balanced(ss: &StateSpace<f64>) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+    let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
+    let mut av = ss.a.as_slice().to_vec();
+    let mut sc = vec![1.0; n];
+    balance_in_place(&mut av, n, &mut sc);
+    let spread =
+        sc.iter().fold(1.0f64, |m, s| m.max(*s)) / sc.iter().fold(1.0f64, |m, s| m.min(*s));
+    if spread > 1.0 / f64::EPSILON {
+        // Scalings beyond 1/ε push the couplings of a nearly singular A's zero modes below
+        // every threshold (a spring of 1e-100 N/m gave gains of 0 instead of integrating):
+        // decide in the model's own coordinates instead.
+        av.copy_from_slice(ss.a.as_slice());
+        sc.iter_mut().for_each(|s| *s = 1.0);
+    }
+    let a = DMatrix::from_vec(n, n, av);
+    let b = DMatrix::from_fn(n, m, |i, j| ss.b[(i, j)] / sc[i]);
+    let c = DMatrix::from_fn(p, n, |i, j| ss.c[(i, j)] * sc[j]);
+    (a, b, c)
 }
 
 /// The gain of the nonzero modes, `D − C₁ A₁⁻¹ B₁`, the condition number of `A₁` and its
