@@ -177,6 +177,10 @@ pub struct ModeReport {
     pub stability: &'static str,
     /// Whether the mode decays.
     pub stable: bool,
+    /// Estimated relative error of the eigenvalue from rounding the state matrix's entries
+    /// (the componentwise condition number times ε; 0 for an exact zero, and where the
+    /// estimate would exceed the memory limit). Above 1e-6 it is also a warning.
+    pub accuracy: f64,
 }
 
 /// The minimal realization: what the inputs and outputs see.
@@ -302,6 +306,7 @@ fn mode_report(m: &Mode) -> ModeReport {
         period: finite(m.damped_period),
         stability: stability_name(m.stability),
         stable: m.stability == Stability::Stable,
+        accuracy: m.accuracy,
     }
 }
 

@@ -87,5 +87,22 @@ fn analyze_warns_about_eigenvalues_the_rounding_makes_uncertain() {
     let even = eom(&["analyze", f]);
     assert_eq!(even.code, 0, "{}", even.stderr);
     assert!(!even.stdout.contains("accurate to only"), "{}", even.stdout);
+    // The JSON carries the estimate of every mode: the slow modes beyond 1e-6 with the stiff
+    // spring, every mode within 1e-12 with equal ones.
+    let worst = |args: &[&str]| -> f64 {
+        let out = eom(args);
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let j: serde_json::Value = serde_json::from_str(&out.stdout).expect("JSON");
+        j["modes"]
+            .as_array()
+            .expect("modes")
+            .iter()
+            .map(|m| m["accuracy"].as_f64().expect("accuracy"))
+            .fold(0.0, f64::max)
+    };
+    let stiff_json = worst(&["analyze", f, "--set", "k3=1e10", "--format", "json"]);
+    assert!(stiff_json > 1e-6, "{stiff_json:e}");
+    let even_json = worst(&["analyze", f, "--format", "json"]);
+    assert!(even_json < 1e-12, "{even_json:e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
