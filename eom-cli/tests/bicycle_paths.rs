@@ -18,8 +18,9 @@ fn table() -> Vec<(f64, [f64; 4])> {
         .collect()
 }
 
-fn printed(v: f64, method: &str) -> (Vec<(f64, f64)>, usize) {
-    let j = eom_json(&[
+/// `eom analyze bicycle --set v=V --method METHOD --format json`.
+fn analyze(v: f64, method: &str) -> serde_json::Value {
+    eom_json(&[
         "analyze",
         "bicycle",
         "--set",
@@ -28,7 +29,11 @@ fn printed(v: f64, method: &str) -> (Vec<(f64, f64)>, usize) {
         method,
         "--format",
         "json",
-    ]);
+    ])
+}
+
+fn printed(v: f64, method: &str) -> (Vec<(f64, f64)>, usize) {
+    let j = analyze(v, method);
     let e: Vec<(f64, f64)> = j["eigenvalues"]
         .as_array()
         .expect("eigenvalues")
@@ -84,16 +89,7 @@ fn stability_is_decided_alike_by_analyze_and_sweep() {
     // Self-stable between the weave and capsize speeds (4.292…, 6.024…).
     for (v, stable) in [(4.0, false), (5.0, true), (6.0, true), (6.1, false)] {
         for method in ["numeric", "symbolic", "robust"] {
-            let j = eom_json(&[
-                "analyze",
-                "bicycle",
-                "--set",
-                &format!("v={v}"),
-                "--method",
-                method,
-                "--format",
-                "json",
-            ]);
+            let j = analyze(v, method);
             assert_eq!(j["stable"].as_bool(), Some(stable), "{method} v = {v}");
         }
     }
@@ -177,16 +173,7 @@ fn printed_gains_are_the_published_static_compliance() {
             [-k(1, 0) / det, k(0, 0) / det],
         ];
         for method in ["symbolic", "numeric", "robust"] {
-            let j = eom_json(&[
-                "analyze",
-                "bicycle",
-                "--set",
-                &format!("v={v}"),
-                "--method",
-                method,
-                "--format",
-                "json",
-            ]);
+            let j = analyze(v, method);
             let gains = j["steady_state_gain"].as_array().expect("gains");
             assert_eq!(gains.len(), 4, "{method} v = {v}: {gains:?}");
             for (r, out) in ["phi", "delta"].iter().enumerate() {
