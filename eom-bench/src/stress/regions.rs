@@ -117,6 +117,16 @@ fn hinges_reference(d: f64) -> Vec<Complex64> {
     }
 }
 
+/// The Bricard linkage's one mode, `m λ² + c λ + k = 0` with its effective inertia
+/// m = 2.89210019455361372887 kg m² about hinge 1 (from the null space of the six hinge
+/// screws, 50 digits; `eom-model/tests/data/bricard_reference.py`) and c = 0.1 N m s/rad.
+#[allow(clippy::excessive_precision)]
+fn bricard_reference(k: f64) -> Vec<Complex64> {
+    let (m, c) = (2.892_100_194_553_613_728_87_f64, 0.1);
+    let root = Complex64::new(c * c - 4.0 * m * k, 0.0).sqrt();
+    vec![(-c + root) / (2.0 * m), (-c - root) / (2.0 * m)]
+}
+
 /// The regions; `quick` takes fewer points per region (the CI grid).
 pub fn regions(quick: bool) -> Vec<Region> {
     [builtin_regions(quick), structural_regions(quick)].concat()
@@ -265,6 +275,14 @@ fn structural_regions(quick: bool) -> Vec<Region> {
                 "five_bar_by_hand",
                 files::five_bar(true),
             )),
+        },
+        Region {
+            name: "redundant_bricard",
+            what: "spatial Bricard 6R linkage (30 rows for 30 coordinates, one redundant), spring swept",
+            param: "k",
+            values: logspace(1e-4, 1e4, n(17, 3)),
+            source: Source::File("bricard", files::bricard()),
+            reference: ReferenceKind::Closed(bricard_reference),
         },
     ]
 }
