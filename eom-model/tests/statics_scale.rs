@@ -258,87 +258,11 @@ fn planar_five_bar_in_3d() {
     check_mechanism(five_bar, 2);
 }
 
-/// A joint at `at` about `axis` between two bodies (three forces, the two moments across the
-/// axis), with coordinates to 17 digits.
-fn hinge_about(name: &str, b1: &str, b2: &str, at: [f64; 3], axis: [f64; 3]) -> String {
-    format!(
-        "[[rigid_point]]\nname = \"{name}\"\nbetween = [\"{b1}\", \"{b2}\"]\nforces = 3\nmoments = 2\nat = {at:?}\naxis = {axis:?}\n"
-    )
-}
-
-/// The orthogonal Bricard linkage (Bricard 1927): six links of length 1, consecutive hinge
-/// axes perpendicular with twists alternately +90° and −90°, no offsets; link 6 is the ground.
-/// Five moving bodies and six hinges: 30 coordinates, 30 constraint rows, and still one
-/// degree of freedom, because the six hinge screws are linearly dependent (one redundant
-/// row). The configuration is the one at θ1 = 0.9 rad (θ2 = θ4 = θ6 = 1.96419416074355964)
-/// by the Denavit–Hartenberg loop closure; point masses 1.1…1.5 kg at the links' midpoints
-/// with isotropic moments 0.05 kg m², a torsion spring 5 N m/rad and damper 0.1 N m s/rad at
-/// hinge 1. `tests/data/bricard_reference.py` computes it all in 50 digits with mpmath.
-// The 17 digits as the reference printed them.
-#[allow(clippy::excessive_precision)]
+/// The orthogonal Bricard linkage, a spatial 6R loop with as many constraint rows as
+/// coordinates that still moves (`tests/data/bricard.toml` describes it; the torsion spring
+/// `k` = 5 N m/rad at its nominal value).
 fn bricard() -> String {
-    const JOINTS: [([f64; 3], [f64; 3]); 6] = [
-        ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-        (
-            [0.62160996827066446, 0.78332690962748339, 0.0],
-            [0.78332690962748339, -0.62160996827066446, 0.0],
-        ),
-        (
-            [
-                0.38332890179108158,
-                0.48305506561657837,
-                0.92361190607941133,
-            ],
-            [
-                -0.5741263676324308,
-                -0.72349006008433471,
-                -0.38332890179108158,
-            ],
-        ),
-        (
-            [
-                -0.37839003172933554,
-                0.78332690962748339,
-                1.4977382737118421,
-            ],
-            [
-                0.30027184401090502,
-                -0.62160996827066446,
-                0.72349006008433471,
-            ],
-        ),
-        (
-            [-0.61667109820891842, 0.0, 0.92361190607941133],
-            [0.92361190607941133, 0.0, -0.38332890179108158],
-        ),
-        ([-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]),
-    ];
-    let mut parts = vec![header("Bricard", false)];
-    for i in 0..5 {
-        let (p, q) = (JOINTS[i].0, JOINTS[i + 1].0);
-        let centre = [0, 1, 2].map(|k| (p[k] + q[k]) / 2.0);
-        let mass = 1.0 + (i + 1) as f64 / 10.0;
-        parts.push(body(&format!("link{}", i + 1), centre, mass, [0.05; 3]));
-    }
-    for (i, (at, axis)) in JOINTS.iter().enumerate() {
-        let b1 = if i == 0 {
-            "ground".to_string()
-        } else {
-            format!("link{i}")
-        };
-        let b2 = if i == 5 {
-            "ground".to_string()
-        } else {
-            format!("link{}", i + 1)
-        };
-        parts.push(hinge_about(&format!("H{}", i + 1), &b1, &b2, *at, *axis));
-    }
-    parts.push(
-        "[[flex_point]]\nname = \"spring\"\nbetween = [\"link1\", \"ground\"]\nforces = 0\n\
-         moments = 1\nat = [0, 0, 0]\naxis = [0, 0, 1]\nstiffness = [0, 5]\ndamping = [0, 0.1]\n"
-            .to_string(),
-    );
-    parts.join("\n")
+    include_str!("data/bricard.toml").to_string()
 }
 
 #[test]

@@ -130,81 +130,12 @@ pub fn five_bar(by_hand: bool) -> String {
     .join("\n")
 }
 
-/// The orthogonal Bricard linkage: six links of length 1, consecutive hinge axes
-/// perpendicular with twists alternately +90° and −90°, no offsets, link 6 the ground, in its
-/// configuration at θ1 = 0.9 rad. Five bodies and six hinges give 30 coordinates and 30
-/// constraint rows, yet it moves with one degree of freedom (one row is redundant). Point
-/// masses 1.1…1.5 kg at the links' midpoints, isotropic moments 0.05 kg m², the torsion spring
-/// `k` with 0.1 N m s/rad at hinge 1. The same mechanism as `eom-model/tests/statics_scale.rs`,
-/// whose `tests/data/bricard_reference.py` gives the geometry and the effective inertia.
-// The 17 digits as the reference printed them.
-#[allow(clippy::excessive_precision)]
+/// The orthogonal Bricard linkage, a spatial 6R loop with 30 constraint rows for 30
+/// coordinates that still moves with one degree of freedom (one row is redundant), with the
+/// torsion spring `k` at hinge 1: the model file of eom-model's tests, which describes it
+/// (`eom-model/tests/data/bricard.toml`, its reference `bricard_reference.py` beside it).
 pub fn bricard() -> String {
-    const JOINTS: [([f64; 3], [f64; 3]); 6] = [
-        ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-        (
-            [0.62160996827066446, 0.78332690962748339, 0.0],
-            [0.78332690962748339, -0.62160996827066446, 0.0],
-        ),
-        (
-            [
-                0.38332890179108158,
-                0.48305506561657837,
-                0.92361190607941133,
-            ],
-            [
-                -0.5741263676324308,
-                -0.72349006008433471,
-                -0.38332890179108158,
-            ],
-        ),
-        (
-            [
-                -0.37839003172933554,
-                0.78332690962748339,
-                1.4977382737118421,
-            ],
-            [
-                0.30027184401090502,
-                -0.62160996827066446,
-                0.72349006008433471,
-            ],
-        ),
-        (
-            [-0.61667109820891842, 0.0, 0.92361190607941133],
-            [0.92361190607941133, 0.0, -0.38332890179108158],
-        ),
-        ([-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]),
-    ];
-    let mut parts = vec![
-        "[model]\nname = \"Bricard\"\n".to_string(),
-        STIFFNESS.to_string(),
-    ];
-    for i in 0..5 {
-        let (p, q) = (JOINTS[i].0, JOINTS[i + 1].0);
-        let centre = [0, 1, 2].map(|k| (p[k] + q[k]) / 2.0);
-        let mass = 1.0 + (i + 1) as f64 / 10.0;
-        parts.push(body(&format!("link{}", i + 1), centre, mass, [0.05; 3]));
-    }
-    for (i, (at, axis)) in JOINTS.iter().enumerate() {
-        let b1 = if i == 0 {
-            "ground".to_string()
-        } else {
-            format!("link{i}")
-        };
-        let b2 = if i == 5 {
-            "ground".to_string()
-        } else {
-            format!("link{}", i + 1)
-        };
-        parts.push(format!(
-            "[[rigid_point]]\nname = \"H{}\"\nbetween = [\"{b1}\", \"{b2}\"]\nforces = 3\n\
-             moments = 2\nat = {at:?}\naxis = {axis:?}\n",
-            i + 1
-        ));
-    }
-    parts.push(torsion("spring", "link1", [0.0, 0.0, 0.0], "k"));
-    parts.join("\n")
+    include_str!("../../../eom-model/tests/data/bricard.toml").to_string()
 }
 
 /// A pendulum on two hinges about y at (0, 0, 0) and (0, 1, 0), with a torsion spring of
