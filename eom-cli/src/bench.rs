@@ -5,7 +5,7 @@
 use crate::error::CliError;
 use crate::output::{Written, write_output};
 use crate::progress::Progress;
-use eom_bench::work_precision::{self, MODELS, Options, WorkPrecisionError};
+use eom_bench::work_precision::{self, MODELS, Options, WorkPrecisionError, entries};
 use std::path::Path;
 use std::time::Duration;
 
@@ -17,12 +17,19 @@ pub struct AccuracyRequest {
     pub points: usize,
     /// Minimum time spent timing each method, in milliseconds.
     pub min_time_ms: u64,
+    /// Random parameter points of the generated code's entry errors.
+    pub entry_points: usize,
     /// Output directory (created if missing).
     pub dir: Option<std::path::PathBuf>,
 }
 
 /// The largest number of random points per model (each costs a double-double reference).
 pub const MAX_POINTS: usize = 10_000;
+
+/// The heading of the entry errors' table in the printed Markdown.
+const ENTRIES_HEADING: &str = "Rounding error of the symbolic formulas' entries of A and B, \
+    evaluated on the tape and by the generated code, against double-double (entry-wise: \
+    |Δ|/|ref|; row-scaled: |Δ| / largest |ref| of the row of [A B]):";
 
 /// Run the work-precision benchmark; returns the Markdown table, and writes the CSV, the
 /// table and the chart into the directory when one is given (a note per file on `stderr`).
@@ -31,11 +38,16 @@ pub fn accuracy(
     quiet: bool,
     stderr: &mut String,
 ) -> Result<String, CliError> {
-    if req.points == 0 || req.points > MAX_POINTS {
-        return Err(CliError::BadArgument {
-            argument: format!("--points {}", req.points),
-            problem: format!("between 1 and {MAX_POINTS} random points per model"),
-        });
+    for (flag, n) in [
+        ("--points", req.points),
+        ("--entry-points", req.entry_points),
+    ] {
+        if n == 0 || n > MAX_POINTS {
+            return Err(CliError::BadArgument {
+                argument: format!("{flag} {n}"),
+                problem: format!("between 1 and {MAX_POINTS} random points per model"),
+            });
+        }
     }
     let models: Vec<String> = if req.models.is_empty() {
         MODELS.iter().map(|m| m.to_string()).collect()
@@ -60,13 +72,21 @@ pub fn accuracy(
         ..Options::default()
     };
     let bar = Progress::new(quiet, models.len() as u64, "bench accuracy");
-    let mut rows = Vec::new();
+    let (mut rows, mut entry_rows) = (Vec::new(), Vec::new());
     for m in &models {
         bar.stage(m);
         rows.extend(work_precision::run_model(m, &opts).map_err(bench_error)?);
+        entry_rows.extend(
+            entries::entry_errors(m, req.entry_points, opts.spread, opts.seed)
+                .map_err(bench_error)?,
+        );
     }
     bar.finish();
-    let md = work_precision::output::markdown(&rows, 1e-12);
+    let md = format!(
+        "{}\n{ENTRIES_HEADING}\n\n{}",
+        work_precision::output::markdown(&rows, 1e-12),
+        entries::markdown(&entry_rows)
+    );
     if let Some(dir) = &req.dir {
         std::fs::create_dir_all(dir).map_err(|e| CliError::Io {
             path: dir.display().to_string(),
@@ -77,6 +97,7 @@ pub fn accuracy(
             ("work_precision.csv", work_precision::output::csv(&rows)),
             ("work_precision.md", md.clone()),
             ("work_precision.svg", chart),
+            ("generated_entries.csv", entries::csv(&entry_rows)),
         ] {
             note(&dir.join(name), &text, stderr)?;
         }

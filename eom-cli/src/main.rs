@@ -193,9 +193,14 @@ enum BenchCommand {
         on the tape, and the generated Rust code compiled into this binary in f64, f32 and after \
         the egg pass), the largest entry-wise relative error of A and the largest relative \
         error of the eigenvalues against a double-double reference of the same model at the \
-        same point; for the bicycle also against the published benchmark eigenvalues. Prints \
-        the Markdown table; with -o DIR also writes work_precision.csv, work_precision.md and \
-        the chart work_precision.svg (log error against log time, one panel per model)."
+        same point; for the bicycle also against the published benchmark eigenvalues. Then the \
+        rounding error of the entries of A and B as the tape and the generated code compute \
+        them, against a double-double evaluation of the same formulas at --entry-points random \
+        points (entry-wise, and row-scaled: relative to the largest entry of the row of [A B], \
+        the measure by which bench/pydy/accuracy.py measures PyDy's C). Prints the Markdown \
+        tables; with -o DIR also writes work_precision.csv, work_precision.md, \
+        generated_entries.csv and the chart work_precision.svg (log error against log time, \
+        one panel per model)."
     )]
     Accuracy(BenchAccuracyArgs),
     /// Throughput: a sweep of random parameter points of the bicycle through its generated
@@ -262,7 +267,11 @@ struct BenchAccuracyArgs {
     /// Minimum time spent timing each method, in milliseconds
     #[arg(long, value_name = "MS", default_value_t = 200)]
     min_time: u64,
-    /// Output directory for the CSV, the Markdown table and the SVG chart (created if missing)
+    /// Random parameter points of the entry errors of A and B (the tape's and the generated
+    /// code's, against double-double)
+    #[arg(long, value_name = "N", default_value_t = 1024)]
+    entry_points: usize,
+    /// Output directory for the CSVs, the Markdown table and the SVG chart (created if missing)
     #[arg(short, long, value_name = "DIR")]
     output: Option<PathBuf>,
 }
@@ -516,6 +525,7 @@ fn run_bench(b: BenchCommand, quiet: bool, stderr: &mut String) -> Result<String
                 models: b.models,
                 points: b.points,
                 min_time_ms: b.min_time,
+                entry_points: b.entry_points,
                 dir: b.output,
             };
             bench::accuracy(&req, quiet, stderr)?

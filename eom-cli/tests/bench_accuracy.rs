@@ -1,7 +1,8 @@
 //! `eom bench accuracy`: on the spring-mass-damper and the bicycle, the printed table and the
 //! written CSV hold every method's eigenvalue error within the bounds of the benchmark's smoke
 //! test (`tests/tests/work_precision.rs`), the bicycle's generated code within 1e-12 of the
-//! published eigenvalues; the files are written; bad arguments exit 2 naming them.
+//! published eigenvalues; the rounding error of the entries of A and B is printed and
+//! written; the files are written; bad arguments exit 2 naming them.
 
 mod common;
 use common::eom;
@@ -82,7 +83,29 @@ fn errors_are_within_the_smoke_test_bounds_and_files_are_written() {
         .filter(|r| r["method"] == "generated f64")
         .count();
     assert_eq!(f64_rows, 2, "{csv}");
+    entry_errors_are_printed_and_written(&dir, &r.stdout);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The rounding error of the entries of A and B (1024 points by default): every row printed
+/// and written, the bicycle's generated code within PyDy's row-scaled error under the same
+/// protocol (2.348e-14, `bench/pydy/accuracy.py`; `tests/tests/generated_accuracy.rs`).
+fn entry_errors_are_printed_and_written(dir: &std::path::Path, stdout: &str) {
+    let csv = std::fs::read_to_string(dir.join("generated_entries.csv")).expect("entries csv");
+    let rows = rows(&csv);
+    // smd: tape, f64, f32; bicycle: the same and the egg variant.
+    assert_eq!(rows.len(), 7, "{csv}");
+    for row in &rows {
+        let (model, method) = (row["model"].as_str(), row["method"].as_str());
+        assert_eq!(row["points"], "1024", "{row:?}");
+        let printed = format!("| {model} | {method} |");
+        assert!(stdout.contains(&printed), "{printed} not printed");
+        let tol = if method.contains("f32") { 1e-4 } else { 1e-12 };
+        assert!(value(row, "row_scaled") <= tol, "{row:?}");
+        if model == "bicycle" && method == "generated f64" {
+            assert!(value(row, "row_scaled") <= 2.348e-14, "{row:?}");
+        }
+    }
 }
 
 #[test]
@@ -93,6 +116,10 @@ fn bad_arguments_exit_2_naming_them() {
             "nosuch",
         ),
         (&["bench", "accuracy", "smd", "--points", "0"], "--points 0"),
+        (
+            &["bench", "accuracy", "smd", "--entry-points", "0"],
+            "--entry-points 0",
+        ),
     ] {
         let r = eom(args);
         assert_eq!(r.code, 2, "{args:?}: {}", r.stderr);

@@ -145,7 +145,7 @@ fn symbolic_breakdown_exits_1_with_a_clear_message() {
             "analyze", "bicycle", "--set", "c=-1.02", "--method", "symbolic",
         ],
         1,
-        &["validity region", "rear tyre", "--method numeric"],
+        &["validity region", "front tyre", "--method numeric"],
     );
     let r = eom(&[
         "analyze", "bicycle", "--set", "c=-1.02", "--method", "numeric",

@@ -105,8 +105,9 @@ fn bicycle_is_stable_between_the_published_weave_and_capsize_speeds() {
 }
 
 /// A grid value where the symbolic pivots (chosen at the default trail c = 0.08) break down
-/// — c = −w makes the rear tyre's pivot −w − c vanish — is evaluated by the robust path and
-/// reported; its eigenvalues agree with the numeric elimination with pivots chosen there.
+/// — c = −w makes the pivot w + c in the front tyre's constraint vanish — is evaluated by the
+/// robust path and reported; its eigenvalues agree with the numeric elimination with pivots
+/// chosen there.
 #[test]
 fn points_outside_the_symbolic_region_fall_back_to_the_robust_path() {
     let j = eom_json(&[
@@ -122,7 +123,7 @@ fn points_outside_the_symbolic_region_fall_back_to_the_robust_path() {
     let c = fb["values"][0].as_f64().unwrap();
     assert!((c + 1.02).abs() < 1e-12, "{c}");
     assert!(
-        fb["reasons"][0].as_str().unwrap().contains("rear tyre"),
+        fb["reasons"][0].as_str().unwrap().contains("front tyre"),
         "{fb}"
     );
     let point = j["points"]

@@ -385,6 +385,16 @@ struct Selection<S> {
     c_s: SparseMatrix<S>,
 }
 
+impl<S: Scalar> Selection<S> {
+    /// The inertia of each active coordinate at the nominal point (the mass matrix's
+    /// diagonal): the pivot choice keeps the heavy ones independent (see [`rref`]).
+    fn inertia(&self) -> Vec<f64> {
+        (0..self.active.len())
+            .map(|c| self.mass.get(c, c).nominal().abs())
+            .collect()
+    }
+}
+
 /// Step 2: the position elimination and `p = R_p x_p`.
 struct Positions<S> {
     rj: Rref<S>,
@@ -492,7 +502,13 @@ impl<'a, S: Scalar> Reducer<'a, S> {
     fn eliminate_positions(&mut self, sel: &Selection<S>) -> Result<Positions<S>, ModelError> {
         let (a, n) = (self.a, sel.active.len());
         let jlabel = |r: usize| a.holonomic_rows[sel.j_keep[r]].clone();
-        let rj = rref(to_rows(&sel.jm), n, &[], self.plan.map(|p| &p.position))?;
+        let rj = rref(
+            to_rows(&sel.jm),
+            n,
+            &[],
+            self.plan.map(|p| &p.position),
+            &sel.inertia(),
+        )?;
         let mut checks = Vec::new();
         record_checks(
             &rj,
@@ -567,6 +583,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             n,
             &pos.rj.plan.pivots,
             self.plan.map(|p| &p.velocity),
+            &sel.inertia(),
         )?;
         // The replayed position pivots are already checked; record the new ones.
         let all_records = std::mem::take(&mut rg.pivot_records);
@@ -657,7 +674,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         let b2 = rwt.mul(&sel.f_u)?;
         let g2 = rwt.mul(&sel.g_u)?;
         let m_aug = SparseMatrix::hcat(&[&m_r, &rhs_a, &b2, &g2])?;
-        let rm = rref(to_rows(&m_aug), nw, &[], self.plan.map(|p| &p.mass))?;
+        let rm = rref(to_rows(&m_aug), nw, &[], self.plan.map(|p| &p.mass), &[])?;
         let vcoord = |t: usize| self.coord(sel.active[velo.indep_w[t]], true);
         let mut checks = Vec::new();
         record_checks(

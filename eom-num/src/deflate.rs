@@ -217,6 +217,75 @@ pub fn structural_zero_count(a: &nalgebra::DMatrix<f64>) -> usize {
     order.len()
 }
 
+/// A system in the coordinates that make its structural zeros exact (see
+/// [`structural_coordinates`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StructuralCoordinates {
+    /// `T⁻¹ A T`, with A's rounding residues of zero chopped.
+    pub a: nalgebra::DMatrix<f64>,
+    /// `T⁻¹ B`.
+    pub b: nalgebra::DMatrix<f64>,
+    /// `C T`.
+    pub c: nalgebra::DMatrix<f64>,
+    /// The number of structural zero eigenvalues.
+    pub zeros: usize,
+    /// The changes of coordinates whose product is `T`, in order.
+    pub combos: Vec<Combine>,
+}
+
+impl StructuralCoordinates {
+    /// `M ← M T` for a matrix with one column per state (an output matrix, the map to the
+    /// physical coordinates): for each change `x_j = x̃_j − s·x̃_i`, column i loses s·column j.
+    pub fn apply_right(&self, m: &mut nalgebra::DMatrix<f64>) {
+        for k in &self.combos {
+            for row in 0..m.nrows() {
+                m[(row, k.i)] -= k.s * m[(row, k.j)];
+            }
+        }
+    }
+}
+
+/// The system in the coordinates that make its structural zeros exact: `(T⁻¹ A T, T⁻¹ B,
+/// C T)` with `T` the product of the exact changes of coordinates [`deflate_in_place`] finds
+/// (and A's rounding residues of zero chopped). Its transfer function is the original one; its
+/// A has exactly zero columns (on the other states) where the structure proves zero
+/// eigenvalues, which rank decisions then see without depending on how the rounding of a pair
+/// of columns fell.
+pub fn structural_coordinates(
+    a: &nalgebra::DMatrix<f64>,
+    b: &nalgebra::DMatrix<f64>,
+    c: &nalgebra::DMatrix<f64>,
+) -> StructuralCoordinates {
+    let n = a.nrows();
+    let mut t = a.clone();
+    let (mut removed, mut order, mut combos, mut keys) = (vec![false; n], vec![], vec![], vec![]);
+    deflate_in_place(
+        t.as_mut_slice(),
+        n,
+        &mut removed,
+        &mut order,
+        &mut combos,
+        &mut keys,
+    );
+    let mut out = StructuralCoordinates {
+        a: t,
+        b: b.clone(),
+        c: c.clone(),
+        zeros: order.len(),
+        combos,
+    };
+    // T⁻¹ B: for each change, row j gains s·row i.
+    for k in &out.combos {
+        for col in 0..out.b.ncols() {
+            out.b[(k.j, col)] += k.s * out.b[(k.i, col)];
+        }
+    }
+    let mut c = std::mem::take(&mut out.c);
+    out.apply_right(&mut c);
+    out.c = c;
+    out
+}
+
 /// `k` null directions deflated orthogonally, for a matrix whose structural zero eigenvalues
 /// are known (`k` of them, from another basis of the same model) but not visible as exact
 /// zeros here: each step finds the right singular vector `v` of the smallest singular value,
@@ -260,7 +329,7 @@ pub(crate) fn deflate_null_directions(
 }
 
 /// The structural zero eigenvalues of `a` described with the state names: a state on which
-/// nothing depends (`front frame.y`), or a pair of which only the difference (or sum) acts
+/// nothing depends (`rear frame.y`), or a pair of which only the difference (or sum) acts
 /// (`rear frame.rz + front frame.rz`: the heading of the pair).
 pub fn structural_zero_states(a: &nalgebra::DMatrix<f64>, states: &[String]) -> Vec<String> {
     let n = a.nrows();

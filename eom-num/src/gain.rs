@@ -149,8 +149,9 @@ pub fn steady_state_gain(ss: &StateSpace<f64>) -> Result<SteadyStateGain, NumErr
 /// When the rank decision on A lies within [`AMBIGUITY_FACTOR`] of its threshold, or finds
 /// fewer zero eigenvalues than [`GainOptions::structural_zeros`], the gains are computed
 /// again with every threshold raised by that factor. Equal gains (to 1e-9 of the largest):
-/// the first result. Different gains, where the raised threshold finds the zero eigenvalues
-/// the structure proves: that result, with a warning (a defective zero pair split by
+/// the first result, unless neither decision finds the zero eigenvalues the structure proves
+/// ([`NumError::AmbiguousRank`]). Different gains, where the raised threshold finds them:
+/// that result, with a warning (a defective zero pair split by
 /// rounding into `±δ` is not a pair of genuine modes, and `C A⁻¹ B` would amplify the
 /// rounding in their couplings by `1/δ²`). Otherwise [`NumError::AmbiguousRank`].
 ///
@@ -177,6 +178,19 @@ pub fn steady_state_gain_with(
     // The decision on A is fragile, or contradicts the structure: decide again with the
     // threshold raised by the factor that counts as near, and compare.
     let second = gain_at_tolerance(ss, opts, AMBIGUITY_FACTOR)?;
+    if second.zero_dimension < opts.structural_zeros {
+        // Both decisions contradict the structure: A's rounding hides zero eigenvalues that
+        // exist, and `C A⁻¹ B` would amplify that rounding into the gains.
+        return Err(NumError::AmbiguousRank(format!(
+            "the structure of the model proves {} zero eigenvalue(s), but the rank decisions \
+             on A ({n}×{n}) find {} at the default threshold and {} at one {AMBIGUITY_FACTOR} \
+             times larger: the gains would amplify rounding",
+            opts.structural_zeros,
+            first.zero_dimension,
+            second.zero_dimension,
+            n = ss.states()
+        )));
+    }
     if same_gains(&first.gains, &second.gains) {
         return Ok(first);
     }
@@ -254,7 +268,7 @@ fn gain_at_tolerance(
     factor: f64,
 ) -> Result<SteadyStateGain, NumError> {
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
-    let (a, b, c) = balanced(ss);
+    let (a, b, c) = balanced(&structural(ss));
     let mut warnings = Vec::new();
     if let Some(cert) = certify_regular(&a, &opts.rank_tol, factor)? {
         return regular(ss, &b, &c, cert, opts, warnings);
@@ -429,6 +443,25 @@ fn zero_split(
         decisions,
         separation_condition,
     })
+}
+
+/// The system in the coordinates where the zero eigenvalues its structure proves are exact
+/// ([`crate::deflate::structural_coordinates`]): a pair of states on which the equations
+/// depend only through their difference has two columns that are negatives of each other to
+/// rounding, and left so, A is regular with a condition number of 1/ε and its "inverse"
+/// amplifies that rounding into the gains (the bicycle's heading pair gave gains of 0 instead
+/// of 5e-4). The gains are invariant under the change of coordinates.
+fn structural(ss: &StateSpace<f64>) -> StateSpace<f64> {
+    let t = crate::deflate::structural_coordinates(&ss.a, &ss.b, &ss.c);
+    if t.zeros == 0 {
+        return ss.clone();
+    }
+    StateSpace {
+        a: t.a,
+        b: t.b,
+        c: t.c,
+        ..ss.clone()
+    }
 }
 
 /// The balanced system: Ã = D⁻¹ A D, B̃ = D⁻¹ B, C̃ = C D, with D from [`balance_in_place`]

@@ -3,6 +3,12 @@
 //!
 //! # Algorithm
 //!
+//! 0. Change to the coordinates where the zero eigenvalues the structure proves are exact
+//!    ([`crate::deflate::structural_coordinates`]: rounding residues of the elimination in a
+//!    column on which nothing depends set to zero, a pair of states that acts only through
+//!    its difference combined exactly). Left in, balancing scales such a column up by as much
+//!    as 2²³ and its residues become couplings above every tolerance (the bicycle's heading
+//!    and lateral position were kept as observable).
 //! 1. Optionally balance the states (diagonal similarity by powers of two, exact in floating
 //!    point) so that the rows of `[A B]` and the columns of `[A; C]` have comparable norms.
 //!    Multibody models mix units (metres and radians, kN/m and N·m/rad); balancing makes the
@@ -44,6 +50,7 @@ use nalgebra::{DMatrix, DMatrixView};
 use num_complex::Complex64;
 use serde::Serialize;
 
+use crate::deflate::structural_coordinates;
 use crate::error::NumError;
 use crate::staircase::staircase;
 use crate::statespace::StateSpace;
@@ -627,9 +634,11 @@ pub fn minimal_realization(
     let rtol = opts
         .rtol
         .unwrap_or_else(|| MinrealOptions::default_rtol(n, m, p));
-    let mut a = ss.a.clone();
-    let mut b = ss.b.clone();
-    let mut c = ss.c.clone();
+    // In the coordinates where the structural zeros are exact (the rounding residues of an
+    // elimination in a column on which nothing depends would otherwise be balanced up and
+    // counted as couplings).
+    let st = structural_coordinates(&ss.a, &ss.b, &ss.c);
+    let (mut a, mut b, mut c) = (st.a.clone(), st.b.clone(), st.c.clone());
     let scaling = if opts.balance {
         balance_states(&a, &b, &c)
     } else {
@@ -697,6 +706,7 @@ pub fn minimal_realization(
     // Old state x = diag(s) · q_c[:, ..nc] · q_o[:, ..no] · z, applied to phys factor by
     // factor (the q's are never formed).
     let mut phys = ss.phys.clone();
+    st.apply_right(&mut phys);
     for (j, &f) in report.scaling.iter().enumerate() {
         phys.column_mut(j).scale_mut(f);
     }

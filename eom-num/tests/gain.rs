@@ -230,3 +230,36 @@ fn gain_errors_name_the_problem() {
         Err(NumError::Dimension(msg)) if msg.contains("D is 2×2")
     ));
 }
+
+/// Two headings on which the equations depend only through their difference: their columns
+/// are negatives of each other, here to 1–3 ulps (as two separately rounded reductions give
+/// them), not exactly; and a lateral position that integrates the first heading, on which
+/// nothing depends but rounding residues of the elimination (the bicycle's `rear frame.y`,
+/// `rear frame.rz`, `front frame.rz`, whose A at 2 m/s has 9e-16 and −7e-15 in the
+/// position's column). Left so, A is regular and `C A⁻¹ B` amplifies those residues into the
+/// gains (the bicycle's were 0 instead of 5e-4); in the coordinates where the structural
+/// zeros are exact the gain is the closed form. States
+/// x1, x2 (headings), x3 (a rate), x4 (position); z = x1 − x2: ż = x3/2 + 2z,
+/// ẋ3 = −3z − x3 + u, y = z; at rest x3 = −4z and z = −u: gain −1.
+#[test]
+fn a_heading_pair_rounded_apart_gives_the_closed_form_gain() {
+    let ulp = |x: f64, k: i64| f64::from_bits((x.to_bits() as i64 + k) as u64);
+    let a = dmatrix![
+        0.0, 0.0, 1.0, 0.0;
+        -2.0, ulp(2.0, 1), 0.5, 9e-16;
+        -3.0, ulp(3.0, 3), -1.0, -7e-15;
+        2.0, 0.0, 0.0, 0.0
+    ];
+    let b = dmatrix![0.0; 0.0; 1.0; 0.0];
+    let c = dmatrix![1.0, -1.0, 0.0, 0.0];
+    let d = DMatrix::zeros(1, 1);
+    let ss = StateSpace::new(a, b, c, d).unwrap();
+    let g = steady_state_gain(&ss).unwrap();
+    assert!(
+        close(g.get(0, 0), -1.0),
+        "{:?} {:?}",
+        g.get(0, 0),
+        g.warnings
+    );
+    assert_eq!(g.zero_dimension, 2, "{g:?}");
+}

@@ -722,3 +722,44 @@ fn mayne_minreal(
     let (a2, b2, c2) = mayne_cont_part(&a1.transpose(), &c1.transpose(), &b1.transpose());
     (a2.transpose(), c2.transpose(), b2.transpose())
 }
+
+/// The bicycle's unobservable heading and lateral position, in miniature: two headings whose
+/// columns are negatives of each other to 1–3 ulps, a rate, and a position that integrates the
+/// first heading with rounding residues of the elimination (9e-16, −7e-15) in its column. The
+/// outputs see only the relative heading: minimal order 2 (the relative heading and the
+/// rate), the transfer function `y/u = ½ / ((s − 2)(s + 1) + 3/2)` and the physical
+/// response (phys = identity) preserved. Balancing the residues up made them couplings and
+/// the order 4 (the bicycle's 6 of 6).
+#[test]
+fn residues_in_a_column_nothing_depends_on_do_not_count_as_couplings() {
+    let ulp = |x: f64, k: i64| f64::from_bits((x.to_bits() as i64 + k) as u64);
+    let a = mat(&[
+        &[0.0, 0.0, 1.0, 0.0],
+        &[-2.0, ulp(2.0, 1), 0.5, 9e-16],
+        &[-3.0, ulp(3.0, 3), -1.0, -7e-15],
+        &[2.0, 0.0, 0.0, 0.0],
+    ]);
+    let b = mat(&[&[0.0], &[0.0], &[1.0], &[0.0]]);
+    let c = mat(&[&[1.0, -1.0, 0.0, 0.0]]);
+    let sys = ss(a, b, c, DMatrix::zeros(1, 1))
+        .with_phys(DMatrix::identity(4, 4))
+        .unwrap();
+    let (min, rep) = minimal_realization(&sys, &MinrealOptions::default()).unwrap();
+    assert_eq!(min.states(), 2, "{rep:?}");
+    assert_eq!(rep.unobservable + rep.uncontrollable, 2);
+    for s in points() {
+        let want = 0.5 / ((s - 2.0) * (s + 1.0) + 1.5);
+        let got = tf(&min, s)[(0, 0)];
+        assert!(
+            (got - want).norm() <= 1e-12 * want.norm(),
+            "{got} vs {want}"
+        );
+        // The relative heading x1 − x2 of the physical response is the output.
+        let phys = tf_parts(&min.a, &min.b, &min.phys, &DMatrix::zeros(4, 1), s);
+        let rel = phys[(0, 0)] - phys[(1, 0)];
+        assert!(
+            (rel - want).norm() <= 1e-12 * want.norm(),
+            "{rel} vs {want}"
+        );
+    }
+}

@@ -313,9 +313,15 @@ fn bicycle_polynomial_at_random_points() {
         .pencil_polynomial(Some(&e), &f)
         .expect("pencil polynomial");
     assert_eq!(q.zero_roots, 2);
+    // Both forms are of a size: 560 and 547 operations since the pivots keep the rear
+    // frame's coordinates independent (before, the pencil's was the smaller).
+    let (pencil_ops, a_ops) = (
+        Expr::op_count(&q.polynomial.coefficients).total(),
+        Expr::op_count(&p.polynomial.coefficients).total(),
+    );
     assert!(
-        Expr::op_count(&q.polynomial.coefficients).total()
-            < Expr::op_count(&p.polynomial.coefficients).total()
+        pencil_ops < 2 * a_ops && a_ops < 2 * pencil_ops,
+        "{pencil_ops} {a_ops}"
     );
     for _ in 0..1000 {
         let at = random_point(&m, &mut rng, 0.1);

@@ -13,6 +13,9 @@ mod code {
 /// The bicycle's generated `f64` module (for the throughput sweep).
 pub(crate) use code::gen64::bicycle as bicycle64;
 
+/// A and B (column-major, converted to `f64`).
+pub type Ab = (DMatrix<f64>, DMatrix<f64>);
+
 /// One generated module of one model.
 #[derive(Clone, Copy)]
 pub struct GenKernel {
@@ -20,6 +23,8 @@ pub struct GenKernel {
     pub label: &'static str,
     /// A (column-major, converted to `f64`) at a point, `None` outside the validity region.
     pub a: fn(&[f64]) -> Option<DMatrix<f64>>,
+    /// A and B (converted to `f64`) at a point, `None` outside the validity region.
+    pub ab: fn(&[f64]) -> Option<Ab>,
     /// Median time per `eval_ab` call in ns over the given points, repeated for at least the
     /// given duration (parameters converted to the module's type before the clock starts).
     pub time: fn(&[Vec<f64>], Duration) -> f64,
@@ -31,11 +36,17 @@ macro_rules! kernel {
         fn typed(p: &[f64]) -> [$ty; g::N_PARAMS] {
             core::array::from_fn(|k| p[k] as $ty)
         }
-        fn a(p: &[f64]) -> Option<DMatrix<f64>> {
+        fn ab(p: &[f64]) -> Option<$crate::work_precision::generated::Ab> {
             let (mut a, mut b, mut w) = ([0.0; g::A_LEN], [0.0; g::B_LEN], [0.0; g::WORK_LEN]);
             g::eval_ab(&typed(p), &mut a, &mut b, &mut w).ok()?;
-            let n = (g::A_LEN as f64).sqrt().round() as usize;
-            Some(DMatrix::from_iterator(n, n, a.iter().map(|&x| x as f64)))
+            let (n, m) = (g::N_STATES, g::N_INPUTS);
+            Some((
+                DMatrix::from_iterator(n, n, a.iter().map(|&x| x as f64)),
+                DMatrix::from_iterator(n, m, b.iter().map(|&x| x as f64)),
+            ))
+        }
+        fn a(p: &[f64]) -> Option<DMatrix<f64>> {
+            ab(p).map(|(a, _)| a)
         }
         fn time(points: &[Vec<f64>], min: Duration) -> f64 {
             type Kernel = fn(
@@ -59,6 +70,7 @@ macro_rules! kernel {
         GenKernel {
             label: $label,
             a,
+            ab,
             time,
         }
     }};

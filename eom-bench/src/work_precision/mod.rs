@@ -13,6 +13,7 @@
 //! ([`output`], [`chart`]).
 
 pub mod chart;
+pub mod entries;
 pub mod generated;
 pub mod output;
 pub mod published;

@@ -60,6 +60,19 @@ impl<'a> ReferenceModel<'a> {
             .collect())
     }
 
+    /// B in double-double at `values`, as rows.
+    pub fn b_dd(&self, values: &[f64]) -> Result<Vec<Vec<Dd>>, WorkPrecisionError> {
+        let b = &self.sym.state_space().b;
+        let (n, m) = (b.nrows(), b.ncols());
+        let roots: Vec<eom_sym::Expr> = b.iter().copied().collect();
+        let dd = eval_generic::<Dd>(&roots, |i| {
+            self.pos.get(&i).map(|&k| Dd::from_f64(values[k]))
+        })?;
+        Ok((0..n)
+            .map(|i| (0..m).map(|j| dd[i + j * n]).collect())
+            .collect())
+    }
+
     /// The reference at `values`.
     pub fn at(&self, values: &[f64]) -> Result<Reference, WorkPrecisionError> {
         let rows = self.a_dd(values)?;

@@ -246,7 +246,7 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
     // The sparse elimination's own pivots (fewest fill-ins, so the smallest expressions) when
     // they are as many as the numerical rank and independent on the nondimensionalised
     // matrix; otherwise (e.g. a pivot on a moment of a negligible lever arm) complete pivoting.
-    let own = rref(rows.clone(), nu, &[], None)?;
+    let own = rref(rows.clone(), nu, &[], None, &[])?;
     let complete = complete_pivots(&a, r);
     if own.plan.pivots.len() == r
         && smallest_singular_value(&a, &own.plan.pivots)?
@@ -254,7 +254,7 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
     {
         return Ok(own);
     }
-    rref(rows, nu, &[], Some(&plan_of(complete, nrows)))
+    rref(rows, nu, &[], Some(&plan_of(complete, nrows)), &[])
 }
 
 /// The solution of a reduced system with `n` unknowns and every unknown a pivot: the
@@ -280,7 +280,7 @@ fn compatibility<S: Scalar>(
     let d = p.dim;
     let n = q + d + p.known.len();
     let rows = compatibility_rows(p);
-    let tr = rref(RowStore::from_rows(&rows, n + 1), n, &[], None)?;
+    let tr = rref(RowStore::from_rows(&rows, n + 1), n, &[], None, &[])?;
     if tr.plan.pivots.len() < n {
         return Err(ModelError::Singular(format!(
             "the model is statically indeterminate (rank {rank} of {} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",

@@ -14,7 +14,7 @@ fn steer_into_the_lean_settles_over_a_speed_ramp() {
         .expect("v");
     let lean = plant::STATE_NAMES
         .iter()
-        .position(|n| *n == "front frame.rx")
+        .position(|n| *n == "rear frame.rx")
         .expect("lean");
     let steer = plant::INPUT_NAMES
         .iter()

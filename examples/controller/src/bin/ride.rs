@@ -24,7 +24,7 @@ fn ride(speed: impl Fn(f64) -> f64, print: bool) -> f32 {
         .expect("speed parameter");
     let lean_state = plant::STATE_NAMES
         .iter()
-        .position(|n| *n == "front frame.rx")
+        .position(|n| *n == "rear frame.rx")
         .expect("lean state");
     let steer = plant::INPUT_NAMES
         .iter()
