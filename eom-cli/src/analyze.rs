@@ -601,6 +601,8 @@ fn minimal_view(
         let stage = match d.stage {
             RankStage::Controllability => "controllability",
             RankStage::Observability => "observability",
+            RankStage::ControllabilityPbh => "controllability (PBH test at repeated eigenvalues)",
+            RankStage::ObservabilityPbh => "observability (PBH test at repeated eigenvalues)",
             _ => "rank",
         };
         warnings.push(format!(

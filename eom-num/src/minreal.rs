@@ -45,6 +45,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::NumError;
+use crate::minreal_pbh::{Reduction, kept_eigenvalues};
 use crate::staircase::staircase;
 use crate::statespace::StateSpace;
 
@@ -67,6 +68,17 @@ pub struct MinrealOptions {
     /// Confirm every removal by the PBH test ([`RemovedMode::pbh_residual`]; default
     /// `true`). It costs one complex SVD of size n per removed mode (or conjugate pair).
     pub pbh_check: bool,
+    /// Run the cluster PBH pass after each staircase (default `true`; see the module
+    /// documentation). It costs one eigenvalue computation of the controllable part (and of
+    /// the observable part when the previous stages removed something) and one SVD per
+    /// cluster of eigenvalues.
+    pub cluster_pbh: bool,
+    /// Eigenvalues within `cluster_rtol · ‖A‖_F` (balanced A) of each other, transitively,
+    /// form a cluster examined by the PBH pass. The default `1e-6` covers the `√ε ≈ 1.5e-8`
+    /// relative split of a computed defective double eigenvalue with a margin for its
+    /// conditioning; a larger value costs SVDs but removes nothing that the PBH test at the
+    /// cluster's mean does not confirm.
+    pub cluster_rtol: f64,
 }
 
 impl Default for MinrealOptions {
@@ -77,6 +89,8 @@ impl Default for MinrealOptions {
             balance: true,
             stability_rtol: 1e-8,
             pbh_check: true,
+            cluster_pbh: true,
+            cluster_rtol: 1e-6,
         }
     }
 }
@@ -108,6 +122,12 @@ impl MinrealOptions {
                 self.stability_rtol
             )));
         }
+        if !(self.cluster_rtol.is_finite() && self.cluster_rtol >= 0.0) {
+            return Err(NumError::InvalidOption(format!(
+                "MinrealOptions.cluster_rtol = {} (must be finite and ≥ 0)",
+                self.cluster_rtol
+            )));
+        }
         Ok(())
     }
 }
@@ -119,6 +139,13 @@ pub enum RankStage {
     Controllability,
     /// Observability staircase (the same on the dual system).
     Observability,
+    /// PBH test of the controllable part at the mean of a cluster of eigenvalues: the block
+    /// is `[A_c − λI, B_c]`, and only its smallest singular values are listed (one more than
+    /// the cluster size, or than the directions removed); `rank` counts the listed ones
+    /// above the tolerance, so the listed ones below it are the directions removed.
+    ControllabilityPbh,
+    /// The same for observability: `[A_o − λI; C_o]` of the observable part.
+    ObservabilityPbh,
     /// Transmission zeros: row compression of the feedthrough `D` (of the dual system when
     /// `dual`).
     Feedthrough {
@@ -642,38 +669,53 @@ pub fn minimal_realization(
     let tol_o = (rtol * na.max(nc_)).max(opts.atol);
     let stability_threshold = opts.stability_rtol * na;
 
-    let sc = staircase(a, b, c, tol_c, RankStage::Controllability)?;
-    let nc = sc.kept;
-    let ev_u = eigenvalues_sorted(sc.a.view((nc, nc), (n - nc, n - nc)))?;
-    let a1 = sc.a.view((0, 0), (nc, nc)).clone_owned();
-    let b1 = sc.b.rows(0, nc).clone_owned();
-    let c1 = sc.c.columns(0, nc).clone_owned();
-    let so = staircase(
-        a1.transpose(),
-        c1.transpose(),
-        b1.transpose(),
-        tol_o,
-        RankStage::Observability,
-    )?;
-    let no = so.kept;
-    // Back from the dual: a = (so.a)ᵀ, b = (so.c)ᵀ, c = (so.b)ᵀ.
-    let a2 = so.a.transpose();
-    let ev_o = eigenvalues_sorted(a2.view((no, no), (nc - no, nc - no)))?;
+    let c_stages = (RankStage::Controllability, RankStage::ControllabilityPbh);
+    let o_stages = (RankStage::Observability, RankStage::ObservabilityPbh);
+    let mut rc = Reduction::new(a, b, c);
+    rc.staircase(tol_c, c_stages.0)?;
+    let nc_krylov = rc.a.nrows();
+    // The observability reduction is the controllability reduction of the dual. Its
+    // staircase does not wait for the eigenvalues of the controllable part: it is redone
+    // only if the PBH pass removes something.
+    let observability = |rc: &Reduction| {
+        let mut ro = rc.dual();
+        ro.staircase(tol_o, o_stages.0).map(|_| ro)
+    };
+    let mut ro = if opts.cluster_pbh {
+        let dist = opts.cluster_rtol * na;
+        let (ev, ro) = rayon::join(|| kept_eigenvalues(&rc), || observability(&rc));
+        rc.finish(tol_c, dist, c_stages, Some(ev?))?;
+        let mut ro = if rc.a.nrows() == nc_krylov {
+            ro?
+        } else {
+            observability(&rc)?
+        };
+        // Nothing removed since the controllable part's eigenvalues: they are A_o's.
+        let ev = rc.eigenvalues.clone().filter(|e| e.len() == ro.a.nrows());
+        ro.finish(tol_o, dist, o_stages, ev)?;
+        ro
+    } else {
+        observability(&rc)?
+    };
+    let nc = rc.a.nrows();
+    let no = ro.a.nrows();
+    sort_complex(&mut rc.removed);
+    sort_complex(&mut ro.removed);
 
     let mut removed = classify(
-        &ev_u,
+        &rc.removed,
         RemovedKind::Uncontrollable,
         stability_threshold,
         opts.pbh_check.then_some((&a0, &b0)),
     )?;
     removed.extend(classify(
-        &ev_o,
+        &ro.removed,
         RemovedKind::Unobservable,
         stability_threshold,
         opts.pbh_check.then_some((&a0, &c0)),
     )?);
-    let mut decisions = sc.decisions.clone();
-    decisions.extend(so.decisions.iter().cloned());
+    let mut decisions = rc.decisions.clone();
+    decisions.extend(ro.decisions.iter().cloned());
     let report = MinrealReport {
         states_in: n,
         states_out: no,
@@ -691,19 +733,17 @@ pub fn minimal_realization(
         return Ok((ss.clone(), report));
     }
 
-    let a_min = a2.view((0, 0), (no, no)).clone_owned();
-    let b_min = so.c.transpose().rows(0, no).clone_owned();
-    let c_min = so.b.transpose().columns(0, no).clone_owned();
-    // Old state x = diag(s) · q_c[:, ..nc] · q_o[:, ..no] · z, applied to phys factor by
-    // factor (the q's are never formed).
+    // Back from the dual: a = (ro.a)ᵀ, b = (ro.c)ᵀ, c = (ro.b)ᵀ.
+    let a_min = ro.a.transpose();
+    let b_min = ro.c.transpose();
+    let c_min = ro.b.transpose();
+    // Old state x = diag(s) · Q_c · Q_o · z, applied to phys factor by factor (the
+    // staircases' Q's are never formed).
     let mut phys = ss.phys.clone();
     for (j, &f) in report.scaling.iter().enumerate() {
         phys.column_mut(j).scale_mut(f);
     }
-    sc.apply_right(&mut phys);
-    let mut phys = phys.columns(0, nc).clone_owned();
-    so.apply_right(&mut phys);
-    let phys = phys.columns(0, no).clone_owned();
+    let phys = ro.apply_right(rc.apply_right(phys));
     let mut names = ss.names.clone();
     names.states = if ss.names.states.is_empty() {
         Vec::new()
