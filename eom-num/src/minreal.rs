@@ -13,11 +13,75 @@
 //!    that couples the reached directions into the rest, and so on until a block has rank
 //!    zero (the remaining states are uncontrollable) or no state is left. The result is
 //!    `Qᵀ A Q = [A_c *; 0 A_u]`, `Qᵀ B = [B_c; 0]`.
-//! 3. **Observability staircase**: the same on the dual `(A_cᵀ, C_cᵀ, B_cᵀ)` of the
-//!    controllable part, giving `[A_o 0; * A_ū]`, `[C_o 0]`.
-//! 4. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
+//! 3. **Cluster PBH pass** (below; [`MinrealOptions::cluster_pbh`]): at every cluster of
+//!    eigenvalues of `A_c`, uncontrollable directions the staircase could not see are rotated
+//!    out, and the staircase runs again on what is kept, until the pass removes nothing.
+//! 4. **Observability staircase** and its PBH pass: the same on the dual
+//!    `(A_cᵀ, C_cᵀ, B_cᵀ)` of the controllable part, giving `[A_o 0; * A_ū]`, `[C_o 0]`.
+//! 5. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
 //!    power-of-two scalings) are used, so its transfer function equals the original one to
 //!    rounding, apart from the parts below the tolerance that the rank decisions set to zero.
+//!
+//! # Why a PBH pass: the staircase measures Krylov rank, not distance
+//!
+//! The staircase decides on the subdiagonal blocks of a (block) Hessenberg form, i.e. on the
+//! conditioning of the Krylov sequence `B, AB, A²B, …`. It is backward stable — its result
+//! is exact for `A + E`, `‖E‖ ≈ ε‖A‖` — but for `A + E` a subdiagonal need not be small even
+//! when the distance to uncontrollability, `min_λ σ_min [A − λI, B]` (Eising 1984), is of
+//! the order of `‖E‖` (Paige 1981). The typical case is symmetry: a spatial chain whose
+//! motion in x is uncoupled from its motion in y and has exactly the same eigenvalues. Any
+//! rounding-level coupling `E` mixes two modes with coincident eigenvalues by O(1), so the
+//! Krylov sequence of `A + E` reaches the x motion with O(1) subdiagonals, while the
+//! Popov–Belevitch–Hautus test at the shared eigenvalue still shows a singular value of
+//! `[A − λI, B]` at rounding level. The staircase remains the right tool for a mode whose
+//! eigenvalue no controllable mode shares (Van Dooren 1981); the PBH pass covers the
+//! coincident ones.
+//!
+//! The pass, on the controllable part `(A_c, B_c)` of size k:
+//!
+//! 1. Eigenvalues of `A_c`, grouped into clusters: eigenvalues within
+//!    `cluster_rtol · ‖A‖_F` of each other, transitively; a conjugate pair of clusters is
+//!    examined once, a cluster holding its own conjugates at its real mean.
+//! 2. At the mean λ of every cluster of `s ≥ 2` eigenvalues: the `s` smallest singular
+//!    values σ of `[A_c − λI, B_c]` and their left singular vectors `w` (complex when λ is),
+//!    by block inverse iteration on `[A_c − λI, B_c][A_c − λI, B_c]ᴴ` with an LU
+//!    factorization that exploits the Hessenberg form the staircase leaves (O(k²) per
+//!    cluster for a single input), followed by the SVD of the `s × (k + m)` projection, so
+//!    that each σ is the exact residual `‖wᴴ [A_c − λI, B_c]‖` of its `w`.
+//! 3. The directions with `σ ≤ tol_c`, at most `s − 1` per cluster (a cluster the staircase
+//!    kept holds at least one controllable mode: an uncontrollable one alone at its
+//!    eigenvalue would have been found by the staircase), satisfy `wᴴ A_c ≈ λ wᴴ`,
+//!    `wᴴ B_c ≈ 0`. The real span `Q2` of their real and imaginary parts is then left
+//!    invariant and its orthogonal complement `Q1` is invariant and contains `range(B_c)`:
+//!    `Qᵀ A_c Q = [A11 A12; ≈0 A22]`, `Qᵀ B_c = [B1; ≈0]` with `Q = [Q1 Q2]`. The `≈0` blocks
+//!    are set to exact zeros, the eigenvalues of `A22` are reported as removed
+//!    uncontrollable modes, and `(A11, B1, C_c Q1)` is kept. One rotation serves all the
+//!    clusters of a pass.
+//! 4. The staircase again on the kept part, then the pass again, until the pass removes
+//!    nothing. A defective cluster deflates one Jordan level per pass (its PBH rank drops by
+//!    the geometric multiplicity only); the next level is then an eigenvalue alone, which the
+//!    staircase removes.
+//!
+//! Each cluster gives one [`RankDecision`] ([`RankStage::ControllabilityPbh`] or
+//! [`RankStage::ObservabilityPbh`]) with its `s` singular values and the tolerance, so a
+//! cluster decision near the tolerance is reported as fragile like any other. A mode that
+//! the `s − 1` rule keeps although its σ is below the tolerance shows as a kept singular value
+//! below it: a fragile decision (typically a mode that is only weakly controllable in the PBH
+//! sense, not a twin).
+//!
+//! The pass costs one eigenvalue computation of the controllable part (reused for the
+//! observable part when nothing was removed in between), plus O(k² (s + m)) per cluster and
+//! one O(k³) rotation per pass that removes something. The eigenvalue computation is the
+//! expensive part, comparable to the staircases together; when the first staircase removes
+//! nothing they are those of `A`, which a caller that computes the modes anyway can hand over
+//! ([`minimal_realization_with_eigenvalues`]); otherwise they are computed in parallel with
+//! the observability staircase.
+//!
+//! References: C. C. Paige, "Properties of numerical algorithms related to computing
+//! controllability", IEEE Trans. Automatic Control 26(1), 1981; R. Eising, "Between
+//! controllable and uncontrollable", Systems & Control Letters 4(5), 1984; P. Van Dooren,
+//! "The generalized eigenstructure problem in linear system theory", IEEE Trans. Automatic
+//! Control 26(1), 1981.
 //!
 //! # Tolerance
 //!
@@ -74,9 +138,12 @@ pub struct MinrealOptions {
     /// cluster of eigenvalues.
     pub cluster_pbh: bool,
     /// Eigenvalues within `cluster_rtol · ‖A‖_F` (balanced A) of each other, transitively,
-    /// form a cluster examined by the PBH pass. The default `1e-6` covers the `√ε ≈ 1.5e-8`
-    /// relative split of a computed defective double eigenvalue with a margin for its
-    /// conditioning; a larger value costs SVDs but removes nothing that the PBH test at the
+    /// form a cluster examined by the PBH pass. Rounding splits a semisimple multiple
+    /// eigenvalue by about `ε ‖A‖` times its condition number, and a defective double one by
+    /// about `√(ε ‖A‖ · |coupling|)`, i.e. `√ε ≈ 1.5e-8` relative (the truck–trailer's
+    /// heading and lateral position, split to about `±1e-6 i` by the robust reduction,
+    /// lie about `2e-8 ‖A‖_F` apart). The default `1e-6` covers both with a margin of about 60 for the
+    /// conditioning. A larger value costs PBH tests but removes nothing that the test at the
     /// cluster's mean does not confirm.
     pub cluster_rtol: f64,
 }
@@ -648,6 +715,23 @@ pub fn minimal_realization(
     ss: &StateSpace<f64>,
     opts: &MinrealOptions,
 ) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
+    minimal_realization_with_eigenvalues(ss, opts, || None)
+}
+
+/// [`minimal_realization`] with the eigenvalues of `ss.a` supplied by the caller, who has
+/// often computed them anyway (the modes). The cluster PBH pass needs the eigenvalues of the
+/// controllable part, which are those of `A` when the first staircase removes nothing; then,
+/// and only then, `eigenvalues` is called — after both staircases, so that a caller computing
+/// the modes concurrently is waited for as late as possible. It returns the eigenvalues in
+/// any order, or `None` (they are then computed here, as they are when the list has the wrong
+/// length).
+///
+/// Errors: as [`minimal_realization`].
+pub fn minimal_realization_with_eigenvalues(
+    ss: &StateSpace<f64>,
+    opts: &MinrealOptions,
+    eigenvalues: impl FnOnce() -> Option<Vec<Complex64>> + Send,
+) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
     ss.validate()?;
     opts.validate()?;
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
@@ -683,7 +767,19 @@ pub fn minimal_realization(
     };
     let mut ro = if opts.cluster_pbh {
         let dist = opts.cluster_rtol * na;
-        let (ev, ro) = rayon::join(|| kept_eigenvalues(&rc), || observability(&rc));
+        let (ev, ro) = if nc_krylov == n {
+            let ro = observability(&rc);
+            let ev = match eigenvalues().filter(|e| e.len() == n) {
+                Some(mut e) => {
+                    sort_complex(&mut e);
+                    Ok(e)
+                }
+                None => kept_eigenvalues(&rc),
+            };
+            (ev, ro)
+        } else {
+            rayon::join(|| kept_eigenvalues(&rc), || observability(&rc))
+        };
         rc.finish(tol_c, dist, c_stages, Some(ev?))?;
         let mut ro = if rc.a.nrows() == nc_krylov {
             ro?

@@ -11,8 +11,9 @@
 //! unobservable ones.
 //!
 //! A defective cluster deflates one Jordan level at a time (`rank [A − λI, B]` drops by the
-//! geometric multiplicity only), so the pass repeats at the eigenvalues of the reduced `A`
-//! near a point that deflated, until nothing more deflates.
+//! geometric multiplicity only): after a pass that removed something the staircase runs
+//! again, and removes the next level, now an eigenvalue alone. See the documentation of
+//! [`crate::minreal`] for the whole algorithm.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;

@@ -124,26 +124,48 @@ impl BandLu {
     }
 }
 
-/// Orthonormalizes the columns in place (modified Gram–Schmidt, twice); a column that
-/// vanishes is left at zero.
-fn orthonormalize(x: &mut [Vec<Complex64>]) {
+/// Deterministic pseudo-random numbers in [−0.5, 0.5) (xorshift), for start vectors that are
+/// orthogonal to no structure of the model.
+struct Xorshift(u64);
+
+impl Xorshift {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+}
+
+/// Orthonormalizes the columns in place (modified Gram–Schmidt, twice). A column that (nearly)
+/// lies in the span of the ones before it — inverse iteration at an exactly singular shift
+/// can make all columns parallel — is replaced by a fresh pseudo-random one, so that the
+/// result is always orthonormal.
+fn orthonormalize(x: &mut [Vec<Complex64>], rng: &mut Xorshift) {
     for j in 0..x.len() {
-        for _ in 0..2 {
-            for i in 0..j {
-                let (head, tail) = x.split_at_mut(j);
-                let r: Complex64 = head[i]
-                    .iter()
-                    .zip(&tail[0])
-                    .map(|(q, v)| q.conj() * v)
-                    .sum();
-                for (v, q) in tail[0].iter_mut().zip(&head[i]) {
-                    *v -= r * q;
+        for attempt in 0..4 {
+            let before = x[j].iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+            for _ in 0..2 {
+                for i in 0..j {
+                    let (head, tail) = x.split_at_mut(j);
+                    let r: Complex64 = head[i]
+                        .iter()
+                        .zip(&tail[0])
+                        .map(|(q, v)| q.conj() * v)
+                        .sum();
+                    for (v, q) in tail[0].iter_mut().zip(&head[i]) {
+                        *v -= r * q;
+                    }
                 }
             }
-        }
-        let norm = x[j].iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
-        if norm > 0.0 {
-            x[j].iter_mut().for_each(|v| *v /= norm);
+            let norm = x[j].iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+            if norm > 1e-8 * before && norm > 0.0 {
+                x[j].iter_mut().for_each(|v| *v /= norm);
+                break;
+            }
+            debug_assert!(attempt < 3, "no independent start vector");
+            x[j].iter_mut()
+                .for_each(|v| *v = Complex64::new(rng.next(), 0.0));
         }
     }
 }
@@ -161,21 +183,11 @@ pub(crate) fn cluster_pbh(
     let s = s.min(k);
     let floor = f64::EPSILON * a.norm().max(1e-300);
     let lu = BandLu::new(a, lam, p, floor);
-    // Deterministic pseudo-random start (xorshift), not orthogonal to any structure.
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut rng = Xorshift(0x9E37_79B9_7F4A_7C15);
     let mut x: Vec<Vec<Complex64>> = (0..s)
-        .map(|_| {
-            (0..k)
-                .map(|_| {
-                    state ^= state << 13;
-                    state ^= state >> 7;
-                    state ^= state << 17;
-                    Complex64::new((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5, 0.0)
-                })
-                .collect()
-        })
+        .map(|_| (0..k).map(|_| Complex64::new(rng.next(), 0.0)).collect())
         .collect();
-    orthonormalize(&mut x);
+    orthonormalize(&mut x, &mut rng);
     // (N Nᴴ + B Bᴴ)⁻¹ = N⁻ᴴ (I − Z S⁻¹ Zᴴ) N⁻¹ with Z = N⁻¹ B, S = I + Zᴴ Z (Woodbury).
     let z: Vec<Vec<Complex64>> = (0..m)
         .map(|j| {
@@ -220,7 +232,7 @@ pub(crate) fn cluster_pbh(
                 "inverse iteration of the PBH test at λ = {lam}"
             )));
         }
-        orthonormalize(&mut x);
+        orthonormalize(&mut x, &mut rng);
     }
     // G = Xᴴ [A − λI, B] (s × (k + m)).
     let g = faer::Mat::<Complex64>::from_fn(s, k + m, |i, j| {
@@ -300,6 +312,24 @@ mod tests {
                     "k {k} p {p} row {i}: {r} vs {}",
                     y[i]
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn orthonormalize_replaces_parallel_columns() {
+        // Inverse iteration at an exactly singular shift makes the columns parallel: the
+        // result must still be orthonormal, never a zero column (whose residual would read 0).
+        let v: Vec<Complex64> = (0..5)
+            .map(|i| Complex64::new(i as f64 + 1.0, 0.0))
+            .collect();
+        let mut x = vec![v.clone(), v.clone(), v.iter().map(|z| z * 2.0).collect()];
+        orthonormalize(&mut x, &mut Xorshift(7));
+        for i in 0..3 {
+            for j in 0..3 {
+                let d: Complex64 = x[i].iter().zip(&x[j]).map(|(p, q)| p.conj() * q).sum();
+                let want = if i == j { 1.0 } else { 0.0 };
+                assert!((d - want).norm() < 1e-12, "({i}, {j}): {d}");
             }
         }
     }
