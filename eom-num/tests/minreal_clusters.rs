@@ -4,7 +4,9 @@
 
 mod analysis_support;
 
-use analysis_support::{eig_nalgebra, points, rand_orth, rng, set_distance, tf_rel_error};
+use analysis_support::{
+    eig_nalgebra, points, rand_orth, rng, set_distance, tf_parts, tf_rel_error,
+};
 use eom_num::minreal::{MinrealOptions, RankStage, RemovedKind, minimal_realization};
 use eom_num::{NumError, StateSpace};
 use nalgebra::DMatrix;
@@ -146,7 +148,9 @@ fn twin_chains_keep_one_chain() {
     // rounding of the rotation couples the coincident modes by O(1) in the Krylov sense.
     let k = 30;
     for seed in [1, 2] {
-        let sys = two_axis_chain(k, seed);
+        let mut sys = two_axis_chain(k, seed);
+        // Every original state as a "physical coordinate" (4k = 6 · 20 rows).
+        sys.phys = DMatrix::identity(4 * k, 4 * k);
         let (min, rep) = minimal_realization(&sys, &MinrealOptions::default()).unwrap();
         assert_eq!(min.states(), 2 * k, "seed {seed}");
         assert_eq!(rep.uncontrollable, 2 * k, "seed {seed}");
@@ -154,6 +158,18 @@ fn twin_chains_keep_one_chain() {
         // One direction per coincident pair (a complex λ removes it and its conjugate).
         assert_eq!(pbh_directions_removed(&rep), k, "seed {seed}");
         assert!(tf_rel_error(&min, &sys, &points()) < 1e-8, "seed {seed}");
+        // The motion of the original states from rest, `phys (sI − A)⁻¹ B`, is the minimal
+        // system's through its `phys`: the map includes the PBH pass's rotation.
+        for &s in &points() {
+            let zero = DMatrix::zeros(sys.phys.nrows(), 1);
+            let full = tf_parts(&sys.a, &sys.b, &sys.phys, &zero, s);
+            let reduced = tf_parts(&min.a, &min.b, &min.phys, &zero, s);
+            let err = (&reduced - &full).norm() / full.norm();
+            assert!(
+                err < 1e-8,
+                "seed {seed}, s = {s}: phys response error {err:.1e}"
+            );
+        }
         // The removed modes are the x chain's, i.e. those of one chain alone, and every one
         // is confirmed by the PBH test on the full system.
         let one = two_axis_chain_block(k);
