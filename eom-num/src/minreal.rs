@@ -206,10 +206,12 @@ pub enum RankStage {
     Controllability,
     /// Observability staircase (the same on the dual system).
     Observability,
-    /// PBH test of the controllable part at the mean of a cluster of eigenvalues: the block
-    /// is `[A_c − λI, B_c]`, and only its smallest singular values are listed (one more than
-    /// the cluster size, or than the directions removed); `rank` counts the listed ones
-    /// above the tolerance, so the listed ones below it are the directions removed.
+    /// PBH test of the controllable part at the mean of a cluster of `s` eigenvalues: the
+    /// block is `[A_c − λI, B_c]`, and the `s` listed singular values are the residuals
+    /// `‖wᴴ [A_c − λI, B_c]‖` of `s` orthonormal directions `w` found by inverse iteration
+    /// (upper bounds of its `s` smallest singular values, equal to them when the iteration
+    /// converged). `rank` counts the kept ones: `s − rank` directions were removed, at most
+    /// `s − 1`, so a kept value may lie below the tolerance (reported as fragile).
     ControllabilityPbh,
     /// The same for observability: `[A_o − λI; C_o]` of the observable part.
     ObservabilityPbh,
