@@ -18,7 +18,8 @@ use eom_num::StateSpace;
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
 use eom_num::gain::{Gain, GainOptions, SteadyStateGain, steady_state_gain_with};
 use eom_num::minreal::{
-    MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind, minimal_realization,
+    MinrealOptions, MinrealReport, ModeStability, RankStage, RemovedKind,
+    minimal_realization_with_eigenvalues,
 };
 use eom_num::modes::{Mode, ModeKind, ModeOptions, Modes, Stability};
 use eom_num::zeros::transmission_zeros;
@@ -481,10 +482,19 @@ fn analyze_state_space(
     let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
     let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
     // Each analysis is a dense O(n³) step on a large model, and all are independent but the
-    // zeros, which are those of the minimal realization: two chains, one per core.
+    // zeros, which are those of the minimal realization: two chains, one per core. The
+    // minimal realization's PBH pass needs the eigenvalues the modes compute: they are sent
+    // over, and waited for only after its staircases (the sender is dropped, and the pass
+    // computes them itself, if the modes fail).
+    let (eig_tx, eig_rx) = std::sync::mpsc::channel::<Vec<Complex64>>();
     let ((modes, gain), (reduced, zeros)) = rayon::join(
-        || {
+        move || {
             let modes = step("modes", || Modes::compute_with(ss, &opts));
+            if let Ok(m) = &modes {
+                // The receiver may be gone (the pass did not need them): nothing to do then.
+                let _ = eig_tx.send(m.eigenvalues());
+            }
+            drop(eig_tx);
             // The zero eigenvalues the structure proves (counted on the elimination path's
             // matrix) inform the rank decision on the robust path's A, which hides them in
             // rounding.
@@ -497,9 +507,11 @@ fn analyze_state_space(
                 step("gains", || steady_state_gain_with(ss, &gain_opts)),
             )
         },
-        || {
+        move || {
             let reduced = step("minimal realization", || {
-                minimal_realization(ss, &MinrealOptions::default())
+                minimal_realization_with_eigenvalues(ss, &MinrealOptions::default(), move || {
+                    eig_rx.recv().ok()
+                })
             });
             let zeros = (ss.inputs() > 0 && ss.outputs() > 0).then(|| {
                 step("zeros", || match &reduced {
@@ -601,6 +613,8 @@ fn minimal_view(
         let stage = match d.stage {
             RankStage::Controllability => "controllability",
             RankStage::Observability => "observability",
+            RankStage::ControllabilityPbh => "controllability (PBH test at repeated eigenvalues)",
+            RankStage::ObservabilityPbh => "observability (PBH test at repeated eigenvalues)",
             _ => "rank",
         };
         warnings.push(format!(

@@ -69,7 +69,7 @@
 //! | [`gain`] | steady-state gains, with integrating outputs identified |
 //! | [`time`] | impulse, step and sampled-input responses by exact ZOH discretisation |
 //! | [`initial`] | the free response from an initial state, and the state that starts one mode alone |
-//! | [`minreal`] | minimal realization (orthogonal staircase), with the removed modes reported |
+//! | [`minreal`] | minimal realization (orthogonal staircase, and a PBH test at repeated eigenvalues), with the removed modes reported |
 //! | [`zeros`] | transmission zeros |
 //! | [`sweep`] | parameter sweeps: eigenvalue branches, stability boundaries, stable intervals |
 //!
@@ -135,7 +135,9 @@ pub mod gain;
 pub mod initial;
 pub mod linalg;
 pub mod minreal;
+mod minreal_pbh;
 pub mod modes;
+mod pbh_subspace;
 pub mod sensitivity;
 mod staircase;
 pub mod statespace;

@@ -19,11 +19,75 @@
 //!    that couples the reached directions into the rest, and so on until a block has rank
 //!    zero (the remaining states are uncontrollable) or no state is left. The result is
 //!    `Qᵀ A Q = [A_c *; 0 A_u]`, `Qᵀ B = [B_c; 0]`.
-//! 3. **Observability staircase**: the same on the dual `(A_cᵀ, C_cᵀ, B_cᵀ)` of the
-//!    controllable part, giving `[A_o 0; * A_ū]`, `[C_o 0]`.
-//! 4. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
+//! 3. **Cluster PBH pass** (below; [`MinrealOptions::cluster_pbh`]): at every cluster of
+//!    eigenvalues of `A_c`, uncontrollable directions the staircase could not see are rotated
+//!    out, and the staircase runs again on what is kept, until the pass removes nothing.
+//! 4. **Observability staircase** and its PBH pass: the same on the dual
+//!    `(A_cᵀ, C_cᵀ, B_cᵀ)` of the controllable part, giving `[A_o 0; * A_ū]`, `[C_o 0]`.
+//! 5. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
 //!    power-of-two scalings) are used, so its transfer function equals the original one to
 //!    rounding, apart from the parts below the tolerance that the rank decisions set to zero.
+//!
+//! # Why a PBH pass: the staircase measures Krylov rank, not distance
+//!
+//! The staircase decides on the subdiagonal blocks of a (block) Hessenberg form, i.e. on the
+//! conditioning of the Krylov sequence `B, AB, A²B, …`. It is backward stable — its result
+//! is exact for `A + E`, `‖E‖ ≈ ε‖A‖` — but for `A + E` a subdiagonal need not be small even
+//! when the distance to uncontrollability, `min_λ σ_min [A − λI, B]` (Eising 1984), is of
+//! the order of `‖E‖` (Paige 1981). The typical case is symmetry: a spatial chain whose
+//! motion in x is uncoupled from its motion in y and has exactly the same eigenvalues. Any
+//! rounding-level coupling `E` mixes two modes with coincident eigenvalues by O(1), so the
+//! Krylov sequence of `A + E` reaches the x motion with O(1) subdiagonals, while the
+//! Popov–Belevitch–Hautus test at the shared eigenvalue still shows a singular value of
+//! `[A − λI, B]` at rounding level. The staircase remains the right tool for a mode whose
+//! eigenvalue no controllable mode shares (Van Dooren 1981); the PBH pass covers the
+//! coincident ones.
+//!
+//! The pass, on the controllable part `(A_c, B_c)` of size k:
+//!
+//! 1. Eigenvalues of `A_c`, grouped into clusters: eigenvalues within
+//!    `cluster_rtol · ‖A‖_F` of each other, transitively; a conjugate pair of clusters is
+//!    examined once, a cluster holding its own conjugates at its real mean.
+//! 2. At the mean λ of every cluster of `s ≥ 2` eigenvalues: the `s` smallest singular
+//!    values σ of `[A_c − λI, B_c]` and their left singular vectors `w` (complex when λ is),
+//!    by block inverse iteration on `[A_c − λI, B_c][A_c − λI, B_c]ᴴ` with an LU
+//!    factorization that exploits the Hessenberg form the staircase leaves (O(k²) per
+//!    cluster for a single input), followed by the SVD of the `s × (k + m)` projection, so
+//!    that each σ is the exact residual `‖wᴴ [A_c − λI, B_c]‖` of its `w`.
+//! 3. The directions with `σ ≤ tol_c`, at most `s − 1` per cluster (a cluster the staircase
+//!    kept holds at least one controllable mode: an uncontrollable one alone at its
+//!    eigenvalue would have been found by the staircase), satisfy `wᴴ A_c ≈ λ wᴴ`,
+//!    `wᴴ B_c ≈ 0`. The real span `Q2` of their real and imaginary parts is then left
+//!    invariant and its orthogonal complement `Q1` is invariant and contains `range(B_c)`:
+//!    `Qᵀ A_c Q = [A11 A12; ≈0 A22]`, `Qᵀ B_c = [B1; ≈0]` with `Q = [Q1 Q2]`. The `≈0` blocks
+//!    are set to exact zeros, the eigenvalues of `A22` are reported as removed
+//!    uncontrollable modes, and `(A11, B1, C_c Q1)` is kept. One rotation serves all the
+//!    clusters of a pass.
+//! 4. The staircase again on the kept part, then the pass again, until the pass removes
+//!    nothing. A defective cluster deflates one Jordan level per pass (its PBH rank drops by
+//!    the geometric multiplicity only); the next level is then an eigenvalue alone, which the
+//!    staircase removes.
+//!
+//! Each cluster gives one [`RankDecision`] ([`RankStage::ControllabilityPbh`] or
+//! [`RankStage::ObservabilityPbh`]) with its `s` singular values and the tolerance, so a
+//! cluster decision near the tolerance is reported as fragile like any other. A mode that
+//! the `s − 1` rule keeps although its σ is below the tolerance shows as a kept singular value
+//! below it: a fragile decision (typically a mode that is only weakly controllable in the PBH
+//! sense, not a twin).
+//!
+//! The pass costs one eigenvalue computation of the controllable part (reused for the
+//! observable part when nothing was removed in between), plus O(k² (s + m)) per cluster and
+//! one O(k³) rotation per pass that removes something. The eigenvalue computation is the
+//! expensive part, comparable to the staircases together; when the first staircase removes
+//! nothing they are those of `A`, which a caller that computes the modes anyway can hand over
+//! ([`minimal_realization_with_eigenvalues`]); otherwise they are computed in parallel with
+//! the observability staircase.
+//!
+//! References: C. C. Paige, "Properties of numerical algorithms related to computing
+//! controllability", IEEE Trans. Automatic Control 26(1), 1981; R. Eising, "Between
+//! controllable and uncontrollable", Systems & Control Letters 4(5), 1984; P. Van Dooren,
+//! "The generalized eigenstructure problem in linear system theory", IEEE Trans. Automatic
+//! Control 26(1), 1981.
 //!
 //! # Tolerance
 //!
@@ -52,6 +116,7 @@ use serde::Serialize;
 
 use crate::deflate::structural_coordinates;
 use crate::error::NumError;
+use crate::minreal_pbh::{Reduction, kept_eigenvalues};
 use crate::staircase::staircase;
 use crate::statespace::StateSpace;
 
@@ -74,6 +139,20 @@ pub struct MinrealOptions {
     /// Confirm every removal by the PBH test ([`RemovedMode::pbh_residual`]; default
     /// `true`). It costs one complex SVD of size n per removed mode (or conjugate pair).
     pub pbh_check: bool,
+    /// Run the cluster PBH pass after each staircase (default `true`; see the module
+    /// documentation). It costs one eigenvalue computation of the controllable part (and of
+    /// the observable part when the previous stages removed something) and one SVD per
+    /// cluster of eigenvalues.
+    pub cluster_pbh: bool,
+    /// Eigenvalues within `cluster_rtol · ‖A‖_F` (balanced A) of each other, transitively,
+    /// form a cluster examined by the PBH pass. Rounding splits a semisimple multiple
+    /// eigenvalue by about `ε ‖A‖` times its condition number, and a defective double one by
+    /// about `√(ε ‖A‖ · |coupling|)`, i.e. `√ε ≈ 1.5e-8` relative (the truck–trailer's
+    /// heading and lateral position, split to about `±1e-6 i` by the robust reduction,
+    /// lie about `2e-8 ‖A‖_F` apart). The default `1e-6` covers both with a margin of about 60 for the
+    /// conditioning. A larger value costs PBH tests but removes nothing that the test at the
+    /// cluster's mean does not confirm.
+    pub cluster_rtol: f64,
 }
 
 impl Default for MinrealOptions {
@@ -84,6 +163,8 @@ impl Default for MinrealOptions {
             balance: true,
             stability_rtol: 1e-8,
             pbh_check: true,
+            cluster_pbh: true,
+            cluster_rtol: 1e-6,
         }
     }
 }
@@ -115,6 +196,12 @@ impl MinrealOptions {
                 self.stability_rtol
             )));
         }
+        if !(self.cluster_rtol.is_finite() && self.cluster_rtol >= 0.0) {
+            return Err(NumError::InvalidOption(format!(
+                "MinrealOptions.cluster_rtol = {} (must be finite and ≥ 0)",
+                self.cluster_rtol
+            )));
+        }
         Ok(())
     }
 }
@@ -126,6 +213,15 @@ pub enum RankStage {
     Controllability,
     /// Observability staircase (the same on the dual system).
     Observability,
+    /// PBH test of the controllable part at the mean of a cluster of `s` eigenvalues: the
+    /// block is `[A_c − λI, B_c]`, and the `s` listed singular values are the residuals
+    /// `‖wᴴ [A_c − λI, B_c]‖` of `s` orthonormal directions `w` found by inverse iteration
+    /// (upper bounds of its `s` smallest singular values, equal to them when the iteration
+    /// converged). `rank` counts the kept ones: `s − rank` directions were removed, at most
+    /// `s − 1`, so a kept value may lie below the tolerance (reported as fragile).
+    ControllabilityPbh,
+    /// The same for observability: `[A_o − λI; C_o]` of the observable part.
+    ObservabilityPbh,
     /// Transmission zeros: row compression of the feedthrough `D` (of the dual system when
     /// `dual`).
     Feedthrough {
@@ -628,6 +724,23 @@ pub fn minimal_realization(
     ss: &StateSpace<f64>,
     opts: &MinrealOptions,
 ) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
+    minimal_realization_with_eigenvalues(ss, opts, || None)
+}
+
+/// [`minimal_realization`] with the eigenvalues of `ss.a` supplied by the caller, who has
+/// often computed them anyway (the modes). The cluster PBH pass needs the eigenvalues of the
+/// controllable part, which are those of `A` when the first staircase removes nothing; then,
+/// and only then, `eigenvalues` is called — after both staircases, so that a caller computing
+/// the modes concurrently is waited for as late as possible. It returns the eigenvalues in
+/// any order, or `None` (they are then computed here, as they are when the list has the wrong
+/// length).
+///
+/// Errors: as [`minimal_realization`].
+pub fn minimal_realization_with_eigenvalues(
+    ss: &StateSpace<f64>,
+    opts: &MinrealOptions,
+    eigenvalues: impl FnOnce() -> Option<Vec<Complex64>> + Send,
+) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
     ss.validate()?;
     opts.validate()?;
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
@@ -651,38 +764,65 @@ pub fn minimal_realization(
     let tol_o = (rtol * na.max(nc_)).max(opts.atol);
     let stability_threshold = opts.stability_rtol * na;
 
-    let sc = staircase(a, b, c, tol_c, RankStage::Controllability)?;
-    let nc = sc.kept;
-    let ev_u = eigenvalues_sorted(sc.a.view((nc, nc), (n - nc, n - nc)))?;
-    let a1 = sc.a.view((0, 0), (nc, nc)).clone_owned();
-    let b1 = sc.b.rows(0, nc).clone_owned();
-    let c1 = sc.c.columns(0, nc).clone_owned();
-    let so = staircase(
-        a1.transpose(),
-        c1.transpose(),
-        b1.transpose(),
-        tol_o,
-        RankStage::Observability,
-    )?;
-    let no = so.kept;
-    // Back from the dual: a = (so.a)ᵀ, b = (so.c)ᵀ, c = (so.b)ᵀ.
-    let a2 = so.a.transpose();
-    let ev_o = eigenvalues_sorted(a2.view((no, no), (nc - no, nc - no)))?;
+    let c_stages = (RankStage::Controllability, RankStage::ControllabilityPbh);
+    let o_stages = (RankStage::Observability, RankStage::ObservabilityPbh);
+    let mut rc = Reduction::new(a, b, c);
+    rc.staircase(tol_c, c_stages.0)?;
+    let nc_krylov = rc.a.nrows();
+    // The observability reduction is the controllability reduction of the dual. Its
+    // staircase does not wait for the eigenvalues of the controllable part: it is redone
+    // only if the PBH pass removes something.
+    let observability = |rc: &Reduction| {
+        let mut ro = rc.dual();
+        ro.staircase(tol_o, o_stages.0).map(|_| ro)
+    };
+    let mut ro = if opts.cluster_pbh {
+        let dist = opts.cluster_rtol * na;
+        let (ev, ro) = if nc_krylov == n {
+            let ro = observability(&rc);
+            let ev = match eigenvalues().filter(|e| e.len() == n) {
+                Some(mut e) => {
+                    sort_complex(&mut e);
+                    Ok(e)
+                }
+                None => kept_eigenvalues(&rc),
+            };
+            (ev, ro)
+        } else {
+            rayon::join(|| kept_eigenvalues(&rc), || observability(&rc))
+        };
+        rc.finish(tol_c, dist, c_stages, Some(ev?))?;
+        let mut ro = if rc.a.nrows() == nc_krylov {
+            ro?
+        } else {
+            observability(&rc)?
+        };
+        // Nothing removed since the controllable part's eigenvalues: they are A_o's.
+        let ev = rc.eigenvalues.clone().filter(|e| e.len() == ro.a.nrows());
+        ro.finish(tol_o, dist, o_stages, ev)?;
+        ro
+    } else {
+        observability(&rc)?
+    };
+    let nc = rc.a.nrows();
+    let no = ro.a.nrows();
+    sort_complex(&mut rc.removed);
+    sort_complex(&mut ro.removed);
 
     let mut removed = classify(
-        &ev_u,
+        &rc.removed,
         RemovedKind::Uncontrollable,
         stability_threshold,
         opts.pbh_check.then_some((&a0, &b0)),
     )?;
     removed.extend(classify(
-        &ev_o,
+        &ro.removed,
         RemovedKind::Unobservable,
         stability_threshold,
         opts.pbh_check.then_some((&a0, &c0)),
     )?);
-    let mut decisions = sc.decisions.clone();
-    decisions.extend(so.decisions.iter().cloned());
+    let mut decisions = rc.decisions.clone();
+    decisions.extend(ro.decisions.iter().cloned());
     let report = MinrealReport {
         states_in: n,
         states_out: no,
@@ -700,20 +840,18 @@ pub fn minimal_realization(
         return Ok((ss.clone(), report));
     }
 
-    let a_min = a2.view((0, 0), (no, no)).clone_owned();
-    let b_min = so.c.transpose().rows(0, no).clone_owned();
-    let c_min = so.b.transpose().columns(0, no).clone_owned();
-    // Old state x = diag(s) · q_c[:, ..nc] · q_o[:, ..no] · z, applied to phys factor by
-    // factor (the q's are never formed).
+    // Back from the dual: a = (ro.a)ᵀ, b = (ro.c)ᵀ, c = (ro.b)ᵀ.
+    let a_min = ro.a.transpose();
+    let b_min = ro.c.transpose();
+    let c_min = ro.b.transpose();
+    // Old state x = diag(s) · Q_c · Q_o · z, applied to phys factor by factor (the
+    // staircases' Q's are never formed).
     let mut phys = ss.phys.clone();
     st.apply_right(&mut phys);
     for (j, &f) in report.scaling.iter().enumerate() {
         phys.column_mut(j).scale_mut(f);
     }
-    sc.apply_right(&mut phys);
-    let mut phys = phys.columns(0, nc).clone_owned();
-    so.apply_right(&mut phys);
-    let phys = phys.columns(0, no).clone_owned();
+    let phys = ro.apply_right(rc.apply_right(phys));
     let mut names = ss.names.clone();
     names.states = if ss.names.states.is_empty() {
         Vec::new()
