@@ -485,7 +485,8 @@ fn analyze_state_space(
     // zeros, which are those of the minimal realization: two chains, one per core. The
     // minimal realization's PBH pass needs the eigenvalues the modes compute: they are sent
     // over, and waited for only after its staircases (the sender is dropped, and the pass
-    // computes them itself, if the modes fail).
+    // computes them itself, if the modes fail), while the zeros of the staircases' result
+    // are computed.
     let (eig_tx, eig_rx) = std::sync::mpsc::channel::<Vec<Complex64>>();
     let ((modes, gain), (reduced, zeros)) = rayon::join(
         move || {
@@ -508,17 +509,42 @@ fn analyze_state_space(
             )
         },
         move || {
+            let want_zeros = ss.inputs() > 0 && ss.outputs() > 0;
+            // While the PBH pass waits for the eigenvalues, the zeros of the staircases'
+            // draft: they are the minimal system's when the pass removes nothing.
+            let draft_zeros = std::sync::Mutex::new(None);
+            let slot = &draft_zeros;
             let reduced = step("minimal realization", || {
-                minimal_realization_with_eigenvalues(ss, &MinrealOptions::default(), move || {
-                    eig_rx.recv().ok()
-                })
+                minimal_realization_with_eigenvalues(
+                    ss,
+                    &MinrealOptions::default(),
+                    move |draft: &StateSpace<f64>| {
+                        // Nothing removed yet: the result would be the model itself, whose
+                        // zeros come faster than those of its staircase form.
+                        let sys = if draft.states() == ss.states() {
+                            ss
+                        } else {
+                            draft
+                        };
+                        let (z, ev) = rayon::join(
+                            || want_zeros.then(|| step("zeros", || transmission_zeros(sys))),
+                            move || eig_rx.recv().ok(),
+                        );
+                        *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some((draft.states(), z));
+                        ev
+                    },
+                )
             });
-            let zeros = (ss.inputs() > 0 && ss.outputs() > 0).then(|| {
-                step("zeros", || match &reduced {
-                    Ok((m, _)) => transmission_zeros(m),
-                    Err(e) => Err(e.clone()),
-                })
-            });
+            let draft_zeros = draft_zeros.into_inner().unwrap_or_else(|e| e.into_inner());
+            let zeros = match (draft_zeros, &reduced) {
+                (Some((k, z)), Ok((m, _))) if k == m.states() => z,
+                _ => want_zeros.then(|| {
+                    step("zeros", || match &reduced {
+                        Ok((m, _)) => transmission_zeros(m),
+                        Err(e) => Err(e.clone()),
+                    })
+                }),
+            };
             (reduced, zeros)
         },
     );

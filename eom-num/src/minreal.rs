@@ -724,22 +724,24 @@ pub fn minimal_realization(
     ss: &StateSpace<f64>,
     opts: &MinrealOptions,
 ) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
-    minimal_realization_with_eigenvalues(ss, opts, || None)
+    minimal_realization_with_eigenvalues(ss, opts, |_| None)
 }
 
 /// [`minimal_realization`] with the eigenvalues of `ss.a` supplied by the caller, who has
 /// often computed them anyway (the modes). The cluster PBH pass needs the eigenvalues of the
 /// controllable part, which are those of `A` when the first staircase removes nothing; then,
 /// and only then, `eigenvalues` is called — after both staircases, so that a caller computing
-/// the modes concurrently is waited for as late as possible. It returns the eigenvalues in
-/// any order, or `None` (they are then computed here, as they are when the list has the wrong
-/// length).
+/// the modes concurrently is waited for as late as possible. It is given the draft: the
+/// system the two staircases leave (`D` included, no physical map), which is the result
+/// whenever the PBH pass then removes nothing, so that the caller can start work on it
+/// (the transmission zeros) while it waits. It returns the eigenvalues in any order, or
+/// `None` (they are then computed here, as they are when the list has the wrong length).
 ///
 /// Errors: as [`minimal_realization`].
 pub fn minimal_realization_with_eigenvalues(
     ss: &StateSpace<f64>,
     opts: &MinrealOptions,
-    eigenvalues: impl FnOnce() -> Option<Vec<Complex64>> + Send,
+    eigenvalues: impl FnOnce(&StateSpace<f64>) -> Option<Vec<Complex64>> + Send,
 ) -> Result<(StateSpace<f64>, MinrealReport), NumError> {
     ss.validate()?;
     opts.validate()?;
@@ -780,7 +782,16 @@ pub fn minimal_realization_with_eigenvalues(
         let dist = opts.cluster_rtol * na;
         let (ev, ro) = if nc_krylov == n {
             let ro = observability(&rc);
-            let ev = match eigenvalues().filter(|e| e.len() == n) {
+            let draft = match &ro {
+                Ok(ro) => StateSpace::new(
+                    ro.a.transpose(),
+                    ro.c.transpose(),
+                    ro.b.transpose(),
+                    ss.d.clone(),
+                )?,
+                Err(e) => return Err(e.clone()),
+            };
+            let ev = match eigenvalues(&draft).filter(|e| e.len() == n) {
                 Some(mut e) => {
                     sort_complex(&mut e);
                     Ok(e)
