@@ -49,7 +49,10 @@ fn generated_bicycle_rounds_less_than_pydy_row_by_row() {
     let rows = rows();
     for method in ["generated f64", "generated f64 egg"] {
         for r in rows_of(&rows, method) {
-            assert_eq!(r.points, 1024, "{method}: a point failed its validity checks");
+            assert_eq!(
+                r.points, 1024,
+                "{method}: a point failed its validity checks"
+            );
             assert!(
                 r.row_scaled <= PYDY_ROW_SCALED,
                 "{method}: row-scaled error {:.3e} above PyDy's {PYDY_ROW_SCALED:.3e} (at {:?})",
