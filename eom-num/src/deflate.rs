@@ -233,14 +233,13 @@ pub struct StructuralCoordinates {
     pub combos: Vec<Combine>,
 }
 
-impl StructuralCoordinates {
-    /// `M ← M T` for a matrix with one column per state (an output matrix, the map to the
-    /// physical coordinates): for each change `x_j = x̃_j − s·x̃_i`, column i loses s·column j.
-    pub fn apply_right(&self, m: &mut nalgebra::DMatrix<f64>) {
-        for k in &self.combos {
-            for row in 0..m.nrows() {
-                m[(row, k.i)] -= k.s * m[(row, k.j)];
-            }
+/// `M ← M T` for a matrix with one column per state (an output matrix, the map to the
+/// physical coordinates), `T` the product of `combos`: for each change `x_j = x̃_j − s·x̃_i`,
+/// column i loses s·column j.
+pub fn combine_columns(combos: &[Combine], m: &mut nalgebra::DMatrix<f64>) {
+    for k in combos {
+        for row in 0..m.nrows() {
+            m[(row, k.i)] -= k.s * m[(row, k.j)];
         }
     }
 }
@@ -267,23 +266,22 @@ pub fn structural_coordinates(
         &mut combos,
         &mut keys,
     );
-    let mut out = StructuralCoordinates {
-        a: t,
-        b: b.clone(),
-        c: c.clone(),
-        zeros: order.len(),
-        combos,
-    };
     // T⁻¹ B: for each change, row j gains s·row i.
-    for k in &out.combos {
-        for col in 0..out.b.ncols() {
-            out.b[(k.j, col)] += k.s * out.b[(k.i, col)];
+    let mut b = b.clone();
+    for k in &combos {
+        for col in 0..b.ncols() {
+            b[(k.j, col)] += k.s * b[(k.i, col)];
         }
     }
-    let mut c = std::mem::take(&mut out.c);
-    out.apply_right(&mut c);
-    out.c = c;
-    out
+    let mut c = c.clone();
+    combine_columns(&combos, &mut c);
+    StructuralCoordinates {
+        a: t,
+        b,
+        c,
+        zeros: order.len(),
+        combos,
+    }
 }
 
 /// `k` null directions deflated orthogonally, for a matrix whose structural zero eigenvalues

@@ -36,6 +36,7 @@
 
 use faer::MatRef;
 use nalgebra::DMatrix;
+use std::borrow::Cow;
 
 use crate::NumError;
 use crate::linalg::{
@@ -169,6 +170,7 @@ pub fn steady_state_gain_with(
             opts.warn_condition
         )));
     }
+    let ss = &structural(ss);
     let first = gain_at_tolerance(ss, opts, 1.0)?;
     let fragile = first.a_rank.is_near_tolerance(AMBIGUITY_FACTOR);
     let too_few = first.zero_dimension < opts.structural_zeros;
@@ -268,7 +270,7 @@ fn gain_at_tolerance(
     factor: f64,
 ) -> Result<SteadyStateGain, NumError> {
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
-    let (a, b, c) = balanced(&structural(ss));
+    let (a, b, c) = balanced(ss);
     let mut warnings = Vec::new();
     if let Some(cert) = certify_regular(&a, &opts.rank_tol, factor)? {
         return regular(ss, &b, &c, cert, opts, warnings);
@@ -451,17 +453,20 @@ fn zero_split(
 /// rounding, and left so, A is regular with a condition number of 1/ε and its "inverse"
 /// amplifies that rounding into the gains (the bicycle's heading pair gave gains of 0 instead
 /// of 5e-4). The gains are invariant under the change of coordinates.
-fn structural(ss: &StateSpace<f64>) -> StateSpace<f64> {
+fn structural(ss: &StateSpace<f64>) -> Cow<'_, StateSpace<f64>> {
     let t = crate::deflate::structural_coordinates(&ss.a, &ss.b, &ss.c);
     if t.zeros == 0 {
-        return ss.clone();
+        return Cow::Borrowed(ss);
     }
-    StateSpace {
+    // The gains read A, B, C and D only: no physical map or names to carry over.
+    Cow::Owned(StateSpace {
         a: t.a,
         b: t.b,
         c: t.c,
-        ..ss.clone()
-    }
+        d: ss.d.clone(),
+        phys: DMatrix::zeros(0, ss.states()),
+        names: Default::default(),
+    })
 }
 
 /// The balanced system: Ã = D⁻¹ A D, B̃ = D⁻¹ B, C̃ = C D, with D from [`balance_in_place`]

@@ -114,7 +114,7 @@ use nalgebra::{DMatrix, DMatrixView};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::deflate::structural_coordinates;
+use crate::deflate::{combine_columns, structural_coordinates};
 use crate::error::NumError;
 use crate::minreal_pbh::{Reduction, kept_eigenvalues};
 use crate::staircase::staircase;
@@ -753,7 +753,7 @@ pub fn minimal_realization_with_eigenvalues(
     // elimination in a column on which nothing depends would otherwise be balanced up and
     // counted as couplings).
     let st = structural_coordinates(&ss.a, &ss.b, &ss.c);
-    let (mut a, mut b, mut c) = (st.a.clone(), st.b.clone(), st.c.clone());
+    let (mut a, mut b, mut c, combos) = (st.a, st.b, st.c, st.combos);
     let scaling = if opts.balance {
         balance_states(&a, &b, &c)
     } else {
@@ -858,7 +858,7 @@ pub fn minimal_realization_with_eigenvalues(
     // Old state x = diag(s) · Q_c · Q_o · z, applied to phys factor by factor (the
     // staircases' Q's are never formed).
     let mut phys = ss.phys.clone();
-    st.apply_right(&mut phys);
+    combine_columns(&combos, &mut phys);
     for (j, &f) in report.scaling.iter().enumerate() {
         phys.column_mut(j).scale_mut(f);
     }
