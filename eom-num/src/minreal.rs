@@ -766,55 +766,14 @@ pub fn minimal_realization_with_eigenvalues(
     let tol_o = (rtol * na.max(nc_)).max(opts.atol);
     let stability_threshold = opts.stability_rtol * na;
 
-    let c_stages = (RankStage::Controllability, RankStage::ControllabilityPbh);
-    let o_stages = (RankStage::Observability, RankStage::ObservabilityPbh);
-    let mut rc = Reduction::new(a, b, c);
-    rc.staircase(tol_c, c_stages.0)?;
-    let nc_krylov = rc.a.nrows();
-    // The observability reduction is the controllability reduction of the dual. Its
-    // staircase does not wait for the eigenvalues of the controllable part: it is redone
-    // only if the PBH pass removes something.
-    let observability = |rc: &Reduction| {
-        let mut ro = rc.dual();
-        ro.staircase(tol_o, o_stages.0).map(|_| ro)
-    };
-    let mut ro = if opts.cluster_pbh {
-        let dist = opts.cluster_rtol * na;
-        let (ev, ro) = if nc_krylov == n {
-            let ro = observability(&rc);
-            let draft = match &ro {
-                Ok(ro) => StateSpace::new(
-                    ro.a.transpose(),
-                    ro.c.transpose(),
-                    ro.b.transpose(),
-                    ss.d.clone(),
-                )?,
-                Err(e) => return Err(e.clone()),
-            };
-            let ev = match eigenvalues(&draft).filter(|e| e.len() == n) {
-                Some(mut e) => {
-                    sort_complex(&mut e);
-                    Ok(e)
-                }
-                None => kept_eigenvalues(&rc),
-            };
-            (ev, ro)
-        } else {
-            rayon::join(|| kept_eigenvalues(&rc), || observability(&rc))
-        };
-        rc.finish(tol_c, dist, c_stages, Some(ev?))?;
-        let mut ro = if rc.a.nrows() == nc_krylov {
-            ro?
-        } else {
-            observability(&rc)?
-        };
-        // Nothing removed since the controllable part's eigenvalues: they are A_o's.
-        let ev = rc.eigenvalues.clone().filter(|e| e.len() == ro.a.nrows());
-        ro.finish(tol_o, dist, o_stages, ev)?;
-        ro
-    } else {
-        observability(&rc)?
-    };
+    let dist = opts.cluster_pbh.then_some(opts.cluster_rtol * na);
+    let (mut rc, mut ro) = reduce_both(
+        Reduction::new(a, b, c),
+        (tol_c, tol_o),
+        dist,
+        &ss.d,
+        eigenvalues,
+    )?;
     let nc = rc.a.nrows();
     let no = ro.a.nrows();
     sort_complex(&mut rc.removed);
@@ -851,15 +810,82 @@ pub fn minimal_realization_with_eigenvalues(
         return Ok((ss.clone(), report));
     }
 
-    // Back from the dual: a = (ro.a)ᵀ, b = (ro.c)ᵀ, c = (ro.b)ᵀ.
-    let a_min = ro.a.transpose();
-    let b_min = ro.c.transpose();
-    let c_min = ro.b.transpose();
-    // Old state x = diag(s) · Q_c · Q_o · z, applied to phys factor by factor (the
-    // staircases' Q's are never formed).
+    let out = minimal_system(ss, &rc, &ro, &combos, &report.scaling);
+    Ok((out, report))
+}
+
+/// The controllability reduction of `rc`, then the observability reduction of its result (on
+/// the dual), each a staircase followed by the cluster PBH pass when `dist` (the clustering
+/// distance) is given; `eigenvalues` as in [`minimal_realization_with_eigenvalues`].
+fn reduce_both(
+    mut rc: Reduction,
+    (tol_c, tol_o): (f64, f64),
+    dist: Option<f64>,
+    d: &DMatrix<f64>,
+    eigenvalues: impl FnOnce(&StateSpace<f64>) -> Option<Vec<Complex64>> + Send,
+) -> Result<(Reduction, Reduction), NumError> {
+    let n = rc.a.nrows();
+    let c_stages = (RankStage::Controllability, RankStage::ControllabilityPbh);
+    let o_stages = (RankStage::Observability, RankStage::ObservabilityPbh);
+    rc.staircase(tol_c, c_stages.0)?;
+    let nc_krylov = rc.a.nrows();
+    // The observability reduction is the controllability reduction of the dual. Its
+    // staircase does not wait for the eigenvalues of the controllable part: it is redone
+    // only if the PBH pass removes something.
+    let observability = |rc: &Reduction| {
+        let mut ro = rc.dual();
+        ro.staircase(tol_o, o_stages.0).map(|_| ro)
+    };
+    let Some(dist) = dist else {
+        let ro = observability(&rc)?;
+        return Ok((rc, ro));
+    };
+    let (ev, ro) = if nc_krylov == n {
+        let ro = observability(&rc)?;
+        // The draft: the system the staircases leave, back from the dual.
+        let draft = StateSpace::new(
+            ro.a.transpose(),
+            ro.c.transpose(),
+            ro.b.transpose(),
+            d.clone(),
+        )?;
+        let ev = match eigenvalues(&draft).filter(|e| e.len() == n) {
+            Some(mut e) => {
+                sort_complex(&mut e);
+                Ok(e)
+            }
+            None => kept_eigenvalues(&rc),
+        };
+        (ev, Ok(ro))
+    } else {
+        rayon::join(|| kept_eigenvalues(&rc), || observability(&rc))
+    };
+    rc.finish(tol_c, dist, c_stages, Some(ev?))?;
+    let mut ro = if rc.a.nrows() == nc_krylov {
+        ro?
+    } else {
+        observability(&rc)?
+    };
+    // Nothing removed since the controllable part's eigenvalues: they are A_o's.
+    let ev = rc.eigenvalues.clone().filter(|e| e.len() == ro.a.nrows());
+    ro.finish(tol_o, dist, o_stages, ev)?;
+    Ok((rc, ro))
+}
+
+/// The minimal system from the two reductions: back from the dual, `D`, the names, and the
+/// physical map `phys · T · diag(s) · Q_c · Q_o` applied factor by factor (the staircases'
+/// Q's are never formed).
+fn minimal_system(
+    ss: &StateSpace<f64>,
+    rc: &Reduction,
+    ro: &Reduction,
+    combos: &[crate::deflate::Combine],
+    scaling: &[f64],
+) -> StateSpace<f64> {
+    let no = ro.a.nrows();
     let mut phys = ss.phys.clone();
-    combine_columns(&combos, &mut phys);
-    for (j, &f) in report.scaling.iter().enumerate() {
+    combine_columns(combos, &mut phys);
+    for (j, &f) in scaling.iter().enumerate() {
         phys.column_mut(j).scale_mut(f);
     }
     let phys = ro.apply_right(rc.apply_right(phys));
@@ -869,15 +895,14 @@ pub fn minimal_realization_with_eigenvalues(
     } else {
         (1..=no).map(|i| format!("z{i}")).collect()
     };
-    let out = StateSpace {
-        a: a_min,
-        b: b_min,
-        c: c_min,
+    StateSpace {
+        a: ro.a.transpose(),
+        b: ro.c.transpose(),
+        c: ro.b.transpose(),
         d: ss.d.clone(),
         phys,
         names,
-    };
-    Ok((out, report))
+    }
 }
 
 /// Serialization of complex numbers as `{re, im}`.
