@@ -66,18 +66,7 @@ fn twin_system(extra: usize, seed: u64) -> (StateSpace<f64>, usize) {
 /// last mass) is controllable and observable, the x chain is not touched, and its eigenvalues
 /// are exactly those of the y chain. Minimal order 2k.
 fn two_axis_chain(k: usize, seed: u64) -> StateSpace<f64> {
-    // Spring i (from mass i − 1, or the wall, to mass i) as stiff as the tension in a hanging
-    // chain: proportional to the number of masses below it.
-    let spring = |i: usize| (k - i) as f64;
-    let mut stiff = DMatrix::<f64>::zeros(k, k);
-    for i in 0..k {
-        stiff[(i, i)] = spring(i) + if i + 1 < k { spring(i + 1) } else { 0.0 };
-        if i + 1 < k {
-            stiff[(i, i + 1)] = -spring(i + 1);
-            stiff[(i + 1, i)] = -spring(i + 1);
-        }
-    }
-    let one = two_axis_chain_block_from(&stiff);
+    let one = two_axis_chain_block(k);
     let a = block_diag(&[one.clone(), one]);
     let mut b = DMatrix::zeros(4 * k, 1);
     b[(2 * k - 1, 0)] = 1.0;
@@ -86,7 +75,9 @@ fn two_axis_chain(k: usize, seed: u64) -> StateSpace<f64> {
     hide(a, b, c, seed)
 }
 
-/// The state matrix of one axis of [`two_axis_chain`].
+/// The state matrix of one axis of [`two_axis_chain`]. Spring i (from mass i − 1, or the
+/// wall, to mass i) is as stiff as the tension in a hanging chain: proportional to the number
+/// of masses below it.
 fn two_axis_chain_block(k: usize) -> DMatrix<f64> {
     let spring = |i: usize| (k - i) as f64;
     let mut stiff = DMatrix::<f64>::zeros(k, k);
