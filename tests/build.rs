@@ -119,6 +119,9 @@ fn main() {
         add(&format!("{m}_f32.rs"), "f32", builtin(m).f32(), &mut index);
     }
     index.push_str("}\n");
+    index.push_str(
+        "pub mod hostile_gen {\n    include!(concat!(env!(\"OUT_DIR\"), \"/hostile.rs\"));\n}\n",
+    );
     // …and again after everything else was built in the same pool.
     let again = emit_model(
         &models::build("smd", &[]).expect("smd"),
@@ -126,10 +129,85 @@ fn main() {
     )
     .expect("smd")
     .source;
+    // Text that tries to break out of every place it reaches in the code: compiled with the
+    // rest (tests/codegen/hostile.rs checks what it holds).
+    let hostile = hostile_model();
+    write_if_changed(&out.join("hostile.rs"), &hostile).expect("write");
     write_if_changed(&out.join("smd_first.rs"), &first).expect("write");
     write_if_changed(&out.join("smd_again.rs"), &again).expect("write");
     write_if_changed(&out.join("generated.rs"), &index).expect("write");
     write_if_changed(&out.join("codegen_stats.csv"), &stats).expect("write");
+}
+
+/// Every control character, the line and paragraph separators and a bidirectional override.
+fn every_control() -> String {
+    (0u32..0x20)
+        .chain(0x7f..0xa0)
+        .chain([0x2028, 0x2029, 0x202e, 0x2066])
+        .filter_map(char::from_u32)
+        .collect()
+}
+
+/// The generated module of a mass on a spring whose texts try to inject code: a model name
+/// (given to the code generator, which takes any) with LF, CRLF and CR line breaks followed by
+/// items, parameter units and descriptions with every control character, and body and item
+/// names (which a model may hold) with quotes, backslashes and comment delimiters.
+fn hostile_model() -> String {
+    use eom_model::{Actuator, Body, FlexPoint, Model, RigidPoint, Sensor, vec3, z_axis};
+    use eom_sym::pool::{Assumption, ParamInfo};
+    let controls = every_control();
+    let mut m = Model::new("hostile");
+    let mut param = |name: &str, nominal: f64, unit: String| {
+        m.param_info(ParamInfo {
+            name: name.into(),
+            nominal,
+            unit: Some(unit),
+            description: Some(format!(
+                "line one\n*/ pub fn injected_description() {{}} /*\r\n{controls}"
+            )),
+            assume: Assumption::Positive,
+        })
+        .expect("parameter")
+    };
+    let (mass, k, c) = (
+        param("m", 1.0, format!("kg{controls}")),
+        param("k", 10.0, "N/m */ fn injected_unit() {} /*".into()),
+        param("c", 0.1, "N s/m\"".into()),
+    );
+    let block = "block \" \\ */ /* // /// #[cfg(any())] } { r#\"x\"# ü 漢";
+    m.add(Body::new(block).mass(mass));
+    m.add(
+        RigidPoint::new("slider \"*/")
+            .between(block, "ground")
+            .forces(2)
+            .moments(3)
+            .axis(z_axis()),
+    );
+    m.add(
+        FlexPoint::new("spring // \\")
+            .between(block, "ground")
+            .forces(1)
+            .axis(z_axis())
+            .stiffness(k, 0)
+            .damping(c, 0),
+    );
+    m.add(
+        Actuator::new("force \"\\n")
+            .between(block, "ground")
+            .ends(vec3(0, 0, 1), vec3(0, 0, 0))
+            .units(&format!("N{controls}")),
+    );
+    m.add(
+        Sensor::new("height */ /*")
+            .between(block, "ground")
+            .ends(vec3(0, 0, 1), vec3(0, 0, 0))
+            .units("m"),
+    );
+    let opts = EmitOptions::default().module("hostile").model_name(
+        "smd\npub fn injected() -> u8 { 1 }\n//\r\npub fn injected_crlf() {}\r\n//\rpub fn \
+         injected_cr() {}\u{2028}pub fn injected_ls() {}\u{202e}",
+    );
+    emit_model(&m, &opts).expect("hostile model").source
 }
 
 /// The code generator for a built-in model at its defaults.

@@ -38,12 +38,44 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     let model = choice.build(&[])?;
     let numeric = model.nominal()?;
     let assembled = assemble(&numeric)?;
-    let lin = Linearizer::new(&model).method(Method::Numeric).run()?;
+    // The numeric path first; where it cannot reduce the model (a massless motion, which its
+    // messages suggest the robust path for), the robust path, and the command that works.
+    let (lin, path_note) = match Linearizer::new(&model).method(Method::Numeric).run() {
+        Ok(lin) => (lin, None),
+        Err(numeric) => {
+            // Its advice names the library's path, not a command: replaced by ours.
+            let numeric = numeric.to_string().replace(
+                "; use the robust numeric path, which reduces index-1 descriptor models",
+                "",
+            );
+            match Linearizer::new(&model).method(Method::Robust).run() {
+                Ok(lin) => {
+                    let note = format!(
+                        "the default reduction fails ({}); the robust one reduces the model: analyse \
+                     it with `eom analyze {} --method robust`",
+                        numeric,
+                        eom_text::shown(&choice.name)
+                    );
+                    (lin, Some(note))
+                }
+                Err(robust) => {
+                    return Err(CliError::BadArgument {
+                        argument: eom_text::shown(&choice.name),
+                        problem: format!(
+                            "no reduction handles this model: the numeric one fails ({numeric}), \
+                         and so does the robust one ({robust})"
+                        ),
+                    });
+                }
+            }
+        }
+    };
     // The file's own warnings (e.g. derivatives an AVL stability-axis file cannot give).
     let mut warnings = match &choice.source {
         crate::params::Source::File(path) => eom_model::file::load(path, &[])?.warnings,
         crate::params::Source::Builtin => Vec::new(),
     };
+    warnings.extend(path_note);
     warnings.extend(lin.warnings);
     let mut items: Vec<(String, usize)> = Vec::new();
     for kind in eom_model::KINDS {
@@ -109,14 +141,23 @@ fn list(v: &[String]) -> String {
 }
 
 /// A commented starter file: a mass on a spring and damper, with a force input and a
-/// displacement output, ready to analyse.
-pub fn starter(name: &str) -> String {
-    format!(
+/// displacement output, ready to analyse. The name is refused when it holds a character no
+/// name may hold (a line break would end the comment it appears in), and written as a TOML
+/// string, so that the file loads whatever the name.
+pub fn starter(name: &str) -> Result<String, CliError> {
+    if let Some(problem) = eom_text::name_problem(name) {
+        return Err(CliError::BadArgument {
+            argument: format!("eom new {}", eom_text::shown(name)),
+            problem: format!("the model name {problem}"),
+        });
+    }
+    let quoted = eom_model::file::toml_string(name);
+    Ok(format!(
         r#"# {name}: an eom model file (format: docs/model-files.md).
 # Try: eom check {name}.toml; eom analyze {name}.toml; eom analyze {name}.toml --set k=20
 
 [model]
-name = "{name}"
+name = {quoted}
 description = "a mass on a vertical spring and damper"
 gravity = [0, 0, "-g"]          # a weight on every body with mass
 
@@ -165,5 +206,5 @@ between = ["block", "ground"]
 ends = [[0, 0, "h"], [0, 0, 0]]
 units = "m"
 "#
-    )
+    ))
 }

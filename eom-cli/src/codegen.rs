@@ -24,7 +24,8 @@ pub struct CodegenRequest {
 
 /// Generates the module for the model (with `overrides` as the nominal values, where the
 /// pivots are chosen and the default of `Params::NOMINAL`), writes it to `path` (only when its
-/// content changes, see [`crate::output::write_output`]) and returns the summary to print.
+/// content changes, see [`crate::output::write_output`]) and returns the summary to print on
+/// standard error.
 #[cfg(feature = "codegen")]
 pub fn codegen(
     choice: &ModelChoice,
@@ -85,13 +86,10 @@ fn summary(
     } else {
         "std math"
     };
-    let verb = match written {
-        crate::output::Written::Written => "wrote",
-        crate::output::Written::Unchanged => "unchanged (the file already holds this code)",
-    };
+    let status = crate::output::status_line(path, written);
     let mut t = format!(
-        "{verb} {} ({lines} lines): module `{}`, {}, {math}, {} validity check(s)\n",
-        path.display(),
+        "{}: {lines} lines, module `{}`, {}, {math}, {} validity check(s)\n",
+        status.trim_end(),
         e.module,
         if req.f32 { "f32" } else { "f64" },
         s.checks,

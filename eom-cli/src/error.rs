@@ -119,10 +119,12 @@ impl CliError {
                 | eom_aero::AeroError::UnsupportedKeyword { .. }
                 | eom_aero::AeroError::BadValue { .. }
                 | eom_aero::AeroError::MissingField { .. }
+                | eom_aero::AeroError::OutOfRange { .. }
                 | eom_aero::AeroError::Io { .. },
             ) => EXIT_USAGE,
             // A model beyond the memory limit: the size of the input, not a failure.
-            CliError::Num(NumError::TooLarge(_)) => EXIT_USAGE,
+            CliError::Num(NumError::TooLarge(_))
+            | CliError::Model(ModelError::Num(NumError::TooLarge(_))) => EXIT_USAGE,
             CliError::Sweep(e) if matches!(**e, SweepError::Setup(NumError::TooLarge(_))) => {
                 EXIT_USAGE
             }

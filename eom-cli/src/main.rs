@@ -34,7 +34,7 @@ use crate::error::CliError;
 use crate::params::{ModelChoice, SweepSpec, parse_freq_range};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use eom_model::Method;
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -557,16 +557,16 @@ fn run(cli: Cli) -> Result<Output, CliError> {
         Command::Report(r) => {
             let choice = ModelChoice::resolve(&r.model)?;
             let overrides = choice.parse_sets(&r.set)?;
-            let spec = r.sweep.as_deref().map(SweepSpec::parse).transpose()?;
+            let spec = r
+                .sweep
+                .as_deref()
+                .map(|s| SweepSpec::parse_option("--sweep", s))
+                .transpose()?;
             let w = report::write_report(&choice, &overrides, spec.as_ref(), &r.output, cli.quiet)?;
             if w.created_dir {
                 stderr.push_str(&format!("created directory {}\n", r.output.display()));
             }
-            let verb = match w.written {
-                output::Written::Written => "wrote",
-                output::Written::Unchanged => "unchanged",
-            };
-            stderr.push_str(&format!("{verb} {}\n", w.path.display()));
+            stderr.push_str(&output::status_line(&w.path, w.written));
             String::new()
         }
         Command::Codegen(c) => {
@@ -579,7 +579,9 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 simplify_always: c.simplify_always,
                 module: c.module,
             };
-            codegen::codegen(&choice, &overrides, &req, &c.output)?
+            // The summary is a status: standard error (the output may be `/dev/stdout`).
+            stderr.push_str(&codegen::codegen(&choice, &overrides, &req, &c.output)?);
+            String::new()
         }
         Command::Check { model, format } => {
             let choice = ModelChoice::resolve(&model)?;
@@ -589,7 +591,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 Format::Json => json(&r)?,
             }
         }
-        Command::New { name } => check::starter(&name),
+        Command::New { name } => check::starter(&name)?,
         Command::Bench(b) => run_bench(b, cli.quiet, &mut stderr)?,
         Command::Export { model, set, output } => {
             let choice = ModelChoice::resolve(&model)?;
@@ -598,11 +600,10 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             match output {
                 None => text,
                 Some(path) => {
-                    let verb = match output::write_output(&path, &text)? {
-                        output::Written::Written => "wrote",
-                        output::Written::Unchanged => "unchanged",
-                    };
-                    stderr.push_str(&format!("{verb} {}\n", path.display()));
+                    stderr.push_str(&output::status_line(
+                        &path,
+                        output::write_output(&path, &text)?,
+                    ));
                     String::new()
                 }
             }
@@ -919,14 +920,32 @@ fn main() -> ExitCode {
     let result = params::memory_limit_from_env()
         .and_then(|_| run(cli))
         .and_then(|out| {
-            write_all(std::io::stderr().lock(), &out.stderr, "standard error")?;
-            write_all(std::io::stdout().lock(), &out.stdout, "standard output")
+            // Messages and statuses may quote names and file text: never raw control
+            // characters on a terminal. Standard output is left as it is unless it is a
+            // terminal (it may be a file that must stay byte-exact, JSON for instance).
+            let stderr = eom_text::for_terminal(&out.stderr);
+            write_all(std::io::stderr().lock(), &stderr, "standard error")?;
+            let stdout = std::io::stdout();
+            if stdout.is_terminal() {
+                write_all(
+                    stdout.lock(),
+                    &eom_text::for_terminal(&out.stdout),
+                    "standard output",
+                )
+            } else {
+                write_all(stdout.lock(), &out.stdout, "standard output")
+            }
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             // Nothing more can be done if standard error is closed too.
-            let _ = writeln!(std::io::stderr(), "error: {e}");
+            let message = e.to_string();
+            let _ = writeln!(
+                std::io::stderr(),
+                "error: {}",
+                eom_text::for_terminal(&message)
+            );
             ExitCode::from(e.exit_code())
         }
     }

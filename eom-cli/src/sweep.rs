@@ -381,7 +381,12 @@ impl SweepReport {
             g(self.boundary_tolerance, 3)
         ));
         if r.boundaries.is_empty() {
-            t.push_str("  none in the range\n");
+            t.push_str(&format!(
+                "  none between the grid points: no branch changes sign from one value to the \
+                 next (two crossings inside one grid step are not seen; a finer grid than \
+                 {} values may find them)\n",
+                self.range.count
+            ));
         }
         for b in &r.boundaries {
             let dir = match b.crossing {
@@ -407,7 +412,11 @@ impl SweepReport {
         t.push('\n');
         t.push_str(&format!("Stable intervals of {p}\n"));
         if r.stable_intervals.is_empty() {
-            t.push_str("  none: unstable or marginal over the whole range\n");
+            t.push_str(&format!(
+                "  none at the grid points: all {} values are unstable or marginal (the model \
+                 may be stable between them: refine the grid)\n",
+                self.range.count
+            ));
         }
         for i in &r.stable_intervals {
             t.push_str(&format!("  [{}, {}]\n", i.lo, i.hi));

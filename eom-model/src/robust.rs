@@ -82,6 +82,17 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
     let d = a.dim();
     let m = a.inputs.len();
     let nz = 2 * d + m;
+    // Dense N × N matrices, N = 2·coordinates + inputs: the pencil (E, A) before and after
+    // the projection, the complements R and L, the products' temporaries, and the
+    // coordinate-sized mass, stiffness, damping and kinematic matrices: about nine at once.
+    eom_num::budget::check(
+        &format!(
+            "the robust reduction's dense descriptor matrices ({nz} × {nz}: two per coordinate \
+             of {} bodies, plus the inputs)",
+            a.bodies.len()
+        ),
+        eom_num::budget::product(&[nz, nz, 9 * 8]),
+    )?;
     let mass = dense(&a.mass);
     let k = dense(&a.stiffness);
     let c = dense(&a.damping);

@@ -283,7 +283,7 @@ impl Expr {
     pub fn new_param(info: ParamInfo) -> Result<Expr, SymError> {
         if !is_identifier(&info.name) {
             return Err(SymError::BadParameter {
-                name: info.name,
+                name: eom_text::shown(&info.name),
                 problem: "a name must start with a letter or `_` and contain only letters, \
                           digits and `_`"
                     .into(),

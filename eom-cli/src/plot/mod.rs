@@ -66,13 +66,19 @@ pub struct Plot {
 }
 
 impl Plot {
-    /// Writes the SVG to `path`. Failures name the file and the option that asked for it.
+    /// Writes the SVG to `path` by [`crate::output::write_output`] (a temporary file renamed
+    /// into place; a FIFO or a device written without blocking). Failures name the file and
+    /// the option that asked for it.
     pub fn write(&self, option: &str, path: &Path) -> Result<(), CliError> {
-        std::fs::write(path, &self.svg).map_err(|source| CliError::PlotFile {
-            option: option.to_string(),
-            path: path.display().to_string(),
-            source,
-        })
+        match crate::output::write_output(path, &self.svg) {
+            Ok(_) => Ok(()),
+            Err(CliError::Io { source, .. }) => Err(CliError::PlotFile {
+                option: option.to_string(),
+                path: eom_text::escaped(&path.display().to_string()).into_owned(),
+                source,
+            }),
+            Err(e) => Err(e),
+        }
     }
 
     /// The notes as lines for standard error (`note: FILE: …`), empty without notes.

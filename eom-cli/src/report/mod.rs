@@ -34,8 +34,9 @@ pub struct Written {
     pub written: output::Written,
 }
 
-/// Computes everything and writes `DIR/NAME.html` by [`output::write_output`] (a FIFO or a
-/// device is not blocked on, an unchanged page is left as it is). A missing `DIR` is created
+/// Computes everything and writes `DIR/NAME.html` by [`output::write_chosen`] (a name eom
+/// chose: a symbolic link there is replaced, not followed; a FIFO or a device is not blocked
+/// on, an unchanged page is left as it is). A missing `DIR` is created
 /// when its parent exists; a missing parent is an error, checked before the work starts.
 pub fn write_report(
     choice: &ModelChoice,
@@ -69,7 +70,7 @@ pub fn write_report(
     if created_dir {
         output::create_output_dir(dir)?;
     }
-    let written = output::write_output(&path, &html)?;
+    let written = output::write_chosen(&path, &html)?;
     Ok(Written {
         path,
         created_dir,

@@ -294,7 +294,10 @@ pub fn sweep(
         })
         .collect();
     if rows.is_empty() {
-        p.text("No stability boundary in the range.");
+        p.text(
+            "No stability boundary between the grid points (two crossings inside one grid step \
+             are not seen: a finer grid may find them).",
+        );
     } else {
         p.table(
             &[&format!("boundary {}", spec.name), "crossing", "eigenvalue"],

@@ -110,7 +110,7 @@ impl<'a> Builder<'a> {
                 .string("name")?
                 .ok_or_else(|| t.error(format!("every {kind} needs a `name`")))?;
             let t = Table {
-                context: format!("{kind} `{name}`"),
+                context: crate::items::label(kind, &name),
                 ..t
             };
             let mirror = match t.string("mirror")? {
@@ -261,7 +261,8 @@ impl<'a> Builder<'a> {
             key,
             &v.span(),
             format!(
-                "no body called `{name}`; the bodies are: {}",
+                "no body called `{}`; the bodies are: {}",
+                eom_text::shown(&name),
                 known.join(", ")
             ),
         ))

@@ -272,7 +272,7 @@ fn entry(
     specs: &mut Vec<(ParamSpec, Range<usize>)>,
     derived: &mut Vec<(String, String, Range<usize>)>,
 ) -> Result<(), ModelError> {
-    let context = format!("parameter `{name}`");
+    let context = format!("parameter `{}`", eom_text::shown(name));
     let mut spec = ParamSpec {
         name: name.to_string(),
         value: 0.0,
@@ -422,10 +422,7 @@ pub(crate) fn string_error(
     e: &SymError,
 ) -> ModelError {
     // An expression too long to repeat is cut (the column still points into it).
-    let shown = match text.char_indices().nth(80) {
-        Some((cut, _)) => format!("{}…` ({} characters)", &text[..cut], text.chars().count()),
-        None => format!("{text}`"),
-    };
+    let shown = format!("{}`", eom_text::shown_within(text, 80));
     let (at, problem) = match e {
         SymError::Parse {
             column,

@@ -354,6 +354,7 @@ fn config(cases: u32) -> ProptestConfig {
 }
 
 mod accuracy;
+mod hostile;
 mod interpreter;
 mod kernels;
 mod text;
