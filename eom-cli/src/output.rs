@@ -14,6 +14,7 @@
 //!   leaves the old file or the new one, never a torn one. On SIGINT, SIGTERM or SIGHUP
 //!   during the write the temporary file is removed before the process ends as the signal
 //!   would end it. The replaced file's permissions are kept.
+//! * A read-only regular file is not replaced (an error), as writing into it would fail.
 //! * A regular file that already holds exactly these bytes is not touched
 //!   ([`Written::Unchanged`]); it is read only when it has their size.
 //! * A symbolic link the user named is followed: its target is replaced, the link stays. A
@@ -131,6 +132,15 @@ fn write(path: &Path, bytes: &[u8], chosen: bool) -> Result<Written, CliError> {
     }
     if m.len() == bytes.len() as u64 && same_content(&target, bytes) {
         return Ok(Written::Unchanged);
+    }
+    // Renaming would replace a file its owner made read-only, which writing in place (what
+    // the user expects of `-o`) would not.
+    if m.permissions().readonly() {
+        return Err(error(
+            &target,
+            ErrorKind::PermissionDenied,
+            "the file is read-only: not replaced".into(),
+        ));
     }
     replace(&target, bytes, Some(m.permissions()))?;
     Ok(Written::Written)
