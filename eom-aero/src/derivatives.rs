@@ -70,6 +70,15 @@ impl Reference {
     }
 }
 
+/// A number for a message: plain where that is short, else in exponent form (`1e308`).
+fn short(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Row names (AVL): forces CX, CY, CZ and moments Cl, Cm, Cn.
 pub const ROWS: [&str; 6] = ["CX", "CY", "CZ", "Cl", "Cm", "Cn"];
 /// Column names (AVL): velocities u, v, w and rates p, q, r.
@@ -139,8 +148,10 @@ impl Derivatives {
             return Err(AeroError::OutOfRange {
                 what: "the dimensional derivatives".into(),
                 reason: format!(
-                    "ρ·V·S/2 overflows with ρ = {rho}, V = {speed}, S = {}",
-                    self.reference.sref
+                    "ρ·V·S/2 overflows with ρ = {}, V = {}, S = {}",
+                    short(rho),
+                    short(speed),
+                    short(self.reference.sref)
                 ),
             });
         }
@@ -154,9 +165,14 @@ impl Derivatives {
                     return Err(AeroError::OutOfRange {
                         what: format!("the dimensional derivative of {}", NAMES[i][j]),
                         reason: format!(
-                            "{} = {} times ρ·V·S/2 = {q_s_per_v} (ρ = {rho}, V = {speed}, S = \
-                             {}) and the reference lengths overflows",
-                            NAMES[i][j], self.coefficients[i][j], self.reference.sref
+                            "{} = {} times ρ·V·S/2 = {} (ρ = {}, V = {}, S = {}) and the \
+                             reference lengths overflows",
+                            NAMES[i][j],
+                            short(self.coefficients[i][j]),
+                            short(q_s_per_v),
+                            short(rho),
+                            short(speed),
+                            short(self.reference.sref)
                         ),
                     });
                 }

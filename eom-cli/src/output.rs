@@ -161,9 +161,10 @@ fn check_directory(path: &Path) -> Result<(), CliError> {
     }
 }
 
-/// Paths that name a stream rather than a file, even when they lead to one (`/dev/stdout`
-/// redirected to a file): renaming into them would replace the wrong thing.
-fn is_stream_path(path: &Path) -> bool {
+/// Paths that name a stream rather than a file (under `/dev` and `/proc`), even when they lead
+/// to one (`/dev/stdout` redirected to a file): renaming into them would replace the wrong
+/// thing.
+pub fn is_stream_path(path: &Path) -> bool {
     path.starts_with("/dev") || path.starts_with("/proc")
 }
 

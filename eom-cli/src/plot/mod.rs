@@ -95,9 +95,11 @@ impl Plot {
 /// malformed argument), its directory must exist and the path must not be a directory (exit
 /// code 1, like the write failing later).
 pub fn check_target(option: &str, path: &Path) -> Result<(), CliError> {
-    let is_svg = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+    // A stream (`/dev/stdout`) has no extension to check.
+    let is_svg = crate::output::is_stream_path(path)
+        || path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
     if !is_svg {
         return Err(CliError::BadArgument {
             argument: format!("{option} {}", path.display()),
