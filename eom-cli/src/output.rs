@@ -39,6 +39,8 @@ use std::time::{Duration, Instant};
 use crate::error::CliError;
 
 /// What a write did.
+// `Written::Written` is the name the callers have used since the first writer.
+#[allow(clippy::enum_variant_names)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Written {
     /// The file already held exactly these bytes: not touched.
