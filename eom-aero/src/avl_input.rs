@@ -8,7 +8,10 @@
 //! Honoured: `SURFACE` (name; `Nchord Cspace [Nspan Sspace]`), `COMPONENT`/`INDEX`,
 //! `YDUPLICATE`, `SCALE`, `TRANSLATE`, `ANGLE`, `NOALBE`, `NOLOAD`, `SECTION`
 //! (`Xle Yle Zle Chord Ainc [Nspan Sspace]`), `NACA` with a zero-camber 4-digit section
-//! (its camber line is the flat plate the lattice uses anyway) and `CLAF 1`.
+//! (its camber line is the flat plate the lattice uses anyway), `CLAF 1`, and `CORE`
+//! (`VRCOREC VRCOREW SRCORE`, anywhere among the keywords, as in AVL 3.5x: the vortex core
+//! fractions of [`crate::vortex_core`]; SRCORE, the core of slender bodies, is read and
+//! ignored, since bodies are refused).
 //!
 //! Refused with an error naming the file, line and keyword, because the flat-plate lattice
 //! cannot honour them: `BODY`/`BFILE` (slender bodies), cambered `NACA`, `AIRFOIL`, `AFILE`
@@ -20,6 +23,7 @@ use crate::derivatives::Reference;
 use crate::error::{AeroError, Result};
 use crate::geometry::{Configuration, Section, Surface, Symmetry};
 use crate::spacing::Spacing;
+use crate::vortex_core::VortexCore;
 use std::path::Path;
 
 /// Reads an `.avl` geometry file.
@@ -278,6 +282,15 @@ impl SurfaceReader {
             "ANGL" => {
                 let v = lines.numbers("ANGLE", &["dAinc"], 1)?;
                 self.surface(lines, line, word)?.angle_deg = v[0];
+            }
+            "CORE" => {
+                let names = ["VRCOREC", "VRCOREW", "SRCORE"];
+                let (l, v) = lines.numbers_at("CORE data", &names, 3)?;
+                let core = VortexCore::new(v[0], v[1]);
+                if let Some(reason) = core.problem() {
+                    return Err(lines.err(l, reason));
+                }
+                config.vortex_core = Some(core);
             }
             "NOAL" => self.surface(lines, line, word)?.no_alpha_beta = true,
             "NOLO" => self.surface(lines, line, word)?.no_load = true,

@@ -8,6 +8,7 @@
 use crate::derivatives::Reference;
 use crate::error::{AeroError, Result};
 use crate::spacing::Spacing;
+use crate::vortex_core::VortexCore;
 use serde::Serialize;
 
 /// A whole configuration: reference quantities, Mach number and surfaces.
@@ -24,6 +25,10 @@ pub struct Configuration {
     pub symmetry: Symmetry,
     /// Profile drag coefficient CDp of the `.avl` header (read, not used by the lattice).
     pub cdp: f64,
+    /// AVL's finite vortex core between components, as the `.avl` file's `CORE` keyword
+    /// sets it; `None`: AVL's default ([`VortexCore::AVL_DEFAULT`]) unless the solver
+    /// options say otherwise ([`crate::SolverOptions::vortex_core`]).
+    pub vortex_core: Option<VortexCore>,
     /// The lifting surfaces.
     pub surfaces: Vec<Surface>,
 }
@@ -45,7 +50,10 @@ pub struct Symmetry {
 pub struct Surface {
     /// Name, used in error messages.
     pub name: String,
-    /// AVL component index (informational: all surfaces share one lattice here).
+    /// AVL component index (`COMPONENT`/`INDEX`): surfaces with the same index are one
+    /// component, and the vortex core acts only between components
+    /// ([`crate::vortex_core`]). `None`: the surface's own number, counted from 1 as AVL
+    /// counts surfaces (a mirrored surface and its image count two, and share the index).
     pub component: Option<i64>,
     /// Chordwise panels and their spacing (AVL `Nchord Cspace`).
     pub chordwise: Spacing,
@@ -305,8 +313,15 @@ impl Configuration {
             reference,
             symmetry: Symmetry::default(),
             cdp: 0.0,
+            vortex_core: None,
             surfaces: Vec::new(),
         }
+    }
+
+    /// Sets the vortex core (AVL's `CORE` keyword), e.g. [`VortexCore::OFF`].
+    pub fn vortex_core(mut self, core: VortexCore) -> Self {
+        self.vortex_core = Some(core);
+        self
     }
 
     /// Adds a surface.
@@ -365,6 +380,9 @@ impl Configuration {
                     self.symmetry.izsym, self.symmetry.zsym
                 ),
             ));
+        }
+        if let Some(reason) = self.vortex_core.and_then(|c| c.problem()) {
+            return Err(self.err("CORE", reason));
         }
         if self.surfaces.is_empty() {
             return Err(self.err("surfaces", "none given".into()));

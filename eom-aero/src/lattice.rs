@@ -28,6 +28,13 @@ pub(crate) struct Panel {
     pub loaded: bool,
     /// The panel sees α, β and the rates (not `NOALBE`).
     pub sees_flow_angles: bool,
+    /// AVL component index: the surface's `COMPONENT`/`INDEX`, or else its number counted
+    /// as AVL counts surfaces (from 1, mirrored copies included); a mirrored copy keeps its
+    /// original's. The vortex core acts between different components only.
+    pub component: i64,
+    /// Chord of the panel's strip at its control station (AVL's strip chord), for the
+    /// vortex core.
+    pub strip_chord: f64,
 }
 
 /// The whole lattice.
@@ -94,8 +101,11 @@ pub(crate) fn build(config: &Configuration) -> Result<Lattice> {
             });
         }
         let first = lattice.panels.len();
+        let component = surface
+            .component
+            .unwrap_or(lattice.surfaces as i64 + 1);
         for strip in &strips {
-            add_strip(&mut lattice.panels, surface, &placed, strip);
+            add_strip(&mut lattice.panels, surface, &placed, strip, component);
         }
         lattice.surfaces += 1;
         lattice.strips += strips.len();
@@ -202,7 +212,13 @@ fn surface_strips(
     Ok(())
 }
 
-fn add_strip(panels: &mut Vec<Panel>, surface: &Surface, placed: &[Placed], strip: &Strip) {
+fn add_strip(
+    panels: &mut Vec<Panel>,
+    surface: &Surface,
+    placed: &[Placed],
+    strip: &Strip,
+    component: i64,
+) {
     let (s0, s1) = (&placed[strip.interval], &placed[strip.interval + 1]);
     let le = |t: f64| add(s0.le, scale(sub(s1.le, s0.le), t));
     let chord = |t: f64| s0.chord + (s1.chord - s0.chord) * t;
@@ -240,6 +256,8 @@ fn add_strip(panels: &mut Vec<Panel>, surface: &Surface, placed: &[Placed], stri
             te_b: l1[0] + c1,
             loaded: !surface.no_load,
             sees_flow_angles: !surface.no_alpha_beta,
+            component,
+            strip_chord: cc,
         });
     }
 }

@@ -107,10 +107,18 @@
 //! ## Not covered
 //!
 //! Camber lines, slender bodies, control surfaces, viscous drag, the y image plane
-//! (iYsym; model both halves instead), surfaces without a wake (NOWAKE), and AVL's finite
-//! vortex core. Without a core, the interference of surfaces close to each other's wakes
-//! converges faster with the lattice: on coarse lattices AVL differs there, and refining
-//! AVL's lattice closes the gap.
+//! (iYsym; model both halves instead), and surfaces without a wake (NOWAKE).
+//!
+//! ## Vortex core
+//!
+//! Like AVL, the lattice smooths the velocity that one component's vortices induce on
+//! another component's points within a finite core, by default twice the strip width
+//! ([`vortex_core`]: AVL's VRCOREC = 0, VRCOREW = 2). It matters where one surface's
+//! trailing legs pass close to another's points, e.g. a wing's root legs along the root
+//! of a fin on the centre line (a few percent in CYv, Cnv, CYp). It is read from the `CORE`
+//! line of an `.avl` file and can be set or switched off ([`VortexCore::OFF`]) in
+//! [`SolverOptions::vortex_core`]; without it the interference of such surfaces converges
+//! faster with the lattice, with it the results match AVL's at equal lattices.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -126,6 +134,7 @@ pub mod solver;
 pub mod spacing;
 pub mod stability;
 pub mod validity;
+pub mod vortex_core;
 
 pub use avl_input::{parse_avl, read_avl};
 
@@ -142,3 +151,4 @@ pub use solver::{LatticeSize, Solution, SolverOptions, Totals, solve};
 pub use spacing::Spacing;
 pub use stability::BodyDerivatives;
 pub use validity::{REDUCED_FREQUENCY_LIMIT, RateCheck, check_rates, reduced_frequency};
+pub use vortex_core::VortexCore;

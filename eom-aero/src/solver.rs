@@ -4,8 +4,12 @@
 use crate::derivatives::{Derivatives, StabilityDerivatives};
 use crate::error::{AeroError, Result};
 use crate::geometry::{Configuration, Symmetry};
-use crate::kernel::{Vec3, add, cross, dot, scale, segment, sub, trailing_leg};
+use crate::kernel::{
+    Vec3, add, cross, dot, norm, scale, segment, segment_cored, sub, trailing_leg,
+    trailing_leg_cored,
+};
 use crate::lattice::{self, Lattice, Panel};
+use crate::vortex_core::VortexCore;
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use serde::Serialize;
@@ -25,6 +29,11 @@ pub struct SolverOptions {
     /// later leave them out. It matters only for lifting surfaces in sideslip or roll/yaw,
     /// e.g. Clv of a lifting wing.
     pub trailing_leg_forces: bool,
+    /// AVL's finite vortex core between components ([`crate::vortex_core`]). `None`: the
+    /// configuration's ([`Configuration::vortex_core`], the `CORE` line of an `.avl`
+    /// file), or else AVL's default [`VortexCore::AVL_DEFAULT`]; `Some` overrides both, e.g.
+    /// [`VortexCore::OFF`] for singular kernels everywhere.
+    pub vortex_core: Option<VortexCore>,
 }
 
 impl Default for SolverOptions {
@@ -33,7 +42,17 @@ impl Default for SolverOptions {
             alpha_deg: 0.0,
             beta_deg: 0.0,
             trailing_leg_forces: true,
+            vortex_core: None,
         }
+    }
+}
+
+impl SolverOptions {
+    /// The vortex core these options solve `config` with.
+    pub fn core_for(&self, config: &Configuration) -> VortexCore {
+        self.vortex_core
+            .or(config.vortex_core)
+            .unwrap_or(VortexCore::AVL_DEFAULT)
     }
 }
 
@@ -74,6 +93,8 @@ pub struct Solution {
     pub beta_deg: f64,
     /// Mach number of the Prandtl–Glauert correction.
     pub mach: f64,
+    /// The vortex core the lattice was solved with.
+    pub vortex_core: VortexCore,
     /// The lattice's size.
     pub lattice: LatticeSize,
 }
@@ -132,6 +153,12 @@ fn check_options(o: &SolverOptions) -> Result<()> {
             });
         }
     }
+    if let Some(reason) = o.vortex_core.and_then(|c| c.problem()) {
+        return Err(AeroError::Option {
+            option: "vortex_core",
+            reason,
+        });
+    }
     Ok(())
 }
 
@@ -154,7 +181,8 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
         0.0,
         0.0,
     ];
-    let field = Field::new(&lattice, config.mach, &config.symmetry);
+    let core = options.core_for(config);
+    let field = Field::new(&lattice, config.mach, &config.symmetry, core);
     let reference = config.reference.point;
     // The influence matrix and its LU factors, and the 7 right-hand sides with their
     // solutions.
@@ -169,7 +197,7 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
     let mut influence = Mat::<f64>::zeros(n, n);
     let (mut legs, mut v) = (Vec::new(), Vec::new());
     for (i, p) in lattice.panels.iter().enumerate() {
-        field.induced_all(p.control, &mut legs, &mut v);
+        field.induced_all(p.control, p.component, &mut legs, &mut v);
         for (j, vj) in v.iter().enumerate() {
             influence[(i, j)] = dot(p.normal, *vj);
         }
@@ -195,7 +223,7 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
         });
     }
     let loads = Loads::compute(&lattice, &field, &g, &trim, reference, options);
-    Ok(finish(config, options, &lattice, &loads))
+    Ok(finish(config, options, core, &lattice, &loads))
 }
 
 /// Rejects a moment reference point so far from the panels that the rotation velocities about
@@ -244,6 +272,10 @@ fn check_pivots(u: faer::MatRef<'_, f64>, n: usize) -> Result<()> {
 /// A z image plane adds to every horseshoe its mirror image about z = zsym: with the
 /// circulation reversed for a solid wall (iZsym = +1: the normal velocity cancels on the
 /// plane, ground effect), kept for a constant-pressure plane (iZsym = −1).
+///
+/// Seen from a point of another component, a horseshoe with a nonzero core radius (and its
+/// image) is evaluated on its own with the cored kernels (AVL's finite vortex core, see
+/// [`crate::vortex_core`]); the core radius is not stretched, as in AVL.
 struct Field {
     beta: f64,
     nodes: Vec<Vec3>,
@@ -251,10 +283,13 @@ struct Field {
     b: Vec<usize>,
     /// Image horseshoes (node indices) and the sign of their circulation, if any.
     image: Option<(Vec<usize>, Vec<usize>, f64)>,
+    /// Each horseshoe's component and core radius (0: no core).
+    component: Vec<i64>,
+    core: Vec<f64>,
 }
 
 impl Field {
-    fn new(lattice: &Lattice, mach: f64, symmetry: &Symmetry) -> Self {
+    fn new(lattice: &Lattice, mach: f64, symmetry: &Symmetry, core: VortexCore) -> Self {
         let beta = (1.0 - mach * mach).sqrt();
         // + 0.0 turns −0.0 into 0.0, so that mirrored root points meet their originals
         let stretch = |v: Vec3| [v[0] / beta + 0.0, v[1] + 0.0, v[2] + 0.0];
@@ -282,18 +317,25 @@ impl Field {
                 .unzip();
             (ia, ib, -f64::from(symmetry.izsym.signum()))
         });
+        let width = |p: &Panel| norm([0.0, p.b[1] - p.a[1], p.b[2] - p.a[2]]);
         Field {
             beta,
             nodes,
             a,
             b,
             image,
+            component: lattice.panels.iter().map(|p| p.component).collect(),
+            core: lattice
+                .panels
+                .iter()
+                .map(|p| core.radius(p.strip_chord, width(p)))
+                .collect(),
         }
     }
 
-    /// Velocities at `p` (physical coordinates) induced by every horseshoe of unit
-    /// circulation (with its image), into `out`; `legs` is scratch space.
-    fn induced_all(&self, p: Vec3, legs: &mut Vec<Vec3>, out: &mut Vec<Vec3>) {
+    /// Velocities at `p` (physical coordinates, a point of `component`) induced by every
+    /// horseshoe of unit circulation (with its image), into `out`; `legs` is scratch space.
+    fn induced_all(&self, p: Vec3, component: i64, legs: &mut Vec<Vec3>, out: &mut Vec<Vec3>) {
         let ps = [p[0] / self.beta, p[1], p[2]];
         legs.clear();
         legs.extend(self.nodes.iter().map(|&n| trailing_leg(ps, n)));
@@ -306,16 +348,35 @@ impl Field {
                 s[2] + lb[2] - la[2],
             ]
         };
+        let cored = |ia: usize, ib: usize, rc: f64| {
+            let (a, b) = (self.nodes[ia], self.nodes[ib]);
+            let s = segment_cored(ps, a, b, rc);
+            let (la, lb) = (trailing_leg_cored(ps, a, rc), trailing_leg_cored(ps, b, rc));
+            [
+                s[0] + lb[0] - la[0],
+                s[1] + lb[1] - la[1],
+                s[2] + lb[2] - la[2],
+            ]
+        };
+        let any = |k: usize, ia: usize, ib: usize| {
+            let rc = self.core[k];
+            if rc > 0.0 && self.component[k] != component {
+                cored(ia, ib, rc)
+            } else {
+                horseshoe(ia, ib)
+            }
+        };
         out.clear();
         out.extend(
             self.a
                 .iter()
                 .zip(&self.b)
-                .map(|(&ia, &ib)| horseshoe(ia, ib)),
+                .enumerate()
+                .map(|(k, (&ia, &ib))| any(k, ia, ib)),
         );
         if let Some((ia, ib, sign)) = &self.image {
             for (k, v) in out.iter_mut().enumerate() {
-                *v = add(*v, scale(horseshoe(ia[k], ib[k]), *sign));
+                *v = add(*v, scale(any(k, ia[k], ib[k]), *sign));
             }
         }
         for v in out.iter_mut() {
@@ -352,7 +413,7 @@ impl Loads {
             }
             let arm = sub(p.force_point, reference);
             let mut w = velocities(arm, trim, p.sees_flow_angles);
-            field.induced_all(p.force_point, &mut legs, &mut v);
+            field.induced_all(p.force_point, p.component, &mut legs, &mut v);
             for (vj, gj) in v.iter().zip(g) {
                 for s in 0..7 {
                     w[s] = add(w[s], scale(*vj, gj[s]));
@@ -396,6 +457,7 @@ impl Loads {
 fn finish(
     config: &Configuration,
     options: &SolverOptions,
+    vortex_core: VortexCore,
     lattice: &Lattice,
     loads: &Loads,
 ) -> Solution {
@@ -434,6 +496,7 @@ fn finish(
         alpha_deg: options.alpha_deg,
         beta_deg: options.beta_deg,
         mach: config.mach,
+        vortex_core,
         lattice: LatticeSize {
             surfaces: lattice.surfaces,
             strips: lattice.strips,
@@ -455,12 +518,12 @@ mod tests {
         let lattice = lattice::build(&c).unwrap();
         let mach: f64 = 0.5;
         let beta = (1.0 - mach * mach).sqrt();
-        let field = Field::new(&lattice, mach, &Symmetry::default());
+        let field = Field::new(&lattice, mach, &Symmetry::default(), VortexCore::AVL_DEFAULT);
         // the mirror shares the root nodes: fewer nodes than 2 per panel
         assert!(field.nodes.len() < lattice.panels.len() + 3 * 3);
         let p = [0.3, 0.7, 0.2];
         let (mut legs, mut v) = (Vec::new(), Vec::new());
-        field.induced_all(p, &mut legs, &mut v);
+        field.induced_all(p, lattice.panels[0].component, &mut legs, &mut v);
         let s = |q: Vec3| [q[0] / beta, q[1], q[2]];
         for (j, panel) in lattice.panels.iter().enumerate() {
             let h = horseshoe(s(p), s(panel.a), s(panel.b));

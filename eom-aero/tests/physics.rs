@@ -407,6 +407,7 @@ fn derivatives_agree_with_finite_differences_of_the_trim_loads() {
                 alpha_deg: alpha,
                 beta_deg: beta,
                 trailing_leg_forces: legs,
+                ..SolverOptions::default()
             };
             solve(&config, &o).unwrap()
         };
