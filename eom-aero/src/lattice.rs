@@ -101,9 +101,7 @@ pub(crate) fn build(config: &Configuration) -> Result<Lattice> {
             });
         }
         let first = lattice.panels.len();
-        let component = surface
-            .component
-            .unwrap_or(lattice.surfaces as i64 + 1);
+        let component = surface.component.unwrap_or(lattice.surfaces as i64 + 1);
         for strip in &strips {
             add_strip(&mut lattice.panels, surface, &placed, strip, component);
         }

@@ -518,7 +518,12 @@ mod tests {
         let lattice = lattice::build(&c).unwrap();
         let mach: f64 = 0.5;
         let beta = (1.0 - mach * mach).sqrt();
-        let field = Field::new(&lattice, mach, &Symmetry::default(), VortexCore::AVL_DEFAULT);
+        let field = Field::new(
+            &lattice,
+            mach,
+            &Symmetry::default(),
+            VortexCore::AVL_DEFAULT,
+        );
         // the mirror shares the root nodes: fewer nodes than 2 per panel
         assert!(field.nodes.len() < lattice.panels.len() + 3 * 3);
         let p = [0.3, 0.7, 0.2];

@@ -70,7 +70,10 @@ fn the_core_file_settings_reproduce_avl() {
     for case in &cases() {
         let file = case["file"].as_str().unwrap();
         let alpha = case["alpha_deg"].as_f64().unwrap();
-        let (core, chordwise) = (case["core"].as_str().unwrap(), case["chordwise"].as_str().unwrap());
+        let (core, chordwise) = (
+            case["core"].as_str().unwrap(),
+            case["chordwise"].as_str().unwrap(),
+        );
         let config = read_avl(data(file)).unwrap();
         let expected_core = match core {
             "default" => None,
@@ -79,7 +82,10 @@ fn the_core_file_settings_reproduce_avl() {
         };
         assert_eq!(config.vortex_core, expected_core, "{file}");
         let sol = solve(&config, &options(alpha)).unwrap();
-        assert_eq!(sol.vortex_core, expected_core.unwrap_or(VortexCore::AVL_DEFAULT));
+        assert_eq!(
+            sol.vortex_core,
+            expected_core.unwrap_or(VortexCore::AVL_DEFAULT)
+        );
         let (dev, name) = worst(&sol.derivatives, &case["derivatives"]);
         println!("{file} α={alpha}: largest deviation {dev:.1e} ({name})");
         let tolerance = match (chordwise, core) {
@@ -90,7 +96,10 @@ fn the_core_file_settings_reproduce_avl() {
             // coreless on different stations: see the module docs
             _ => 2e-2,
         };
-        assert!(dev <= tolerance, "{file} α={alpha} {name}: {dev:e} > {tolerance:e}");
+        assert!(
+            dev <= tolerance,
+            "{file} α={alpha} {name}: {dev:e} > {tolerance:e}"
+        );
         let lift = case["totals"]["CL"].as_f64().unwrap();
         assert!(
             (sol.totals.lift - lift).abs() <= tolerance.max(1e-5) * lift.abs().max(0.01),
