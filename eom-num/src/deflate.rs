@@ -59,7 +59,7 @@ pub(crate) fn deflate_in_place(
     chop(a, n);
     loop {
         let before = order.len();
-        remove_zero_columns(a, n, removed, order);
+        remove_zero_columns(a, n, removed, |j| order.push(j));
         if let Some(c) = find_pair(a, n, removed, keys) {
             apply(a, n, c, removed);
             combos.push(c);
@@ -95,10 +95,33 @@ fn chop(a: &mut [f64], n: usize) {
     }
 }
 
-/// Removes states with a zero column (on the kept rows) until none is left.
-fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], order: &mut Vec<usize>) {
+/// [`deflate_in_place`] for matrices of at most [`crate::small_eigen::MAX_N`] states, without
+/// recording the changes of coordinates and without allocation: the number of structural
+/// zeros (`removed` marks them; `a` is transformed as there).
+pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> usize {
+    debug_assert!(n <= crate::small_eigen::MAX_N);
+    removed.iter_mut().for_each(|r| *r = false);
+    chop(a, n);
+    let mut count = 0;
     loop {
-        let before = order.len();
+        let before = count;
+        remove_zero_columns(a, n, removed, |_| count += 1);
+        if let Some(c) = find_pair_among_few(a, n, removed) {
+            apply(a, n, c, removed);
+            removed[c.i] = true;
+            count += 1;
+        }
+        if count == before {
+            return count;
+        }
+    }
+}
+
+/// Removes states with a zero column (on the kept rows) until none is left, telling `found`
+/// of each in order.
+fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], mut found: impl FnMut(usize)) {
+    loop {
+        let mut any = false;
         for j in 0..n {
             if removed[j] {
                 continue;
@@ -106,10 +129,11 @@ fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], order: &mut Ve
             let col = &a[j * n..(j + 1) * n];
             if (0..n).all(|i| removed[i] || col[i] == 0.0) {
                 removed[j] = true;
-                order.push(j);
+                found(j);
+                any = true;
             }
         }
-        if order.len() == before {
+        if !any {
             return;
         }
     }
@@ -122,6 +146,10 @@ fn find_pair(
     removed: &[bool],
     keys: &mut Vec<(u64, usize)>,
 ) -> Option<Combine> {
+    if n <= crate::small_eigen::MAX_N {
+        // The same answer as the small kernel's (which has no room for keys).
+        return find_pair_among_few(a, n, removed);
+    }
     keys.clear();
     for j in (0..n).filter(|&j| !removed[j]) {
         keys.push((column_key(&a[j * n..(j + 1) * n], removed), j));
@@ -132,15 +160,37 @@ fn find_pair(
         if k1 != k2 {
             continue;
         }
-        let (ci, cj) = (&a[i * n..(i + 1) * n], &a[j * n..(j + 1) * n]);
-        for s in [1.0, -1.0] {
-            let same = |r: usize| {
-                let (x, y) = (ci[r], s * cj[r]);
-                (x == 0.0) == (y == 0.0) && (x - y).abs() <= PAIR_ULPS * f64::EPSILON * x.abs()
-            };
-            if (0..n).all(|r| removed[r] || same(r)) {
-                return Some(Combine { i, j, s });
+        if let Some(c) = pair(a, n, removed, i, j) {
+            return Some(c);
+        }
+    }
+    None
+}
+
+/// [`find_pair`] by comparing every two kept columns (i < j, the first pair in that order):
+/// for a few states cheaper than hashing and sorting, and it misses no pair.
+fn find_pair_among_few(a: &[f64], n: usize, removed: &[bool]) -> Option<Combine> {
+    for i in (0..n).filter(|&i| !removed[i]) {
+        for j in (i + 1..n).filter(|&j| !removed[j]) {
+            if let Some(c) = pair(a, n, removed, i, j) {
+                return Some(c);
             }
+        }
+    }
+    None
+}
+
+/// Whether kept columns i and j agree up to sign (to [`PAIR_ULPS`], with the same zeros) on
+/// the kept rows.
+fn pair(a: &[f64], n: usize, removed: &[bool], i: usize, j: usize) -> Option<Combine> {
+    let (ci, cj) = (&a[i * n..(i + 1) * n], &a[j * n..(j + 1) * n]);
+    for s in [1.0, -1.0] {
+        let same = |r: usize| {
+            let (x, y) = (ci[r], s * cj[r]);
+            (x == 0.0) == (y == 0.0) && (x - y).abs() <= PAIR_ULPS * f64::EPSILON * x.abs()
+        };
+        if (0..n).all(|r| removed[r] || same(r)) {
+            return Some(Combine { i, j, s });
         }
     }
     None

@@ -65,6 +65,7 @@
 //! | [`linalg`] | SVD rank and nullspace decisions with their gap, equilibration of mixed units, condition numbers, balancing, nalgebra ↔ faer |
 //! | [`descriptor`] | descriptor → state space for index-1 pencils, finite generalized eigenvalues |
 //! | [`modes`] | eigenvalues (also without allocation), modal quantities, mode shapes, instantaneous centres of rotation |
+//! | [`small_eigen`] | eigenvalues of matrices up to 16 × 16 on the stack (the sweeps' kernel) |
 //! | [`freq`] | frequency response of every input/output pair, magnitude and unwrapped phase |
 //! | [`gain`] | steady-state gains, with integrating outputs identified |
 //! | [`time`] | impulse, step and sampled-input responses by exact ZOH discretisation |
@@ -139,6 +140,7 @@ mod minreal_pbh;
 pub mod modes;
 mod pbh_subspace;
 pub mod sensitivity;
+pub mod small_eigen;
 mod staircase;
 pub mod statespace;
 pub mod sweep;

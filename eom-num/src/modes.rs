@@ -2,7 +2,9 @@
 //!
 //! * [`eigenvalues`] — the eigenvalues of a square matrix, sorted by (real, imaginary) part;
 //!   [`eigenvalues_in`] is the same with a caller-owned [`EigenvaluesWorkspace`] and no
-//!   allocation, for sweeps that call it millions of times.
+//!   allocation, for sweeps that call it millions of times. Up to
+//!   [`small_eigen::MAX_N`] states both use the stack kernel of [`small_eigen`], beyond
+//!   that faer's QR algorithm ([`eigenvalues_faer_in`]).
 //! * [`Modes::compute`] — per mode: eigenvalue, kind, natural frequency, damping ratio, time
 //!   constant, damped period, stability, eigenvalue condition number, mode shape in physical
 //!   coordinates and, per body, the instantaneous centre of rotation and rotation axis.
@@ -53,6 +55,7 @@ use crate::NumError;
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
+use crate::small_eigen;
 use crate::statespace::{StateSpace, check_finite, in_range};
 
 fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
@@ -79,6 +82,11 @@ fn check_square(a: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
 /// [`NumError::NoConvergence`].
 pub fn eigenvalues(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {
     check_square(a, "A")?;
+    if a.nrows() <= small_eigen::MAX_N {
+        let mut out = vec![Complex64::new(0.0, 0.0); a.nrows()];
+        small_eigen::eigenvalues_small(a.as_slice(), a.nrows(), &mut out)?;
+        return Ok(out);
+    }
     let mut ws = EigenvaluesWorkspace::new(a.nrows());
     let mut out = vec![Complex64::new(0.0, 0.0); a.nrows()];
     eigenvalues_in(a, &mut ws, &mut out)?;
@@ -149,12 +157,32 @@ impl EigenvaluesWorkspace {
 
 /// [`eigenvalues`] without allocation: `out` (length n) receives the sorted eigenvalues.
 ///
+/// Matrices of up to [`small_eigen::MAX_N`] states go to the stack kernel
+/// [`small_eigen::eigenvalues_small`] (the workspace is then not used), larger ones to
+/// faer's QR algorithm ([`eigenvalues_faer_in`]); both deflate the structural zeros first and
+/// balance.
+///
 /// Errors: [`NumError::Dimension`] when `a`, the workspace and `out` disagree in size,
 /// [`NumError::NonFinite`], [`NumError::NoConvergence`].
 pub fn eigenvalues_in(
     a: &DMatrix<f64>,
     ws: &mut EigenvaluesWorkspace,
     out: &mut [Complex64],
+) -> Result<(), NumError> {
+    if ws.n <= small_eigen::MAX_N {
+        if a.nrows() != ws.n || a.ncols() != ws.n || out.len() != ws.n {
+            check_eigenvalues_in(a, ws, out)?;
+        }
+        small_eigen::eigenvalues_small(a.as_slice(), ws.n, out)?;
+        return Ok(());
+    }
+    eigenvalues_faer_in(a, ws, out)
+}
+
+fn check_eigenvalues_in(
+    a: &DMatrix<f64>,
+    ws: &EigenvaluesWorkspace,
+    out: &[Complex64],
 ) -> Result<(), NumError> {
     let n = ws.n;
     if a.nrows() != n || a.ncols() != n || out.len() != n {
@@ -168,6 +196,21 @@ pub fn eigenvalues_in(
     if a.iter().any(|x| !in_range(*x)) {
         return check_finite(a, "A");
     }
+    Ok(())
+}
+
+/// [`eigenvalues_in`] by faer's QR algorithm (`Par::Seq`) for every size: the path of the
+/// matrices above [`small_eigen::MAX_N`] states, public so that the small kernel can be
+/// compared with it (`eom bench accuracy`).
+///
+/// Errors: as [`eigenvalues_in`].
+pub fn eigenvalues_faer_in(
+    a: &DMatrix<f64>,
+    ws: &mut EigenvaluesWorkspace,
+    out: &mut [Complex64],
+) -> Result<(), NumError> {
+    check_eigenvalues_in(a, ws, out)?;
+    let n = ws.n;
     if n == 0 {
         return Ok(());
     }
