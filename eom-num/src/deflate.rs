@@ -97,23 +97,87 @@ fn chop(a: &mut [f64], n: usize) {
 
 /// [`deflate_in_place`] for matrices of at most [`crate::small_eigen::MAX_N`] states, without
 /// recording the changes of coordinates and without allocation: the number of structural
-/// zeros (`removed` marks them; `a` is transformed as there).
+/// zeros (`removed` marks them; `a` is transformed as there). The same decisions in the same
+/// order, found through each column's pattern of nonzero rows as a bit mask (a zero column
+/// and a candidate pair are then one comparison of masks each).
 pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> usize {
-    debug_assert!(n <= crate::small_eigen::MAX_N);
+    debug_assert!(n <= crate::small_eigen::MAX_N && a.len() == n * n);
     removed.iter_mut().for_each(|r| *r = false);
-    chop(a, n);
+    if n == 0 {
+        return 0;
+    }
+    let mut masks = [0u32; crate::small_eigen::MAX_N];
+    chop_with_masks(a, n, &mut masks);
+    let mut kept: u32 = (1u32 << n) - 1;
     let mut count = 0;
     loop {
         let before = count;
-        remove_zero_columns(a, n, removed, |_| count += 1);
-        if let Some(c) = find_pair_among_few(a, n, removed) {
+        // Zero columns on the kept rows, repeatedly (in increasing order, as
+        // `remove_zero_columns`).
+        loop {
+            let mut any = false;
+            for j in 0..n {
+                if kept & (1 << j) != 0 && masks[j] & kept == 0 {
+                    kept &= !(1 << j);
+                    removed[j] = true;
+                    count += 1;
+                    any = true;
+                }
+            }
+            if !any {
+                break;
+            }
+        }
+        // The first pair (i < j) of kept columns with the same pattern that agree.
+        let mut found = None;
+        'search: for i in (0..n).filter(|&i| kept & (1 << i) != 0) {
+            for j in (i + 1..n).filter(|&j| kept & (1 << j) != 0) {
+                if masks[i] & kept == masks[j] & kept
+                    && let Some(c) = pair(a, n, removed, i, j)
+                {
+                    found = Some(c);
+                    break 'search;
+                }
+            }
+        }
+        if let Some(c) = found {
             apply(a, n, c, removed);
             removed[c.i] = true;
+            kept &= !(1 << c.i);
             count += 1;
+            // The change of coordinates moved entries of row j in every column.
+            for (col, m) in a.chunks_exact(n).zip(masks.iter_mut()) {
+                *m = col
+                    .iter()
+                    .enumerate()
+                    .fold(0, |m, (r, x)| if *x != 0.0 { m | (1 << r) } else { m });
+            }
         }
         if count == before {
             return count;
         }
+    }
+}
+
+/// [`chop`], and each column's nonzero rows as a bit mask.
+fn chop_with_masks(a: &mut [f64], n: usize, masks: &mut [u32]) {
+    let mut row_max = [0.0f64; crate::small_eigen::MAX_N];
+    for col in a.chunks_exact(n) {
+        for (m, x) in row_max.iter_mut().zip(col) {
+            *m = m.max(x.abs());
+        }
+    }
+    let f = CHOP_ULPS * n as f64 * f64::EPSILON;
+    for (col, mask) in a.chunks_exact_mut(n).zip(masks.iter_mut()) {
+        let mut m = 0;
+        for (r, (x, rm)) in col.iter_mut().zip(&row_max).enumerate() {
+            if x.abs() <= f * rm {
+                *x = 0.0;
+            } else {
+                m |= 1 << r;
+            }
+        }
+        *mask = m;
     }
 }
 

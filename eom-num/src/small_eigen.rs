@@ -32,9 +32,6 @@ use num_complex::Complex64;
 /// The largest matrix the kernel takes.
 pub const MAX_N: usize = 16;
 
-/// Leading dimension of the fixed-size working arrays (column-major).
-const LD: usize = MAX_N;
-
 /// Iterations without a deflation after which the shifts are exceptional.
 const EXCEPTIONAL: [usize; 2] = [10, 20];
 
@@ -58,17 +55,20 @@ pub fn eigenvalues_small(a: &[f64], n: usize, out: &mut [Complex64]) -> Result<u
         )));
     }
     check_finite_slice(a, n, n, "A")?;
-    let mut full = [0.0; MAX_N * MAX_N];
-    full[..n * n].copy_from_slice(a);
+    // One working array: the deflation works on the n × n matrix, the kept block is then
+    // packed in place (leading dimension m) for the rest.
+    let mut w = [0.0; MAX_N * MAX_N];
+    w[..n * n].copy_from_slice(a);
     let mut removed = [false; MAX_N];
-    let zeros = deflate::deflate_small(&mut full[..n * n], n, &mut removed[..n]);
-    let mut h = [0.0; LD * LD];
-    let m = kept_block(&full[..n * n], n, &removed[..n], &mut h);
+    let zeros = deflate::deflate_small(&mut w[..n * n], n, &mut removed[..n]);
+    let m = pack_kept(&mut w, n, &removed[..n]);
     let (mut re, mut im) = ([0.0; MAX_N], [0.0; MAX_N]);
     if m > 0 {
-        balance(&mut h, m);
-        hessenberg(&mut h, m);
-        francis(&mut h, m, &mut re, &mut im).map_err(|()| {
+        let h = &mut w[..m * m];
+        let mut scale = [1.0; MAX_N];
+        balance_in_place(h, m, &mut scale[..m]);
+        hessenberg(h, m);
+        francis(h, m, &mut re, &mut im).map_err(|()| {
             NumError::NoConvergence(format!(
                 "eigenvalues of a {n}×{n} matrix: the QR iteration did not converge"
             ))
@@ -97,43 +97,33 @@ fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
 }
 
-/// Copies the kept rows and columns of `a` (n × n, leading dimension n) into `h` (leading
-/// dimension [`LD`]); the size of the block.
-fn kept_block(a: &[f64], n: usize, removed: &[bool], h: &mut [f64; LD * LD]) -> usize {
-    let mut jj = 0;
+/// Packs the kept rows and columns of the n × n matrix in `w` in place into its leading
+/// m × m (leading dimension m); returns m. (Every entry moves to an index no larger than its
+/// own, and the entries are visited in increasing order, so nothing is overwritten before it
+/// is read.)
+fn pack_kept(w: &mut [f64; MAX_N * MAX_N], n: usize, removed: &[bool]) -> usize {
+    let m = removed.iter().filter(|r| !**r).count();
+    if m == n {
+        return m;
+    }
+    let mut k = 0;
     for j in (0..n).filter(|&j| !removed[j]) {
-        let mut ii = 0;
         for i in (0..n).filter(|&i| !removed[i]) {
-            h[jj * LD + ii] = a[j * n + i];
-            ii += 1;
+            w[k] = w[j * n + i];
+            k += 1;
         }
-        jj += 1;
     }
-    jj
-}
-
-/// Balancing (powers of two) of the leading m × m block.
-fn balance(h: &mut [f64; LD * LD], m: usize) {
-    // `balance_in_place` works on a packed matrix: pack, balance, unpack.
-    let mut packed = [0.0; MAX_N * MAX_N];
-    for j in 0..m {
-        packed[j * m..(j + 1) * m].copy_from_slice(&h[j * LD..j * LD + m]);
-    }
-    let mut scale = [1.0; MAX_N];
-    balance_in_place(&mut packed[..m * m], m, &mut scale[..m]);
-    for j in 0..m {
-        h[j * LD..j * LD + m].copy_from_slice(&packed[j * m..(j + 1) * m]);
-    }
+    m
 }
 
 /// Reduces the leading m × m block to upper Hessenberg form by Householder reflections
 /// `P = I − β v vᵀ` (a similarity: eigenvalues unchanged).
-fn hessenberg(h: &mut [f64; LD * LD], m: usize) {
+fn hessenberg(h: &mut [f64], m: usize) {
     for k in 0..m.saturating_sub(2) {
         // The reflection that maps h[k+1.., k] onto a multiple of e₁.
         let mut v = [0.0; MAX_N];
         let len = m - k - 1;
-        let col = &h[k * LD + k + 1..k * LD + m];
+        let col = &h[k * m + k + 1..k * m + m];
         let big = col.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if big == 0.0 || col[1..].iter().all(|x| *x == 0.0) {
             continue;
@@ -149,7 +139,7 @@ fn hessenberg(h: &mut [f64; LD * LD], m: usize) {
         let beta = -1.0 / (alpha * v[0]);
         // Left: rows k+1..m, columns k..m.
         for j in k..m {
-            let c = &mut h[j * LD + k + 1..j * LD + m];
+            let c = &mut h[j * m + k + 1..j * m + m];
             let s: f64 = c.iter().zip(&v[..len]).map(|(x, y)| x * y).sum::<f64>() * beta;
             for (x, y) in c.iter_mut().zip(&v[..len]) {
                 *x -= s * y;
@@ -159,30 +149,30 @@ fn hessenberg(h: &mut [f64; LD * LD], m: usize) {
         for i in 0..m {
             let mut s = 0.0;
             for (t, vt) in v[..len].iter().enumerate() {
-                s += h[(k + 1 + t) * LD + i] * vt;
+                s += h[(k + 1 + t) * m + i] * vt;
             }
             s *= beta;
             for (t, vt) in v[..len].iter().enumerate() {
-                h[(k + 1 + t) * LD + i] -= s * vt;
+                h[(k + 1 + t) * m + i] -= s * vt;
             }
         }
-        h[k * LD + k + 1] = alpha * big;
+        h[k * m + k + 1] = alpha * big;
         for i in k + 2..m {
-            h[k * LD + i] = 0.0;
+            h[k * m + i] = 0.0;
         }
     }
 }
 
 /// Element (i, j) of the working array.
 #[inline(always)]
-fn at(i: usize, j: usize) -> usize {
-    j * LD + i
+fn at(m: usize, i: usize, j: usize) -> usize {
+    j * m + i
 }
 
 /// The Francis double-shift QR iteration on the upper Hessenberg block `h` (m × m); its
 /// eigenvalues in `re`, `im` (unsorted). `Err` when it does not converge.
 fn francis(
-    h: &mut [f64; LD * LD],
+    h: &mut [f64],
     m: usize,
     re: &mut [f64; MAX_N],
     im: &mut [f64; MAX_N],
@@ -195,12 +185,12 @@ fn francis(
     let mut its = 0;
     while hi >= 0 {
         let hi_u = hi as usize;
-        let lo = deflation_point(h, hi_u, small);
+        let lo = deflation_point(h, m, hi_u, small);
         if lo > 0 {
-            h[at(lo, lo - 1)] = 0.0;
+            h[at(m, lo, lo - 1)] = 0.0;
         }
         if lo == hi_u {
-            re[hi_u] = h[at(hi_u, hi_u)];
+            re[hi_u] = h[at(m, hi_u, hi_u)];
             im[hi_u] = 0.0;
             hi -= 1;
             its = 0;
@@ -208,10 +198,10 @@ fn francis(
         }
         if lo + 1 == hi_u {
             let (l1, l2) = block_2x2(
-                h[at(lo, lo)],
-                h[at(lo, hi_u)],
-                h[at(hi_u, lo)],
-                h[at(hi_u, hi_u)],
+                h[at(m, lo, lo)],
+                h[at(m, lo, hi_u)],
+                h[at(m, hi_u, lo)],
+                h[at(m, hi_u, hi_u)],
             );
             (re[lo], im[lo], re[hi_u], im[hi_u]) = (l1.re, l1.im, l2.re, l2.im);
             hi -= 2;
@@ -223,36 +213,36 @@ fn francis(
         }
         budget -= 1;
         its += 1;
-        let (s, t) = shifts(h, lo, hi_u, its);
-        sweep(h, lo, hi_u, s, t);
+        let (s, t) = shifts(h, m, lo, hi_u, its);
+        sweep(h, m, lo, hi_u, s, t);
     }
     Ok(())
 }
 
 /// The top of the unreduced window ending at `hi`: the largest `l ≤ hi` whose subdiagonal
 /// entry `h[l, l−1]` is negligible (0 when none is).
-fn deflation_point(h: &[f64; LD * LD], hi: usize, small: f64) -> usize {
+fn deflation_point(h: &[f64], m: usize, hi: usize, small: f64) -> usize {
     let ulp = f64::EPSILON;
     let mut l = hi;
     while l > 0 {
-        let sub = h[at(l, l - 1)].abs();
+        let sub = h[at(m, l, l - 1)].abs();
         if sub <= small {
             return l;
         }
-        let (d0, d1) = (h[at(l - 1, l - 1)], h[at(l, l)]);
+        let (d0, d1) = (h[at(m, l - 1, l - 1)], h[at(m, l, l)]);
         let mut tst = d0.abs() + d1.abs();
         if tst == 0.0 {
             if l >= 2 {
-                tst += h[at(l - 1, l - 2)].abs();
+                tst += h[at(m, l - 1, l - 2)].abs();
             }
             if l < hi {
-                tst += h[at(l + 1, l)].abs();
+                tst += h[at(m, l + 1, l)].abs();
             }
         }
         if sub <= ulp * tst {
             // Ahues & Tisseur: the subdiagonal is also compared with the local eigenvalue
             // separation, so a graded matrix keeps its small eigenvalues.
-            let sup = h[at(l - 1, l)].abs();
+            let sup = h[at(m, l - 1, l)].abs();
             let (ab, ba) = (sub.max(sup), sub.min(sup));
             let diff = (d0 - d1).abs();
             let (aa, bb) = (d1.abs().max(diff), d1.abs().min(diff));
@@ -268,25 +258,25 @@ fn deflation_point(h: &[f64; LD * LD], hi: usize, small: f64) -> usize {
 
 /// The double shift as the sum `s` and product `t` of the trailing 2×2 block's eigenvalues,
 /// or an exceptional pair after [`EXCEPTIONAL`] iterations without a deflation.
-fn shifts(h: &[f64; LD * LD], lo: usize, hi: usize, its: usize) -> (f64, f64) {
+fn shifts(h: &[f64], m: usize, lo: usize, hi: usize, its: usize) -> (f64, f64) {
     if EXCEPTIONAL.contains(&its) {
         // A shift unrelated to the current block breaks a cycle (the values of EISPACK's
         // `hqr` and LAPACK's `dlahqr`, w the size of the last two subdiagonals).
-        let w = h[at(hi, hi - 1)].abs()
+        let w = h[at(m, hi, hi - 1)].abs()
             + if hi >= lo + 2 {
-                h[at(hi - 1, hi - 2)].abs()
+                h[at(m, hi - 1, hi - 2)].abs()
             } else {
                 0.0
             };
-        let x = h[at(hi, hi)] + 0.75 * w;
+        let x = h[at(m, hi, hi)] + 0.75 * w;
         // The eigenvalues of [[x, −0.4375w], [w, x]]: x ± i·0.661w.
         return (2.0 * x, x * x + 0.4375 * w * w);
     }
     let (a, b, c, d) = (
-        h[at(hi - 1, hi - 1)],
-        h[at(hi - 1, hi)],
-        h[at(hi, hi - 1)],
-        h[at(hi, hi)],
+        h[at(m, hi - 1, hi - 1)],
+        h[at(m, hi - 1, hi)],
+        h[at(m, hi, hi - 1)],
+        h[at(m, hi, hi)],
     );
     (a + d, a * d - b * c)
 }
@@ -294,68 +284,107 @@ fn shifts(h: &[f64; LD * LD], lo: usize, hi: usize, its: usize) -> (f64, f64) {
 /// One implicit double-shift (Francis) sweep over the window lo..=hi: the first column of
 /// `(H − σ₁I)(H − σ₂I)` (`s = σ₁ + σ₂`, `t = σ₁σ₂`) starts a bulge that 3×3 reflections chase
 /// down the subdiagonal. Only the window is updated (eigenvalues only).
-fn sweep(h: &mut [f64; LD * LD], lo: usize, hi: usize, s: f64, t: f64) {
-    let h00 = h[at(lo, lo)];
-    let h10 = h[at(lo + 1, lo)];
-    let mut x = h00 * h00 + h[at(lo, lo + 1)] * h10 - s * h00 + t;
-    let mut y = h10 * (h00 + h[at(lo + 1, lo + 1)] - s);
-    let mut z = h10 * h[at(lo + 2, lo + 1)];
+fn sweep(h: &mut [f64], m: usize, lo: usize, hi: usize, s: f64, t: f64) {
+    let h00 = h[at(m, lo, lo)];
+    let h10 = h[at(m, lo + 1, lo)];
+    let mut x = h00 * h00 + h[at(m, lo, lo + 1)] * h10 - s * h00 + t;
+    let mut y = h10 * (h00 + h[at(m, lo + 1, lo + 1)] - s);
+    let mut z = h10 * h[at(m, lo + 2, lo + 1)];
     for k in lo..hi - 1 {
-        // The reflection P = I − β v vᵀ mapping (x, y, z) onto a multiple of e₁.
-        let scale = x.abs() + y.abs() + z.abs();
-        if scale != 0.0 {
-            let (xs, ys, zs) = (x / scale, y / scale, z / scale);
-            let alpha = -xs.signum() * (xs * xs + ys * ys + zs * zs).sqrt();
-            let v = [xs - alpha, ys, zs];
-            let beta = -1.0 / (alpha * v[0]);
-            // vᵀv = 2α(α − x) = −2αv₀, so 2/vᵀv = −1/(αv₀).
+        if let Some((v1, v2, tau)) = reflector3(x, y, z) {
             let first = if k > lo { k - 1 } else { lo };
-            for j in first..=hi {
-                let f =
-                    beta * (v[0] * h[at(k, j)] + v[1] * h[at(k + 1, j)] + v[2] * h[at(k + 2, j)]);
-                h[at(k, j)] -= f * v[0];
-                h[at(k + 1, j)] -= f * v[1];
-                h[at(k + 2, j)] -= f * v[2];
-            }
-            let last = (k + 3).min(hi);
-            for i in lo..=last {
-                let f =
-                    beta * (h[at(i, k)] * v[0] + h[at(i, k + 1)] * v[1] + h[at(i, k + 2)] * v[2]);
-                h[at(i, k)] -= f * v[0];
-                h[at(i, k + 1)] -= f * v[1];
-                h[at(i, k + 2)] -= f * v[2];
-            }
+            reflect_rows3(h, m, k, first, hi, v1, v2, tau);
+            reflect_columns3(h, m, k, lo, (k + 3).min(hi), v1, v2, tau);
             if k > lo {
                 // The bulge below the subdiagonal is now exactly zero.
-                h[at(k + 1, k - 1)] = 0.0;
-                h[at(k + 2, k - 1)] = 0.0;
+                h[at(m, k + 1, k - 1)] = 0.0;
+                h[at(m, k + 2, k - 1)] = 0.0;
             }
         }
-        x = h[at(k + 1, k)];
-        y = h[at(k + 2, k)];
+        x = h[at(m, k + 1, k)];
+        y = h[at(m, k + 2, k)];
         if k + 3 <= hi {
-            z = h[at(k + 3, k)];
+            z = h[at(m, k + 3, k)];
         }
     }
     // The last reflection is 2×2 (rows hi−1, hi).
     let k = hi - 1;
-    let scale = x.abs() + y.abs();
-    if scale != 0.0 {
-        let (xs, ys) = (x / scale, y / scale);
-        let alpha = -xs.signum() * (xs * xs + ys * ys).sqrt();
-        let v = [xs - alpha, ys];
-        let beta = -1.0 / (alpha * v[0]);
+    if let Some((v1, _, tau)) = reflector3(x, y, 0.0) {
         for j in k - 1..=hi {
-            let f = beta * (v[0] * h[at(k, j)] + v[1] * h[at(k + 1, j)]);
-            h[at(k, j)] -= f * v[0];
-            h[at(k + 1, j)] -= f * v[1];
+            let c = &mut h[j * m + k..j * m + k + 2];
+            let f = tau * (c[0] + v1 * c[1]);
+            c[0] -= f;
+            c[1] -= f * v1;
         }
-        for i in lo..=hi {
-            let f = beta * (h[at(i, k)] * v[0] + h[at(i, k + 1)] * v[1]);
-            h[at(i, k)] -= f * v[0];
-            h[at(i, k + 1)] -= f * v[1];
+        let (a, b) = h[k * m..(k + 2) * m].split_at_mut(m);
+        for (p, q) in a[lo..=hi].iter_mut().zip(&mut b[lo..=hi]) {
+            let f = tau * (*p + v1 * *q);
+            *p -= f;
+            *q -= f * v1;
         }
-        h[at(k + 1, k - 1)] = 0.0;
+        h[at(m, k + 1, k - 1)] = 0.0;
+    }
+}
+
+/// The reflection `P = I − τ v vᵀ`, `v = (1, v₁, v₂)`, that maps `(x, y, z)` onto a multiple
+/// of `e₁` (`None` when the vector is zero).
+fn reflector3(x: f64, y: f64, z: f64) -> Option<(f64, f64, f64)> {
+    let scale = x.abs() + y.abs() + z.abs();
+    if scale == 0.0 {
+        return None;
+    }
+    let r = 1.0 / scale;
+    let (xs, ys, zs) = (x * r, y * r, z * r);
+    let alpha = -xs.signum() * (xs * xs + ys * ys + zs * zs).sqrt();
+    let v0 = xs - alpha;
+    // With w = (v₀, y, z): 2/wᵀw = −1/(αv₀); scaled to v = w/v₀, τ = −v₀/α.
+    let r0 = 1.0 / v0;
+    Some((ys * r0, zs * r0, -v0 / alpha))
+}
+
+/// `P·H` on rows k..k+3 of columns `first..=last`.
+fn reflect_rows3(
+    h: &mut [f64],
+    m: usize,
+    k: usize,
+    first: usize,
+    last: usize,
+    v1: f64,
+    v2: f64,
+    tau: f64,
+) {
+    for j in first..=last {
+        let c = &mut h[j * m + k..j * m + k + 3];
+        let f = tau * (c[0] + v1 * c[1] + v2 * c[2]);
+        c[0] -= f;
+        c[1] -= f * v1;
+        c[2] -= f * v2;
+    }
+}
+
+/// `H·P` on columns k..k+3 of rows `first..=last`.
+fn reflect_columns3(
+    h: &mut [f64],
+    m: usize,
+    k: usize,
+    first: usize,
+    last: usize,
+    v1: f64,
+    v2: f64,
+    tau: f64,
+) {
+    let (a, rest) = h[k * m..(k + 3) * m].split_at_mut(m);
+    let (b, c) = rest.split_at_mut(m);
+    let rows = first..=last;
+    for ((p, q), r) in a[rows.clone()]
+        .iter_mut()
+        .zip(&mut b[rows.clone()])
+        .zip(&mut c[rows])
+    {
+        let f = tau * (*p + v1 * *q + v2 * *r);
+        *p -= f;
+        *q -= f * v1;
+        *r -= f * v2;
     }
 }
 
