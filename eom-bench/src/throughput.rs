@@ -1,8 +1,9 @@
 //! Throughput of a parameter sweep on one machine (`eom bench throughput`): the bicycle's
 //! generated `f64` code (`eval_ab`, compiled into this crate by `build.rs`) and the eigenvalues
-//! of its A (`eom_num::modes::eigenvalues_in`, structural zeros deflated exactly) at many
-//! random parameter points, in parallel with rayon — the basis for estimating what a sweep
-//! needs when it outgrows one machine.
+//! of its A at many random parameter points, in parallel with rayon — the basis for
+//! estimating what a sweep needs when it outgrows one machine. The eigenvalues come from the
+//! stack kernel `eom_num::small_eigen` with the structural zeros found once, at the nominal
+//! point, and checked and deflated at every point (`eigenvalues_small_known`).
 //!
 //! The points: every one of the 27 parameters drawn uniformly within nominal × (1 ± spread)
 //! (the speed too, so that with the default ±20 % the sweep crosses the weave and the capsize
@@ -15,8 +16,7 @@
 //! the largest real part) is what the work produces, so none of it can be optimised away.
 
 use crate::work_precision::generated::bicycle64 as model;
-use eom_num::modes::{EigenvaluesWorkspace, eigenvalues_in};
-use nalgebra::DMatrix;
+use eom_num::small_eigen::{KnownZeros, eigenvalues_small, eigenvalues_small_known};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -172,10 +172,8 @@ pub fn point(seed: u64, spread: f64, k: u64) -> [f64; N_PARAMS] {
     })
 }
 
-/// Per-thread scratch: the workspace of the eigenvalues and the chunk's matrices.
+/// Per-thread scratch: the chunk's parameters and matrices, the eigenvalues of one point.
 struct Scratch {
-    ws: EigenvaluesWorkspace,
-    a: DMatrix<f64>,
     params: Vec<[f64; N_PARAMS]>,
     mats: Vec<[f64; model::A_LEN]>,
     ok: Vec<bool>,
@@ -185,8 +183,6 @@ struct Scratch {
 impl Scratch {
     fn new() -> Self {
         Scratch {
-            ws: EigenvaluesWorkspace::new(model::N_STATES),
-            a: DMatrix::zeros(model::N_STATES, model::N_STATES),
             params: Vec::with_capacity(CHUNK),
             mats: Vec::with_capacity(CHUNK),
             ok: Vec::with_capacity(CHUNK),
@@ -195,10 +191,24 @@ impl Scratch {
     }
 }
 
+/// The structural zeros of the bicycle's A (heading and lateral position), found at the
+/// nominal point (`None` if A cannot be evaluated there: every point then searches for its
+/// own).
+fn known_zeros() -> Option<KnownZeros> {
+    let (mut a, mut b, mut w) = (
+        [0.0; model::A_LEN],
+        [0.0; model::B_LEN],
+        [0.0; model::WORK_LEN],
+    );
+    model::eval_ab(&model::NOMINAL, &mut a, &mut b, &mut w)
+        .ok()
+        .and_then(|()| KnownZeros::of(&a, model::N_STATES).ok())
+}
+
 /// Times and summary of one chunk.
 type ChunkResult = (Duration, Duration, Duration, Summary);
 
-fn chunk(s: &mut Scratch, opts: &Options, c: usize) -> ChunkResult {
+fn chunk(s: &mut Scratch, known: Option<&KnownZeros>, opts: &Options, c: usize) -> ChunkResult {
     let (start, end) = (c * CHUNK, ((c + 1) * CHUNK).min(opts.points));
     let mut summary = Summary::empty();
     let t0 = Instant::now();
@@ -222,9 +232,12 @@ fn chunk(s: &mut Scratch, opts: &Options, c: usize) -> ChunkResult {
             summary.eval_failures += 1;
             continue;
         }
-        s.a.as_mut_slice().copy_from_slice(a);
-        match eigenvalues_in(&s.a, &mut s.ws, &mut s.eig) {
-            Ok(()) => summary.add(&s.eig),
+        let found = match known {
+            Some(k) => eigenvalues_small_known(a, model::N_STATES, k, &mut s.eig),
+            None => eigenvalues_small(a, model::N_STATES, &mut s.eig),
+        };
+        match found {
+            Ok(_) => summary.add(&s.eig),
             Err(_) => summary.eigen_failures += 1,
         }
     }
@@ -240,6 +253,7 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
         .build()
         .map_err(|e| ThroughputError::Pool(e.to_string()))?;
     let chunks = opts.points.div_ceil(CHUNK);
+    let known = known_zeros();
     let start = Instant::now();
     let zero = (
         Duration::ZERO,
@@ -250,7 +264,7 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
     let (sample, eval, eigen, summary) = pool.install(|| {
         (0..chunks)
             .into_par_iter()
-            .map_init(Scratch::new, |s, c| chunk(s, opts, c))
+            .map_init(Scratch::new, |s, c| chunk(s, known.as_ref(), opts, c))
             .reduce(
                 || zero.clone(),
                 |x, y| (x.0 + y.0, x.1 + y.1, x.2 + y.2, x.3.merge(y.3)),

@@ -101,6 +101,25 @@ fn chop(a: &mut [f64], n: usize) {
 /// order, found through each column's pattern of nonzero rows as a bit mask (a zero column
 /// and a candidate pair are then one comparison of masks each).
 pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> usize {
+    deflate_small_recorded(a, n, removed, |_| ())
+}
+
+/// One decision of [`deflate_small`], in the order taken.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum DeflationStep {
+    /// A state whose column is zero on the states kept at that moment.
+    Zero(usize),
+    /// A pair combined by the change of coordinates.
+    Pair(Combine),
+}
+
+/// [`deflate_small`], telling `step` of each decision.
+pub(crate) fn deflate_small_recorded(
+    a: &mut [f64],
+    n: usize,
+    removed: &mut [bool],
+    mut step: impl FnMut(DeflationStep),
+) -> usize {
     debug_assert!(n <= crate::small_eigen::MAX_N && a.len() == n * n);
     removed.iter_mut().for_each(|r| *r = false);
     if n == 0 {
@@ -120,6 +139,7 @@ pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> us
                 if kept & (1 << j) != 0 && masks[j] & kept == 0 {
                     kept &= !(1 << j);
                     removed[j] = true;
+                    step(DeflationStep::Zero(j));
                     count += 1;
                     any = true;
                 }
@@ -141,6 +161,7 @@ pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> us
             }
         }
         if let Some(c) = found {
+            step(DeflationStep::Pair(c));
             apply(a, n, c, removed);
             removed[c.i] = true;
             kept &= !(1 << c.i);
@@ -157,6 +178,41 @@ pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> us
             return count;
         }
     }
+}
+
+/// Replays recorded decisions of [`deflate_small_recorded`] on another matrix of the same
+/// structure: each is checked as it is taken (a zero column exactly zero on the states kept
+/// at that moment, after the chop; a pair agreeing as [`find_pair`] requires) and applied.
+/// `None` when one does not hold (the caller then searches afresh), else the number of
+/// structural zeros. Zeros the recorded matrix did not have are not searched for.
+pub(crate) fn replay_small(
+    a: &mut [f64],
+    n: usize,
+    removed: &mut [bool],
+    steps: &[DeflationStep],
+) -> Option<usize> {
+    removed.iter_mut().for_each(|r| *r = false);
+    let mut masks = [0u32; crate::small_eigen::MAX_N];
+    chop_with_masks(a, n, &mut masks);
+    for s in steps {
+        match *s {
+            DeflationStep::Zero(j) => {
+                let col = &a[j * n..(j + 1) * n];
+                if removed[j] || col.iter().zip(&*removed).any(|(x, r)| !r && *x != 0.0) {
+                    return None;
+                }
+                removed[j] = true;
+            }
+            DeflationStep::Pair(c) => {
+                if removed[c.i] || removed[c.j] || pair(a, n, removed, c.i, c.j) != Some(c) {
+                    return None;
+                }
+                apply(a, n, c, removed);
+                removed[c.i] = true;
+            }
+        }
+    }
+    Some(steps.len())
 }
 
 /// [`chop`], and each column's nonzero rows as a bit mask.

@@ -24,7 +24,7 @@
 //! double-double reference is charted by `eom bench accuracy` (docs/work-precision.md).
 
 use crate::NumError;
-use crate::deflate;
+use crate::deflate::{self, DeflationStep};
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite_slice;
 use num_complex::Complex64;
@@ -46,29 +46,122 @@ const ITERATIONS_PER_EIGENVALUE: usize = 30;
 /// [`NumError::NonFinite`] (an entry NaN or infinite), [`NumError::OutOfRange`] (beyond
 /// [`crate::MAX_ENTRY`]), [`NumError::NoConvergence`].
 pub fn eigenvalues_small(a: &[f64], n: usize, out: &mut [Complex64]) -> Result<usize, NumError> {
-    if n > MAX_N || a.len() != n * n || out.len() != n {
+    solve(a, n, None, out)
+}
+
+/// The structural zeros of one matrix, for the next matrices of a sweep that share its
+/// structure (the same model at other parameter values): [`eigenvalues_small_known`] checks
+/// and applies them instead of searching for them again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KnownZeros {
+    n: usize,
+    steps: [DeflationStep; MAX_N],
+    len: usize,
+}
+
+impl KnownZeros {
+    /// The structural zeros of the n × n matrix `a` (column-major, n ≤ [`MAX_N`]).
+    ///
+    /// Errors: as [`eigenvalues_small`].
+    pub fn of(a: &[f64], n: usize) -> Result<Self, NumError> {
+        check(a, n, n)?;
+        let mut w = [0.0; MAX_N * MAX_N];
+        w[..n * n].copy_from_slice(a);
+        let mut known = KnownZeros {
+            n,
+            steps: [DeflationStep::Zero(0); MAX_N],
+            len: 0,
+        };
+        let mut removed = [false; MAX_N];
+        deflate::deflate_small_recorded(&mut w[..n * n], n, &mut removed[..n], |s| {
+            known.steps[known.len] = s;
+            known.len += 1;
+        });
+        Ok(known)
+    }
+
+    /// The number of structural zero eigenvalues.
+    pub fn count(&self) -> usize {
+        self.len
+    }
+
+    /// The matrix size.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+}
+
+/// [`eigenvalues_small`] for a matrix with the structure of the one `known` was found on:
+/// its structural zeros are checked one by one (each column still exactly zero, each pair
+/// still equal up to sign) and deflated, not searched for; where one does not hold, they are
+/// searched for as [`eigenvalues_small`] does. Zeros that the first matrix did not have are
+/// not looked for (they are then computed as eigenvalues near zero).
+///
+/// Errors: as [`eigenvalues_small`], and [`NumError::Dimension`] when `known` is of another
+/// size.
+pub fn eigenvalues_small_known(
+    a: &[f64],
+    n: usize,
+    known: &KnownZeros,
+    out: &mut [Complex64],
+) -> Result<usize, NumError> {
+    if known.n != n {
         return Err(NumError::Dimension(format!(
-            "eigenvalues_small: a {n}×{n} matrix (at most {MAX_N}×{MAX_N}) given {} entries \
-             and an output of length {}",
-            a.len(),
-            out.len()
+            "eigenvalues_small_known: a {n}×{n} matrix, structural zeros found on a {0}×{0} one",
+            known.n
         )));
     }
-    check_finite_slice(a, n, n, "A")?;
+    solve(a, n, Some(known), out)
+}
+
+/// Checks the size and entries of the input.
+fn check(a: &[f64], n: usize, out: usize) -> Result<(), NumError> {
+    if n > MAX_N || a.len() != n * n || out != n {
+        return Err(NumError::Dimension(format!(
+            "eigenvalues_small: a {n}×{n} matrix (at most {MAX_N}×{MAX_N}) given {} entries \
+             and an output of length {out}",
+            a.len(),
+        )));
+    }
+    // One pass without a branch per entry (NaN fails the comparison); the message, naming
+    // the entry, only when something is wrong.
+    if a.iter()
+        .fold(true, |ok, x| ok & (x.abs() <= crate::MAX_ENTRY))
+    {
+        return Ok(());
+    }
+    check_finite_slice(a, n, n, "A")
+}
+
+fn solve(
+    a: &[f64],
+    n: usize,
+    known: Option<&KnownZeros>,
+    out: &mut [Complex64],
+) -> Result<usize, NumError> {
+    check(a, n, out.len())?;
     // One working array: the deflation works on the n × n matrix, the kept block is then
     // packed in place (leading dimension m) for the rest.
     let mut w = [0.0; MAX_N * MAX_N];
     w[..n * n].copy_from_slice(a);
     let mut removed = [false; MAX_N];
-    let zeros = deflate::deflate_small(&mut w[..n * n], n, &mut removed[..n]);
+    let replayed = known.and_then(|k| {
+        deflate::replay_small(&mut w[..n * n], n, &mut removed[..n], &k.steps[..k.len])
+    });
+    let zeros = match replayed {
+        Some(z) => z,
+        None => {
+            w[..n * n].copy_from_slice(a);
+            deflate::deflate_small(&mut w[..n * n], n, &mut removed[..n])
+        }
+    };
     let m = pack_kept(&mut w, n, &removed[..n]);
     let (mut re, mut im) = ([0.0; MAX_N], [0.0; MAX_N]);
     if m > 0 {
         let h = &mut w[..m * m];
         let mut scale = [1.0; MAX_N];
         balance_in_place(h, m, &mut scale[..m]);
-        hessenberg(h, m);
-        francis(h, m, &mut re, &mut im).map_err(|()| {
+        qr(h, m, &mut re, &mut im).map_err(|()| {
             NumError::NoConvergence(format!(
                 "eigenvalues of a {n}×{n} matrix: the QR iteration did not converge"
             ))
@@ -116,95 +209,116 @@ fn pack_kept(w: &mut [f64; MAX_N * MAX_N], n: usize, removed: &[bool]) -> usize 
     m
 }
 
-/// Reduces the leading m × m block to upper Hessenberg form by Householder reflections
-/// `P = I − β v vᵀ` (a similarity: eigenvalues unchanged).
-fn hessenberg(h: &mut [f64], m: usize) {
-    for k in 0..m.saturating_sub(2) {
+/// The eigenvalues of the packed m × m matrix `w` (already deflated and balanced), in
+/// `re`, `im` (unsorted): the Hessenberg reduction and the QR iteration on a fixed-size copy,
+/// one instance per size, so that loop bounds and indices are known to the compiler.
+fn qr(w: &[f64], m: usize, re: &mut [f64; MAX_N], im: &mut [f64; MAX_N]) -> Result<(), ()> {
+    macro_rules! sizes {
+        ($($k:literal)*) => {
+            match m {
+                $($k => qr_fixed::<$k>(w, re, im),)*
+                _ => Err(()),
+            }
+        };
+    }
+    sizes!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+}
+
+/// A fixed-size matrix by columns: `h[j][i]` is row i of column j.
+type Fixed<const M: usize> = [[f64; M]; M];
+
+fn qr_fixed<const M: usize>(
+    w: &[f64],
+    re: &mut [f64; MAX_N],
+    im: &mut [f64; MAX_N],
+) -> Result<(), ()> {
+    let mut h: Fixed<M> = [[0.0; M]; M];
+    for (col, src) in h.iter_mut().zip(w.chunks_exact(M)) {
+        col.copy_from_slice(src);
+    }
+    hessenberg(&mut h);
+    francis(&mut h, re, im)
+}
+
+/// Reduces `h` to upper Hessenberg form by Householder reflections `P = I − β v vᵀ` (a
+/// similarity: eigenvalues unchanged).
+fn hessenberg<const M: usize>(h: &mut Fixed<M>) {
+    for k in 0..M.saturating_sub(2) {
         // The reflection that maps h[k+1.., k] onto a multiple of e₁.
-        let mut v = [0.0; MAX_N];
-        let len = m - k - 1;
-        let col = &h[k * m + k + 1..k * m + m];
+        let mut v = [0.0; M];
+        let len = M - k - 1;
+        let col = &h[k][k + 1..];
         let big = col.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if big == 0.0 || col[1..].iter().all(|x| *x == 0.0) {
             continue;
         }
+        let r = 1.0 / big;
         let mut norm2 = 0.0;
         for (vi, x) in v[..len].iter_mut().zip(col) {
-            *vi = x / big;
+            *vi = x * r;
             norm2 += *vi * *vi;
         }
-        let alpha = -v[0].signum() * norm2.sqrt();
+        let alpha = norm2.sqrt().copysign(-v[0]);
         v[0] -= alpha;
         // vᵀv = ‖x‖² − 2αx₀ + α² = 2α(α − x₀) = −2αv₀.
         let beta = -1.0 / (alpha * v[0]);
-        // Left: rows k+1..m, columns k..m.
-        for j in k..m {
-            let c = &mut h[j * m + k + 1..j * m + m];
-            let s: f64 = c.iter().zip(&v[..len]).map(|(x, y)| x * y).sum::<f64>() * beta;
-            for (x, y) in c.iter_mut().zip(&v[..len]) {
+        let v = &v[..len];
+        // Left: rows k+1.., columns k...
+        for col in h[k..].iter_mut() {
+            let c = &mut col[k + 1..];
+            let s = c.iter().zip(v).map(|(x, y)| x * y).sum::<f64>() * beta;
+            for (x, y) in c.iter_mut().zip(v) {
                 *x -= s * y;
             }
         }
-        // Right: rows 0..m, columns k+1..m.
-        for i in 0..m {
-            let mut s = 0.0;
-            for (t, vt) in v[..len].iter().enumerate() {
-                s += h[(k + 1 + t) * m + i] * vt;
-            }
-            s *= beta;
-            for (t, vt) in v[..len].iter().enumerate() {
-                h[(k + 1 + t) * m + i] -= s * vt;
+        // Right: every row, columns k+1...
+        let mut s = [0.0; M];
+        for (col, vt) in h[k + 1..].iter().zip(v) {
+            for (si, x) in s.iter_mut().zip(col) {
+                *si += x * vt;
             }
         }
-        h[k * m + k + 1] = alpha * big;
-        for i in k + 2..m {
-            h[k * m + i] = 0.0;
+        for (col, vt) in h[k + 1..].iter_mut().zip(v) {
+            for (x, si) in col.iter_mut().zip(&s) {
+                *x -= beta * si * vt;
+            }
+        }
+        h[k][k + 1] = alpha * big;
+        for x in &mut h[k][k + 2..] {
+            *x = 0.0;
         }
     }
 }
 
-/// Element (i, j) of the working array.
-#[inline(always)]
-fn at(m: usize, i: usize, j: usize) -> usize {
-    j * m + i
-}
-
-/// The Francis double-shift QR iteration on the upper Hessenberg block `h` (m × m); its
-/// eigenvalues in `re`, `im` (unsorted). `Err` when it does not converge.
-fn francis(
-    h: &mut [f64],
-    m: usize,
+/// The Francis double-shift QR iteration on the upper Hessenberg matrix `h`; its eigenvalues
+/// in `re`, `im` (unsorted). `Err` when it does not converge.
+fn francis<const M: usize>(
+    h: &mut Fixed<M>,
     re: &mut [f64; MAX_N],
     im: &mut [f64; MAX_N],
 ) -> Result<(), ()> {
-    let eps = f64::EPSILON;
-    let small = f64::MIN_POSITIVE * (m as f64 / eps);
-    let mut budget = ITERATIONS_PER_EIGENVALUE * m.max(10);
-    // The active window is lo..=hi; everything below hi is done.
-    let mut hi = m as isize - 1;
+    let small = f64::MIN_POSITIVE * (M as f64 / f64::EPSILON);
+    let mut budget = ITERATIONS_PER_EIGENVALUE * M.max(10);
+    // The active window is lo..=hi; the rows below hi are done.
+    let mut top = M;
     let mut its = 0;
-    while hi >= 0 {
-        let hi_u = hi as usize;
-        let lo = deflation_point(h, m, hi_u, small);
+    while top > 0 {
+        let hi = (top - 1).min(M - 1);
+        let lo = deflation_point(h, hi, small);
         if lo > 0 {
-            h[at(m, lo, lo - 1)] = 0.0;
+            h[lo - 1][lo] = 0.0;
         }
-        if lo == hi_u {
-            re[hi_u] = h[at(m, hi_u, hi_u)];
-            im[hi_u] = 0.0;
-            hi -= 1;
+        if lo == hi {
+            re[hi] = h[hi][hi];
+            im[hi] = 0.0;
+            top -= 1;
             its = 0;
             continue;
         }
-        if lo + 1 == hi_u {
-            let (l1, l2) = block_2x2(
-                h[at(m, lo, lo)],
-                h[at(m, lo, hi_u)],
-                h[at(m, hi_u, lo)],
-                h[at(m, hi_u, hi_u)],
-            );
-            (re[lo], im[lo], re[hi_u], im[hi_u]) = (l1.re, l1.im, l2.re, l2.im);
-            hi -= 2;
+        if lo + 1 == hi {
+            let (l1, l2) = block_2x2(h[lo][lo], h[hi][lo], h[lo][hi], h[hi][hi]);
+            (re[lo], im[lo], re[hi], im[hi]) = (l1.re, l1.im, l2.re, l2.im);
+            top -= 2;
             its = 0;
             continue;
         }
@@ -213,36 +327,37 @@ fn francis(
         }
         budget -= 1;
         its += 1;
-        let (s, t) = shifts(h, m, lo, hi_u, its);
-        sweep(h, m, lo, hi_u, s, t);
+        let (s, t) = shifts(h, lo, hi, its);
+        sweep(h, lo, hi, s, t);
     }
     Ok(())
 }
 
 /// The top of the unreduced window ending at `hi`: the largest `l ≤ hi` whose subdiagonal
 /// entry `h[l, l−1]` is negligible (0 when none is).
-fn deflation_point(h: &[f64], m: usize, hi: usize, small: f64) -> usize {
+fn deflation_point<const M: usize>(h: &Fixed<M>, hi: usize, small: f64) -> usize {
     let ulp = f64::EPSILON;
+    let hi = hi.min(M - 1);
     let mut l = hi;
     while l > 0 {
-        let sub = h[at(m, l, l - 1)].abs();
+        let sub = h[l - 1][l].abs();
         if sub <= small {
             return l;
         }
-        let (d0, d1) = (h[at(m, l - 1, l - 1)], h[at(m, l, l)]);
+        let (d0, d1) = (h[l - 1][l - 1], h[l][l]);
         let mut tst = d0.abs() + d1.abs();
         if tst == 0.0 {
             if l >= 2 {
-                tst += h[at(m, l - 1, l - 2)].abs();
+                tst += h[l - 2][l - 1].abs();
             }
             if l < hi {
-                tst += h[at(m, l + 1, l)].abs();
+                tst += h[l][l + 1].abs();
             }
         }
         if sub <= ulp * tst {
             // Ahues & Tisseur: the subdiagonal is also compared with the local eigenvalue
             // separation, so a graded matrix keeps its small eigenvalues.
-            let sup = h[at(m, l - 1, l)].abs();
+            let sup = h[l][l - 1].abs();
             let (ab, ba) = (sub.max(sup), sub.min(sup));
             let diff = (d0 - d1).abs();
             let (aa, bb) = (d1.abs().max(diff), d1.abs().min(diff));
@@ -258,134 +373,111 @@ fn deflation_point(h: &[f64], m: usize, hi: usize, small: f64) -> usize {
 
 /// The double shift as the sum `s` and product `t` of the trailing 2×2 block's eigenvalues,
 /// or an exceptional pair after [`EXCEPTIONAL`] iterations without a deflation.
-fn shifts(h: &[f64], m: usize, lo: usize, hi: usize, its: usize) -> (f64, f64) {
+fn shifts<const M: usize>(h: &Fixed<M>, lo: usize, hi: usize, its: usize) -> (f64, f64) {
+    let hi = hi.min(M - 1);
     if EXCEPTIONAL.contains(&its) {
         // A shift unrelated to the current block breaks a cycle (the values of EISPACK's
         // `hqr` and LAPACK's `dlahqr`, w the size of the last two subdiagonals).
-        let w = h[at(m, hi, hi - 1)].abs()
+        let w = h[hi - 1][hi].abs()
             + if hi >= lo + 2 {
-                h[at(m, hi - 1, hi - 2)].abs()
+                h[hi - 2][hi - 1].abs()
             } else {
                 0.0
             };
-        let x = h[at(m, hi, hi)] + 0.75 * w;
+        let x = h[hi][hi] + 0.75 * w;
         // The eigenvalues of [[x, −0.4375w], [w, x]]: x ± i·0.661w.
         return (2.0 * x, x * x + 0.4375 * w * w);
     }
-    let (a, b, c, d) = (
-        h[at(m, hi - 1, hi - 1)],
-        h[at(m, hi - 1, hi)],
-        h[at(m, hi, hi - 1)],
-        h[at(m, hi, hi)],
-    );
+    let (a, b, c, d) = (h[hi - 1][hi - 1], h[hi][hi - 1], h[hi - 1][hi], h[hi][hi]);
     (a + d, a * d - b * c)
 }
 
 /// One implicit double-shift (Francis) sweep over the window lo..=hi: the first column of
 /// `(H − σ₁I)(H − σ₂I)` (`s = σ₁ + σ₂`, `t = σ₁σ₂`) starts a bulge that 3×3 reflections chase
 /// down the subdiagonal. Only the window is updated (eigenvalues only).
-fn sweep(h: &mut [f64], m: usize, lo: usize, hi: usize, s: f64, t: f64) {
-    let h00 = h[at(m, lo, lo)];
-    let h10 = h[at(m, lo + 1, lo)];
-    let mut x = h00 * h00 + h[at(m, lo, lo + 1)] * h10 - s * h00 + t;
-    let mut y = h10 * (h00 + h[at(m, lo + 1, lo + 1)] - s);
-    let mut z = h10 * h[at(m, lo + 2, lo + 1)];
+fn sweep<const M: usize>(h: &mut Fixed<M>, lo: usize, hi: usize, s: f64, t: f64) {
+    let hi = hi.min(M - 1);
+    let h00 = h[lo][lo];
+    let h10 = h[lo][lo + 1];
+    let mut x = h00 * h00 + h[lo + 1][lo] * h10 - s * h00 + t;
+    let mut y = h10 * (h00 + h[lo + 1][lo + 1] - s);
+    let mut z = h10 * h[lo + 1][lo + 2];
     for k in lo..hi - 1 {
         if let Some((v1, v2, tau)) = reflector3(x, y, z) {
-            let first = if k > lo { k - 1 } else { lo };
-            reflect_rows3(h, m, k, first, hi, v1, v2, tau);
-            reflect_columns3(h, m, k, lo, (k + 3).min(hi), v1, v2, tau);
+            // P·H on rows k..k+3, H·P on columns k..k+3.
+            for col in &mut h[if k > lo { k - 1 } else { lo }..=hi] {
+                let c = &mut col[k..k + 3];
+                let f = tau * (c[0] + v1 * c[1] + v2 * c[2]);
+                c[0] -= f;
+                c[1] -= f * v1;
+                c[2] -= f * v2;
+            }
+            let last = (k + 3).min(hi);
+            let (a, rest) = h[k..].split_at_mut(1);
+            let (b, c) = rest.split_at_mut(1);
+            for ((p, q), r) in a[0][lo..=last]
+                .iter_mut()
+                .zip(&mut b[0][lo..=last])
+                .zip(&mut c[0][lo..=last])
+            {
+                let f = tau * (*p + v1 * *q + v2 * *r);
+                *p -= f;
+                *q -= f * v1;
+                *r -= f * v2;
+            }
             if k > lo {
                 // The bulge below the subdiagonal is now exactly zero.
-                h[at(m, k + 1, k - 1)] = 0.0;
-                h[at(m, k + 2, k - 1)] = 0.0;
+                h[k - 1][k + 1] = 0.0;
+                h[k - 1][k + 2] = 0.0;
             }
         }
-        x = h[at(m, k + 1, k)];
-        y = h[at(m, k + 2, k)];
+        x = h[k][k + 1];
+        y = h[k][k + 2];
         if k + 3 <= hi {
-            z = h[at(m, k + 3, k)];
+            z = h[k][k + 3];
         }
     }
     // The last reflection is 2×2 (rows hi−1, hi).
     let k = hi - 1;
     if let Some((v1, _, tau)) = reflector3(x, y, 0.0) {
-        for j in k - 1..=hi {
-            let c = &mut h[j * m + k..j * m + k + 2];
+        for col in &mut h[k - 1..=hi] {
+            let c = &mut col[k..k + 2];
             let f = tau * (c[0] + v1 * c[1]);
             c[0] -= f;
             c[1] -= f * v1;
         }
-        let (a, b) = h[k * m..(k + 2) * m].split_at_mut(m);
-        for (p, q) in a[lo..=hi].iter_mut().zip(&mut b[lo..=hi]) {
+        let (a, b) = h[k..].split_at_mut(1);
+        for (p, q) in a[0][lo..=hi].iter_mut().zip(&mut b[0][lo..=hi]) {
             let f = tau * (*p + v1 * *q);
             *p -= f;
             *q -= f * v1;
         }
-        h[at(m, k + 1, k - 1)] = 0.0;
+        h[k - 1][k + 1] = 0.0;
     }
 }
 
 /// The reflection `P = I − τ v vᵀ`, `v = (1, v₁, v₂)`, that maps `(x, y, z)` onto a multiple
 /// of `e₁` (`None` when the vector is zero).
 fn reflector3(x: f64, y: f64, z: f64) -> Option<(f64, f64, f64)> {
-    let scale = x.abs() + y.abs() + z.abs();
-    if scale == 0.0 {
-        return None;
-    }
-    let r = 1.0 / scale;
-    let (xs, ys, zs) = (x * r, y * r, z * r);
-    let alpha = -xs.signum() * (xs * xs + ys * ys + zs * zs).sqrt();
-    let v0 = xs - alpha;
+    let norm2 = x * x + y * y + z * z;
+    // Scaled first only where the squares leave the normal range (the result is the same up
+    // to rounding; the division by the scale is one more step on the critical path).
+    let (x, y, z, norm2) = if (1e-290..1e290).contains(&norm2) {
+        (x, y, z, norm2)
+    } else {
+        let scale = x.abs() + y.abs() + z.abs();
+        if scale == 0.0 {
+            return None;
+        }
+        let r = 1.0 / scale;
+        let (x, y, z) = (x * r, y * r, z * r);
+        (x, y, z, x * x + y * y + z * z)
+    };
+    let alpha = norm2.sqrt().copysign(-x);
+    let v0 = x - alpha;
     // With w = (v₀, y, z): 2/wᵀw = −1/(αv₀); scaled to v = w/v₀, τ = −v₀/α.
     let r0 = 1.0 / v0;
-    Some((ys * r0, zs * r0, -v0 / alpha))
-}
-
-/// `P·H` on rows k..k+3 of columns `first..=last`.
-fn reflect_rows3(
-    h: &mut [f64],
-    m: usize,
-    k: usize,
-    first: usize,
-    last: usize,
-    v1: f64,
-    v2: f64,
-    tau: f64,
-) {
-    for j in first..=last {
-        let c = &mut h[j * m + k..j * m + k + 3];
-        let f = tau * (c[0] + v1 * c[1] + v2 * c[2]);
-        c[0] -= f;
-        c[1] -= f * v1;
-        c[2] -= f * v2;
-    }
-}
-
-/// `H·P` on columns k..k+3 of rows `first..=last`.
-fn reflect_columns3(
-    h: &mut [f64],
-    m: usize,
-    k: usize,
-    first: usize,
-    last: usize,
-    v1: f64,
-    v2: f64,
-    tau: f64,
-) {
-    let (a, rest) = h[k * m..(k + 3) * m].split_at_mut(m);
-    let (b, c) = rest.split_at_mut(m);
-    let rows = first..=last;
-    for ((p, q), r) in a[rows.clone()]
-        .iter_mut()
-        .zip(&mut b[rows.clone()])
-        .zip(&mut c[rows])
-    {
-        let f = tau * (*p + v1 * *q + v2 * *r);
-        *p -= f;
-        *q -= f * v1;
-        *r -= f * v2;
-    }
+    Some((y * r0, z * r0, -v0 / alpha))
 }
 
 /// The eigenvalues of `[[a, b], [c, d]]`: a real pair (the larger-magnitude root first, the

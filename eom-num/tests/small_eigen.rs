@@ -5,7 +5,7 @@
 //! `tests/tests/bicycle.rs`.)
 
 use eom_num::modes::Modes;
-use eom_num::small_eigen::{MAX_N, eigenvalues_small};
+use eom_num::small_eigen::{KnownZeros, MAX_N, eigenvalues_small, eigenvalues_small_known};
 use eom_num::{NumError, StateSpace};
 use faer::Mat;
 use nalgebra::DMatrix;
@@ -372,4 +372,66 @@ fn bad_input_is_an_error_naming_the_entry() {
     let mut one = [Complex64::new(0.0, 0.0)];
     eigenvalues_small(&[-4.5], 1, &mut one).unwrap();
     assert_eq!(one[0], Complex64::new(-4.5, 0.0));
+}
+
+#[test]
+fn known_zeros_are_replayed_and_checked() {
+    // The matrix of `structural_zeros_are_exact` at other values: the same structure.
+    let at = |p: f64| {
+        DMatrix::from_row_slice(
+            5,
+            5,
+            &[
+                0.0,
+                1.0,
+                -1.0,
+                0.0,
+                0.0, //
+                0.0,
+                -2.0 * p,
+                2.0 * p,
+                1.0,
+                0.0, //
+                0.0,
+                3.0,
+                -3.0,
+                0.0,
+                1.0, //
+                0.0,
+                -5.0,
+                5.0,
+                -0.1 * p,
+                0.3, //
+                0.0,
+                7.0 * p,
+                -7.0 * p,
+                0.2,
+                -0.4, //
+            ],
+        )
+    };
+    let known = KnownZeros::of(at(1.0).as_slice(), 5).unwrap();
+    assert_eq!((known.count(), known.dim()), (2, 5));
+    for p in [0.5, 1.3, 2.0] {
+        let a = at(p);
+        let mut replayed = vec![Complex64::new(0.0, 0.0); 5];
+        let zeros = eigenvalues_small_known(a.as_slice(), 5, &known, &mut replayed).unwrap();
+        assert_eq!(zeros, 2);
+        assert_eq!(replayed, small(&a), "p = {p}");
+    }
+    // A matrix without that structure: the check fails and the zeros are searched afresh.
+    let mut other = at(1.0);
+    other[(3, 0)] = 0.5;
+    let mut out = vec![Complex64::new(0.0, 0.0); 5];
+    let zeros = eigenvalues_small_known(other.as_slice(), 5, &known, &mut out).unwrap();
+    let mut fresh = vec![Complex64::new(0.0, 0.0); 5];
+    assert_eq!(
+        zeros,
+        eigenvalues_small(other.as_slice(), 5, &mut fresh).unwrap()
+    );
+    assert_eq!(out, fresh);
+    assert!(zeros < 2, "{out:?}");
+    // Another size is an error.
+    let e = eigenvalues_small_known(&[1.0; 4], 2, &known, &mut out[..2]).unwrap_err();
+    assert!(matches!(e, NumError::Dimension(_)), "{e}");
 }
