@@ -29,8 +29,8 @@
 
 use super::context::{ItemRow, KnownPreload};
 use super::rank::{
-    RANK_TOLERANCE, complete_pivots, coordinate_weight, equilibrate_columns, length_scale, plan_of,
-    rank, redundant_rows, self_stress_basis,
+    RANK_TOLERANCE, certify_full_column_rank, complete_pivots, coordinate_weight,
+    equilibrate_columns, length_scale, plan_of, rank, redundant_rows, self_stress_basis,
 };
 use super::{RowLabel, Statics};
 use crate::eliminate::{Row, RowStore, Rref, rref};
@@ -100,6 +100,15 @@ pub(crate) fn solve_statics<S: Scalar>(
         ));
     }
     let length = length_scale(p.j_rows.iter().chain(p.h_rows.iter()));
+    // 2.–3. The common case, decided without an SVD.
+    if let Some(red) = certified_determinate(p, length)? {
+        let nu = q + s;
+        let sol = solution(&red, nu);
+        let (lc, le) = (sol[..q].to_vec(), sol[q..].to_vec());
+        let mut warnings = Vec::new();
+        check_equilibrium(p, &lc, &le, length, &mut warnings)?;
+        return Ok((lc, le, Statics::Determinate, warnings));
+    }
     // 2. Redundant rigid rows, set aside.
     let (redundant, sv, row_weight) = redundant_rows(p.j_rows, p.dim, length)?;
     let keep: Vec<usize> = (0..q).filter(|i| !redundant.contains(i)).collect();
@@ -199,9 +208,14 @@ fn redundancy_warning<S>(
     )
 }
 
-/// Step 2: the reduced rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known
-/// preloads `[0 S | preload]`.
-fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rref<S>, ModelError> {
+/// The rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known preloads
+/// `[0 S | preload]`, and the same without the right-hand side in `f64`, nondimensionalised
+/// (moment equations over the length scale, columns scaled to unit largest entry): the
+/// matrix of the rank decisions.
+fn balance_system<S: Scalar>(
+    p: &StaticsProblem<'_, S>,
+    length: f64,
+) -> (RowStore<S>, DMatrix<f64>) {
     let d = p.dim;
     let q = p.j_rows.len();
     let nu = q + p.h_rows.len();
@@ -228,7 +242,6 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
             rows.push_row(&[one, (nu, pre)]);
         }
     }
-    // The pivots: complete pivoting on the nondimensionalised matrix, to its numerical rank.
     let nrows = rows.nrows();
     let mut a = DMatrix::<f64>::zeros(nrows, nu);
     for i in 0..nrows {
@@ -242,6 +255,34 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
         }
     }
     equilibrate_columns(&mut a);
+    (rows, a)
+}
+
+/// The common case without an SVD: the sparse elimination's own pivots determine every
+/// multiplier, and a certificate ([`certify_full_column_rank`]) shows that the rank
+/// decisions by SVD would agree — the holonomic rows independent (none redundant), the
+/// force balance of full rank, the own pivots as well conditioned as [`OWN_PIVOTS`] asks. The
+/// reduced rows then, or `None` when the certificate does not hold.
+fn certified_determinate<S: Scalar>(
+    p: &StaticsProblem<'_, S>,
+    length: f64,
+) -> Result<Option<Rref<S>>, ModelError> {
+    let (rows, a) = balance_system(p, length);
+    let nu = a.ncols();
+    let own = rref(rows, nu, &[], None, &[])?;
+    // `a`'s columns of the holonomic rows are those rows nondimensionalised exactly as
+    // `redundant_rows` scales them (padded with zero rows): full column rank of `a` with a
+    // margin makes the holonomic rows independent with the same margin.
+    Ok(certify_full_column_rank(&a, &own.plan.pivots, OWN_PIVOTS).then_some(own))
+}
+
+/// Step 3: the reduced rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known
+/// preloads `[0 S | preload]`.
+fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rref<S>, ModelError> {
+    let (rows, a) = balance_system(p, length);
+    let nu = a.ncols();
+    let nrows = rows.nrows();
+    // The pivots: complete pivoting on the nondimensionalised matrix, to its numerical rank.
     let (r, _) = rank(&a)?;
     // The sparse elimination's own pivots (fewest fill-ins, so the smallest expressions) when
     // they are as many as the numerical rank and independent on the nondimensionalised
