@@ -294,6 +294,23 @@ mod tests {
     }
 
     #[test]
+    fn certificate_of_full_rank_and_good_pivots() {
+        // 3 × 2, well conditioned: rows 0 and 1 are good pivots.
+        let a = DMatrix::from_row_slice(3, 2, &[1.0, 0.5, -0.5, 1.0, 0.2, 0.3]);
+        assert!(certify_full_column_rank(&a, &[(0, 0), (1, 1)], 1e-2));
+        // The same matrix with rank 1 to within 1e-12: no certificate (the SVD decides).
+        let b = DMatrix::from_row_slice(3, 2, &[1.0, 2.0, 2.0, 4.0 + 1e-12, 0.5, 1.0]);
+        assert!(!certify_full_column_rank(&b, &[(0, 0), (1, 1)], 1e-2));
+        // Full rank, but the chosen rows are nearly dependent while another pair is not:
+        // no certificate that they are within 1e-2 of the best.
+        let c = DMatrix::from_row_slice(3, 2, &[1.0, 1.0, 1.0, 1.0 + 1e-6, 0.0, 1.0]);
+        assert!(!certify_full_column_rank(&c, &[(0, 0), (1, 1)], 1e-2));
+        assert!(certify_full_column_rank(&c, &[(0, 0), (2, 1)], 1e-2));
+        // Wrong number of pivots.
+        assert!(!certify_full_column_rank(&a, &[(0, 0)], 1e-2));
+    }
+
+    #[test]
     fn rank_of_dependent_rows() {
         let a = DMatrix::from_row_slice(3, 2, &[1.0, 2.0, 2.0, 4.0, 0.0, 1.0]);
         assert_eq!(rank(&a).unwrap().0, 2);
