@@ -20,6 +20,8 @@ pub struct CodegenRequest {
     pub simplify_always: bool,
     /// Name of the generated module (default: from the model name).
     pub module: Option<String>,
+    /// Also emit the stability verdict without eigenvalues (`--stability`).
+    pub stability: bool,
 }
 
 /// Generates the module for the model (with `overrides` as the nominal values, where the
@@ -36,7 +38,8 @@ pub fn codegen(
     let model = choice.build(overrides)?;
     let mut opts = EmitOptions::default()
         .simplify(req.simplify)
-        .simplify_always(req.simplify_always);
+        .simplify_always(req.simplify_always)
+        .stability(req.stability);
     if req.f32 {
         opts = opts.f32();
     }
@@ -114,6 +117,13 @@ fn summary(
              chain: cost estimate {simplified} against {original})\n"
         )),
         Simplification::NotRun => {}
+    }
+    if req.stability {
+        t.push_str(&format!(
+            "stability: `{}::stability(&p)` (Stable / Unstable / Undecided) from the \
+             Liénard–Chipart conditions with rounding-error bounds\n",
+            e.module
+        ));
     }
     t.push_str(&format!(
         "use it with: include!(\"{}\");  // then `{}::StateSpace`, `{}::Params`, …\n",

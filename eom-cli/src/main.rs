@@ -468,6 +468,10 @@ struct CodegenArgs {
     /// Name of the generated module (default: from the model name)
     #[arg(long, value_name = "NAME")]
     module: Option<String>,
+    /// Also emit the characteristic polynomial, the Liénard–Chipart conditions with their
+    /// rounding-error bounds and `stability(p)`, the verdict without eigenvalues (f64 only)
+    #[arg(long)]
+    stability: bool,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -578,6 +582,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 simplify: c.simplify,
                 simplify_always: c.simplify_always,
                 module: c.module,
+                stability: c.stability,
             };
             codegen::codegen(&choice, &overrides, &req, &c.output)?
         }

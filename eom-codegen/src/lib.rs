@@ -106,11 +106,13 @@ mod items;
 mod options;
 mod problem;
 mod render;
+mod stability;
 
 pub use eom_sym::lower::CodeOps;
 pub use error::CodegenError;
 pub use options::{DEFAULT_CHUNK, EmitOptions, Functions, MathLib, Precision};
 pub use render::FunctionStats;
+pub use stability::MAX_STABILITY_STATES;
 
 use eom_model::{Linearizer, Model, SymbolicStateSpace};
 use eom_sym::{Expr, OpCount};
@@ -264,6 +266,9 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
     };
 
     let mut items = items::module_items(&ctx, opts, work_len)?;
+    if opts.stability {
+        items.extend(stability_items(sym, &ctx, &specs, opts)?);
+    }
     if ctx.trig.get() {
         items.extend(render::sincos_item(&ctx)?);
     }
@@ -308,6 +313,55 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
         module,
         stats: emitted_stats,
     })
+}
+
+/// The stability items ([`EmitOptions::stability`]).
+fn stability_items(
+    sym: &SymbolicStateSpace,
+    ctx: &Ctx,
+    specs: &[FnSpec],
+    opts: &EmitOptions,
+) -> Result<TokenStream, CodegenError> {
+    if opts.precision != Precision::F64 {
+        return Err(CodegenError::BadOption {
+            option: "stability",
+            problem: "the stability verdict is generated in f64 only (its rounding bounds \
+                      assume f64 arithmetic)"
+                .into(),
+        });
+    }
+    let fixed: Vec<(Expr, Expr)> = ctx
+        .problem
+        .fixed
+        .iter()
+        .map(|(name, v)| {
+            let p = sym
+                .params
+                .iter()
+                .copied()
+                .find(|p| p.param_info().is_some_and(|i| &i.name == name))
+                .expect("a fixed parameter is one of the model's");
+            Ok((p, Expr::float(*v)?))
+        })
+        .collect::<Result<_, CodegenError>>()?;
+    let form = stability::StabilityForm::new(sym, &fixed)?;
+    // The rank decisions of the reduction must hold for the polynomial to be the model's;
+    // they are tested by the first kernel, which checks them all.
+    let validate = if ctx.problem.checks.iter().any(|c| !c.pivot) {
+        let spec = specs.first().expect("at least one function");
+        let name = Ident::new(spec.name, Span::call_site());
+        let args = spec.mats.iter().map(|m| {
+            let len = Ident::new(
+                &format!("{}_LEN", m.lower().to_uppercase()),
+                Span::call_site(),
+            );
+            quote!(&mut [0.0; #len])
+        });
+        Some(quote!(#name(p, #(#args,)* &mut [0.0; WORK_LEN])?;))
+    } else {
+        None
+    };
+    stability::render(ctx, &form, validate)
 }
 
 /// The module's name, after checking that the sizes fit the generated `Error`.

@@ -92,6 +92,10 @@ pub struct EmitOptions {
     /// Parameters to fix at a value before lowering (partial evaluation): they disappear from
     /// the generated interface, and everything that depends only on them is folded.
     pub fixed: Vec<(String, f64)>,
+    /// Also emit the characteristic polynomial, the Liénard–Chipart conditions with their
+    /// rounding-error bounds and the verdict `stability` (`f64` only; models of up to
+    /// [`MAX_STABILITY_STATES`](crate::MAX_STABILITY_STATES) states).
+    pub stability: bool,
 }
 
 impl Default for EmitOptions {
@@ -106,6 +110,7 @@ impl Default for EmitOptions {
             max_temporaries: DEFAULT_CHUNK,
             functions: Functions::default(),
             fixed: Vec::new(),
+            stability: false,
         }
     }
 }
@@ -159,6 +164,11 @@ impl EmitOptions {
     /// Which functions to emit.
     pub fn functions(mut self, f: Functions) -> Self {
         self.functions = f;
+        self
+    }
+    /// Emit the stability verdict without eigenvalues (see [`EmitOptions::stability`]).
+    pub fn stability(mut self, on: bool) -> Self {
+        self.stability = on;
         self
     }
     /// Fix a parameter at a value (partial evaluation); may be called repeatedly.

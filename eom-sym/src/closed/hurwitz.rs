@@ -134,9 +134,10 @@ impl ClosedForms {
     }
 }
 
-/// The Hurwitz determinant `Δₖ` of `a₀ + a₁s + … + aₙsⁿ`: the leading `k × k` minor of the
-/// matrix with entries `H[i][j] = a(n − 2j + i)` (1-based, zero outside `0..=n`).
-fn hurwitz_minor(a: &[Expr], k: usize) -> Expr {
+/// The Hurwitz determinant `Δₖ` of `a₀ + a₁s + … + aₙsⁿ` (`a` lowest first): the leading
+/// `k × k` minor of the matrix with entries `H[i][j] = a(n − 2j + i)` (1-based, zero outside
+/// `0..=n`), expanded by minors, unsimplified (the form code generation evaluates).
+pub fn hurwitz_minor(a: &[Expr], k: usize) -> Expr {
     let n = a.len() as i64 - 1;
     let entry = |i: usize, j: usize| -> Expr {
         let idx = n - 2 * (j as i64 + 1) + (i as i64 + 1);

@@ -34,7 +34,7 @@ mod hurwitz;
 mod modal;
 mod transfer;
 
-pub use hurwitz::{Boundary, ConditionSource, StabilityCondition};
+pub use hurwitz::{Boundary, ConditionSource, StabilityCondition, hurwitz_minor};
 pub use modal::SecondOrder;
 pub use transfer::TransferFunction;
 
