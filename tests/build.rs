@@ -4,12 +4,28 @@
 //! Variants: every model in `f64` and `f32` (libm); the bicycle also with std math, split into
 //! small chunks (to exercise the work buffer), simplified by the egg pass, and with every
 //! parameter but the speed fixed (partial evaluation); the smd twice more, once before and once
-//! after generating everything else in the same expression pool (determinism).
+//! after generating everything else in the same expression pool (determinism); and the models
+//! of up to 16 states with the stability verdict (`--stability`, module `stab::MODEL`, A and
+//! B only).
 
 use eom_codegen::build::{Generate, write_if_changed};
-use eom_codegen::{EmitOptions, emit_model};
+use eom_codegen::{EmitOptions, Functions, emit_model};
 use std::fmt::Write;
 use std::path::PathBuf;
+
+/// The models generated with the stability verdict.
+const STABILITY: [&str; 10] = [
+    "smd",
+    "pendulum",
+    "shimmy",
+    "bicycle",
+    "quarter_car",
+    "top",
+    "disk",
+    "chain3",
+    "smd_wing",
+    "shimmy_wing",
+];
 
 const MODELS: [&str; 12] = [
     "smd",
@@ -117,6 +133,17 @@ fn main() {
     index.push_str("}\npub mod gen32 {\n");
     for m in MODELS {
         add(&format!("{m}_f32.rs"), "f32", builtin(m).f32(), &mut index);
+    }
+    index.push_str("}\npub mod stab {\n");
+    let ab_only = Functions {
+        abcd: false,
+        ab: true,
+        cd: false,
+        phys: false,
+    };
+    for m in STABILITY {
+        let g = builtin(m).stability(true).functions(ab_only);
+        add(&format!("{m}_stab.rs"), "f64 stability", g, &mut index);
     }
     index.push_str("}\n");
     // …and again after everything else was built in the same pool.

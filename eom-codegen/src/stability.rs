@@ -139,7 +139,8 @@ pub(crate) fn render(
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         #[repr(i8)]
         pub enum Verdict {
-            /// A condition is negative beyond its bound: some root has a real part ≥ 0.
+            /// A condition is certainly not positive (at most minus its bound, or exactly
+            /// zero with no rounding): some root has a real part ≥ 0 (unstable or marginal).
             Unstable = -1,
             /// No condition is negative beyond its bound, but one (or the leading coefficient)
             /// is within its bound of zero: rounding could change the answer.
@@ -180,7 +181,9 @@ pub(crate) fn render(
             }
             let (mut negative, mut open) = (false, false);
             for (x, b) in c.iter().zip(e) {
-                negative |= *x < -*b;
+                // `x ≤ −b`: the exact value is ≤ 0 (a condition exactly 0, such as the
+                // damping of an undamped model, fails: marginal is not stable).
+                negative |= *x <= -*b;
                 open |= !(*x > *b);
             }
             if negative {
@@ -220,7 +223,7 @@ pub(crate) fn render(
 
         /// The stability verdict at `p` without eigenvalues: [`Verdict::Stable`] when every
         /// Liénard–Chipart condition exceeds its rounding-error bound, [`Verdict::Unstable`]
-        /// when one is below minus its bound, [`Verdict::Undecided`] otherwise (and when a
+        /// when one is at most minus its bound, [`Verdict::Undecided`] otherwise (and when a
         /// value is not finite). Errors: the point is outside the validity region of the
         /// reduction's rank decisions (pivots need no check here: a divisor near zero makes
         /// the bounds infinite, and the verdict undecided).

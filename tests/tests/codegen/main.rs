@@ -356,4 +356,5 @@ fn config(cases: u32) -> ProptestConfig {
 mod accuracy;
 mod interpreter;
 mod kernels;
+mod stability;
 mod text;
