@@ -39,11 +39,11 @@
 //! eigenvalues with a scale-aware test instead of a fixed bound like `|λ| < 1e9`; see
 //! [`GenEigOptions`].
 
+use faer::MatMut;
 use faer::diag::DiagMut;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::evd::ComputeEigenvectors;
 use faer::linalg::gevd::{gevd_real, gevd_scratch};
-use faer::{MatMut, Par};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
@@ -742,11 +742,12 @@ pub fn generalized_eigenvalues_with(
     if n > 0 {
         let mut aw = a.clone();
         let mut ew = e.clone();
+        let par = crate::linalg::par(n);
         let req = gevd_scratch::<f64>(
             n,
             ComputeEigenvectors::No,
             ComputeEigenvectors::No,
-            Par::Seq,
+            par,
             Default::default(),
         );
         let mut buf = MemBuffer::new(req);
@@ -758,7 +759,7 @@ pub fn generalized_eigenvalues_with(
             DiagMut::from_slice_mut(&mut beta),
             None,
             None,
-            Par::Seq,
+            par,
             MemStack::new(&mut buf),
             Default::default(),
         )

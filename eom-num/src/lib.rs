@@ -102,9 +102,11 @@
 //! for sweeps that call them millions of times.
 //!
 //! **Dense algorithms from faer, public types from nalgebra.** Eigenvectors, QZ, SVD and
-//! Hessenberg reductions come from faer (always called with `Par::Seq`: the systems are
-//! small, and sweeps parallelise at the outer level); `DMatrix<f64>` is the public matrix
-//! type and provides the matrix exponential.
+//! Hessenberg reductions come from faer: sequential below [`linalg::PARALLEL_MIN`] states
+//! (sweeps parallelise over their points), on every thread of the current rayon pool above
+//! (a model of a thousand bodies); eigenvalues up to 16 states from the stack kernel of
+//! [`small_eigen`]. `DMatrix<f64>` is the public matrix type and provides the matrix
+//! exponential.
 //!
 //! ## Where eom-num deliberately differs from EoM.jl
 //!

@@ -7,8 +7,9 @@
 //! from, the threshold, and the gap `σ_r / σ_{r+1}` across the threshold. A gap close to one
 //! means the decision was close and the result should be reported as fragile.
 //!
-//! faer is always called with [`Par::Seq`]: the systems handled here are small, and threading
-//! was measured slower on the two-core build machine (and would fight with rayon sweeps).
+//! faer runs sequentially on matrices below [`PARALLEL_MIN`] rows (threading small
+//! factorisations costs more than it saves, and would fight with rayon sweeps over points),
+//! in parallel above.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::svd::ComputeSvdVectors;
@@ -98,7 +99,22 @@ pub struct Svd {
     pub v: DMatrix<f64>,
 }
 
-/// Full SVD of `m` (faer, sequential).
+/// Matrices of at least this many rows (or columns) are factorised with faer's parallel
+/// kernels on the threads of the current rayon pool: a model of a thousand bodies then uses
+/// every core inside each dense step. Below it the threads cost more than they save (and
+/// sweeps of small models parallelise over their points instead).
+pub const PARALLEL_MIN: usize = 200;
+
+/// The parallelism of a dense step on matrices of size `n` (see [`PARALLEL_MIN`]).
+pub(crate) fn par(n: usize) -> Par {
+    if n >= PARALLEL_MIN && rayon::current_num_threads() > 1 {
+        Par::rayon(0)
+    } else {
+        Par::Seq
+    }
+}
+
+/// Full SVD of `m` (faer; in parallel from [`PARALLEL_MIN`] rows or columns).
 ///
 /// Errors: [`NumError::NonFinite`] for NaN/∞ entries, [`NumError::NoConvergence`] if the
 /// iteration fails.
@@ -106,6 +122,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
     check_finite(m, "matrix passed to the SVD")?;
     let (r, c) = m.shape();
     let k = r.min(c);
+    let par = par(r.max(c));
     let mut u = Mat::<f64>::zeros(r, r);
     let mut v = Mat::<f64>::zeros(c, c);
     let mut s = faer::diag::Diag::<f64>::zeros(k);
@@ -115,7 +132,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             c,
             ComputeSvdVectors::Full,
             ComputeSvdVectors::Full,
-            Par::Seq,
+            par,
             Default::default(),
         );
         let mut buf = MemBuffer::new(req);
@@ -124,7 +141,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             s.as_mut(),
             Some(u.as_mut()),
             Some(v.as_mut()),
-            Par::Seq,
+            par,
             MemStack::new(&mut buf),
             Default::default(),
         )
@@ -150,12 +167,13 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         return Ok(Vec::new());
     }
     let mut s = faer::diag::Diag::<f64>::zeros(k);
+    let par = par(r.max(c));
     let req = faer::linalg::svd::svd_scratch::<f64>(
         r,
         c,
         ComputeSvdVectors::No,
         ComputeSvdVectors::No,
-        Par::Seq,
+        par,
         Default::default(),
     );
     let mut buf = MemBuffer::new(req);
@@ -164,7 +182,7 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         s.as_mut(),
         None,
         None,
-        Par::Seq,
+        par,
         MemStack::new(&mut buf),
         Default::default(),
     )

@@ -116,19 +116,19 @@ impl std::fmt::Debug for EigenvaluesWorkspace {
     }
 }
 
-pub(crate) fn eig_scratch(n: usize, vectors: bool) -> StackReq {
+pub(crate) fn eig_scratch(n: usize, vectors: bool, par: Par) -> StackReq {
     let v = if vectors {
         ComputeEigenvectors::Yes
     } else {
         ComputeEigenvectors::No
     };
-    evd_scratch::<f64>(n, v, v, Par::Seq, Default::default())
+    evd_scratch::<f64>(n, v, v, par, Default::default())
 }
 
 /// Bytes of scratch memory an [`EigenvaluesWorkspace`] for an n × n matrix holds (faer's
 /// stack requirement plus four length-n/n² buffers).
 pub fn eigenvalues_workspace_bytes(n: usize) -> usize {
-    eig_scratch(n, false).size_bytes() + 8 * (n * n + 3 * n)
+    eig_scratch(n, false, Par::Seq).size_bytes() + 8 * (n * n + 3 * n)
 }
 
 impl EigenvaluesWorkspace {
@@ -145,7 +145,7 @@ impl EigenvaluesWorkspace {
             scale: vec![1.0; n],
             re: vec![0.0; n],
             im: vec![0.0; n],
-            buf: MemBuffer::new(eig_scratch(n, false)),
+            buf: MemBuffer::new(eig_scratch(n, false, Par::Seq)),
         }
     }
 

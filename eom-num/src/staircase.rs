@@ -35,7 +35,7 @@ use faer::linalg::householder::{
     apply_block_householder_sequence_on_the_right_in_place_scratch,
     apply_block_householder_sequence_on_the_right_in_place_with_conj,
 };
-use faer::{Conj, Mat, MatMut, Par};
+use faer::{Conj, Mat, MatMut};
 use nalgebra::DMatrix;
 
 use crate::error::NumError;
@@ -112,7 +112,7 @@ impl HessenbergTail {
             self.factor.as_ref(),
             Conj::No,
             full.submatrix_mut(0, self.p + 1, rows, k),
-            Par::Seq,
+            crate::linalg::par(rows.max(k)),
             MemStack::new(&mut buf),
         );
     }
@@ -313,10 +313,11 @@ fn hessenberg_tail(
     let k = ns - 1;
     let bs = faer::linalg::qr::no_pivoting::factor::recommended_block_size::<f64>(k, k);
     let mut factor = Mat::<f64>::zeros(bs, k);
+    let par = crate::linalg::par(ns);
     let req = StackReq::any_of(&[hessenberg_in_place_scratch::<f64>(
         ns,
         bs,
-        Par::Seq,
+        par,
         Default::default(),
     )]);
     let mut buf = MemBuffer::new(req);
@@ -325,7 +326,7 @@ fn hessenberg_tail(
         hessenberg_in_place(
             full.submatrix_mut(p, p, ns, ns),
             factor.as_mut(),
-            Par::Seq,
+            par,
             MemStack::new(&mut buf),
             Default::default(),
         );
