@@ -145,7 +145,9 @@ fn output_is_sorted_with_exact_conjugates() {
 #[test]
 fn known_spectra_under_similarity() {
     let mut rng = StdRng::seed_from_u64(11);
-    let cases: Vec<(Vec<f64>, Vec<(f64, f64)>)> = vec![
+    // Real eigenvalues, and conjugate pairs as (re, im).
+    type Spectrum = (Vec<f64>, Vec<(f64, f64)>);
+    let cases: Vec<Spectrum> = vec![
         (vec![-1.0, -2.0, -3.0, -4.0], vec![]),
         (vec![-0.5], vec![(-0.1, 5.0), (0.2, 1.0)]),
         (vec![], vec![(-1.0, 1e-3), (-3.0, 40.0)]),

@@ -182,7 +182,9 @@ pub(crate) fn certify_full_column_rank(
     let inv_f = eom_num::linalg::frobenius_norm(&inv);
     let a_f = eom_num::linalg::frobenius_norm(a.as_slice());
     let lower = 1.0 / inv_f;
-    if !(lower > CERTIFICATE_MARGIN * RANK_TOLERANCE * a_f) {
+    // (NaN fails the comparison: no certificate.)
+    let certified = lower > CERTIFICATE_MARGIN * RANK_TOLERANCE * a_f;
+    if !certified {
         return false;
     }
     // The column of S⁻¹ of largest norm, as a vector over a's columns (S's columns are a's

@@ -14,15 +14,18 @@ use eom_sym::closed::{ClosedForms, hurwitz_minor};
 use eom_sym::tape::eval_generic;
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
+/// Values and their rounding-error bounds.
+type WithBounds = (Vec<f64>, Vec<f64>);
+
 /// One generated module's stability functions (`f64` in and out).
 struct Stab {
     model: &'static str,
     /// The verdict: `-1`, `0`, `1`, or `None` on an error.
     verdict: fn(&[f64]) -> Option<i8>,
     /// `stability_conditions`: whether normalised, values, bounds.
-    conditions: fn(&[f64]) -> (bool, Vec<f64>, Vec<f64>),
+    conditions: fn(&[f64]) -> (bool, WithBounds),
     /// `characteristic_polynomial`: values, bounds.
-    polynomial: fn(&[f64]) -> (Vec<f64>, Vec<f64>),
+    polynomial: fn(&[f64]) -> WithBounds,
     degrees: &'static [usize],
     zero_roots: usize,
 }
@@ -36,12 +39,12 @@ macro_rules! stab {
         fn verdict(p: &[f64]) -> Option<i8> {
             g::stability(&arr(p)).ok().map(|v| v as i8)
         }
-        fn conditions(p: &[f64]) -> (bool, Vec<f64>, Vec<f64>) {
+        fn conditions(p: &[f64]) -> (bool, WithBounds) {
             let (mut c, mut e) = ([0.0; g::N_CONDITIONS], [0.0; g::N_CONDITIONS]);
             let ok = g::stability_conditions(&arr(p), &mut c, &mut e);
-            (ok, c.to_vec(), e.to_vec())
+            (ok, (c.to_vec(), e.to_vec()))
         }
-        fn polynomial(p: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        fn polynomial(p: &[f64]) -> WithBounds {
             let (mut c, mut e) = ([0.0; g::POLY_DEGREE + 1], [0.0; g::POLY_DEGREE + 1]);
             g::characteristic_polynomial(&arr(p), &mut c, &mut e);
             (c.to_vec(), e.to_vec())
@@ -142,7 +145,7 @@ fn bounds_hold_against_double_double() {
                 eval_generic::<Dd>(&exprs, |i| pos.get(&i).map(|&k| Dd::from_f64(values[k])))
                     .expect("double-double");
             let (coef, coef_err) = (g.polynomial)(&values);
-            let (ok, cond, cond_err) = (g.conditions)(&values);
+            let (ok, (cond, cond_err)) = (g.conditions)(&values);
             let d = coef.len() - 1;
             let sign = if exact[d].to_f64() < 0.0 { -1.0 } else { 1.0 };
             for k in 0..exact.len() {
