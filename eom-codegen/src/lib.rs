@@ -45,6 +45,31 @@
 //!   `Result<(), Error>` is returned in a register; `what()` gives the failing check's
 //!   description).
 //!
+//! With [`EmitOptions::stability`] (`eom codegen --stability`) the module also has the
+//! stability verdict without eigenvalues, `f64` only, for models of up to
+//! [`MAX_STABILITY_STATES`] states:
+//! * `characteristic_polynomial(p, c, e)`: the coefficients of `p(s)`, the closed-form
+//!   characteristic polynomial `det(sI − A) = s^ZERO_ROOTS · p(s) / scale` of
+//!   `eom symbolic` (from the descriptor pencil, the structural zero roots divided out), each
+//!   with a bound `e[k]` on its rounding error;
+//! * `stability_conditions(p, c, e)`: the Liénard–Chipart conditions (every coefficient, then
+//!   the Hurwitz determinants `Δ_{d−1}, Δ_{d−3}, …`), normalised by the leading coefficient's
+//!   sign, with their bounds (`CONDITIONS` names them);
+//! * `stability(p) -> Result<Verdict, Error>`: `Stable` when every condition exceeds its
+//!   bound, `Unstable` when one is certainly not positive (unstable or marginal),
+//!   `Undecided` when one is within its bound of zero. `Verdict` is `#[repr(i8)]` (`1`, `-1`,
+//!   `0`), so the function can be wrapped for a foreign caller as it is.
+//!
+//! The bounds come from a running error analysis that the generated code carries out next to
+//! the values (Higham, *Accuracy and Stability of Numerical Algorithms*, §3.3): every value
+//! has a bound on its distance from the exact value of its formula at the given parameters,
+//! propagated operation by operation. For the bicycle (27 parameters, a quartic) `stability`
+//! costs about 250 ns, a quarter of its eigenvalues' time, and at 10⁶ random points within
+//! ±20 % of nominal it decides every point, as the eigenvalues do (`eom bench throughput`).
+//! The a-priori bound by the same program on absolute values would cost half as much, but the
+//! bicycle's constant coefficient cancels so much that it left 38 % of those points
+//! undecided.
+//!
 //! ## Lowering
 //!
 //! One `let` per unique operation of the DAG, and beyond that:
