@@ -402,11 +402,37 @@ fn linearize_at(
                         source: Box::new(e),
                         alternatives: working_methods(&at_point),
                     },
-                    e => CliError::Model(e),
+                    e => with_alternatives(e, Method::Symbolic, &at_point),
                 })?
         }
-        m => Linearizer::new(&at_point).method(m).run()?,
+        m => Linearizer::new(&at_point)
+            .method(m)
+            .run()
+            .map_err(|e| with_alternatives(e, m, &at_point))?,
     })
+}
+
+/// A reduction that failed for a reason another method may not share (a singular reduced
+/// mass matrix, a feature this method does not support): the error with the methods that
+/// were tried at the point and work. Errors of the model itself pass unchanged.
+fn with_alternatives(
+    e: ModelError,
+    failed: Method,
+    at_point: &eom_model::Model<eom_sym::Expr>,
+) -> CliError {
+    match e {
+        ModelError::Singular(_) | ModelError::Unsupported(_) | ModelError::PivotBreakdown(_) => {
+            CliError::MethodFailed {
+                source: Box::new(e),
+                method: method_name(failed),
+                alternatives: working_methods(at_point)
+                    .into_iter()
+                    .filter(|m| *m != method_name(failed))
+                    .collect(),
+            }
+        }
+        e => CliError::Model(e),
+    }
 }
 
 /// Every analysis of a linearization of the model at the point.

@@ -643,6 +643,18 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             if let Some(name) = &req.solve_for {
                 choice.param(name)?;
             }
+            if let Some(n) = req
+                .max_states
+                .filter(|&n| n == 0 || n > eom_sym::closed::MAX_CLOSED_FORM_STATES)
+            {
+                return Err(CliError::BadArgument {
+                    argument: format!("--max-states {n}"),
+                    problem: format!(
+                        "closed forms are derived for 1 to {} states",
+                        eom_sym::closed::MAX_CLOSED_FORM_STATES
+                    ),
+                });
+            }
             let r = symbolic::symbolic(&choice, &texts, &req)?;
             match a.format {
                 SymbolicFormat::Text => r.to_text(),

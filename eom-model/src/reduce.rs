@@ -692,7 +692,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
                 .map(|&r| self.coord_name(sel.active[velo.indep_w[r]], true))
                 .collect();
             return Err(ModelError::Unsupported(format!(
-                "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
+                "the reduced mass matrix is singular at the nominal point (massless motion of {}): this reduction needs every independent velocity to carry inertia (the robust method, with orthonormal bases and a descriptor reduction, handles index-1 descriptor models)",
                 names.join(", ")
             )));
         }

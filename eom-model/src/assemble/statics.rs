@@ -166,7 +166,7 @@ fn minimum_norm<S: Scalar>(
     let moved = if top > 0.0 { delta.amax() / top } else { 0.0 };
     if S::SYMBOLIC && moved > RANK_TOLERANCE {
         return Err(ModelError::Unsupported(format!(
-            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic path cannot choose among them for every parameter value; use the numeric or robust path, which take the minimum-norm preloads"
+            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic reduction cannot choose among them for every parameter value (the numeric and robust methods take the minimum-norm preloads)"
         )));
     }
     if !S::SYMBOLIC {

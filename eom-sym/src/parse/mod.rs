@@ -67,9 +67,18 @@ use crate::scope::Scope;
 pub const MAX_DEPTH: usize = 256;
 
 /// Names that are functions when followed by `(`.
-const FUNCTIONS: [&str; 10] = [
+pub const FUNCTIONS: [&str; 10] = [
     "sin", "cos", "tan", "exp", "ln", "log", "abs", "sqrt", "atan2", "float",
 ];
+
+/// Names of the constants (`π` too, which is not an identifier).
+pub const CONSTANTS: [&str; 2] = ["pi", "e"];
+
+/// Whether `name` is one of the parser's constants or functions, which no parameter may be
+/// called.
+pub fn is_reserved(name: &str) -> bool {
+    CONSTANTS.contains(&name) || FUNCTIONS.contains(&name)
+}
 
 /// Parse `input` with parameters resolved in `scope`.
 ///
