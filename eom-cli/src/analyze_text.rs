@@ -50,6 +50,16 @@ fn mode_table(modes: &[ModeReport]) -> String {
     )
 }
 
+/// The rule of the stability column, with the largest tolerance it used.
+pub(crate) fn verdict_rule(modes: &[ModeReport]) -> String {
+    let largest = modes.iter().map(|m| m.tolerance).fold(0.0, f64::max);
+    format!(
+        "  stability: stable when Re λ < −tol, marginal when |Re λ| ≤ tol, tol = the \
+         eigenvalue's error estimate (here at most {} 1/s)\n",
+        g(largest, 2)
+    )
+}
+
 fn signal_list(s: &[Signal]) -> String {
     if s.is_empty() {
         return "none".into();
@@ -137,6 +147,7 @@ impl Analysis {
              pole);\n  tau = −1/Re λ (negative: e-folding time of growth); period = 2π/|Im λ| \
              (damped period, EoM's \"wavelength\")\n",
         );
+        t.push_str(&verdict_rule(&self.modes));
         let unstable = self
             .modes
             .iter()

@@ -17,6 +17,7 @@ mod codegen;
 mod error;
 mod format;
 mod list;
+mod matrices;
 mod output;
 mod params;
 mod pictures;
@@ -365,6 +366,10 @@ struct AnalyzeArgs {
     /// The mode of --plot-initial and --plot-modes: its number in the modes table
     #[arg(long, value_name = "K")]
     mode: Option<usize>,
+    /// Write the numeric A, B, C, D with the state, input and output names: NumPy .npz
+    /// (numpy.load) or MATLAB .mat (load, scipy.io.loadmat), by the extension
+    #[arg(long, value_name = "FILE.npz|FILE.mat")]
+    matrices: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -688,6 +693,9 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         });
     }
     let plots = analyze_plots(a)?;
+    if let Some(path) = &a.matrices {
+        matrices::format_of("--matrices", path)?;
+    }
     let bode = a.plot.is_some();
     let freq = (a.freq || range.is_some() || a.points.is_some() || bode).then_some(FreqRequest {
         range,
@@ -708,6 +716,13 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         };
         plot.write(option, path)?;
         stderr.push_str(&plot.notes_text(path));
+    }
+    if let Some(path) = &a.matrices {
+        let verb = match matrices::write_matrices("--matrices", path, &r.matrices.named())? {
+            output::Written::Written => "wrote",
+            output::Written::Unchanged => "unchanged",
+        };
+        stderr.push_str(&format!("{verb} {}\n", path.display()));
     }
     Ok(match a.format {
         Format::Text => r.to_text(),

@@ -39,6 +39,11 @@ fn io_error(path: &Path, source: std::io::Error) -> CliError {
 /// including a device that refuses the data (`/dev/full`: "No space left on device") and a
 /// FIFO without a reader.
 pub fn write_output(path: &Path, text: &str) -> Result<Written, CliError> {
+    write_output_bytes(path, text.as_bytes())
+}
+
+/// [`write_output`] of binary data (`eom analyze --matrices FILE.npz`).
+pub fn write_output_bytes(path: &Path, text: &[u8]) -> Result<Written, CliError> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
         && !dir.is_dir()
     {
@@ -74,7 +79,7 @@ pub fn write_output(path: &Path, text: &str) -> Result<Written, CliError> {
         nonblocking(&mut opts);
     }
     let file = opts.open(path).map_err(|e| io_error(path, explain(e)))?;
-    write_patiently(file, text.as_bytes(), regular).map_err(|e| io_error(path, explain(e)))?;
+    write_patiently(file, text, regular).map_err(|e| io_error(path, explain(e)))?;
     Ok(Written::Written)
 }
 
@@ -125,14 +130,14 @@ pub fn create_output_dir(dir: &Path) -> Result<(), CliError> {
 }
 
 /// Whether the regular file at `path` holds exactly `text` (read up to its known size).
-fn same_content(path: &Path, text: &str) -> bool {
+fn same_content(path: &Path, text: &[u8]) -> bool {
     let Ok(f) = File::open(path) else {
         return false;
     };
     let mut old = Vec::with_capacity(text.len());
     // One byte more than expected: a file that grew since its metadata was read differs.
     match f.take(text.len() as u64 + 1).read_to_end(&mut old) {
-        Ok(_) => old == text.as_bytes(),
+        Ok(_) => old == text,
         Err(_) => false,
     }
 }
