@@ -104,6 +104,9 @@ pub struct Analysis {
     /// `∂λ/∂p` of every eigenvalue (only with `--sensitivity`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensitivity: Option<Vec<SensitivityReport>>,
+    /// The static preloads at the point: every constraint and elastic item's force and moment
+    /// on its first body (`null` with a warning if they could not be computed).
+    pub preloads: Option<crate::preloads::Preloads>,
     /// The state-space matrices at the point, `ẋ = A x + B u`, `y = C x + D u`, with the
     /// names of their rows and columns.
     pub matrices: Matrices,
@@ -533,7 +536,15 @@ pub fn analyze_linearized(
         .iter()
         .map(|z| Complex64::new(z.re, z.im))
         .collect();
-    r.wings = crate::wings::wing_reports(&at_point.nominal()?, &eigenvalues, &mut r.warnings);
+    let numeric = at_point.nominal()?;
+    r.preloads = match eom_model::assemble(&numeric) {
+        Ok(a) => Some(crate::preloads::Preloads::of(&numeric, &a)),
+        Err(e) => {
+            r.warnings.push(format!("static preloads not computed: {e}"));
+            None
+        }
+    };
+    r.wings = crate::wings::wing_reports(&numeric, &eigenvalues, &mut r.warnings);
     Ok(r)
 }
 
@@ -674,6 +685,7 @@ fn analyze_state_space(
     let matrices = Matrices::of(ss, &inputs, &outputs);
     Ok(Analysis {
         matrices,
+        preloads: None,
         model: String::new(),
         method: "",
         parameters: Vec::new(),

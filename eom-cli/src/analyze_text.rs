@@ -92,6 +92,9 @@ impl Analysis {
         if let Some(sens) = &self.sensitivity {
             t.push_str(&sensitivity_text(sens));
         }
+        if let Some(p) = &self.preloads {
+            t.push_str(&p.to_text());
+        }
 
         t.push_str("Warnings\n");
         if self.warnings.is_empty() {

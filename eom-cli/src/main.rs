@@ -21,6 +21,7 @@ mod matrices;
 mod output;
 mod params;
 mod pictures;
+mod preloads;
 mod plot;
 mod progress;
 mod report;

@@ -374,7 +374,7 @@ impl Modes {
         let mut shapes = shapes.into_iter();
         let mut modes = Vec::with_capacity(n);
         for (k, comp) in componentwise.iter().enumerate() {
-            let tol = error_estimate(n, eig.norm, eig.condition[k], *comp, opts.tol_factor);
+            let tol = estimate_of(&eig, k, *comp, opts.tol_factor);
             let mut mode = classify(eig.values[k], tol);
             mode.condition = eig.condition[k];
             let size = eig.values[k].norm();
@@ -515,11 +515,19 @@ pub fn eigenvalues_with_errors(a: &DMatrix<f64>) -> Result<Vec<(Complex64, f64)>
     let componentwise = eig.componentwise(a).unwrap_or_else(|| vec![0.0; n]);
     let f = ModeOptions::default().tol_factor;
     Ok((0..n)
-        .map(|k| {
-            let tol = error_estimate(n, eig.norm, eig.condition[k], componentwise[k], f);
-            (eig.values[k], tol)
-        })
+        .map(|k| (eig.values[k], estimate_of(&eig, k, componentwise[k], f)))
         .collect())
+}
+
+/// [`error_estimate`] of eigenvalue `k` of a decomposition; 0 for an exact zero (a structural
+/// zero deflated before the eigensolve: exact by construction, whatever the condition number
+/// of its lifted vectors says).
+fn estimate_of(eig: &crate::eigen::Eigen, k: usize, componentwise: f64, tol_factor: f64) -> f64 {
+    if eig.values[k] == Complex64::new(0.0, 0.0) {
+        return 0.0;
+    }
+    let n = eig.values.len();
+    error_estimate(n, eig.norm, eig.condition[k], componentwise, tol_factor)
 }
 
 /// Modal quantities from one eigenvalue and its tolerance (no shape).

@@ -116,6 +116,7 @@ fn page(
     };
     bar.stage("model and modes");
     sections::model(&mut p, &cx);
+    sections::preloads(&mut p, &cx);
     p.part("modes", "Modes", |p| sections::modes(p, &cx));
     bar.stage("responses");
     sections::io_view(&mut p, &cx);

@@ -91,6 +91,42 @@ pub fn model(p: &mut Page, cx: &Context<'_>) {
     );
 }
 
+/// The static preloads: every item's force and moment on its first body.
+pub fn preloads(p: &mut Page, cx: &Context<'_>) {
+    p.section("preloads", "Static preloads");
+    let Some(pre) = &cx.analysis.preloads else {
+        p.note("Not computed (see the warnings).");
+        return;
+    };
+    if pre.statics == "unloaded" {
+        p.text("None: no loads act on the model.");
+        return;
+    }
+    p.text(&format!(
+        "The force and moment each constraint and elastic item exerts on its first body at the \
+         equilibrium the model's geometry describes, in model axes (moments about the item's \
+         point; a spring's tension positive when it pulls). The statics is {}.",
+        pre.statics
+    ));
+    let (rows, quiet) = pre.rows();
+    if !rows.is_empty() {
+        p.table(
+            &["item", "on body", "force [N]", "moment [N m]", "tension", "note"],
+            &rows,
+            2,
+        );
+    }
+    if quiet > 0 {
+        p.text(&format!("{quiet} other item(s) carry no preload."));
+    }
+    if pre.items.iter().any(|x| !x.unique) {
+        p.note(
+            "Not unique: the model has redundant rigid constraints, and any multiple of their \
+             self-stress balances the loads too; the minimum-norm preloads are shown.",
+        );
+    }
+}
+
 fn or_none(s: &str) -> String {
     if s.is_empty() {
         "none".into()
