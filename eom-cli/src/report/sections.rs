@@ -404,11 +404,23 @@ pub fn closed_forms(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
         p.formula("ωn =", wm, wl);
         p.formula("ζ =", zm, zl);
     }
-    if !m.conditions.is_empty() {
-        p.text("Asymptotically stable exactly when all of these hold:");
-    }
-    for (cm, cl) in m.conditions.iter().zip(&l.conditions) {
-        p.formula("", cm, cl);
+    match r.stability_verdict.as_deref() {
+        Some(v) if v.starts_with("never: ") => {
+            p.text(&format!(
+                "Never asymptotically stable: {}.",
+                v.trim_start_matches("never: ")
+            ));
+        }
+        Some("always") => p.text(
+            "Asymptotically stable for all parameter values: every condition holds by the \
+             parameters' declared signs.",
+        ),
+        _ => {
+            p.text("Asymptotically stable exactly when all of these hold:");
+            for (cm, cl) in m.conditions.iter().zip(&l.conditions) {
+                p.formula("", cm, cl);
+            }
+        }
     }
     for ((o, i, tm), (_, _, tl)) in m.transfer.iter().zip(&l.transfer) {
         p.formula(&format!("{o} / {i} ="), tm, tl);
