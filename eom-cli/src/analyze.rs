@@ -153,7 +153,12 @@ impl Matrices {
     /// For [`crate::matrices::write_matrices`]: `A`, `B`, `C`, `D` and the names.
     pub fn named(&self) -> crate::matrices::NamedMatrices<'_> {
         crate::matrices::NamedMatrices {
-            matrices: vec![("A", &self.a), ("B", &self.b), ("C", &self.c), ("D", &self.d)],
+            matrices: vec![
+                ("A", &self.a),
+                ("B", &self.b),
+                ("C", &self.c),
+                ("D", &self.d),
+            ],
             names: vec![
                 ("states", &self.states),
                 ("inputs", &self.inputs),
@@ -164,7 +169,10 @@ impl Matrices {
 }
 
 fn rows<S: Serializer>(m: &nalgebra::DMatrix<f64>, s: S) -> Result<S::Ok, S::Error> {
-    s.collect_seq(m.row_iter().map(|r| r.iter().copied().collect::<Vec<f64>>()))
+    s.collect_seq(
+        m.row_iter()
+            .map(|r| r.iter().copied().collect::<Vec<f64>>()),
+    )
 }
 
 /// The sensitivities of one eigenvalue.
@@ -540,7 +548,8 @@ pub fn analyze_linearized(
     r.preloads = match eom_model::assemble(&numeric) {
         Ok(a) => Some(crate::preloads::Preloads::of(&numeric, &a)),
         Err(e) => {
-            r.warnings.push(format!("static preloads not computed: {e}"));
+            r.warnings
+                .push(format!("static preloads not computed: {e}"));
             None
         }
     };

@@ -13,7 +13,7 @@ fn opt(x: Option<f64>, none: &str) -> String {
 fn mode_table(modes: &[ModeReport]) -> String {
     let mut rows = Vec::new();
     for m in modes {
-        let z = Complex64::new(m.eigenvalue.re, m.eigenvalue.im);
+        let z = shown(m);
         let pair = m.kind == "oscillatory";
         if pair && z.im < 0.0 {
             continue;
@@ -58,6 +58,13 @@ pub(crate) fn verdict_rule(modes: &[ModeReport]) -> String {
          eigenvalue's error estimate (here at most {} 1/s)\n",
         g(largest, 2)
     )
+}
+
+/// A mode's eigenvalue as printed: a part within the eigenvalue's error estimate is 0 (its
+/// value is rounding).
+pub(crate) fn shown(m: &ModeReport) -> Complex64 {
+    let part = |x: f64| if x.abs() <= m.tolerance { 0.0 } else { x };
+    Complex64::new(part(m.eigenvalue.re), part(m.eigenvalue.im))
 }
 
 fn signal_list(s: &[Signal]) -> String {

@@ -160,7 +160,12 @@ fn npy_matrix(a: &DMatrix<f64>) -> Result<Vec<u8>, Encode> {
 /// A 1-D Unicode string `.npy` (`<U` of the longest string, at least 1).
 fn npy_strings(list: &[String]) -> Result<Vec<u8>, Encode> {
     use npyz::WriterBuilder;
-    let width = list.iter().map(|s| s.chars().count()).max().unwrap_or(0).max(1);
+    let width = list
+        .iter()
+        .map(|s| s.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(1);
     let dtype = npyz::DType::Plain(
         format!("<U{width}")
             .parse()
@@ -211,7 +216,12 @@ fn mat(m: &NamedMatrices<'_>) -> Result<Vec<u8>, Encode> {
         check_name(name)?;
         let data: Vec<u8> = a.as_slice().iter().flat_map(|x| x.to_le_bytes()).collect();
         let body = element(MI_DOUBLE, &data);
-        out.extend(matrix(MX_DOUBLE_CLASS, &[a.nrows(), a.ncols()], name, &body)?);
+        out.extend(matrix(
+            MX_DOUBLE_CLASS,
+            &[a.nrows(), a.ncols()],
+            name,
+            &body,
+        )?);
     }
     for &(name, list) in &m.names {
         check_name(name)?;

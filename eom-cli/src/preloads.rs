@@ -64,7 +64,8 @@ impl Preloads {
         };
         let fmax = largest(&|p| p.force);
         let mmax = largest(&|p| p.moment);
-        let clean = |v: [f64; 3], top: f64| v.map(|x| if x.abs() <= ROUNDING * top { 0.0 } else { x });
+        let clean =
+            |v: [f64; 3], top: f64| v.map(|x| if x.abs() <= ROUNDING * top { 0.0 } else { x });
         Preloads {
             statics: match a.statics {
                 Statics::Unloaded => "unloaded",
@@ -79,9 +80,13 @@ impl Preloads {
                     body: first_body(&p.item),
                     force: clean(p.force, fmax),
                     moment: clean(p.moment, mmax),
-                    tension: p
-                        .tension
-                        .map(|t| if t.abs() <= ROUNDING * fmax.max(mmax) { 0.0 } else { t }),
+                    tension: p.tension.map(|t| {
+                        if t.abs() <= ROUNDING * fmax.max(mmax) {
+                            0.0
+                        } else {
+                            t
+                        }
+                    }),
                     unique: p.unique,
                     computed: p.computed,
                 })
@@ -105,7 +110,14 @@ impl Preloads {
             t.push_str("  every item carries no preload\n");
         } else {
             t.push_str(&crate::format::table(
-                &["item", "on body", "force [N]", "moment [N m]", "tension", "note"],
+                &[
+                    "item",
+                    "on body",
+                    "force [N]",
+                    "moment [N m]",
+                    "tension",
+                    "note",
+                ],
                 &rows,
                 2,
             ));

@@ -349,7 +349,10 @@ fn closed_forms(
         for c in &conds {
             if !c.satisfiable {
                 let never = never_reason(c, coefficients);
-                report.latex.conditions.push(format!("\\text{{never: {never}}}"));
+                report
+                    .latex
+                    .conditions
+                    .push(format!("\\text{{never: {never}}}"));
                 report.mathml.conditions.push(format!(
                     "<mtext>never: {}</mtext>",
                     crate::plot::shape::escape(&never)

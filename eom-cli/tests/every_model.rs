@@ -85,7 +85,11 @@ fn every_command(case: &Case, dir: &Path) {
     assert!(text.contains("eigenvalue"), "{m}: {text}");
     let a = json(&["analyze", m, "--format", "json"]);
     let n = a["states"].as_u64().expect("states") as usize;
-    assert_eq!(a["eigenvalues"].as_array().expect("eigenvalues").len(), n, "{m}");
+    assert_eq!(
+        a["eigenvalues"].as_array().expect("eigenvalues").len(),
+        n,
+        "{m}"
+    );
     for mode in a["modes"].as_array().expect("modes") {
         let s = mode["stability"].as_str().expect("a verdict");
         assert!(["stable", "marginal", "unstable"].contains(&s), "{m}: {s}");
@@ -129,7 +133,11 @@ fn every_command(case: &Case, dir: &Path) {
 
     let code = out.join(format!("{stem}.rs"));
     ok(&["codegen", m, "-o", code.to_str().expect("UTF-8")]);
-    assert!(std::fs::read_to_string(&code).expect("code").contains("pub mod"));
+    assert!(
+        std::fs::read_to_string(&code)
+            .expect("code")
+            .contains("pub mod")
+    );
 
     let check = ok(&["check", m]);
     assert!(check.contains("valid"), "{m}: {check}");
@@ -148,7 +156,11 @@ fn every_built_in_model_and_model_file_goes_through_every_command() {
     let mut cases = catalogue();
     let builtins = cases.len();
     cases.extend(files());
-    assert!(builtins >= 10 && cases.len() > builtins, "{} cases", cases.len());
+    assert!(
+        builtins >= 10 && cases.len() > builtins,
+        "{} cases",
+        cases.len()
+    );
     // Two workers: the CI machine's cores.
     let next = std::sync::atomic::AtomicUsize::new(0);
     std::thread::scope(|s| {

@@ -89,7 +89,12 @@ fn assert_same(file: &Value, json: &Value, what: &str) {
         m["inputs"].as_array().expect("inputs").len(),
         m["outputs"].as_array().expect("outputs").len(),
     );
-    for (name, shape) in [("A", [n, n]), ("B", [n, ni]), ("C", [no, n]), ("D", [no, ni])] {
+    for (name, shape) in [
+        ("A", [n, n]),
+        ("B", [n, ni]),
+        ("C", [no, n]),
+        ("D", [no, ni]),
+    ] {
         let got: Vec<usize> = file["_shapes"][name]
             .as_array()
             .expect("a shape")
@@ -170,14 +175,24 @@ fn npz_and_mat_files_read_back_with_numpy_and_scipy() {
             let stem = Path::new(model).file_stem().expect("a name");
             let path = dir.join(format!("{}.{ext}", stem.to_string_lossy()));
             let _ = std::fs::remove_file(&path);
-            let r = eom(&["analyze", model, "--matrices", path.to_str().expect("UTF-8")]);
+            let r = eom(&[
+                "analyze",
+                model,
+                "--matrices",
+                path.to_str().expect("UTF-8"),
+            ]);
             assert_eq!(r.code, 0, "{}", r.stderr);
             assert!(r.stderr.contains("wrote"), "{}", r.stderr);
             let file = read_back(&path);
             assert_same(&file, &json, &format!("{model}.{ext}"));
             if ext == "npz" {
                 // Names as Unicode arrays (loaded without pickles), numbers as float64.
-                assert!(file["_dtypes"]["states"].as_str().unwrap().starts_with("<U"));
+                assert!(
+                    file["_dtypes"]["states"]
+                        .as_str()
+                        .unwrap()
+                        .starts_with("<U")
+                );
                 assert_eq!(file["_dtypes"]["A"], "<f8");
             }
         }

@@ -42,7 +42,12 @@ fn the_half_car_springs_carry_the_weight_by_the_lever_rule() {
     // (negative tension) and push the body up.
     let (m, g, a, b) = (1500.0, 9.81, 1.1, 1.5);
     let sets = ["--set", "m=1500", "--set", "a=1.1", "--set", "b=1.5"];
-    let mut args = vec!["analyze".to_string(), model("half_car"), "--format".into(), "json".into()];
+    let mut args = vec![
+        "analyze".to_string(),
+        model("half_car"),
+        "--format".into(),
+        "json".into(),
+    ];
     args.extend(sets.iter().map(|s| s.to_string()));
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let j = eom_json(&args);
@@ -58,7 +63,11 @@ fn the_half_car_springs_carry_the_weight_by_the_lever_rule() {
     assert_eq!(front["unique"], true);
     // The sliders carry nothing: the springs are vertical and the weight acts at the mass
     // centre.
-    close(vector(&entry(&j, "rigid point `no surge or sway`")["force"]), [0.0; 3], "slider");
+    close(
+        vector(&entry(&j, "rigid point `no surge or sway`")["force"]),
+        [0.0; 3],
+        "slider",
+    );
 
     // The text output shows the same table.
     let mut text_args = vec!["analyze", args[1]];

@@ -66,7 +66,14 @@ fn analyze_sweep_and_report_give_one_verdict_by_the_printed_tolerance() {
 
         // The sweep at the same single point: the same verdict, by a tolerance it states.
         let grid = format!("I={i}:{i}:1");
-        let mut args = vec!["sweep", model.as_str(), "--param", &grid, "--format", "json"];
+        let mut args = vec![
+            "sweep",
+            model.as_str(),
+            "--param",
+            &grid,
+            "--format",
+            "json",
+        ];
         args.extend_from_slice(&sets[..2]);
         let s = eom_json(&args);
         let p = &s["points"][0];

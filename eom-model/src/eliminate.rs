@@ -510,7 +510,7 @@ impl<S: Scalar> Elim<'_, S> {
                 let better = match best {
                     None => true,
                     Some((bm, br, _, bc)) => {
-                        kept(c) < kept(bc)
+                        (!kept(c) && kept(bc))
                             || (kept(c) == kept(bc) && mk < bm)
                             || (kept(c) == kept(bc) && mk == bm && -ratio < br)
                             || (kept(c) == kept(bc)
@@ -523,8 +523,7 @@ impl<S: Scalar> Elim<'_, S> {
                     best = Some((mk, -ratio, r, c));
                     // No fill-in at the row's largest entry cannot be beaten, and ties go
                     // to the first found: stop searching (unless a lighter column may tie).
-                    if mk == 0 && ratio == 1.0 && self.weights.is_empty() && self.keep.is_empty()
-                    {
+                    if mk == 0 && ratio == 1.0 && self.weights.is_empty() && self.keep.is_empty() {
                         return Some((r, c));
                     }
                 }

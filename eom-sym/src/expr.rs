@@ -293,10 +293,9 @@ impl Expr {
             return Err(SymError::BadParameter {
                 name: info.name,
                 problem: format!(
-                    "the name is reserved: the constants {} and the functions {} cannot be \
-                     parameters: choose another name",
-                    crate::parse::CONSTANTS.join(", "),
-                    crate::parse::FUNCTIONS.join(", ")
+                    "the name is reserved: {} (constants and functions) cannot be parameters: \
+                     choose another name",
+                    crate::parse::RESERVED.join(", ")
                 ),
             });
         }

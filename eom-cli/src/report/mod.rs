@@ -120,7 +120,9 @@ fn page(
     p.part("modes", "Modes", |p| sections::modes(p, &cx));
     bar.stage("responses");
     sections::io_view(&mut p, &cx);
-    p.part("bode", "Frequency response", |p| sections::responses(p, &cx));
+    p.part("bode", "Frequency response", |p| {
+        sections::responses(p, &cx)
+    });
     if let (Some(s), Some(spec)) = (&swept, sweep) {
         p.part("sweep", &format!("Sweep of {}", spec.name), |p| match s {
             Ok(s) => sections::sweep(p, &cx, s, spec).map_err(|e| e.to_string()),

@@ -111,7 +111,14 @@ pub fn preloads(p: &mut Page, cx: &Context<'_>) {
     let (rows, quiet) = pre.rows();
     if !rows.is_empty() {
         p.table(
-            &["item", "on body", "force [N]", "moment [N m]", "tension", "note"],
+            &[
+                "item",
+                "on body",
+                "force [N]",
+                "moment [N m]",
+                "tension",
+                "note",
+            ],
             &rows,
             2,
         );
@@ -143,7 +150,7 @@ fn mode_rows(modes: &[ModeReport]) -> Vec<Vec<String>> {
         .map(|(k, m)| {
             vec![
                 (k + 1).to_string(),
-                eigenvalue(z(&m.eigenvalue), SIG, m.kind == "oscillatory"),
+                eigenvalue(crate::analyze_text::shown(m), SIG, m.kind == "oscillatory"),
                 g(m.natural_frequency_hz, SIG),
                 opt(m.damping_ratio, "–"),
                 opt(m.time_constant, "∞"),

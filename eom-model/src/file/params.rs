@@ -362,13 +362,13 @@ fn resolve_derived(
             return Err(ctx.error(span, &format!("parameter `{name}`"), "declared twice"));
         }
         // A placeholder parameter (never part of the model's scope).
-        holders.push(
-            scope
-                .declare(name, 0.0)
-                .map_err(|e| {
-                    ctx.error(span, &format!("parameter `{name}`"), declaration_problem(&e))
-                })?,
-        );
+        holders.push(scope.declare(name, 0.0).map_err(|e| {
+            ctx.error(
+                span,
+                &format!("parameter `{name}`"),
+                declaration_problem(&e),
+            )
+        })?);
     }
     let mut parsed = Vec::new();
     for (name, text, span) in derived {

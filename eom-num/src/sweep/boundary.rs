@@ -10,6 +10,9 @@ use super::assign::assign_pinned;
 use super::{Boundary, Branches, Crossing, Ctx, Sweep, SweepError, effective_re, errors_of};
 use crate::modes::EigenvaluesWorkspace;
 
+/// Branch values at an off-grid point, `‖A‖_F` there, and the error estimates (when asked for).
+pub(super) type Tracked = (Vec<Complex64>, f64, Option<Vec<f64>>);
+
 impl Branches {
     /// The sign changes of the non-neutral branches between grid points outside the band,
     /// as `(branch, point before, point after)`, one per conjugate pair.
@@ -99,7 +102,7 @@ where
         tracked: &[Vec<Complex64>],
         z: usize,
         errors: bool,
-    ) -> Result<(Vec<Complex64>, f64, Option<Vec<f64>>), SweepError<E>> {
+    ) -> Result<Tracked, SweepError<E>> {
         let n = tracked[0].len();
         let e = self.eval(x, &mut None, Some(n), errors)?;
         // Neighbouring grid points (xs is monotone).

@@ -481,7 +481,10 @@ impl Sweep {
             neutral_idx,
             band: match errors {
                 Some(e) => Band::Errors(e),
-                None => Band::Relative(self.marginal_rtol.unwrap_or(100.0 * n as f64 * f64::EPSILON)),
+                None => Band::Relative(
+                    self.marginal_rtol
+                        .unwrap_or(100.0 * n as f64 * f64::EPSILON),
+                ),
             },
         }
     }

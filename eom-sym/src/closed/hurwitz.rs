@@ -225,8 +225,7 @@ fn factors_of(f: &mut RationalField, e: Expr) -> Option<Vec<Factor>> {
             .map(|p| {
                 let mut x = Factor::of(render(f, p));
                 // Every term a product of positive atoms: the sign of the coefficients.
-                if x.sign.is_none() && p.vars().iter().zip(&positive).all(|(&v, &pos)| !v || pos)
-                {
+                if x.sign.is_none() && p.vars().iter().zip(&positive).all(|(&v, &pos)| !v || pos) {
                     if p.terms.iter().all(|t| t.1.signum() > 0) {
                         x.sign = Some(true);
                     } else if p.terms.iter().all(|t| t.1.is_negative()) {

@@ -74,10 +74,15 @@ pub const FUNCTIONS: [&str; 10] = [
 /// Names of the constants (`π` too, which is not an identifier).
 pub const CONSTANTS: [&str; 2] = ["pi", "e"];
 
-/// Whether `name` is one of the parser's constants or functions, which no parameter may be
-/// called.
+/// The names no parameter may have: the constants and the elementary functions (`log` and
+/// `float` stay usable as parameters: `log(`, `float(` are always the functions).
+pub const RESERVED: [&str; 10] = [
+    "pi", "e", "sin", "cos", "tan", "exp", "ln", "abs", "sqrt", "atan2",
+];
+
+/// Whether `name` is one of [`RESERVED`].
 pub fn is_reserved(name: &str) -> bool {
-    CONSTANTS.contains(&name) || FUNCTIONS.contains(&name)
+    RESERVED.contains(&name)
 }
 
 /// Parse `input` with parameters resolved in `scope`.

@@ -458,7 +458,11 @@ pub(crate) fn gcd(a: &Poly, b: &Poly, bud: &mut Budget) -> Result<Poly, WorkLimi
 /// `p = c · Π fᵏ`, the `f` monic, square-free and pairwise coprime (`c` a constant). Every
 /// factor of `p` must involve `v` (its content in `v` a constant), which holds for the
 /// primitive part left after the contents in every variable are divided out.
-pub(crate) fn square_free(p: &Poly, v: usize, bud: &mut Budget) -> Result<Vec<(Poly, u32)>, WorkLimit> {
+pub(crate) fn square_free(
+    p: &Poly,
+    v: usize,
+    bud: &mut Budget,
+) -> Result<Vec<(Poly, u32)>, WorkLimit> {
     let dp = p.derivative(v, bud)?;
     let a0 = gcd(p, &dp, bud)?;
     let divide = |x: &Poly, y: &Poly, bud: &mut Budget| -> Result<Poly, WorkLimit> {
