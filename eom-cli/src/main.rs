@@ -17,10 +17,12 @@ mod codegen;
 mod error;
 mod format;
 mod list;
+mod matrices;
 mod output;
 mod params;
 mod pictures;
 mod plot;
+mod preloads;
 mod progress;
 mod report;
 mod sweep;
@@ -365,6 +367,10 @@ struct AnalyzeArgs {
     /// The mode of --plot-initial and --plot-modes: its number in the modes table
     #[arg(long, value_name = "K")]
     mode: Option<usize>,
+    /// Write the numeric A, B, C, D with the state, input and output names: NumPy .npz
+    /// (numpy.load) or MATLAB .mat (load, scipy.io.loadmat), by the extension
+    #[arg(long, value_name = "FILE.npz|FILE.mat")]
+    matrices: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -644,6 +650,18 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             if let Some(name) = &req.solve_for {
                 choice.param(name)?;
             }
+            if let Some(n) = req
+                .max_states
+                .filter(|&n| n == 0 || n > eom_sym::closed::MAX_CLOSED_FORM_STATES)
+            {
+                return Err(CliError::BadArgument {
+                    argument: format!("--max-states {n}"),
+                    problem: format!(
+                        "closed forms are derived for 1 to {} states",
+                        eom_sym::closed::MAX_CLOSED_FORM_STATES
+                    ),
+                });
+            }
             let r = symbolic::symbolic(&choice, &texts, &req)?;
             match a.format {
                 SymbolicFormat::Text => r.to_text(),
@@ -677,6 +695,9 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         });
     }
     let plots = analyze_plots(a)?;
+    if let Some(path) = &a.matrices {
+        matrices::format_of("--matrices", path)?;
+    }
     let bode = a.plot.is_some();
     let freq = (a.freq || range.is_some() || a.points.is_some() || bode).then_some(FreqRequest {
         range,
@@ -697,6 +718,10 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         };
         plot.write(option, path)?;
         stderr.push_str(&plot.notes_text(path));
+    }
+    if let Some(path) = &a.matrices {
+        let written = matrices::write_matrices("--matrices", path, &r.matrices.named())?;
+        stderr.push_str(&output::status_line(path, written));
     }
     Ok(match a.format {
         Format::Text => r.to_text(),

@@ -359,7 +359,11 @@ impl SweepReport {
                         PointStability::Unstable => "unstable",
                     }
                     .to_string(),
-                    pt.max_real.map_or_else(|| "-".into(), |x| g(x, 5)),
+                    match (pt.max_real, pt.tolerance) {
+                        (Some(x), Some(tol)) => format!("{} ±{}", g(x, 5), g(tol, 2)),
+                        (Some(x), None) => g(x, 5),
+                        _ => "-".into(),
+                    },
                     self.eigenvalue_cell(pt),
                 ]
             })
@@ -368,12 +372,17 @@ impl SweepReport {
             &[
                 p.as_str(),
                 "stability",
-                "max Re λ",
+                "max Re λ ± tol",
                 "eigenvalues [1/s] (least stable first)",
             ],
             &rows,
             2,
         ));
+        t.push_str(
+            "  stability: stable when every branch has Re λ < −tol, marginal when one has \
+             |Re λ| ≤ tol and none is unstable;\n  tol = the eigenvalue's error estimate, the \
+             same rule as eom analyze (JSON: points[].tolerance)\n",
+        );
         t.push('\n');
 
         t.push_str(&format!(
@@ -420,6 +429,19 @@ impl SweepReport {
         }
         for i in &r.stable_intervals {
             t.push_str(&format!("  [{}, {}]\n", i.lo, i.hi));
+        }
+        let marginal: Vec<String> = r
+            .points
+            .iter()
+            .filter(|pt| pt.stability == PointStability::Marginal)
+            .map(|pt| g(pt.value, 10))
+            .collect();
+        if !marginal.is_empty() {
+            t.push_str(&wrap_list(
+                &format!("  marginal (not in the intervals) at {p} ="),
+                &marginal,
+                100,
+            ));
         }
         t
     }

@@ -25,7 +25,9 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref};
+use super::eliminate::{
+    EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref, rref_keeping,
+};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
@@ -354,7 +356,7 @@ pub fn reduce<S: Scalar>(
     let dyn_ = cx.project_dynamics(&sel, &pos, &velo)?;
     let [a_ss, b_ss, gamma] = absorb_input_rates(&pos, &dyn_)?;
     let (c_out, d_out) = outputs(a, &sel, &dyn_, &a_ss, &b_ss, &gamma)?;
-    cx.finish(sel, pos, velo, dyn_, [a_ss, b_ss, c_out, d_out])
+    cx.finish(sel, pos, velo, dyn_, [a_ss, b_ss, c_out, d_out], &gamma)
 }
 
 /// What the steps share: the assembled model, the plan to replay, the checks and the report.
@@ -502,12 +504,21 @@ impl<'a, S: Scalar> Reducer<'a, S> {
     fn eliminate_positions(&mut self, sel: &Selection<S>) -> Result<Positions<S>, ModelError> {
         let (a, n) = (self.a, sel.active.len());
         let jlabel = |r: usize| a.holonomic_rows[sel.j_keep[r]].clone();
-        let rj = rref(
+        // The rotations of point masses kept: a pinned point mass's angle is the coordinate
+        // users expect (a pendulum bob's, not its sideways position), and a rotation without
+        // inertia of its own costs the reduced mass matrix nothing (the inertia tie-break
+        // would eliminate it first).
+        let inertia = sel.inertia();
+        let keep: Vec<bool> = (sel.active.iter().zip(&inertia))
+            .map(|(&g, &i)| g % 6 >= 3 && i == 0.0)
+            .collect();
+        let rj = rref_keeping(
             to_rows(&sel.jm),
             n,
             &[],
             self.plan.map(|p| &p.position),
-            &sel.inertia(),
+            &inertia,
+            &keep,
         )?;
         let mut checks = Vec::new();
         record_checks(
@@ -692,7 +703,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
                 .map(|&r| self.coord_name(sel.active[velo.indep_w[r]], true))
                 .collect();
             return Err(ModelError::Unsupported(format!(
-                "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
+                "the reduced mass matrix is singular at the nominal point (massless motion of {}): this reduction needs every independent velocity to carry inertia (the robust method, with orthonormal bases and a descriptor reduction, handles index-1 descriptor models)",
                 names.join(", ")
             )));
         }
@@ -722,6 +733,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         velo: Velocities<S>,
         dyn_: Dynamics<S>,
         [a_ss, b_ss, c_out, d_out]: [SparseMatrix<S>; 4],
+        gamma: &SparseMatrix<S>,
     ) -> Result<Reduction<S>, ModelError> {
         let a = self.a;
         let nx = pos.indep_p.len() + velo.indep_w.len();
@@ -734,6 +746,10 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             .map(|&k| self.coord_name(sel.active[k], false))
             .collect();
         states.extend((velo.indep_w.iter()).map(|&k| self.coord_name(sel.active[k], true)));
+        // With rate inputs the states are x̃ = x − Γu: named for what they are.
+        for (i, name) in states.iter_mut().enumerate() {
+            name.push_str(&shifted_by(gamma.row(i), &a.inputs));
+        }
         let names = SignalNames {
             states,
             inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
@@ -777,6 +793,29 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             },
         })
     }
+}
+
+/// ` − c₁·u₁ + c₂·u₂ …`: the shift `Γu` of a state `x̃ = x − Γu` (step 5), from its row of `Γ`
+/// and the inputs' names; empty when the row is zero.
+fn shifted_by<S: Scalar>(row: &[(usize, S)], inputs: &[(String, String)]) -> String {
+    let mut t = String::new();
+    for (j, c) in row.iter().filter(|e| !e.1.is_zero()) {
+        let label = c.label();
+        let (sign, coef) = match label.strip_prefix('-') {
+            Some(rest) => ("+", rest.to_string()),
+            None => ("−", label),
+        };
+        let coef = if coef == "1" {
+            String::new()
+        } else if coef.contains(['+', '-', '*', '/', ' ', '^']) {
+            format!("({coef})·")
+        } else {
+            format!("{coef}·")
+        };
+        let input = inputs.get(*j).map_or("u", |x| x.0.as_str());
+        t.push_str(&format!(" {sign} {coef}{input}"));
+    }
+    t
 }
 
 /// Step 1 without a plan: a holonomic row with a single entry pins its coordinate, kept

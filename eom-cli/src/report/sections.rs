@@ -91,6 +91,49 @@ pub fn model(p: &mut Page, cx: &Context<'_>) {
     );
 }
 
+/// The static preloads: every item's force and moment on its first body.
+pub fn preloads(p: &mut Page, cx: &Context<'_>) {
+    p.section("preloads", "Static preloads");
+    let Some(pre) = &cx.analysis.preloads else {
+        p.note("Not computed (see the warnings).");
+        return;
+    };
+    if pre.statics == "unloaded" {
+        p.text("None: no loads act on the model.");
+        return;
+    }
+    p.text(&format!(
+        "The force and moment each constraint and elastic item exerts on its first body at the \
+         equilibrium the model's geometry describes, in model axes (moments about the item's \
+         point; a spring's tension positive when it pulls). The statics is {}.",
+        pre.statics
+    ));
+    let (rows, quiet) = pre.rows();
+    if !rows.is_empty() {
+        p.table(
+            &[
+                "item",
+                "on body",
+                "force [N]",
+                "moment [N m]",
+                "tension",
+                "note",
+            ],
+            &rows,
+            2,
+        );
+    }
+    if quiet > 0 {
+        p.text(&format!("{quiet} other item(s) carry no preload."));
+    }
+    if pre.items.iter().any(|x| !x.unique) {
+        p.note(
+            "Not unique: the model has redundant rigid constraints, and any multiple of their \
+             self-stress balances the loads too; the minimum-norm preloads are shown.",
+        );
+    }
+}
+
 fn or_none(s: &str) -> String {
     if s.is_empty() {
         "none".into()
@@ -107,7 +150,7 @@ fn mode_rows(modes: &[ModeReport]) -> Vec<Vec<String>> {
         .map(|(k, m)| {
             vec![
                 (k + 1).to_string(),
-                eigenvalue(z(&m.eigenvalue), SIG, m.kind == "oscillatory"),
+                eigenvalue(crate::analyze_text::shown(m), SIG, m.kind == "oscillatory"),
                 g(m.natural_frequency_hz, SIG),
                 opt(m.damping_ratio, "–"),
                 opt(m.time_constant, "∞"),
@@ -371,11 +414,23 @@ pub fn closed_forms(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
         p.formula("ωn =", wm, wl);
         p.formula("ζ =", zm, zl);
     }
-    if !m.conditions.is_empty() {
-        p.text("Asymptotically stable exactly when all of these hold:");
-    }
-    for (cm, cl) in m.conditions.iter().zip(&l.conditions) {
-        p.formula("", cm, cl);
+    match r.stability_verdict.as_deref() {
+        Some(v) if v.starts_with("never: ") => {
+            p.text(&format!(
+                "Never asymptotically stable: {}.",
+                v.trim_start_matches("never: ")
+            ));
+        }
+        Some("always") => p.text(
+            "Asymptotically stable for all parameter values: every condition holds by the \
+             parameters' declared signs.",
+        ),
+        _ => {
+            p.text("Asymptotically stable exactly when all of these hold:");
+            for (cm, cl) in m.conditions.iter().zip(&l.conditions) {
+                p.formula("", cm, cl);
+            }
+        }
     }
     for ((o, i, tm), (_, _, tl)) in m.transfer.iter().zip(&l.transfer) {
         p.formula(&format!("{o} / {i} ="), tm, tl);

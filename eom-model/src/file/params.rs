@@ -249,8 +249,12 @@ pub(crate) fn declare(
                 assume: spec.range.assumption(),
             })
             .map_err(|e| {
+                let problem = match &e {
+                    ModelError::Sym(s) => declaration_problem(s),
+                    e => e.to_string(),
+                };
                 root.ctx
-                    .error(span, &format!("parameter `{}`", spec.name), e.to_string())
+                    .error(span, &format!("parameter `{}`", spec.name), problem)
             })?;
         scope_params.push(p);
     }
@@ -358,11 +362,13 @@ fn resolve_derived(
             return Err(ctx.error(span, &format!("parameter `{name}`"), "declared twice"));
         }
         // A placeholder parameter (never part of the model's scope).
-        holders.push(
-            scope
-                .declare(name, 0.0)
-                .map_err(|e| ctx.error(span, &format!("parameter `{name}`"), e.to_string()))?,
-        );
+        holders.push(scope.declare(name, 0.0).map_err(|e| {
+            ctx.error(
+                span,
+                &format!("parameter `{name}`"),
+                declaration_problem(&e),
+            )
+        })?);
     }
     let mut parsed = Vec::new();
     for (name, text, span) in derived {
@@ -508,4 +514,13 @@ pub(crate) fn vector(
 fn empty_table() -> &'static toml::de::DeTable<'static> {
     static EMPTY: std::sync::OnceLock<toml::de::DeTable<'static>> = std::sync::OnceLock::new();
     EMPTY.get_or_init(Default::default)
+}
+
+/// What is wrong with a declaration, without the parameter's name (the file's message names it
+/// already).
+fn declaration_problem(e: &eom_sym::SymError) -> String {
+    match e {
+        eom_sym::SymError::BadParameter { problem, .. } => problem.clone(),
+        e => e.to_string(),
+    }
 }
