@@ -69,7 +69,7 @@ impl Hankel {
 /// perturbation approximation) to order r (Glover 1984; Enns 1984). Every value counts, also
 /// repeated ones, so the bound is never below the one with distinct values.
 pub(crate) fn bound(sigma: &[f64], r: usize) -> f64 {
-    2.0 * sigma[r.min(sigma.len())..].iter().sum::<f64>()
+    2.0 * sigma[r.min(sigma.len())..].iter().fold(0.0, |s, x| s + x)
 }
 
 /// The reduced `(A, B, C, D)` by the singular perturbation approximation of the balanced
