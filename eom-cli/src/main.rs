@@ -22,6 +22,7 @@ mod params;
 mod pictures;
 mod plot;
 mod progress;
+mod reduce;
 mod report;
 mod sweep;
 mod symbolic;
@@ -110,6 +111,21 @@ enum Command {
         include it with `include!`."
     )]
     Codegen(CodegenArgs),
+    /// Reduce a model for a controller: Hankel singular values, the error bound per order,
+    /// the error measured on a frequency grid, the modes kept
+    #[command(long_about = "Reduce a model to the dynamics that matter, with its error.\n\n\
+        The modes a reduction must not touch — structural zeros (a vehicle's position and \
+        heading), other zero, marginal and unstable modes — are split off and kept whole; the \
+        stable rest is reduced: --method balanced (square-root balanced truncation, the \
+        default), matchdc (its singular perturbation form: the steady-state gain kept exactly) \
+        or modal (the modes in --band LOW:HIGH Hz, or the slowest ones, kept with their \
+        eigenvalues). Prints the Hankel singular values of the stable part with the bound \
+        2·Σσ on ‖G − G_r‖∞ beyond each order, the error measured on a frequency grid and at \
+        DC, the modes of the reduced model with the full model's eigenvalue each stands for, \
+        and (with --format json) the reduced A, B, C, D. --order R sets the states in all, \
+        --tol E the largest bound (in the units of G); by default the bound is kept below \
+        1e-3 σ₁. --plot FILE.svg draws the singular values and the bound per order.")]
+    Reduce(ReduceArgs),
     /// Show the model in closed form: A, B, C, D, the characteristic polynomial, stability
     /// conditions and transfer functions
     #[command(long_about = "Show the model in closed form.\n\n\
@@ -399,6 +415,47 @@ struct SweepArgs {
     plot_locus: Option<PathBuf>,
 }
 
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum ReduceMethodArg {
+    /// Square-root balanced truncation (bound 2·Σσ)
+    Balanced,
+    /// Balanced singular perturbation: the same bound, the steady-state gain matched
+    Matchdc,
+    /// Modal truncation: the modes in --band (or the slowest) kept exactly
+    Modal,
+}
+
+#[derive(Args, Debug)]
+struct ReduceArgs {
+    /// Model name (see `eom list`) or model file (.toml)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// Set a parameter (repeatable); the others keep their defaults
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// States of the reduced model in all (the kept ones included)
+    #[arg(long, value_name = "R", conflicts_with = "tol")]
+    order: Option<usize>,
+    /// Largest error bound 2·Σσ (units of G; balanced and matchdc)
+    #[arg(long, value_name = "E")]
+    tol: Option<f64>,
+    /// How the stable part is reduced
+    #[arg(long, value_enum, default_value_t = ReduceMethodArg::Balanced)]
+    method: ReduceMethodArg,
+    /// Modal truncation: keep the stable modes with natural frequency in LOW:HIGH Hz
+    #[arg(long, value_name = "LOW:HIGH")]
+    band: Option<String>,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Draw the Hankel singular values and the bound per order into an SVG file
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// Linearization method
+    #[arg(long = "linearize", value_enum, default_value_t = MethodArg::Numeric)]
+    linearize: MethodArg,
+}
+
 #[derive(Args, Debug)]
 struct ReportArgs {
     /// Model name (see `eom list`) or model file (.toml)
@@ -552,6 +609,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             }
         }
         Command::Analyze(a) => run_analyze(&a, &mut stderr)?,
+        Command::Reduce(r) => run_reduce(&r, &mut stderr)?,
         Command::Sweep(s) if s.compare.is_some() => sweep_compare(&s, cli.quiet, &mut stderr)?,
         Command::Sweep(s) => run_sweep(&s, cli.quiet, &mut stderr)?,
         Command::Report(r) => {
@@ -695,6 +753,47 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
             _ => analyze_picture(a, option, &choice, &overrides, &lin)?,
         };
         plot.write(option, path)?;
+        stderr.push_str(&plot.notes_text(path));
+    }
+    Ok(match a.format {
+        Format::Text => r.to_text(),
+        Format::Json => json(&r)?,
+    })
+}
+
+/// `eom reduce`: the reduction, printed, and its plot.
+fn run_reduce(a: &ReduceArgs, stderr: &mut String) -> Result<String, CliError> {
+    let choice = ModelChoice::resolve(&a.model)?;
+    let overrides = choice.parse_sets(&a.set)?;
+    if let Some(path) = &a.plot {
+        plot::check_target("--plot", path)?;
+    }
+    let band = a
+        .band
+        .as_deref()
+        .map(|b| {
+            params::parse_band(b).map_err(|problem| CliError::BadArgument {
+                argument: format!("--band {}", params::abbreviate(b)),
+                problem,
+            })
+        })
+        .transpose()?;
+    let method = match a.method {
+        ReduceMethodArg::Balanced => eom_num::model_reduction::ReductionMethod::Balanced,
+        ReduceMethodArg::Matchdc => eom_num::model_reduction::ReductionMethod::MatchDc,
+        ReduceMethodArg::Modal => eom_num::model_reduction::ReductionMethod::Modal,
+    };
+    let req = reduce::ReduceRequest {
+        method,
+        order: a.order,
+        tol: a.tol,
+        band,
+        linearization: a.linearize.into(),
+    };
+    let (r, _) = reduce::reduce(&choice, &overrides, &req)?;
+    if let Some(path) = &a.plot {
+        let plot = plot::hankel::hankel_plot(&r)?;
+        plot.write("--plot", path)?;
         stderr.push_str(&plot.notes_text(path));
     }
     Ok(match a.format {
