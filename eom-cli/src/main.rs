@@ -525,6 +525,17 @@ struct CodegenArgs {
     /// Name of the generated module (default: from the model name)
     #[arg(long, value_name = "NAME")]
     module: Option<String>,
+    /// Generate a reduced model of R states: balanced truncation at the nominal point, its
+    /// bases applied to A(p), B(p), C(p) (see `eom reduce`)
+    #[arg(long, value_name = "R")]
+    reduce: Option<usize>,
+    /// With --reduce: modal instead of balanced truncation (the R − kept slowest modes)
+    #[arg(long, requires = "reduce")]
+    reduce_modal: bool,
+    /// Also generate `eval_discrete`: the zero-order-hold Ad = e^{A h}, Bd = ∫e^{A t}dt B at a
+    /// sample time h (no allocation)
+    #[arg(long)]
+    discrete: bool,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -636,6 +647,9 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 simplify: c.simplify,
                 simplify_always: c.simplify_always,
                 module: c.module,
+                reduce: c.reduce,
+                reduce_modal: c.reduce_modal,
+                discrete: c.discrete,
             };
             codegen::codegen(&choice, &overrides, &req, &c.output)?
         }
