@@ -147,13 +147,21 @@ fn reduced(out: &std::path::Path) {
     for (model, order, module) in [("chain50", 10, "chain50_r10"), ("bicycle", 5, "bicycle_r5")] {
         let m = models::build(model, &[]).expect(model);
         let sym = eom_model::Linearizer::new(&m).symbolic().expect(model);
-        let opts = EmitOptions::default().module(module).model_name(model).discrete(true);
-        let (e, _) = eom_codegen::reduced::emit_reduced(&sym, order, ReductionMethod::Balanced, &opts)
-            .unwrap_or_else(|e| panic!("{model}: {e}"));
+        let opts = EmitOptions::default()
+            .module(module)
+            .model_name(model)
+            .discrete(true);
+        let (e, _) =
+            eom_codegen::reduced::emit_reduced(&sym, order, ReductionMethod::Balanced, &opts)
+                .unwrap_or_else(|e| panic!("{model}: {e}"));
         text.push_str(&e.source);
     }
     let e = builtin("quarter_car")
-        .options(EmitOptions::default().module("quarter_car_discrete").discrete(true))
+        .options(
+            EmitOptions::default()
+                .module("quarter_car_discrete")
+                .discrete(true),
+        )
         .emit()
         .expect("quarter_car");
     text.push_str(&e.source);

@@ -66,8 +66,8 @@ pub fn codegen(
             } else {
                 ReductionMethod::Balanced
             };
-            let (e, nominal) = eom_codegen::reduced::emit_reduced(&sym, r, method, &opts)
-                .map_err(|e| match e {
+            let (e, nominal) = eom_codegen::reduced::emit_reduced(&sym, r, method, &opts).map_err(
+                |e| match e {
                     eom_codegen::CodegenError::Num(eom_num::NumError::InvalidOption(problem)) => {
                         CliError::BadArgument {
                             argument: format!("--reduce {r}"),
@@ -75,7 +75,8 @@ pub fn codegen(
                         }
                     }
                     e => e.into(),
-                })?;
+                },
+            )?;
             let note = format!(
                 "reduced at the nominal point from {} to {} states by {} truncation ({} kept \
                  whole); bound 2·Σσ = {}, measured {:e}\n",

@@ -113,7 +113,8 @@ enum Command {
     Codegen(CodegenArgs),
     /// Reduce a model for a controller: Hankel singular values, the error bound per order,
     /// the error measured on a frequency grid, the modes kept
-    #[command(long_about = "Reduce a model to the dynamics that matter, with its error.\n\n\
+    #[command(
+        long_about = "Reduce a model to the dynamics that matter, with its error.\n\n\
         The modes a reduction must not touch — structural zeros (a vehicle's position and \
         heading), other zero, marginal and unstable modes — are split off and kept whole; the \
         stable rest is reduced: --method balanced (square-root balanced truncation, the \
@@ -124,7 +125,8 @@ enum Command {
         DC, the modes of the reduced model with the full model's eigenvalue each stands for, \
         and (with --format json) the reduced A, B, C, D. --order R sets the states in all, \
         --tol E the largest bound (in the units of G); by default the bound is kept below \
-        1e-3 σ₁. --plot FILE.svg draws the singular values and the bound per order.")]
+        1e-3 σ₁. --plot FILE.svg draws the singular values and the bound per order."
+    )]
     Reduce(ReduceArgs),
     /// Show the model in closed form: A, B, C, D, the characteristic polynomial, stability
     /// conditions and transfer functions

@@ -365,7 +365,9 @@ pub fn parse_band(text: &str) -> Result<(f64, f64), String> {
     let lo = parse_number(lo).map_err(|e| format!("LOW: {e}"))?;
     let hi = parse_number(hi).map_err(|e| format!("HIGH: {e}"))?;
     if !(lo >= 0.0 && hi >= lo) {
-        return Err(format!("need 0 ≤ LOW ≤ HIGH, got LOW = {lo:?}, HIGH = {hi:?}"));
+        return Err(format!(
+            "need 0 ≤ LOW ≤ HIGH, got LOW = {lo:?}, HIGH = {hi:?}"
+        ));
     }
     Ok((lo, hi))
 }

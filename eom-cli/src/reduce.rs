@@ -245,7 +245,11 @@ fn kept_modes(
     ss: &eom_num::StateSpace<f64>,
 ) -> Vec<KeptMode> {
     let kept_eigs: Vec<Complex64> = {
-        let a = red.state_space.a.view((0, 0), (red.kept, red.kept)).clone_owned();
+        let a = red
+            .state_space
+            .a
+            .view((0, 0), (red.kept, red.kept))
+            .clone_owned();
         eom_num::modes::eigenvalues(&a).unwrap_or_default()
     };
     let mut used = vec![false; full.modes.len()];
@@ -257,19 +261,28 @@ fn kept_modes(
             .iter()
             .enumerate()
             .filter(|(k, f)| !used[*k] && f.eigenvalue.im >= 0.0)
-            .min_by(|a, b| (a.1.eigenvalue - z).norm().total_cmp(&(b.1.eigenvalue - z).norm()));
+            .min_by(|a, b| {
+                (a.1.eigenvalue - z)
+                    .norm()
+                    .total_cmp(&(b.1.eigenvalue - z).norm())
+            });
         let (fz, moves) = match nearest {
             Some((k, f)) => {
                 used[k] = true;
                 let coord = f.reference_index.and_then(|i| {
                     let body = ss.names.bodies.get(i / 6)?;
-                    Some(format!("{body}.{}", ["x", "y", "z", "rx", "ry", "rz"][i % 6]))
+                    Some(format!(
+                        "{body}.{}",
+                        ["x", "y", "z", "rx", "ry", "rz"][i % 6]
+                    ))
                 });
                 (f.eigenvalue, coord)
             }
             None => (Complex64::new(f64::NAN, f64::NAN), None),
         };
-        let kept = kept_eigs.iter().any(|k| (k - z).norm() <= 1e-9 * z.norm().max(1e-300))
+        let kept = kept_eigs
+            .iter()
+            .any(|k| (k - z).norm() <= 1e-9 * z.norm().max(1e-300))
             || (m.kind == ModeKind::Zero && red.kept > 0);
         out.push(KeptMode {
             eigenvalue: z.into(),
@@ -304,7 +317,11 @@ impl ReduceReport {
             .iter()
             .map(|(n, v)| format!("{n} = {}", g(*v, SIG)))
             .collect();
-        t.push_str(&crate::format::wrap_list("Parameters:", &params, crate::analyze::WIDTH));
+        t.push_str(&crate::format::wrap_list(
+            "Parameters:",
+            &params,
+            crate::analyze::WIDTH,
+        ));
         t.push_str(&format!(
             "Kept whole: {} state(s) — zero, marginal and unstable modes ({} structural zero(s)); \
              the stable part ({} states) is reduced\n\n",
@@ -386,7 +403,11 @@ impl ReduceReport {
                 ]
             })
             .collect();
-        t.push_str(&table(&["#", "sigma", "order", "bound 2·Σσ beyond"], &rows, 2));
+        t.push_str(&table(
+            &["#", "sigma", "order", "bound 2·Σσ beyond"],
+            &rows,
+            2,
+        ));
         if s.len() > shown {
             t.push_str(&format!(
                 "  ({} more below rounding: uncontrollable or unobservable to working precision)\n",

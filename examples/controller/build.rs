@@ -14,7 +14,9 @@ fn main() {
     // The bicycle reduced by balanced truncation at the nominal point (the two structural
     // zeros kept whole, the fast castor mode removed), discretised at run time.
     let model = models::build("bicycle", &[]).expect("bicycle");
-    let sym = eom_model::Linearizer::new(&model).symbolic().expect("bicycle");
+    let sym = eom_model::Linearizer::new(&model)
+        .symbolic()
+        .expect("bicycle");
     let opts = eom_codegen::EmitOptions::default()
         .f32()
         .module("bicycle_reduced")
@@ -28,7 +30,8 @@ fn main() {
     )
     .expect("reduced bicycle");
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
-    eom_codegen::build::write_if_changed(&out.join("bicycle_reduced.rs"), &e.source).expect("write");
+    eom_codegen::build::write_if_changed(&out.join("bicycle_reduced.rs"), &e.source)
+        .expect("write");
     let mut index = String::new();
     for info in models::catalogue() {
         // A pattern (`chainN`, `chainpN`) at size 10.

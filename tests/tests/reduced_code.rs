@@ -51,7 +51,11 @@ fn expm_dd(m: &DMatrix<f64>) -> Vec<Vec<Dd>> {
             .collect()
     };
     let mut sum: Vec<Vec<Dd>> = (0..n)
-        .map(|i| (0..n).map(|j| Dd::from_f64(if i == j { 1.0 } else { 0.0 })).collect())
+        .map(|i| {
+            (0..n)
+                .map(|j| Dd::from_f64(if i == j { 1.0 } else { 0.0 }))
+                .collect()
+        })
         .collect();
     let mut term = sum.clone();
     for k in 1..=40 {
@@ -94,7 +98,11 @@ fn discrete_error(a: &[f64], b: &[f64], n: usize, m: usize, h: f64, ad: &[f64], 
     for i in 0..n {
         for j in 0..n + m {
             let r = e[i][j];
-            let got = if j < n { ad[i + j * n] } else { bd[i + (j - n) * n] };
+            let got = if j < n {
+                ad[i + j * n]
+            } else {
+                bd[i + (j - n) * n]
+            };
             big = big.max(r.to_f64().abs());
             err = err.max((Dd::from_f64(got) - r).abs().to_f64());
         }
@@ -142,7 +150,10 @@ fn discrete_matrices_match_a_double_double_exponential() {
     discrete_check!(quarter_car_discrete, rng, worst, 16);
     discrete_check!(bicycle_r5, rng, worst, 16);
     discrete_check!(chain50_r10, rng, worst, 16);
-    eprintln!("largest relative error of Ad, Bd: {:.3e} ({} at h = {})", worst.0, worst.1.0, worst.1.1);
+    eprintln!(
+        "largest relative error of Ad, Bd: {:.3e} ({} at h = {})",
+        worst.0, worst.1.0, worst.1.1
+    );
     assert!(worst.0 < 1e-13, "{worst:?}");
 }
 
@@ -151,14 +162,27 @@ fn response_error(full: &StateSpace<f64>, red: &StateSpace<f64>) -> f64 {
     let r = HessenbergForm::new(red).expect("reduced");
     let (mut wf, mut wr) = (f.workspace(), r.workspace());
     let (mut gf, mut gr) = ([Complex64::new(0.0, 0.0)], [Complex64::new(0.0, 0.0)]);
-    let mut omegas: Vec<f64> = (0..=2000).map(|k| 1e-3 * 1e4f64.powf(k as f64 / 2000.0)).collect();
-    omegas.extend(eom_num::modes::eigenvalues(&full.a).expect("eig").iter().map(|z| z.im.abs()));
+    let mut omegas: Vec<f64> = (0..=2000)
+        .map(|k| 1e-3 * 1e4f64.powf(k as f64 / 2000.0))
+        .collect();
+    omegas.extend(
+        eom_num::modes::eigenvalues(&full.a)
+            .expect("eig")
+            .iter()
+            .map(|z| z.im.abs()),
+    );
     omegas.push(0.0);
     let mut worst = 0.0f64;
     for w in omegas {
         let s = Complex64::new(0.0, w);
-        assert_eq!(f.evaluate_in(s, &mut wf, &mut gf).unwrap(), SolveStatus::Regular);
-        assert_eq!(r.evaluate_in(s, &mut wr, &mut gr).unwrap(), SolveStatus::Regular);
+        assert_eq!(
+            f.evaluate_in(s, &mut wf, &mut gf).unwrap(),
+            SolveStatus::Regular
+        );
+        assert_eq!(
+            r.evaluate_in(s, &mut wr, &mut gr).unwrap(),
+            SolveStatus::Regular
+        );
         worst = worst.max((gf[0] - gr[0]).norm());
     }
     worst
@@ -174,7 +198,9 @@ fn reduced_chain50_follows_the_full_model_within_the_bound_near_nominal() {
     for _ in 0..12 {
         let p: [f64; g::N_PARAMS] =
             core::array::from_fn(|k| nominal[k] * (1.0 + 0.1 * (rng.random::<f64>() - 0.5)));
-        state.evaluate(&g::Params::from_array(p)).expect("valid near nominal");
+        state
+            .evaluate(&g::Params::from_array(p))
+            .expect("valid near nominal");
         let red = StateSpace::new(
             DMatrix::from_column_slice(g::N_STATES, g::N_STATES, state.a()),
             DMatrix::from_column_slice(g::N_STATES, g::N_INPUTS, state.b()),
@@ -187,9 +213,16 @@ fn reduced_chain50_follows_the_full_model_within_the_bound_near_nominal() {
         let full = Linearizer::new(&model).run().unwrap().state_space;
         let e = response_error(&full, &red);
         worst = worst.max(e);
-        assert!(e <= g::REDUCE_BOUND, "{p:?}: error {e} above the nominal bound {}", g::REDUCE_BOUND);
+        assert!(
+            e <= g::REDUCE_BOUND,
+            "{p:?}: error {e} above the nominal bound {}",
+            g::REDUCE_BOUND
+        );
     }
-    eprintln!("chain50 → 10 states at ±5 %: largest error {worst:.4} (nominal bound {:.4})", g::REDUCE_BOUND);
+    eprintln!(
+        "chain50 → 10 states at ±5 %: largest error {worst:.4} (nominal bound {:.4})",
+        g::REDUCE_BOUND
+    );
 }
 
 #[test]

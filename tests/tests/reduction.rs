@@ -31,7 +31,12 @@ fn reference(model: &str) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
         .find(|c| c["model"] == model)
         .unwrap_or_else(|| panic!("{model} in hankel.json"));
     let list = |k: &str| -> Vec<f64> {
-        case[k].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect()
+        case[k]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
     };
     let resolved = case["scipy_resolved"]
         .as_array()
@@ -55,16 +60,32 @@ fn check_hankel(name: &str) {
     let mut checked = 0;
     for (i, (&s, &e)) in r.hankel.iter().zip(&exact).enumerate() {
         if e > 1e3 * floor {
-            assert!((s - e).abs() <= 1e-8 * e, "{name} σ{}: {s} against {e}", i + 1);
+            assert!(
+                (s - e).abs() <= 1e-8 * e,
+                "{name} σ{}: {s} against {e}",
+                i + 1
+            );
             checked += 1;
         } else {
-            assert!(s <= 1e3 * floor + e, "{name} σ{}: {s} above the floor {floor}", i + 1);
+            assert!(
+                s <= 1e3 * floor + e,
+                "{name} σ{}: {s} above the floor {floor}",
+                i + 1
+            );
         }
         if resolved[i] {
-            assert!((s - scipy[i]).abs() <= 1e-8 * scipy[i], "{name} σ{} SciPy {}", i + 1, scipy[i]);
+            assert!(
+                (s - scipy[i]).abs() <= 1e-8 * scipy[i],
+                "{name} σ{} SciPy {}",
+                i + 1,
+                scipy[i]
+            );
         }
     }
-    eprintln!("{name}: {checked} of {} Hankel singular values checked to 1e-8", exact.len());
+    eprintln!(
+        "{name}: {checked} of {} Hankel singular values checked to 1e-8",
+        exact.len()
+    );
 }
 
 #[test]
@@ -95,7 +116,9 @@ fn the_bound_holds_for_every_order_of_every_catalogue_model() {
             None => info.name.to_string(),
         };
         let ss = linearize(&name, &[]);
-        let first = Reducer::new(&ss).run().unwrap_or_else(|e| panic!("{name}: {e}"));
+        let first = Reducer::new(&ss)
+            .run()
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
         for r in first.kept..=first.kept + first.numerical_order {
             for method in [ReductionMethod::Balanced, ReductionMethod::MatchDc] {
                 let red = Reducer::new(&ss)
@@ -126,7 +149,10 @@ fn the_bound_holds_for_every_order_of_every_catalogue_model() {
 }
 
 /// The reduced eigenvalues: how many are exactly zero, and the oscillatory one nearest `z`.
-fn zeros_and_nearest(red: &ReducedModel, z: num_complex::Complex64) -> (usize, num_complex::Complex64) {
+fn zeros_and_nearest(
+    red: &ReducedModel,
+    z: num_complex::Complex64,
+) -> (usize, num_complex::Complex64) {
     let ev = eom_num::modes::eigenvalues(&red.state_space.a).expect("eigenvalues");
     let zeros = ev.iter().filter(|e| e.re == 0.0 && e.im == 0.0).count();
     let nearest = ev
@@ -152,7 +178,10 @@ fn the_bicycle_at_5_m_s_keeps_its_zeros_and_its_weave() {
     assert_eq!((red.kept, red.structural_zeros), (2, 2));
     let (zeros, near) = zeros_and_nearest(&red, weave);
     assert_eq!(zeros, 2, "{:?}", red.state_space.a);
-    assert!((near - weave).norm() < 0.03 * weave.norm(), "weave {weave}, reduced {near}");
+    assert!(
+        (near - weave).norm() < 0.03 * weave.norm(),
+        "weave {weave}, reduced {near}"
+    );
     assert!(within_bound(&red));
     // Modal truncation in a band around the weave keeps it exactly, and the zeros.
     let f = weave.norm() / (2.0 * std::f64::consts::PI);
@@ -164,5 +193,8 @@ fn the_bicycle_at_5_m_s_keeps_its_zeros_and_its_weave() {
     assert_eq!(modal.order(), 4);
     let (zeros, near) = zeros_and_nearest(&modal, weave);
     assert_eq!(zeros, 2);
-    assert!((near - weave).norm() < 1e-12 * weave.norm(), "weave {weave}, modal {near}");
+    assert!(
+        (near - weave).norm() < 1e-12 * weave.norm(),
+        "weave {weave}, modal {near}"
+    );
 }

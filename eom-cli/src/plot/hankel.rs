@@ -3,8 +3,7 @@
 //! the error measured at the chosen order, on a logarithmic axis.
 
 use super::{
-    Mark, Plot, bounds, color, draw_legend, draw_mesh, drawing, log_axis_range, render,
-    with_title,
+    Mark, Plot, bounds, color, draw_legend, draw_mesh, drawing, log_axis_range, render, with_title,
 };
 use crate::error::CliError;
 use crate::format::g;
@@ -26,9 +25,16 @@ pub fn hankel_plot(r: &ReduceReport) -> Result<Plot, CliError> {
         .enumerate()
         .map(|(i, s)| (kept + i as f64 + 1.0, *s))
         .collect();
-    let bound: Vec<(f64, f64)> = r.bounds.iter().map(|b| (b.states as f64, b.bound)).collect();
+    let bound: Vec<(f64, f64)> = r
+        .bounds
+        .iter()
+        .map(|b| (b.states as f64, b.bound))
+        .collect();
     let positive = |v: &[(f64, f64)]| -> Vec<(f64, f64)> {
-        v.iter().copied().filter(|p| p.1 > 0.0 && p.1.is_finite()).collect()
+        v.iter()
+            .copied()
+            .filter(|p| p.1 > 0.0 && p.1.is_finite())
+            .collect()
     };
     let (sig_p, bound_p) = (positive(&sigma), positive(&bound));
     let mut notes = Vec::new();
@@ -48,15 +54,34 @@ pub fn hankel_plot(r: &ReduceReport) -> Result<Plot, CliError> {
     ));
     let x = (kept - 0.5, (r.full_states as f64 + 0.5).max(kept + 1.5));
     let mut rows = vec![
-        (Mark::Cross(color(0)), "σᵢ, at the order that keeps it".to_string()),
-        (Mark::Swatch(color(1)), "bound 2·Σσ beyond the order".to_string()),
-        (Mark::Ring(color(3)), format!("measured error at order {}: {}", r.states, g(r.measured.hinf, 4))),
-        (Mark::Dashed(RGBColor(90, 90, 90)), format!("chosen order {}", r.states)),
+        (
+            Mark::Cross(color(0)),
+            "σᵢ, at the order that keeps it".to_string(),
+        ),
+        (
+            Mark::Swatch(color(1)),
+            "bound 2·Σσ beyond the order".to_string(),
+        ),
+        (
+            Mark::Ring(color(3)),
+            format!(
+                "measured error at order {}: {}",
+                r.states,
+                g(r.measured.hinf, 4)
+            ),
+        ),
+        (
+            Mark::Dashed(RGBColor(90, 90, 90)),
+            format!("chosen order {}", r.states),
+        ),
     ];
     if r.kept_whole > 0 {
         rows.push((
             Mark::Text,
-            format!("{} state(s) kept whole (zero, marginal, unstable)", r.kept_whole),
+            format!(
+                "{} state(s) kept whole (zero, marginal, unstable)",
+                r.kept_whole
+            ),
         ));
     }
     rows.extend(notes.iter().map(|n| (Mark::Note, n.clone())));
@@ -71,14 +96,25 @@ pub fn hankel_plot(r: &ReduceReport) -> Result<Plot, CliError> {
             .map_err(drawing)?;
         draw_mesh(&mut chart, "states of the reduced model", "σ, bound, error")?;
         chart
-            .draw_series(sig_p.iter().map(|&p| Cross::new(p, 5, color(0).stroke_width(2))))
+            .draw_series(
+                sig_p
+                    .iter()
+                    .map(|&p| Cross::new(p, 5, color(0).stroke_width(2))),
+            )
             .map_err(drawing)?;
         chart
-            .draw_series(LineSeries::new(bound_p.iter().copied(), color(1).stroke_width(super::CURVE_WIDTH)))
+            .draw_series(LineSeries::new(
+                bound_p.iter().copied(),
+                color(1).stroke_width(super::CURVE_WIDTH),
+            ))
             .map_err(drawing)?;
         if measured.1 > 0.0 {
             chart
-                .draw_series(std::iter::once(Circle::new(measured, 6, color(3).stroke_width(2))))
+                .draw_series(std::iter::once(Circle::new(
+                    measured,
+                    6,
+                    color(3).stroke_width(2),
+                )))
                 .map_err(drawing)?;
         }
         chart

@@ -96,13 +96,9 @@ pub(crate) fn singular_perturbation(
     let c1 = cb.columns(0, r);
     let c2 = cb.columns(r, f);
     let lu = a22.lu();
-    let singular = || NumError::Singular("the residualised block A₂₂ of the balanced realization".into());
+    let singular =
+        || NumError::Singular("the residualised block A₂₂ of the balanced realization".into());
     let x = lu.solve(&a21.clone_owned()).ok_or_else(singular)?;
     let y = lu.solve(&b2.clone_owned()).ok_or_else(singular)?;
-    Ok([
-        a11 - a12 * &x,
-        b1 - a12 * &y,
-        c1 - c2 * &x,
-        d - c2 * &y,
-    ])
+    Ok([a11 - a12 * &x, b1 - a12 * &y, c1 - c2 * &x, d - c2 * &y])
 }

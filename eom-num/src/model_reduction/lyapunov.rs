@@ -184,7 +184,9 @@ mod tests {
     #[test]
     fn factors_solve_their_lyapunov_equations() {
         // A stable matrix with real and complex eigenvalues, in Schur form.
-        let a0 = DMatrix::from_fn(6, 6, |i, j| ((i * 6 + j) as f64 * 0.9).sin() - if i == j { 2.5 } else { 0.0 });
+        let a0 = DMatrix::from_fn(6, 6, |i, j| {
+            ((i * 6 + j) as f64 * 0.9).sin() - if i == j { 2.5 } else { 0.0 }
+        });
         let s = RealSchur::new(&a0).unwrap();
         let a = s.t;
         let b = DMatrix::from_fn(6, 2, |i, j| (i as f64 - 2.0 * j as f64).cos());
@@ -192,10 +194,18 @@ mod tests {
         let u = observability_factor(&a, &c).unwrap();
         let x = u.transpose() * &u;
         let r = a.transpose() * &x + &x * &a + c.transpose() * &c;
-        assert!(r.norm() < 1e-13 * x.norm().max(1.0), "observability residual {}", r.norm());
+        assert!(
+            r.norm() < 1e-13 * x.norm().max(1.0),
+            "observability residual {}",
+            r.norm()
+        );
         let l = controllability_factor(&a, &b).unwrap();
         let p = &l * l.transpose();
         let r = &a * &p + &p * a.transpose() + &b * b.transpose();
-        assert!(r.norm() < 1e-13 * p.norm().max(1.0), "controllability residual {}", r.norm());
+        assert!(
+            r.norm() < 1e-13 * p.norm().max(1.0),
+            "controllability residual {}",
+            r.norm()
+        );
     }
 }

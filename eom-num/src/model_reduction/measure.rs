@@ -42,7 +42,11 @@ fn sigma_max(g: &[Complex64], p: usize, m: usize) -> f64 {
 /// decade from a hundredth of the slowest pole to a hundred times the fastest, ω = 0, and
 /// around every lightly damped pole `ω_d(1 + t ζ)` for t in ±{0, ¼, ½, 1, 2}.
 fn grid(poles: &[Complex64]) -> Vec<f64> {
-    let mags: Vec<f64> = poles.iter().map(|z| z.norm()).filter(|m| *m > 0.0).collect();
+    let mags: Vec<f64> = poles
+        .iter()
+        .map(|z| z.norm())
+        .filter(|m| *m > 0.0)
+        .collect();
     let lo = mags.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = mags.iter().copied().fold(0.0, f64::max);
     let (lo, hi) = if lo.is_finite() && hi > 0.0 {

@@ -270,7 +270,8 @@ impl<'a> Reducer<'a> {
                     let ab = wm.transpose() * &sp.a_s * &vm;
                     let bb = wm.transpose() * &sp.b_s;
                     let cb = &sp.c_s * &vm;
-                    let [a, b, c, dd] = balanced::singular_perturbation(&ab, &bb, &cb, &zero_d, rs)?;
+                    let [a, b, c, dd] =
+                        balanced::singular_perturbation(&ab, &bb, &cb, &zero_d, rs)?;
                     (a, b, c, dd)
                 } else if ns > 0 {
                     (
@@ -346,15 +347,17 @@ impl<'a> Reducer<'a> {
             }
         }
         match self.order {
-            OrderChoice::Tolerance(t) if !(t.is_finite() && t > 0.0) => Err(invalid(format!(
-                "tolerance {t}: must be finite and > 0"
-            ))),
+            OrderChoice::Tolerance(t) if !(t.is_finite() && t > 0.0) => {
+                Err(invalid(format!("tolerance {t}: must be finite and > 0")))
+            }
             OrderChoice::Tolerance(_) if self.method == ReductionMethod::Modal => Err(invalid(
                 "modal truncation has no a-priori error bound to meet a tolerance: give an \
                  order or a band"
                     .into(),
             )),
-            OrderChoice::Default if self.method == ReductionMethod::Modal && self.band_hz.is_none() => {
+            OrderChoice::Default
+                if self.method == ReductionMethod::Modal && self.band_hz.is_none() =>
+            {
                 Err(invalid(
                     "modal truncation needs an order or a frequency band".into(),
                 ))
@@ -399,9 +402,9 @@ impl<'a> Reducer<'a> {
                 Ok(r - nu)
             }
             OrderChoice::Tolerance(t) => Ok(smallest(t)),
-            OrderChoice::Default => {
-                Ok(smallest(DEFAULT_RELATIVE_TOLERANCE * sigma.first().copied().unwrap_or(0.0)))
-            }
+            OrderChoice::Default => Ok(smallest(
+                DEFAULT_RELATIVE_TOLERANCE * sigma.first().copied().unwrap_or(0.0),
+            )),
         }
     }
 
@@ -426,7 +429,10 @@ impl<'a> Reducer<'a> {
             )));
         }
         let k = r - nu;
-        let mut mags: Vec<f64> = schur::eigenvalues(&sp.a_s).iter().map(|z| z.norm()).collect();
+        let mut mags: Vec<f64> = schur::eigenvalues(&sp.a_s)
+            .iter()
+            .map(|z| z.norm())
+            .collect();
         mags.sort_by(f64::total_cmp);
         if k == 0 {
             return modal::modal_bases(&sp.a_s, |_| false);
@@ -495,9 +501,11 @@ fn full_bases(
     let n = sp.to_x.nrows();
     let nu = sp.kept();
     let mut v = DMatrix::zeros(n, nu + rs);
-    v.view_mut((0, 0), (n, nu)).copy_from(&sp.to_x.columns(0, nu));
+    v.view_mut((0, 0), (n, nu))
+        .copy_from(&sp.to_x.columns(0, nu));
     let mut w = DMatrix::zeros(n, nu + rs);
-    w.view_mut((0, 0), (n, nu)).copy_from(&sp.from_x.rows(0, nu).transpose());
+    w.view_mut((0, 0), (n, nu))
+        .copy_from(&sp.from_x.rows(0, nu).transpose());
     if ns > 0 && rs > 0 {
         let vs = sp.to_x.columns(nu, ns) * v_s;
         v.view_mut((0, nu), (n, rs)).copy_from(&vs);

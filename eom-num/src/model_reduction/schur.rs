@@ -28,7 +28,11 @@ pub(crate) fn blocks(t: &DMatrix<f64>) -> Vec<(usize, usize)> {
     let mut out = Vec::with_capacity(n);
     let mut i = 0;
     while i < n {
-        let k = if i + 1 < n && t[(i + 1, i)] != 0.0 { 2 } else { 1 };
+        let k = if i + 1 < n && t[(i + 1, i)] != 0.0 {
+            2
+        } else {
+            1
+        };
         out.push((i, k));
         i += k;
     }
@@ -155,7 +159,13 @@ impl RealSchur {
         let mut y = t[(l + 1, l)] * (t[(l, l)] + t[(l + 1, l + 1)] - trace);
         let mut z = t[(l + 1, l)] * t[(l + 2, l + 1)];
         for k in l..m - 1 {
-            self.reflect(&[x, y, z], k, if k > l { k - 1 } else { l }, (k + 3).min(m), n);
+            self.reflect(
+                &[x, y, z],
+                k,
+                if k > l { k - 1 } else { l },
+                (k + 3).min(m),
+                n,
+            );
             if k > l {
                 self.t[(k + 1, k - 1)] = 0.0;
                 self.t[(k + 2, k - 1)] = 0.0;
@@ -335,7 +345,10 @@ impl RealSchur {
 
     /// Moves the blocks whose eigenvalues `chosen` selects to the top, keeping the order
     /// within each group. Returns how many eigenvalues were chosen (a pair counts two).
-    pub(crate) fn reorder(&mut self, chosen: impl Fn(Complex64) -> bool) -> Result<usize, NumError> {
+    pub(crate) fn reorder(
+        &mut self,
+        chosen: impl Fn(Complex64) -> bool,
+    ) -> Result<usize, NumError> {
         let mut top = 0;
         loop {
             // The first chosen block at or below `top`.
@@ -397,7 +410,9 @@ mod tests {
                 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.2,
             ],
         );
-        let q = DMatrix::from_fn(7, 7, |i, j| ((i * 7 + j) as f64 * 0.37).sin()).qr().q();
+        let q = DMatrix::from_fn(7, 7, |i, j| ((i * 7 + j) as f64 * 0.37).sin())
+            .qr()
+            .q();
         let a = &q * &d * q.transpose();
         let mut s = RealSchur::new(&a).expect("schur");
         check(&a, &s);

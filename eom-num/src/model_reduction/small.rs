@@ -33,7 +33,11 @@ pub(crate) fn solve_small(m: &mut [f64], rhs: &mut [f64], k: usize, floor: f64) 
             perm.swap(pj, col);
         }
         if m[col * k + col].abs() < floor {
-            m[col * k + col] = if m[col * k + col] < 0.0 { -floor } else { floor };
+            m[col * k + col] = if m[col * k + col] < 0.0 {
+                -floor
+            } else {
+                floor
+            };
             perturbed = true;
         }
         let p = m[col * k + col];

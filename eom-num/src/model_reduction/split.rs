@@ -73,7 +73,14 @@ pub(crate) fn split(ss: &StateSpace<f64>) -> Result<Split, NumError> {
     // 1. Structural zeros.
     let mut at = ss.a.clone();
     let (mut removed, mut order, mut combos, mut keys) = (vec![false; n], vec![], vec![], vec![]);
-    deflate_in_place(at.as_mut_slice(), n, &mut removed, &mut order, &mut combos, &mut keys);
+    deflate_in_place(
+        at.as_mut_slice(),
+        n,
+        &mut removed,
+        &mut order,
+        &mut combos,
+        &mut keys,
+    );
     let (t, ti) = structural_transforms(&combos, n);
     let nr = order.len();
     let kept_idx: Vec<usize> = (0..n).filter(|i| !removed[*i]).collect();
@@ -125,7 +132,8 @@ pub(crate) fn split(ss: &StateSpace<f64>) -> Result<Split, NumError> {
         gi.set_row(k, &ti.row(r));
     }
     let tk = DMatrix::from_fn(nk, n, |i, j| ti[(kept_idx[i], j)] / scale[i]);
-    gi.view_mut((nr, 0), (nk, n)).copy_from(&(schur.z.transpose() * tk));
+    gi.view_mut((nr, 0), (nk, n))
+        .copy_from(&(schur.z.transpose() * tk));
 
     // The upper block triangular matrix in w = G⁻¹ x.
     let mut aw = DMatrix::zeros(n, n);

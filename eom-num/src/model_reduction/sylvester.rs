@@ -32,7 +32,8 @@ pub(crate) fn solve(
             // Row block I: − Σ_{K>I} A_IK X_KJ.
             let below = i + p;
             if below < m {
-                let update = a.view((i, below), (p, m - below)) * x.view((below, j), (m - below, q));
+                let update =
+                    a.view((i, below), (p, m - below)) * x.view((below, j), (m - below, q));
                 let mut blk = x.view_mut((i, j), (p, q));
                 blk -= update;
             }
@@ -67,8 +68,12 @@ mod tests {
 
     #[test]
     fn residual_of_a_quasi_triangular_sylvester_equation() {
-        let a0 = DMatrix::from_fn(5, 5, |i, j| ((i * 5 + j) as f64 * 0.7).sin() + if i == j { 3.0 } else { 0.0 });
-        let b0 = DMatrix::from_fn(4, 4, |i, j| ((i * 4 + j) as f64 * 1.3).cos() - if i == j { 3.0 } else { 0.0 });
+        let a0 = DMatrix::from_fn(5, 5, |i, j| {
+            ((i * 5 + j) as f64 * 0.7).sin() + if i == j { 3.0 } else { 0.0 }
+        });
+        let b0 = DMatrix::from_fn(4, 4, |i, j| {
+            ((i * 4 + j) as f64 * 1.3).cos() - if i == j { 3.0 } else { 0.0 }
+        });
         let a = RealSchur::new(&a0).unwrap().t;
         let b = RealSchur::new(&b0).unwrap().t;
         let c = DMatrix::from_fn(5, 4, |i, j| (i + 2 * j) as f64 - 3.0);

@@ -209,14 +209,23 @@ impl Predictor {
     ) -> Result<f32, bicycle_reduced::Error> {
         self.params[RV] = speed;
         let h = 1.0 / PREDICTOR_RATE_HZ;
-        if let Err(e) = bicycle_reduced::eval_discrete(&self.params, h, &mut self.ad, &mut self.bd, &mut self.work) {
+        if let Err(e) = bicycle_reduced::eval_discrete(
+            &self.params,
+            h,
+            &mut self.ad,
+            &mut self.bd,
+            &mut self.work,
+        ) {
             self.predicted = None;
             return Err(e);
         }
         let n = bicycle_reduced::N_STATES;
         let z = Self::reduce(x);
         let residual = match &self.predicted {
-            Some(p) => p.iter().zip(&z).fold(0.0f32, |m, (p, z)| m.max(libm::fabsf(p - z))),
+            Some(p) => p
+                .iter()
+                .zip(&z)
+                .fold(0.0f32, |m, (p, z)| m.max(libm::fabsf(p - z))),
             None => 0.0,
         };
         let next: [f32; bicycle_reduced::N_STATES] = core::array::from_fn(|i| {
