@@ -79,7 +79,10 @@ fn expm_dd(m: &DMatrix<f64>) -> Vec<Vec<Dd>> {
 }
 
 /// The largest error of `(ad, bd)` against the double-double exponential of
-/// `[[A h, B h], [0, 0]]`, relative to the largest entry of the reference `[Ad, Bd]`.
+/// `M = [[A h, B h], [0, 0]]`, relative to the largest entry of the reference `[Ad, Bd]`, in
+/// units of `max(1, ‖M‖₁)·ε`: the relative condition number of the exponential is at least
+/// `‖M‖` (Higham 2008, "Functions of Matrices", §10.2), so a backward-stable method is
+/// accurate to a modest multiple of that.
 fn discrete_error(a: &[f64], b: &[f64], n: usize, m: usize, h: f64, ad: &[f64], bd: &[f64]) -> f64 {
     let mut aug = DMatrix::zeros(n + m, n + m);
     for j in 0..n {
@@ -107,7 +110,10 @@ fn discrete_error(a: &[f64], b: &[f64], n: usize, m: usize, h: f64, ad: &[f64], 
             err = err.max((Dd::from_f64(got) - r).abs().to_f64());
         }
     }
-    err / big
+    let norm = (0..n + m)
+        .map(|j| (0..n + m).map(|i| aug[(i, j)].abs()).sum::<f64>())
+        .fold(1.0, f64::max);
+    err / big / (norm * f64::EPSILON)
 }
 
 macro_rules! discrete_check {
@@ -151,10 +157,10 @@ fn discrete_matrices_match_a_double_double_exponential() {
     discrete_check!(bicycle_r5, rng, worst, 16);
     discrete_check!(chain50_r10, rng, worst, 16);
     eprintln!(
-        "largest relative error of Ad, Bd: {:.3e} ({} at h = {})",
+        "largest relative error of Ad, Bd: {:.3} units of max(1, ‖M‖₁)·ε ({} at h = {})",
         worst.0, worst.1.0, worst.1.1
     );
-    assert!(worst.0 < 1e-13, "{worst:?}");
+    assert!(worst.0 < 50.0, "{worst:?}");
 }
 
 fn response_error(full: &StateSpace<f64>, red: &StateSpace<f64>) -> f64 {
@@ -199,7 +205,7 @@ fn reduced_chain50_follows_the_full_model_within_the_bound_near_nominal() {
         let p: [f64; g::N_PARAMS] =
             core::array::from_fn(|k| nominal[k] * (1.0 + 0.1 * (rng.random::<f64>() - 0.5)));
         state
-            .evaluate(&g::Params::from_array(p))
+            .evaluate(&g::Params::from_array(&p))
             .expect("valid near nominal");
         let red = StateSpace::new(
             DMatrix::from_column_slice(g::N_STATES, g::N_STATES, state.a()),
