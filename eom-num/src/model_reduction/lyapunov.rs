@@ -93,7 +93,7 @@ pub(crate) fn observability_factor(
         } else {
             0.5 * (a11[(0, 0)] + a11[(1, 1)])
         };
-        if !(lam_re < 0.0) {
+        if lam_re.is_nan() || lam_re >= 0.0 {
             return Err(NumError::InvalidOption(format!(
                 "Lyapunov equation: the diagonal block at {i} has an eigenvalue with real part \
                  {lam_re:e}, not in the open left half-plane"

@@ -409,10 +409,7 @@ impl<'a> Reducer<'a> {
     }
 
     /// The bases and reduced A of modal truncation.
-    fn modal(
-        &self,
-        sp: &split::Split,
-    ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>, bool), NumError> {
+    fn modal(&self, sp: &split::Split) -> Result<modal::ModalBases, NumError> {
         let nu = sp.kept();
         let ns = sp.a_s.nrows();
         let hz = |z: Complex64| z.norm() / (2.0 * std::f64::consts::PI);

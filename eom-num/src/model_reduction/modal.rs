@@ -9,13 +9,16 @@ use super::schur::{RealSchur, blocks};
 use super::sylvester;
 use crate::NumError;
 
+/// `(V, W, Wᵀ a V, singular)` of [`modal_bases`].
+pub(crate) type ModalBases = (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>, bool);
+
 /// The bases `(V, W)`, `WᵀV = I`, of the modes `chosen` selects of the quasi-triangular `a`,
 /// the reduced state matrix `WᵀaV` (quasi-triangular, with exactly the chosen eigenvalues) and
 /// whether the decoupling was singular to working precision.
 pub(crate) fn modal_bases(
     a: &DMatrix<f64>,
     chosen: impl Fn(Complex64) -> bool,
-) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>, bool), NumError> {
+) -> Result<ModalBases, NumError> {
     let n = a.nrows();
     let mut s = RealSchur {
         t: a.clone(),

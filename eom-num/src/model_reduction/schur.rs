@@ -198,20 +198,20 @@ impl RealSchur {
         let beta = 2.0 / vv;
         for j in col..n {
             let s: f64 = (0..len).map(|i| v[i] * self.t[(k + i, j)]).sum::<f64>() * beta;
-            for i in 0..len {
-                self.t[(k + i, j)] -= s * v[i];
+            for (i, vi) in v[..len].iter().enumerate() {
+                self.t[(k + i, j)] -= s * vi;
             }
         }
         for r in 0..=row_end {
             let s: f64 = (0..len).map(|i| v[i] * self.t[(r, k + i)]).sum::<f64>() * beta;
-            for i in 0..len {
-                self.t[(r, k + i)] -= s * v[i];
+            for (i, vi) in v[..len].iter().enumerate() {
+                self.t[(r, k + i)] -= s * vi;
             }
         }
         for r in 0..n {
             let s: f64 = (0..len).map(|i| v[i] * self.z[(r, k + i)]).sum::<f64>() * beta;
-            for i in 0..len {
-                self.z[(r, k + i)] -= s * v[i];
+            for (i, vi) in v[..len].iter().enumerate() {
+                self.z[(r, k + i)] -= s * vi;
             }
         }
     }
