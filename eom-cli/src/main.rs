@@ -383,6 +383,13 @@ struct AnalyzeArgs {
     /// The mode of --plot-initial and --plot-modes: its number in the modes table
     #[arg(long, value_name = "K")]
     mode: Option<usize>,
+    /// Add a reduced model (as `eom reduce`): R states in all, or without R the smallest
+    /// order whose bound 2·Σσ is below 1e-3 σ₁
+    #[arg(long, value_name = "R", num_args = 0..=1, default_missing_value = "default")]
+    reduce: Option<String>,
+    /// How --reduce reduces the stable part
+    #[arg(long, value_enum, requires = "reduce")]
+    reduce_method: Option<ReduceMethodArg>,
 }
 
 #[derive(Args, Debug)]
@@ -762,6 +769,31 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
     };
     let lin = analyze::linearize(&choice, &overrides, opts.method)?;
     let r = analyze::analyze_linearized(&choice, &overrides, &opts, &lin)?;
+    let reduced =
+        match &a.reduce {
+            None => None,
+            Some(text) => {
+                let order =
+                    match text.as_str() {
+                        "default" => None,
+                        t => Some(t.trim().parse::<usize>().map_err(|_| {
+                            CliError::BadArgument {
+                    argument: format!("--reduce {}", params::abbreviate(t)),
+                    problem: "expected a number of states (or nothing, for the default order)"
+                        .into(),
+                }
+                        })?),
+                    };
+                let req = reduce::ReduceRequest {
+                    method: reduce_method(a.reduce_method.unwrap_or(ReduceMethodArg::Balanced)),
+                    order,
+                    tol: None,
+                    band: None,
+                    linearization: opts.method,
+                };
+                Some(reduce::report_of(&choice, &overrides, &lin, &req)?.0)
+            }
+        };
     for (option, path) in plots {
         let plot = match option {
             "--plot" => plot::bode::bode_of(&r)?,
@@ -771,9 +803,17 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         plot.write(option, path)?;
         stderr.push_str(&plot.notes_text(path));
     }
-    Ok(match a.format {
-        Format::Text => r.to_text(),
-        Format::Json => json(&r)?,
+    Ok(match (a.format, reduced) {
+        (Format::Text, None) => r.to_text(),
+        (Format::Text, Some(red)) => format!("{}\n{}", r.to_text(), red.to_text()),
+        (Format::Json, None) => json(&r)?,
+        (Format::Json, Some(red)) => {
+            let mut v = serde_json::to_value(&r)?;
+            if let Some(map) = v.as_object_mut() {
+                map.insert("reduction".into(), serde_json::to_value(&red)?);
+            }
+            json(&v)?
+        }
     })
 }
 
@@ -794,11 +834,7 @@ fn run_reduce(a: &ReduceArgs, stderr: &mut String) -> Result<String, CliError> {
             })
         })
         .transpose()?;
-    let method = match a.method {
-        ReduceMethodArg::Balanced => eom_num::model_reduction::ReductionMethod::Balanced,
-        ReduceMethodArg::Matchdc => eom_num::model_reduction::ReductionMethod::MatchDc,
-        ReduceMethodArg::Modal => eom_num::model_reduction::ReductionMethod::Modal,
-    };
+    let method = reduce_method(a.method);
     let req = reduce::ReduceRequest {
         method,
         order: a.order,
@@ -816,6 +852,16 @@ fn run_reduce(a: &ReduceArgs, stderr: &mut String) -> Result<String, CliError> {
         Format::Text => r.to_text(),
         Format::Json => json(&r)?,
     })
+}
+
+/// The reducer's method for a command-line choice.
+fn reduce_method(m: ReduceMethodArg) -> eom_num::model_reduction::ReductionMethod {
+    use eom_num::model_reduction::ReductionMethod;
+    match m {
+        ReduceMethodArg::Balanced => ReductionMethod::Balanced,
+        ReduceMethodArg::Matchdc => ReductionMethod::MatchDc,
+        ReduceMethodArg::Modal => ReductionMethod::Modal,
+    }
 }
 
 /// The time-response and mode-shape pictures of `eom analyze`.

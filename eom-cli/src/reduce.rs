@@ -156,6 +156,17 @@ pub fn reduce(
     req: &ReduceRequest,
 ) -> Result<(ReduceReport, ReducedModel), CliError> {
     let lin = linearize(choice, overrides, req.linearization)?;
+    report_of(choice, overrides, &lin, req)
+}
+
+/// The reduction of a linearization and its report (`eom reduce`, `eom analyze --reduce`,
+/// the report's section).
+pub fn report_of(
+    choice: &ModelChoice,
+    overrides: &[(String, f64)],
+    lin: &eom_model::Linearization,
+    req: &ReduceRequest,
+) -> Result<(ReduceReport, ReducedModel), CliError> {
     let ss = &lin.state_space;
     let red = reduce_state_space(ss, req)?;
     let full = Modes::compute_with(
@@ -299,6 +310,43 @@ fn kept_modes(
 }
 
 impl ReduceReport {
+    /// The table of the reduced model's modes.
+    pub fn modes_table(&self) -> (Vec<&'static str>, Vec<Vec<String>>) {
+        let rows = self
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let pair = m.kind == "oscillatory";
+                let z = Complex64::new(m.eigenvalue.re, m.eigenvalue.im);
+                let f = Complex64::new(m.full_eigenvalue.re, m.full_eigenvalue.im);
+                vec![
+                    (k + 1).to_string(),
+                    eigenvalue(z, SIG, pair),
+                    g(m.natural_frequency_hz, SIG),
+                    m.damping_ratio.map_or("-".into(), |d| g(d, SIG)),
+                    format!("{} {}", m.stability, m.kind),
+                    m.origin.to_string(),
+                    eigenvalue(f, SIG, pair),
+                    m.moves_most.clone().unwrap_or_else(|| "-".into()),
+                ]
+            })
+            .collect();
+        (
+            vec![
+                "#",
+                "eigenvalue [1/s]",
+                "freq [Hz]",
+                "damping",
+                "kind",
+                "origin",
+                "full model's",
+                "moves most",
+            ],
+            rows,
+        )
+    }
+
     /// The human-readable report.
     pub fn to_text(&self) -> String {
         let mut t = format!(
@@ -332,40 +380,8 @@ impl ReduceReport {
         t.push_str(&self.hankel_text());
         t.push_str(&self.error_text());
         t.push_str("Modes of the reduced model\n");
-        let rows: Vec<Vec<String>> = self
-            .modes
-            .iter()
-            .enumerate()
-            .map(|(k, m)| {
-                let pair = m.kind == "oscillatory";
-                let z = Complex64::new(m.eigenvalue.re, m.eigenvalue.im);
-                let f = Complex64::new(m.full_eigenvalue.re, m.full_eigenvalue.im);
-                vec![
-                    (k + 1).to_string(),
-                    eigenvalue(z, SIG, pair),
-                    g(m.natural_frequency_hz, SIG),
-                    m.damping_ratio.map_or("-".into(), |d| g(d, SIG)),
-                    format!("{} {}", m.stability, m.kind),
-                    m.origin.to_string(),
-                    eigenvalue(f, SIG, pair),
-                    m.moves_most.clone().unwrap_or_else(|| "-".into()),
-                ]
-            })
-            .collect();
-        t.push_str(&table(
-            &[
-                "#",
-                "eigenvalue [1/s]",
-                "freq [Hz]",
-                "damping",
-                "kind",
-                "origin",
-                "full model's",
-                "moves most",
-            ],
-            &rows,
-            2,
-        ));
+        let (head, rows) = self.modes_table();
+        t.push_str(&table(&head, &rows, 2));
         t.push_str(&format!(
             "\nReduced states: {}\n\nWarnings\n",
             self.matrices.states.join(", ")

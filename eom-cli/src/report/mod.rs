@@ -127,6 +127,8 @@ fn page(
     if let (Some(s), Some(spec)) = (&swept, sweep) {
         sections::sweep(&mut p, &cx, s, spec)?;
     }
+    bar.stage("reduction");
+    sections::reduction(&mut p, &cx, overrides)?;
     bar.stage("closed forms");
     sections::closed_forms(&mut p, &cx)?;
     sections::warnings(&mut p, &cx);
