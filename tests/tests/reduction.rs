@@ -198,3 +198,43 @@ fn the_bicycle_at_5_m_s_keeps_its_zeros_and_its_weave() {
         "weave {weave}, modal {near}"
     );
 }
+
+/// Degenerate models are reduced, not refused: no input (every Hankel singular value zero),
+/// everything kept whole (a free mass: two structural zeros), an unstable model.
+#[test]
+fn degenerate_and_unstable_models() {
+    use nalgebra::dmatrix;
+    // No input.
+    let ss = StateSpace::new(
+        dmatrix![0.0, 1.0; -4.0, -0.4],
+        nalgebra::DMatrix::zeros(2, 0),
+        dmatrix![1.0, 0.0],
+        nalgebra::DMatrix::zeros(1, 0),
+    )
+    .unwrap();
+    let r = Reducer::new(&ss).run().expect("no input");
+    assert_eq!((r.order(), r.numerical_order), (0, 0));
+    // A free mass: x'' = u, all kept whole.
+    let ss = StateSpace::new(
+        dmatrix![0.0, 1.0; 0.0, 0.0],
+        dmatrix![0.0; 1.0],
+        dmatrix![1.0, 0.0],
+        dmatrix![0.0],
+    )
+    .unwrap();
+    let r = Reducer::new(&ss).run().expect("free mass");
+    assert_eq!((r.kept, r.order()), (2, 2));
+    // Unstable: an inverted pendulum with a damped mode beside it.
+    let ss = StateSpace::new(
+        dmatrix![0.0, 1.0, 0.0, 0.0; 9.0, 0.0, 0.0, 0.0; 0.0, 0.0, 0.0, 1.0; 0.0, 0.0, -100.0, -2.0],
+        dmatrix![0.0; 1.0; 0.0; 1.0],
+        dmatrix![1.0, 0.0, 1.0, 0.0],
+        dmatrix![0.0],
+    )
+    .unwrap();
+    let r = Reducer::new(&ss).order(3).run().expect("unstable");
+    assert_eq!(r.kept, 1, "only +3 grows; −3 is stable");
+    let ev = eom_num::modes::eigenvalues(&r.state_space.a).unwrap();
+    assert!(ev.iter().any(|z| (z.re - 3.0).abs() < 1e-12), "{ev:?}");
+    assert!(within_bound(&r));
+}

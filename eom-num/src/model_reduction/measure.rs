@@ -31,6 +31,9 @@ pub struct MeasuredError {
 
 /// Largest singular value of a p × m complex matrix (column-major).
 fn sigma_max(g: &[Complex64], p: usize, m: usize) -> f64 {
+    if p == 0 || m == 0 {
+        return 0.0;
+    }
     if p == 1 || m == 1 {
         return g.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
     }

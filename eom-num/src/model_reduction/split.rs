@@ -108,7 +108,7 @@ pub(crate) fn split(ss: &StateSpace<f64>) -> Result<Split, NumError> {
     let mut schur = RealSchur::new(&akk)?;
     let mut ev = eigenvalues(&schur.t);
     ev.sort_by(|a, b| b.re.total_cmp(&a.re));
-    let n1 = if keep_more == 0 {
+    let n1 = if keep_more == 0 || nk == 0 {
         0
     } else {
         let threshold = ev[keep_more.min(nk) - 1].re;
