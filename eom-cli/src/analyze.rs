@@ -139,10 +139,19 @@ pub struct Matrices {
 impl Matrices {
     /// The matrices of `ss` with the signals' names as reported.
     fn of(ss: &StateSpace<f64>, inputs: &[Signal], outputs: &[Signal]) -> Matrices {
+        Matrices::named_by(
+            ss,
+            inputs.iter().map(|s| s.name.clone()).collect(),
+            outputs.iter().map(|s| s.name.clone()).collect(),
+        )
+    }
+
+    /// The matrices of `ss` with its state names and the given input and output names.
+    pub fn named_by(ss: &StateSpace<f64>, inputs: Vec<String>, outputs: Vec<String>) -> Matrices {
         Matrices {
             states: ss.names.states.clone(),
-            inputs: inputs.iter().map(|s| s.name.clone()).collect(),
-            outputs: outputs.iter().map(|s| s.name.clone()).collect(),
+            inputs,
+            outputs,
             a: ss.a.clone(),
             b: ss.b.clone(),
             c: ss.c.clone(),
@@ -349,7 +358,8 @@ fn method_name(m: Method) -> &'static str {
     }
 }
 
-fn kind_name(k: ModeKind) -> &'static str {
+/// A mode's kind as the output words it.
+pub(crate) fn kind_name(k: ModeKind) -> &'static str {
     match k {
         ModeKind::Zero => "zero",
         ModeKind::Real => "real",
@@ -357,7 +367,8 @@ fn kind_name(k: ModeKind) -> &'static str {
     }
 }
 
-fn stability_name(s: Stability) -> &'static str {
+/// A stability verdict as the output words it.
+pub(crate) fn stability_name(s: Stability) -> &'static str {
     match s {
         Stability::Stable => "stable",
         Stability::Marginal => "marginal",

@@ -209,3 +209,23 @@ fn a_matrices_file_of_another_kind_is_refused_before_the_work() {
         r.stderr
     );
 }
+
+#[test]
+fn eom_reduce_writes_the_reduced_matrices() {
+    // The reduced quarter car (3 of 4 states): the file holds the JSON's reduced A, B, C, D.
+    let dir = scratch();
+    let args = ["reduce", "quarter_car", "--order", "3"];
+    let json = eom_json(&[&args[..], &["--format", "json"]].concat());
+    assert_eq!(json["matrices"]["states"].as_array().unwrap().len(), 3);
+    for (ext, module) in [("npz", "numpy"), ("mat", "scipy")] {
+        if !has_module(module) {
+            continue;
+        }
+        let path = dir.join(format!("reduced.{ext}"));
+        let _ = std::fs::remove_file(&path);
+        let path_arg = path.to_str().expect("UTF-8");
+        let r = eom(&[&args[..], &["--matrices", path_arg]].concat());
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        assert_same(&read_back(&path), &json, &format!("reduced.{ext}"));
+    }
+}

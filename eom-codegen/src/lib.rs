@@ -101,10 +101,12 @@
 #![forbid(unsafe_code)]
 
 pub mod build;
+mod discrete;
 mod error;
 mod items;
 mod options;
 mod problem;
+pub mod reduced;
 mod render;
 
 pub use eom_sym::lower::CodeOps;
@@ -266,6 +268,22 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
     let mut items = items::module_items(&ctx, opts, work_len)?;
     if ctx.trig.get() {
         items.extend(render::sincos_item(&ctx)?);
+    }
+    let mut extra: Vec<String> = opts.extra_items.clone();
+    if opts.discrete {
+        if !opts.functions.ab {
+            return Err(CodegenError::BadOption {
+                option: "discrete",
+                problem: "eval_discrete evaluates A and B through eval_ab: keep it".into(),
+            });
+        }
+        extra.push(discrete::source(opts.precision));
+    }
+    for src in &extra {
+        let ts: TokenStream = src
+            .parse()
+            .map_err(|e| CodegenError::Syntax(format!("added items: {e}")))?;
+        items.extend(ts);
     }
     let docs = module_doc(&problem, opts, &emitted_stats);
     let docs = docs.iter().map(|l| quote!(#[doc = #l]));
@@ -506,6 +524,14 @@ fn module_doc(p: &Problem, opts: &EmitOptions, stats: &EmitStats) -> Vec<String>
         n.bodies.len(),
         list(&n.bodies, &[])
     ));
+    if !opts.notes.is_empty() {
+        d.push(String::new());
+        d.extend(opts.notes.iter().map(|l| format!(" {l}")));
+    }
+    if opts.discrete {
+        d.push(String::new());
+        d.push(" `eval_discrete` gives the zero-order-hold `Ad = e^{A h}`, `Bd = ∫₀ʰ e^{A t} dt B` at a sample time `h` (scaling and squaring with a Padé approximant sized by the norm, Higham 2005; no allocation, the caller's `DiscreteWork`).".into());
+    }
     d.push(String::new());
     d.push(" # Parameters".into());
     d.push(String::new());

@@ -71,6 +71,7 @@
 //! | [`initial`] | the free response from an initial state, and the state that starts one mode alone |
 //! | [`minreal`] | minimal realization (orthogonal staircase, and a PBH test at repeated eigenvalues), with the removed modes reported |
 //! | [`zeros`] | transmission zeros |
+//! | [`model_reduction`] | balanced truncation (with the `2Σσ` bound), DC-matched and modal reduction; unstable and marginal modes kept whole |
 //! | [`sweep`] | parameter sweeps: eigenvalue branches, stability boundaries, stable intervals |
 //!
 //! ## Principles
@@ -136,6 +137,7 @@ pub mod initial;
 pub mod linalg;
 pub mod minreal;
 mod minreal_pbh;
+pub mod model_reduction;
 pub mod modes;
 mod pbh_subspace;
 pub mod sensitivity;

@@ -14,6 +14,7 @@
 pub mod bode;
 pub mod compare;
 pub mod geometry;
+pub mod hankel;
 pub mod locus;
 pub mod poles;
 pub mod shape;

@@ -130,6 +130,8 @@ fn page(
             Err(e) => Err(format!("the sweep failed: {e}")),
         });
     }
+    bar.stage("reduction");
+    sections::reduction(&mut p, &cx, overrides)?;
     bar.stage("closed forms");
     p.part("closed", "Closed forms", |p| sections::closed_forms(p, &cx));
     sections::warnings(&mut p, &cx);

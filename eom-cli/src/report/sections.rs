@@ -308,6 +308,64 @@ pub fn responses(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Above this many states the report leaves the reduction out (its Gramian factors cost
+/// O(n³) with a large constant; `eom reduce` still does it).
+const REDUCTION_STATES: usize = 400;
+
+/// A reduced model (balanced truncation to the default order): the Hankel singular values with
+/// the bound per order, the error, the modes kept.
+pub fn reduction(
+    p: &mut Page,
+    cx: &Context<'_>,
+    overrides: &[(String, f64)],
+) -> Result<(), CliError> {
+    let ss = &cx.lin.state_space;
+    if ss.inputs() == 0 || ss.outputs() == 0 || ss.states() == 0 {
+        return Ok(());
+    }
+    p.section("reduction", "Reduced model");
+    if ss.states() > REDUCTION_STATES {
+        p.note(&format!(
+            "{} states: the reduction is left out of the report (eom reduce does it).",
+            ss.states()
+        ));
+        return Ok(());
+    }
+    let req = crate::reduce::ReduceRequest {
+        method: eom_num::model_reduction::ReductionMethod::Balanced,
+        order: None,
+        tol: None,
+        band: None,
+        linearization: cx.lin.method,
+    };
+    let (r, _) = crate::reduce::report_of(cx.choice, overrides, cx.lin, &req)?;
+    p.text(&format!(
+        "Balanced truncation of the stable part ({} kept whole: zero, marginal and unstable \
+         modes, {} structural zeros) to the smallest order whose bound 2·Σσ is below \
+         1e-3 σ₁: {} of {} states. Bound {}, error measured on {} frequencies {} (at {} Hz), \
+         steady-state gain error {}.",
+        r.kept_whole,
+        r.structural_zeros,
+        r.states,
+        r.full_states,
+        r.bound.map_or("none".into(), |b| g(b, SIG)),
+        r.measured.points,
+        g(r.measured.hinf, SIG),
+        g(r.measured.at_hz, SIG),
+        g(r.measured.dc, SIG)
+    ));
+    if !r.hankel_singular_values.is_empty() {
+        p.figure(
+            &plot::hankel::hankel_plot(&r)?.svg,
+            "Hankel singular values of the stable part, at the order that keeps each, and the \
+             bound 2·Σσ beyond every order.",
+        );
+    }
+    let (head, rows) = r.modes_table();
+    p.table(&head, &rows, 1);
+    Ok(())
+}
+
 /// The sweep: eigenvalues over the parameter with the zoom, boundaries, root locus.
 pub fn sweep(
     p: &mut Page,
