@@ -138,6 +138,7 @@ pub mod minreal;
 mod minreal_pbh;
 pub mod modes;
 mod pbh_subspace;
+pub mod reach;
 pub mod sensitivity;
 mod staircase;
 pub mod statespace;
