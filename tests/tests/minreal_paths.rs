@@ -296,7 +296,7 @@ fn rotor_on_a_stator_keeps_all_but_the_rotations_about_its_axis_on_every_path() 
         assert_same_eigenvalues(&kept, &kept_want, 1e-8, &format!("kept by {method:?}"));
         // The stator's torsion, js s² + ct s + kt = 0 (js = 0.2, ct = 0.3, kt = 300), and the
         // spin angle's double zero (split by at most √ε on a path that computes it).
-        let (js, ct, kt) = (0.2, 0.3, 300.0);
+        let (js, ct, kt): (f64, f64, f64) = (0.2, 0.3, 300.0);
         let re = -ct / (2.0 * js);
         let im = (4.0 * js * kt - ct * ct).sqrt() / (2.0 * js);
         let torsion = [Complex64::new(re, -im), Complex64::new(re, im)];
