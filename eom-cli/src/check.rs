@@ -3,7 +3,7 @@
 
 use crate::error::CliError;
 use crate::params::ModelChoice;
-use eom_model::{Linearizer, Method, assemble};
+use eom_model::{assemble, reduce_report};
 use serde::Serialize;
 
 /// The summary `eom check` prints.
@@ -33,18 +33,23 @@ pub struct CheckReport {
     pub warnings: Vec<String>,
 }
 
-/// Builds, assembles and reduces the model at its defaults.
+/// Builds, assembles and reduces the model at its defaults (the numeric elimination with all
+/// its checks, without forming the dense state space: a model of many bodies is validated in
+/// time and memory linear in its size where its matrices would not fit).
 pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
-    let model = choice.build(&[])?;
+    // A file is loaded once, its own warnings kept (e.g. derivatives an AVL stability-axis
+    // file cannot give).
+    let (model, mut warnings) = match &choice.source {
+        crate::params::Source::File(path) => {
+            let loaded = eom_model::file::load(path, &[])?;
+            (loaded.model, loaded.warnings)
+        }
+        crate::params::Source::Builtin => (choice.build(&[])?, Vec::new()),
+    };
     let numeric = model.nominal()?;
     let assembled = assemble(&numeric)?;
-    let lin = Linearizer::new(&model).method(Method::Numeric).run()?;
-    // The file's own warnings (e.g. derivatives an AVL stability-axis file cannot give).
-    let mut warnings = match &choice.source {
-        crate::params::Source::File(path) => eom_model::file::load(path, &[])?.warnings,
-        crate::params::Source::Builtin => Vec::new(),
-    };
-    warnings.extend(lin.warnings);
+    let reduction = reduce_report(&assembled)?;
+    warnings.extend(reduction.warnings.iter().cloned());
     let mut items: Vec<(String, usize)> = Vec::new();
     for kind in eom_model::KINDS {
         let n = model.items_of(kind).count();
@@ -60,7 +65,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
         degrees_of_freedom: 6 * assembled.bodies.len(),
         holonomic_constraints: assembled.holonomic_rows.len(),
         nonholonomic_constraints: assembled.nonholonomic_rows.len(),
-        states: lin.state_space.states(),
+        states: reduction.position_states + reduction.velocity_states,
         inputs: assembled.inputs.iter().map(|(n, _)| n.clone()).collect(),
         outputs: assembled.outputs.iter().map(|(n, _)| n.clone()).collect(),
         warnings,
