@@ -17,8 +17,12 @@
 //!    massless coordinates) are split off before the SVD, so that their part of the
 //!    nullspace — and of A22 below — is exact rather than rotated by rounding.
 //! 3. If E has full rank, `ẋ = E⁻¹A x + E⁻¹B u` (LU) in the original coordinates.
-//!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ`, the last n − r
-//!    equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1).
+//!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ` — or, when the
+//!    nullspace of E is exactly its zero rows and columns, in the descriptor's own coordinates
+//!    split by a permutation, E11 kept and later solved with by LU instead of Σ⁻¹ (the
+//!    rotation by V mixes coordinates within every group of equal singular values, equal
+//!    masses say, and turns an exact decoupling into a rounding-level coupling) — the last
+//!    n − r equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1).
 //!    Its rows are algebraic equations and its columns algebraic variables, whose units are
 //!    arbitrary (the Schur complement does not depend on them), so its rank is decided by
 //!    SVD of the row- and column-equilibrated A22; the equilibrated A22 is then factored by
@@ -28,7 +32,8 @@
 //!    [`NumError::SingularPencil`] when `sE − A` is singular for every s (tested at two
 //!    generic complex points), [`NumError::HigherIndex`] otherwise.
 //! 4. The Schur complement gives
-//!    `A_s = Σ⁻¹(A11 − A12 A22⁻¹ A21)`, `B_s = Σ⁻¹(B1 − A12 A22⁻¹ B2)`,
+//!    `A_s = Σ⁻¹(A11 − A12 A22⁻¹ A21)`, `B_s = Σ⁻¹(B1 − A12 A22⁻¹ B2)` (E11⁻¹ for Σ⁻¹ when
+//!    permuted),
 //!    `C_s = C1 − C2 A22⁻¹ A21`, `D_s = D − C2 A22⁻¹ B2`,
 //!    and the physical map is transformed the same way as C (with u = 0, as for mode shapes):
 //!    `phys_s = P1 − P2 A22⁻¹ A21` where `[P1 P2] = phys · S · V`.

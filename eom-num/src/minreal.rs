@@ -13,19 +13,26 @@
 //!    point) so that the rows of `[A B]` and the columns of `[A; C]` have comparable norms.
 //!    Multibody models mix units (metres and radians, kN/m and N·m/rad); balancing makes the
 //!    relative rank tolerance below meaningful for every state.
-//! 2. **Controllability staircase** (Van Dooren 1981): an SVD of the input block `B` splits
+//! 2. **Structural reduction** ([`crate::reach`]): the states that no input reaches in the
+//!    graph of the exact zeros of `(A, B)` are removed by a permutation, exactly, without a
+//!    rank decision ([`MinrealReport::structurally_uncontrollable`]), their eigenvalues taken
+//!    block by block on the strong components of the removed part. Left to the staircase,
+//!    such an exact decoupling becomes a rounding-level coupling that the Krylov sequence
+//!    amplifies step by step (15 blocks hanging on strings kept 120 states of 30), and many
+//!    identical decoupled bodies cost an O(n³) staircase for nothing.
+//! 3. **Controllability staircase** (Van Dooren 1981): an SVD of the input block `B` splits
 //!    the state space into the directions `B` reaches (rank decision) and the rest; the
 //!    orthogonal basis is applied to `A`, `B`, `C`; the next input block is the part of `A`
 //!    that couples the reached directions into the rest, and so on until a block has rank
 //!    zero (the remaining states are uncontrollable) or no state is left. The result is
 //!    `Qᵀ A Q = [A_c *; 0 A_u]`, `Qᵀ B = [B_c; 0]`.
-//! 3. **Cluster PBH pass** (below; [`MinrealOptions::cluster_pbh`]): at every cluster of
+//! 4. **Cluster PBH pass** (below; [`MinrealOptions::cluster_pbh`]): at every cluster of
 //!    eigenvalues of `A_c`, uncontrollable directions the staircase could not see are rotated
 //!    out, and the staircase runs again on what is kept, until the pass removes nothing.
-//! 4. **Observability staircase** and its PBH pass: the same on the dual
+//! 5. **Observability**: the structural reduction, the staircase and its PBH pass on the dual
 //!    `(A_cᵀ, C_cᵀ, B_cᵀ)` of the controllable part, giving `[A_o 0; * A_ū]`, `[C_o 0]`.
-//! 5. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
-//!    power-of-two scalings) are used, so its transfer function equals the original one to
+//! 6. The minimal system is `(A_o, B_o, C_o, D)`. Only orthogonal transformations (and exact
+//!    power-of-two scalings and permutations) are used, so its transfer function equals the original one to
 //!    rounding, apart from the parts below the tolerance that the rank decisions set to zero.
 //!
 //! # Why a PBH pass: the staircase measures Krylov rank, not distance
