@@ -18,7 +18,8 @@
 //!    nullspace — and of A22 below — is exact rather than rotated by rounding.
 //! 3. If E has full rank, `ẋ = E⁻¹A x + E⁻¹B u` (LU) in the original coordinates.
 //!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ` — or, when the
-//!    nullspace of E is exactly its zero rows and columns, in the descriptor's own coordinates
+//!    nullspace of E is exactly its zero rows and columns and E11 decouples into groups of
+//!    coordinates, in the descriptor's own coordinates
 //!    split by a permutation, E11 kept and later solved with by LU instead of Σ⁻¹ (the
 //!    rotation by V mixes coordinates within every group of equal singular values, equal
 //!    masses say, and turns an exact decoupling into a rounding-level coupling) — the last
@@ -259,7 +260,8 @@ struct ERank {
     rank: Rank,
     /// The nullspace of E is exactly its zero rows and columns.
     structural: bool,
-    /// Those rows and columns, when `structural` (and E is not of full rank).
+    /// Those rows and columns, when `structural`, E is not of full rank and its kept block
+    /// E11 decouples (then the coordinates are permuted, not rotated).
     split: Option<Split>,
     condition: f64,
 }
@@ -409,9 +411,19 @@ fn decide_e_rank(
         ));
     }
     let structural = n - r == zeros;
+    // Permuted rather than rotated only where there is structure to keep: E11 decouples into
+    // groups of coordinates. A coupled E11 is rotated as before (its SVD is then the more
+    // accurate factorization: the truck–trailer's gain at its split zero pair lost a digit
+    // to the LU of a coupled E11).
+    let split = split.filter(|sp| {
+        structural && {
+            let e11 = e.select_rows(&sp.rows.0).select_columns(&sp.cols.0);
+            crate::linalg::column_groups(&e11).len() > 1
+        }
+    });
     Ok(ERank {
         structural,
-        split: split.filter(|_| structural),
+        split,
         svd: f,
         rank: e_rank,
         condition,

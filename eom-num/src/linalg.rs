@@ -515,7 +515,7 @@ pub fn nullspace_structured(
 
 /// The groups of [`nullspace_structured`]: `(rows, columns)`, in the order of their first
 /// column; every nonzero row lies in exactly one group.
-fn column_groups(m: &DMatrix<f64>) -> Vec<(Vec<usize>, Vec<usize>)> {
+pub(crate) fn column_groups(m: &DMatrix<f64>) -> Vec<(Vec<usize>, Vec<usize>)> {
     let (r, n) = m.shape();
     let mut parent: Vec<usize> = (0..n).collect();
     fn root(p: &mut [usize], mut i: usize) -> usize {
