@@ -85,8 +85,14 @@ pub struct Analysis {
     pub stable: bool,
     /// One entry per eigenvalue, in the order of `eigenvalues`.
     pub modes: Vec<ModeReport>,
-    /// The input/output view (`null` with a warning if it could not be computed).
+    /// The input/output view (`null` with a warning if it could not be computed, or with
+    /// `minimal_note` when there is nothing to compute).
     pub minimal: Option<MinimalReport>,
+    /// Why the minimal realization was not computed although nothing failed: a model without
+    /// inputs or without outputs has an empty minimal realization (every mode is hidden from
+    /// them), which is said instead of listing every mode as removed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub minimal_note: Option<String>,
     /// Per output/input pair (`null` with a warning if it could not be computed).
     pub steady_state_gain: Option<Vec<GainEntry>>,
     /// Transmission zeros of the minimal realization, sorted by (re, im); `null` when not
@@ -629,6 +635,10 @@ fn analyze_state_space(
         },
         move || {
             let want_zeros = ss.inputs() > 0 && ss.outputs() > 0;
+            if !want_zeros {
+                // The receiver is dropped: the modes' thread sends into nothing.
+                return (None, None);
+            }
             // While the PBH pass waits for the eigenvalues, the zeros of the staircases'
             // draft: they are the minimal system's when the pass removes nothing.
             let draft_zeros = std::sync::Mutex::new(None);
@@ -664,18 +674,20 @@ fn analyze_state_space(
                     })
                 }),
             };
-            (reduced, zeros)
+            (Some(reduced), zeros)
         },
     );
     let modes = modes?;
     warnings.extend(accuracy_warnings(&modes));
-    let minimal = match reduced
-        .as_ref()
-        .map_err(|e| CliError::Num(e.clone()))
-        .and_then(|(ssm, rep)| minimal_view(ssm, rep, &modes, &mut warnings))
-    {
-        Ok(m) => Some(m),
-        Err(e) => {
+    let minimal_note = reduced.is_none().then(|| no_signals_note(ss));
+    let minimal = match reduced.as_ref().map(|r| {
+        r.as_ref()
+            .map_err(|e| CliError::Num(e.clone()))
+            .and_then(|(ssm, rep)| minimal_view(ssm, rep, &modes, &mut warnings))
+    }) {
+        None => None,
+        Some(Ok(m)) => Some(m),
+        Some(Err(e)) => {
             warnings.push(format!("minimal realization not computed: {e}"));
             None
         }
@@ -719,6 +731,7 @@ fn analyze_state_space(
         stable: overall_stability(&modes, structural_zeros) == "stable",
         modes: modes.modes.iter().map(mode_report).collect(),
         minimal,
+        minimal_note,
         steady_state_gain,
         zeros,
         warnings,
@@ -727,6 +740,21 @@ fn analyze_state_space(
         sensitivity: None,
         structural_zeros: Vec::new(),
     })
+}
+
+/// Why a model without inputs or outputs has no minimal realization to show.
+fn no_signals_note(ss: &StateSpace<f64>) -> String {
+    let missing = match (ss.inputs(), ss.outputs()) {
+        (0, 0) => "no inputs and no outputs",
+        (0, _) => "no inputs",
+        _ => "no outputs",
+    };
+    format!(
+        "not computed: the model has {missing}, so its minimal realization is empty (every one \
+         of its {} states is hidden from the inputs and outputs); add an actuator and a sensor \
+         to see which modes they reach",
+        ss.states()
+    )
 }
 
 /// Eigenvalues whose estimated relative accuracy (`Mode::accuracy`) is worse than this are

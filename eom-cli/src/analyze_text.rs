@@ -228,7 +228,10 @@ impl Analysis {
                     }
                 }
             }
-            None => t.push_str("Minimal realization: not computed (see the warnings)\n"),
+            None => match &self.minimal_note {
+                Some(note) => t.push_str(&format!("Minimal realization: {note}\n")),
+                None => t.push_str("Minimal realization: not computed (see the warnings)\n"),
+            },
         }
         t.push('\n');
         t

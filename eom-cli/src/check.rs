@@ -3,7 +3,7 @@
 
 use crate::error::CliError;
 use crate::params::ModelChoice;
-use eom_model::{Linearizer, Method, assemble};
+use eom_model::{Linearizer, Method, assemble, reduce_report};
 use serde::Serialize;
 
 /// The summary `eom check` prints.
@@ -36,15 +36,29 @@ pub struct CheckReport {
     pub warnings: Vec<String>,
 }
 
-/// Builds, assembles and reduces the model at its defaults.
+/// Builds, assembles and reduces the model at its defaults (the numeric elimination with all
+/// its checks, without forming the dense state space: a model of many bodies is validated in
+/// time and memory linear in its size where its matrices would not fit).
 pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
-    let model = choice.build(&[])?;
+    // A file is loaded once, its own warnings kept (e.g. derivatives an AVL stability-axis
+    // file cannot give).
+    let (model, mut warnings) = match &choice.source {
+        crate::params::Source::File(path) => {
+            let loaded = eom_model::file::load(path, &[])?;
+            (loaded.model, loaded.warnings)
+        }
+        crate::params::Source::Builtin => (choice.build(&[])?, Vec::new()),
+    };
     let numeric = model.nominal()?;
     let assembled = assemble(&numeric)?;
-    // The numeric path first; where it cannot reduce the model (a massless motion, which its
-    // messages suggest the robust path for), the robust path, and the command that works.
-    let (lin, path_note) = match Linearizer::new(&model).method(Method::Numeric).run() {
-        Ok(lin) => (lin, None),
+    // The numeric elimination first; where it cannot reduce the model (a massless motion,
+    // which its messages suggest the robust path for), the robust path, and the command that
+    // works.
+    let states = match reduce_report(&assembled) {
+        Ok(reduction) => {
+            warnings.extend(reduction.warnings.iter().cloned());
+            reduction.position_states + reduction.velocity_states
+        }
         Err(numeric) => {
             // Its advice names the library's path, not a command: replaced by ours.
             let numeric = numeric.to_string().replace(
@@ -53,33 +67,27 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
             );
             match Linearizer::new(&model).method(Method::Robust).run() {
                 Ok(lin) => {
-                    let note = format!(
-                        "the default reduction fails ({}); the robust one reduces the model: analyse \
-                     it with `eom analyze {} --method robust`",
+                    warnings.push(format!(
+                        "the default reduction fails ({}); the robust one reduces the model: \
+                         analyse it with `eom analyze {} --method robust`",
                         numeric,
                         eom_text::shown(&choice.name)
-                    );
-                    (lin, Some(note))
+                    ));
+                    warnings.extend(lin.warnings);
+                    lin.state_space.states()
                 }
                 Err(robust) => {
                     return Err(CliError::BadArgument {
                         argument: eom_text::shown(&choice.name),
                         problem: format!(
                             "no reduction handles this model: the numeric one fails ({numeric}), \
-                         and so does the robust one ({robust})"
+                             and so does the robust one ({robust})"
                         ),
                     });
                 }
             }
         }
     };
-    // The file's own warnings (e.g. derivatives an AVL stability-axis file cannot give).
-    let mut warnings = match &choice.source {
-        crate::params::Source::File(path) => eom_model::file::load(path, &[])?.warnings,
-        crate::params::Source::Builtin => Vec::new(),
-    };
-    warnings.extend(path_note);
-    warnings.extend(lin.warnings);
     let mut items: Vec<(String, usize)> = Vec::new();
     for kind in eom_model::KINDS {
         let n = model.items_of(kind).count();
@@ -95,7 +103,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
         degrees_of_freedom: 6 * assembled.bodies.len(),
         holonomic_constraints: assembled.holonomic_rows.len(),
         nonholonomic_constraints: assembled.nonholonomic_rows.len(),
-        states: lin.state_space.states(),
+        states,
         inputs: assembled.inputs.iter().map(|(n, _)| n.clone()).collect(),
         outputs: assembled.outputs.iter().map(|(n, _)| n.clone()).collect(),
         signals: signal_descriptions(&numeric),

@@ -127,7 +127,7 @@ pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use reduce::{
     CheckLabel, Coord, ReducedDescriptor, Reduction, ReductionPlan, ReductionReport, ValidityCheck,
-    reduce,
+    reduce, reduce_report,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};

@@ -359,6 +359,25 @@ pub fn reduce<S: Scalar>(
     cx.finish(sel, pos, velo, dyn_, [a_ss, b_ss, c_out, d_out], &gamma)
 }
 
+/// The numeric reduction of [`reduce`] without its dense result: every step and every check
+/// of the nominal point, and the report (`position_states + velocity_states` states), but no
+/// dense `A` and map to the physical coordinates, whose `(2n)² + 6 b · 2n` entries (n
+/// freedoms, b bodies) are what a model of many bodies cannot hold: 10 000 bodies on sliders
+/// needed 15.7 GB for them (issue 27, item 7). For validating a model (`eom check`).
+///
+/// Errors: as [`reduce`].
+pub fn reduce_report(a: &Assembled<f64>) -> Result<ReductionReport, ModelError> {
+    let mut cx = Reducer::new(a, None);
+    let sel = cx.pin_coordinates();
+    let pos = cx.eliminate_positions(&sel)?;
+    let velo = cx.eliminate_velocities(&sel, &pos)?;
+    let dyn_ = cx.project_dynamics(&sel, &pos, &velo)?;
+    let [a_ss, b_ss, gamma] = absorb_input_rates(&pos, &dyn_)?;
+    outputs(a, &sel, &dyn_, &a_ss, &b_ss, &gamma)?;
+    cx.check_nominal()?;
+    Ok(cx.report)
+}
+
 /// What the steps share: the assembled model, the plan to replay, the checks and the report.
 struct Reducer<'a, S> {
     a: &'a Assembled<S>,
@@ -723,6 +742,20 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         })
     }
 
+    /// Without a plan (pivots chosen here): every recorded decision holds at the nominal
+    /// point.
+    fn check_nominal(&self) -> Result<(), ModelError> {
+        if self.plan.is_none()
+            && let Some(bad) = self.checks.iter().find(|c| !c.holds_nominal())
+        {
+            return Err(ModelError::Singular(format!(
+                "at the nominal point: {}",
+                bad.what()
+            )));
+        }
+        Ok(())
+    }
+
     /// The result: the state names, the map back to the physical coordinates, the dense
     /// matrices, and (choosing pivots) the check that every recorded decision holds at the
     /// nominal point.
@@ -766,14 +799,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             phys: to_dense(&phys),
             names,
         };
-        if self.plan.is_none()
-            && let Some(bad) = self.checks.iter().find(|c| !c.holds_nominal())
-        {
-            return Err(ModelError::Singular(format!(
-                "at the nominal point: {}",
-                bad.what()
-            )));
-        }
+        self.check_nominal()?;
         let plan = ReductionPlan {
             active: sel.active,
             j_rows: sel.j_keep,

@@ -140,6 +140,7 @@ mod minreal_pbh;
 pub mod model_reduction;
 pub mod modes;
 mod pbh_subspace;
+pub mod reach;
 pub mod sensitivity;
 mod staircase;
 pub mod statespace;

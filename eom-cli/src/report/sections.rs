@@ -237,7 +237,10 @@ pub fn io_view(p: &mut Page, cx: &Context<'_>) {
                 );
             }
         }
-        None => p.note("The minimal realization could not be computed (see the warnings)."),
+        None => match &a.minimal_note {
+            Some(note) => p.note(&format!("Minimal realization: {note}.")),
+            None => p.note("The minimal realization could not be computed (see the warnings)."),
+        },
     }
     p.section("gains", "Steady-state gains");
     match &a.steady_state_gain {
