@@ -26,10 +26,11 @@ use std::path::Path;
 pub fn read_avl(path: impl AsRef<Path>) -> Result<Configuration> {
     let path = path.as_ref();
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| AeroError::Io {
-        file: file.clone(),
-        source,
-    })?;
+    let text =
+        eom_text::read_limited(path, eom_text::MAX_FILE_BYTES).map_err(|source| AeroError::Io {
+            file: file.clone(),
+            source,
+        })?;
     parse_avl(&text, &file)
 }
 
@@ -179,7 +180,9 @@ impl<'a> Lines<'a> {
                 (Some(v), _) => out.push(v),
                 (None, false) => break,
                 (None, true) => {
-                    let found = tok.map_or("nothing".to_string(), |t| format!("`{t}`"));
+                    let found = tok.map_or("nothing".to_string(), |t| {
+                        format!("`{}`", eom_text::shown(t))
+                    });
                     return Err(self.err(
                         line,
                         format!("{what}: {name} must be a finite number, found {found}"),
@@ -200,6 +203,13 @@ impl<'a> Lines<'a> {
 
     fn count(&self, line: usize, name: &str, v: f64) -> Result<usize> {
         match self.integer(line, name, v)? {
+            n if n as usize > crate::MAX_PANELS => Err(self.err(
+                line,
+                format!(
+                    "{name} = {n} is more than the limit of {} panels of a lattice",
+                    crate::MAX_PANELS
+                ),
+            )),
             n if n >= 1 => Ok(n as usize),
             n => Err(self.err(line, format!("{name} must be at least 1, found {n}"))),
         }
@@ -362,7 +372,7 @@ impl SurfaceReader {
                 word,
                 "surfaces without a wake (no Kutta condition) are not supported",
             )),
-            _ => Err(lines.err(line, format!("unknown keyword `{word}`"))),
+            _ => Err(lines.err(line, format!("unknown keyword `{}`", eom_text::shown(word)))),
         }
     }
 

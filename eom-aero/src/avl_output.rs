@@ -64,9 +64,11 @@ impl AvlOutput {
     pub fn read(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| AeroError::Io {
-            file: file.clone(),
-            source,
+        let text = eom_text::read_limited(path, eom_text::MAX_FILE_BYTES).map_err(|source| {
+            AeroError::Io {
+                file: file.clone(),
+                source,
+            }
         })?;
         AvlOutput::parse(&text, &file)
     }
@@ -111,6 +113,17 @@ impl AvlOutput {
             [g("Xref")?, g("Yref")?, g("Zref")?],
         );
         let (alpha, beta, mach) = (g("Alpha")?, g("Beta")?, g("Mach")?);
+        // The same rules as for a geometry: a zero area gives an all-zero matrix, a negative
+        // one turns damping into anti-damping.
+        if let Err((field, reason)) = reference.check() {
+            let name = field.split('/').next().unwrap_or(field);
+            let line = out.entry(name).map_or(0, |e| e.line);
+            return Err(AeroError::Parse {
+                file: out.file.clone(),
+                line,
+                message: format!("{field} {reason}"),
+            });
+        }
         out.reference = reference;
         (out.alpha_deg, out.beta_deg, out.mach) = (alpha, beta, mach);
         match kind {
@@ -262,7 +275,7 @@ fn check_orientation(scan: &Scan, file: &str) -> Result<()> {
             line,
             message: format!(
                 "`{}`: only AVL's standard axes (X fwd, Z down) are read; rerun AVL with standard axes",
-                text.trim()
+                eom_text::shown(text.trim())
             ),
         }),
         None => Err(AeroError::MissingField {

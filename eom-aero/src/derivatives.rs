@@ -1,6 +1,7 @@
 //! Non-dimensional stability derivatives in AVL's naming and normalisation, and their
 //! dimensional form.
 
+use crate::error::AeroError;
 use serde::Serialize;
 
 /// Reference quantities of the non-dimensional coefficients.
@@ -28,6 +29,27 @@ impl Reference {
         }
     }
 
+    /// The rules every source of derivatives obeys (a geometry, an SB or ST file): Sref,
+    /// Cref and Bref finite and positive, the point finite. `Err((field, why))`.
+    pub fn check(&self) -> std::result::Result<(), (&'static str, String)> {
+        for (field, v) in [
+            ("Sref", self.sref),
+            ("Cref", self.cref),
+            ("Bref", self.bref),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err((field, format!("must be positive, is {v}")));
+            }
+        }
+        if !self.point.iter().all(|x| x.is_finite()) {
+            return Err((
+                "Xref/Yref/Zref",
+                format!("must be finite, is {:?}", self.point),
+            ));
+        }
+        Ok(())
+    }
+
     /// Row scales of the coefficients: forces by q·S, roll and yaw by q·S·b, pitch by q·S·c
     /// (the factor after q·S).
     pub(crate) fn row_lengths(&self) -> [f64; 6] {
@@ -45,6 +67,15 @@ impl Reference {
             0.5 * self.cref,
             0.5 * self.bref,
         ]
+    }
+}
+
+/// A number for a message: plain where that is short, else in exponent form (`1e308`).
+fn short(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }
 
@@ -99,17 +130,55 @@ impl Derivatives {
     /// ∂F/∂x in SI: F = (X, Y, Z, L, M, N) [N, N·m] about the reference point,
     /// x = (u, v, w, p, q, r) [m/s, rad/s], same axes; = (qS/V)·build_mtx with q = ½ρV²
     /// (so −L of the EoM convention is this matrix).
-    pub fn dimensional(&self, rho: f64, speed: f64) -> [[f64; 6]; 6] {
-        let q_s = 0.5 * rho * speed * speed * self.reference.sref;
+    ///
+    /// Errors: [`AeroError::OutOfRange`] for a density or airspeed that is not a positive
+    /// number, and for an entry that overflows (`rho = 1e308`, a derivative of −1e308).
+    pub fn dimensional(&self, rho: f64, speed: f64) -> crate::Result<[[f64; 6]; 6]> {
+        for (what, v) in [("the air density", rho), ("the airspeed", speed)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(AeroError::OutOfRange {
+                    what: what.into(),
+                    reason: format!("must be a positive number, is {v}"),
+                });
+            }
+        }
+        // q·S/V = ρ·V·S/2, without forming V² (which overflows long before the result).
+        let q_s_per_v = 0.5 * rho * speed * self.reference.sref;
+        if !q_s_per_v.is_finite() {
+            return Err(AeroError::OutOfRange {
+                what: "the dimensional derivatives".into(),
+                reason: format!(
+                    "ρ·V·S/2 overflows with ρ = {}, V = {}, S = {}",
+                    short(rho),
+                    short(speed),
+                    short(self.reference.sref)
+                ),
+            });
+        }
         let rows = self.reference.row_lengths();
         let cols = self.reference.column_lengths();
         let mut d = [[0.0; 6]; 6];
         for i in 0..6 {
             for j in 0..6 {
-                d[i][j] = q_s / speed * rows[i] * cols[j] * self.coefficients[i][j];
+                d[i][j] = q_s_per_v * rows[i] * cols[j] * self.coefficients[i][j];
+                if !d[i][j].is_finite() {
+                    return Err(AeroError::OutOfRange {
+                        what: format!("the dimensional derivative of {}", NAMES[i][j]),
+                        reason: format!(
+                            "{} = {} times ρ·V·S/2 = {} (ρ = {}, V = {}, S = {}) and the \
+                             reference lengths overflows",
+                            NAMES[i][j],
+                            short(self.coefficients[i][j]),
+                            short(q_s_per_v),
+                            short(rho),
+                            short(speed),
+                            short(self.reference.sref)
+                        ),
+                    });
+                }
             }
         }
-        d
+        Ok(d)
     }
 
     /// The derivatives in the stability-axis form of AVL's ST file at angle of attack

@@ -7,7 +7,7 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum AeroError {
     /// A configuration-level field (reference quantities, Mach, symmetry) is invalid.
-    #[error("configuration `{config}`: {field} {reason}")]
+    #[error("configuration `{}`: {field} {reason}", eom_text::shown(config))]
     Configuration {
         /// The configuration's title.
         config: String,
@@ -17,7 +17,11 @@ pub enum AeroError {
         reason: String,
     },
     /// A surface or one of its sections is invalid.
-    #[error("surface `{surface}`{}: {field} {reason}", section_suffix(*.section))]
+    #[error(
+        "surface `{}`{}: {field} {reason}",
+        eom_text::shown(surface),
+        section_suffix(*.section)
+    )]
     Geometry {
         /// The surface's name.
         surface: String,
@@ -45,6 +49,15 @@ pub enum AeroError {
         /// What was detected.
         reason: String,
     },
+    /// A quantity out of the range where the results are numbers: a dimensional matrix that
+    /// overflows, a lattice beyond the panel limit or the memory limit.
+    #[error("{what}: {reason}")]
+    OutOfRange {
+        /// What is out of range.
+        what: String,
+        /// Why, with the sizes.
+        reason: String,
+    },
     /// A syntax error in an input file.
     #[error("{file}:{line}: {message}")]
     Parse {
@@ -56,7 +69,10 @@ pub enum AeroError {
         message: String,
     },
     /// A keyword of an `.avl` file that this crate deliberately does not honour.
-    #[error("{file}:{line}: keyword `{keyword}` is not supported: {reason}")]
+    #[error(
+        "{file}:{line}: keyword `{}` is not supported: {reason}",
+        eom_text::shown(keyword)
+    )]
     UnsupportedKeyword {
         /// The file.
         file: String,
@@ -68,7 +84,11 @@ pub enum AeroError {
         reason: String,
     },
     /// A value in an AVL output file that cannot be used (`***` overflow, NaN, not a number).
-    #[error("{file}:{line}: {field} = `{text}`: {reason}")]
+    #[error(
+        "{file}:{line}: {} = `{}`: {reason}",
+        eom_text::shown(field),
+        eom_text::shown(text)
+    )]
     BadValue {
         /// The file.
         file: String,

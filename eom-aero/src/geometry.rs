@@ -339,17 +339,8 @@ impl Configuration {
 
     /// Checks the configuration and every surface.
     pub fn validate(&self) -> Result<()> {
-        let r = &self.reference;
-        for (field, v) in [("Sref", r.sref), ("Cref", r.cref), ("Bref", r.bref)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(self.err(field, format!("must be positive, is {v}")));
-            }
-        }
-        if !r.point.iter().all(|x| x.is_finite()) {
-            return Err(self.err(
-                "Xref/Yref/Zref",
-                format!("must be finite, is {:?}", r.point),
-            ));
+        if let Err((field, reason)) = self.reference.check() {
+            return Err(self.err(field, reason));
         }
         if !(self.mach.is_finite() && (0.0..1.0).contains(&self.mach)) {
             return Err(self.err(

@@ -76,6 +76,23 @@ pub(crate) fn build(config: &Configuration) -> Result<Lattice> {
     for surface in &config.surfaces {
         let placed = place(surface);
         let strips = strips(surface, &placed)?;
+        let copies = if surface.y_duplicate.is_some() { 2 } else { 1 };
+        let adding = strips
+            .len()
+            .saturating_mul(surface.chordwise.count)
+            .saturating_mul(copies);
+        let total = lattice.panels.len().saturating_add(adding);
+        if total > crate::MAX_PANELS {
+            return Err(AeroError::OutOfRange {
+                what: format!("the lattice of `{}`", eom_text::shown(&config.title)),
+                reason: format!(
+                    "surface `{}` brings it to {total} panels, more than the limit of {} \
+                     (fewer chordwise or spanwise vortices: Nchord, Nspan)",
+                    eom_text::shown(&surface.name),
+                    crate::MAX_PANELS
+                ),
+            });
+        }
         let first = lattice.panels.len();
         for strip in &strips {
             add_strip(&mut lattice.panels, surface, &placed, strip);
@@ -111,6 +128,9 @@ fn strips(surface: &Surface, placed: &[Placed]) -> Result<Vec<Strip>> {
     match surface.spanwise {
         None => {
             for (k, sec) in surface.sections[..intervals].iter().enumerate() {
+                if out.len() > crate::MAX_PANELS {
+                    break; // already beyond the limit: `build` refuses the surface
+                }
                 // validated: every section but the last has its own spacing here
                 let sp = sec.spanwise.unwrap_or(Spacing::cosine(1));
                 let (nodes, cps) = span_stations(sp);

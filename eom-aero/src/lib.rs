@@ -38,7 +38,7 @@
 //! assert!((d.get("Cnr").unwrap() / -0.146157 - 1.0).abs() < 1e-3);
 //!
 //! // dimensional ∂F/∂x at ρ = 1.225 kg/m³, V = 10 m/s: ∂Y/∂v [N·s/m]
-//! let dfdx = d.dimensional(1.225, 10.0);
+//! let dfdx = d.dimensional(1.225, 10.0)?;
 //! assert!((dfdx[1][1] / -7.57725 - 1.0).abs() < 1e-3);
 //! # Ok(())
 //! # }
@@ -128,6 +128,12 @@ pub mod stability;
 pub mod validity;
 
 pub use avl_input::{parse_avl, read_avl};
+
+/// The most horseshoe vortices of one lattice (mirror images included). The influence matrix
+/// is dense: 10 000 panels take 1.6 GB with its factors and about 7·10¹¹ operations (AVL's own
+/// default limit is 6 000 vortices). A larger lattice is refused before it is built, and the
+/// influence matrix's memory is checked against `eom_num::budget` (`EOM_MEMORY_LIMIT`).
+pub const MAX_PANELS: usize = 10_000;
 pub use avl_output::{AvlOutput, AvlOutputKind};
 pub use derivatives::{Derivatives, Reference, StabilityDerivatives};
 pub use error::{AeroError, Result};

@@ -156,6 +156,16 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
     ];
     let field = Field::new(&lattice, config.mach, &config.symmetry);
     let reference = config.reference.point;
+    // The influence matrix and its LU factors, and the 7 right-hand sides with their
+    // solutions.
+    eom_num::budget::check(
+        "the vortex-lattice influence matrix",
+        eom_num::budget::product(&[n, n + 7, 2 * 8]),
+    )
+    .map_err(|e| AeroError::OutOfRange {
+        what: format!("the lattice of {n} panels"),
+        reason: e.to_string(),
+    })?;
     let mut influence = Mat::<f64>::zeros(n, n);
     let (mut legs, mut v) = (Vec::new(), Vec::new());
     for (i, p) in lattice.panels.iter().enumerate() {
@@ -171,6 +181,7 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
             p.normal,
         )
     });
+    check_reference_point(config, &rhs)?;
     let lu = influence.partial_piv_lu();
     check_pivots(lu.U(), n)?;
     let gamma = lu.solve(&rhs);
@@ -185,6 +196,28 @@ pub fn solve(config: &Configuration, options: &SolverOptions) -> Result<Solution
     }
     let loads = Loads::compute(&lattice, &field, &g, &trim, reference, options);
     Ok(finish(config, options, &lattice, &loads))
+}
+
+/// Rejects a moment reference point so far from the panels that the rotation velocities about
+/// it (the right-hand sides of p, q, r) exceed `eom_num::MAX_ENTRY`: the circulations would
+/// overflow, which is not a fault of the lattice.
+fn check_reference_point(config: &Configuration, rhs: &Mat<f64>) -> Result<()> {
+    let largest = (0..rhs.nrows())
+        .flat_map(|i| (0..rhs.ncols()).map(move |s| (i, s)))
+        .map(|(i, s)| rhs[(i, s)].abs())
+        .fold(0.0, f64::max);
+    if largest.is_finite() && largest <= eom_num::MAX_ENTRY {
+        return Ok(());
+    }
+    Err(AeroError::Configuration {
+        config: config.title.clone(),
+        field: "Xref/Yref/Zref",
+        reason: format!(
+            "{:?} lies so far from the panels that the velocities of a unit rotation about it \
+             reach {largest:e}: the circulations would overflow (give a point near the geometry)",
+            config.reference.point
+        ),
+    })
 }
 
 /// Rejects a factorisation whose pivots span more than 1e13: the lattice has coincident

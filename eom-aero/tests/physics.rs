@@ -40,7 +40,7 @@ fn derivs(c: &Configuration) -> Derivatives {
 
 /// −L entries of the seed paper: L = −(qS/V)·build_mtx, i.e. minus `dimensional()`.
 fn seed_l(d: &Derivatives) -> [f64; 4] {
-    let m = d.dimensional(1.225, 10.0);
+    let m = d.dimensional(1.225, 10.0).unwrap();
     [-m[1][1], -m[1][5], -m[5][1], -m[5][5]]
 }
 
@@ -135,8 +135,10 @@ fn mesh_convergence() {
 
 #[test]
 fn horizontal_wing_and_vertical_fin_give_the_same_dimensional_numbers() {
-    let fin = derivs(&seed_fin(8, 16)).dimensional(1.225, 10.0);
-    let wing = derivs(&seed_wing_flat(8, 16)).dimensional(1.225, 10.0);
+    let fin = derivs(&seed_fin(8, 16)).dimensional(1.225, 10.0).unwrap();
+    let wing = derivs(&seed_wing_flat(8, 16))
+        .dimensional(1.225, 10.0)
+        .unwrap();
     // Y_v = Z_w, Y_r = −Z_q, N_v = −M_w, N_r = M_q (rotation by 90° about x)
     let pairs = [
         (fin[1][1], wing[2][2]),

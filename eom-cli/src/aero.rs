@@ -143,7 +143,7 @@ pub fn aero(file: &str, req: &AeroRequest) -> Result<AeroReport, CliError> {
         unknown,
         density: req.density,
         speed: req.speed,
-        dimensional: d.dimensional(req.density, req.speed),
+        dimensional: d.dimensional(req.density, req.speed)?,
         warnings,
     })
 }

@@ -3,7 +3,7 @@
 //! points per second of a parallel parameter sweep of the bicycle.
 
 use crate::error::CliError;
-use crate::output::{Written, write_output};
+use crate::output::{status_line, write_chosen};
 use crate::progress::Progress;
 use eom_bench::work_precision::{self, MODELS, Options, WorkPrecisionError, entries};
 use std::path::Path;
@@ -106,11 +106,7 @@ pub fn accuracy(
 }
 
 fn note(path: &Path, text: &str, stderr: &mut String) -> Result<(), CliError> {
-    let verb = match write_output(path, text)? {
-        Written::Written => "wrote",
-        Written::Unchanged => "unchanged",
-    };
-    stderr.push_str(&format!("{verb} {}\n", path.display()));
+    stderr.push_str(&status_line(path, write_chosen(path, text)?));
     Ok(())
 }
 

@@ -43,9 +43,14 @@ pub struct Param {
     pub range: ParamRange,
 }
 
-/// Whether a model argument names a file rather than a built-in model.
+/// Whether a model argument names a file rather than a built-in model: a path ending in
+/// `.toml` or holding a `/`, or an existing file whose name is not a built-in model's (a
+/// built-in's name wins over a file of the same name in the working directory, which
+/// [`ModelChoice::resolve`] says; `./NAME` is the file).
 pub fn is_file_argument(name: &str) -> bool {
-    name.ends_with(".toml") || name.contains('/') || Path::new(name).is_file()
+    name.ends_with(".toml")
+        || name.contains('/')
+        || (Path::new(name).is_file() && models::find(name).is_err())
 }
 
 impl ModelChoice {
@@ -72,6 +77,15 @@ impl ModelChoice {
             });
         }
         let (info, _) = models::find(name)?;
+        if Path::new(name).exists() {
+            // Printed at once: the choice matters before any result.
+            eprintln!(
+                "note: `{}` is a built-in model and also a file in the working directory: the \
+                 built-in model is used (write ./{} for the file)",
+                eom_text::shown(name),
+                eom_text::shown(name)
+            );
+        }
         let params = info
             .params
             .iter()
@@ -187,15 +201,10 @@ pub fn parse_number(text: &str) -> Result<f64, String> {
 /// Longest argument text repeated in a message; longer text is cut in the middle.
 const SHOWN_CHARS: usize = 40;
 
-/// `text` itself when short, else its first and last characters and its length.
+/// `text` itself when short, else its first and last characters and its length; control
+/// characters escaped (`eom_text::shown_within`).
 pub fn abbreviate(text: &str) -> String {
-    let n = text.chars().count();
-    if n <= SHOWN_CHARS {
-        return text.to_string();
-    }
-    let head: String = text.chars().take(SHOWN_CHARS / 2).collect();
-    let tail: String = text.chars().skip(n - SHOWN_CHARS / 4).collect();
-    format!("{head}…{tail} ({n} characters)")
+    eom_text::shown_within(text, SHOWN_CHARS)
 }
 
 fn has_digit(t: &str) -> bool {
@@ -263,16 +272,22 @@ pub struct SweepSpec {
 }
 
 impl SweepSpec {
-    /// Parses `NAME=START:STOP:COUNT` (the name is checked against the model later).
+    /// Parses `--param NAME=START:STOP:COUNT` (the name is checked against the model later).
     pub fn parse(text: &str) -> Result<SweepSpec, CliError> {
+        SweepSpec::parse_option("--param", text)
+    }
+
+    /// Parses `NAME=START:STOP:COUNT` given to `option` (`--param`, `--sweep`), which the
+    /// errors name.
+    pub fn parse_option(option: &str, text: &str) -> Result<SweepSpec, CliError> {
         let bad = |problem: String| CliError::BadArgument {
-            argument: format!("--param {}", abbreviate(text)),
+            argument: format!("{option} {}", abbreviate(text)),
             problem,
         };
         let Some((name, range)) = text.split_once('=') else {
-            return Err(bad(
-                "expected NAME=START:STOP:COUNT (e.g. --param v=0:10:101)".into(),
-            ));
+            return Err(bad(format!(
+                "expected NAME=START:STOP:COUNT (e.g. {option} v=0:10:101)"
+            )));
         };
         let name = name.trim();
         if name.is_empty() {
@@ -353,6 +368,21 @@ pub fn parse_freq_range(text: &str) -> Result<(f64, f64), CliError> {
         return Err(bad(format!(
             "need 0 < LOW < HIGH (a logarithmic grid), got LOW = {lo:?}, HIGH = {hi:?}"
         )));
+    }
+    Ok((lo, hi))
+}
+
+/// `LOW:HIGH` in Hz for `--band` (0 ≤ LOW ≤ HIGH, both finite).
+pub fn parse_band(text: &str) -> Result<(f64, f64), String> {
+    let (lo, hi) = text
+        .split_once(':')
+        .ok_or_else(|| "expected LOW:HIGH in Hz (e.g. --band 0.5:2)".to_string())?;
+    let lo = parse_number(lo).map_err(|e| format!("LOW: {e}"))?;
+    let hi = parse_number(hi).map_err(|e| format!("HIGH: {e}"))?;
+    if !(lo >= 0.0 && hi >= lo) {
+        return Err(format!(
+            "need 0 ≤ LOW ≤ HIGH, got LOW = {lo:?}, HIGH = {hi:?}"
+        ));
     }
     Ok((lo, hi))
 }

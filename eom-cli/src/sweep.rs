@@ -463,7 +463,11 @@ impl SweepReport {
                         PointStability::Unstable => "unstable",
                     }
                     .to_string(),
-                    pt.max_real.map_or_else(|| "-".into(), |x| g(x, 5)),
+                    match (pt.max_real, pt.tolerance) {
+                        (Some(x), Some(tol)) => format!("{} ±{}", g(x, 5), g(tol, 2)),
+                        (Some(x), None) => g(x, 5),
+                        _ => "-".into(),
+                    },
                     self.eigenvalue_cell(pt),
                 ]
             })
@@ -472,12 +476,17 @@ impl SweepReport {
             &[
                 p.as_str(),
                 "stability",
-                "max Re λ",
+                "max Re λ ± tol",
                 "eigenvalues [1/s] (least stable first)",
             ],
             &rows,
             2,
         ));
+        t.push_str(
+            "  stability: stable when every branch has Re λ < −tol, marginal when one has \
+             |Re λ| ≤ tol and none is unstable;\n  tol = the eigenvalue's error estimate, the \
+             same rule as eom analyze (JSON: points[].tolerance)\n",
+        );
         t.push('\n');
 
         t.push_str(&format!(
@@ -485,7 +494,12 @@ impl SweepReport {
             g(self.boundary_tolerance, 3)
         ));
         if r.boundaries.is_empty() {
-            t.push_str("  none in the range\n");
+            t.push_str(&format!(
+                "  none between the grid points: no branch changes sign from one value to the \
+                 next (two crossings inside one grid step are not seen; a finer grid than \
+                 {} values may find them)\n",
+                self.range.count
+            ));
         }
         for b in &r.boundaries {
             let dir = match b.crossing {
@@ -511,13 +525,30 @@ impl SweepReport {
         t.push('\n');
         t.push_str(&format!("Stable intervals of {p}\n"));
         if r.stable_intervals.is_empty() {
-            t.push_str("  none: unstable or marginal over the whole range\n");
+            t.push_str(&format!(
+                "  none at the grid points: all {} values are unstable or marginal (the model \
+                 may be stable between them: refine the grid)\n",
+                self.range.count
+            ));
         }
         for i in &r.stable_intervals {
             t.push_str(&format!("  [{}, {}]\n", i.lo, i.hi));
         }
         if let Some(v) = &self.verdict {
             t.push_str(&v.to_text(p));
+        }
+        let marginal: Vec<String> = r
+            .points
+            .iter()
+            .filter(|pt| pt.stability == PointStability::Marginal)
+            .map(|pt| g(pt.value, 10))
+            .collect();
+        if !marginal.is_empty() {
+            t.push_str(&wrap_list(
+                &format!("  marginal (not in the intervals) at {p} ="),
+                &marginal,
+                100,
+            ));
         }
         t
     }

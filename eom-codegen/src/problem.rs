@@ -247,15 +247,36 @@ impl Problem {
         let checks = variable_checks(checks)?;
         let (params, param_exprs) = param_specs(&params)?;
         Ok(Problem {
-            model: name.unwrap_or("model").to_string(),
+            model: text(name.unwrap_or("model")),
             params,
             param_exprs,
             mats,
             checks,
-            names: ss.names.clone(),
+            names: signal_names(&ss.names),
             fixed,
             simplified,
         })
+    }
+}
+
+/// Text of the model (names, units, descriptions) as it may appear in generated code: every
+/// character that could end a comment line or reorder what a reader sees (a line break, a
+/// bidirectional override) escaped, so that text reaches the code only as text. Identifiers
+/// come from parameter names, which are identifiers by construction; string literals are
+/// escaped again by the token printer.
+fn text(s: &str) -> String {
+    eom_text::escaped(s).into_owned()
+}
+
+fn signal_names(n: &eom_num::SignalNames) -> eom_num::SignalNames {
+    let all = |v: &[String]| v.iter().map(|s| text(s)).collect();
+    eom_num::SignalNames {
+        states: all(&n.states),
+        inputs: all(&n.inputs),
+        input_units: all(&n.input_units),
+        outputs: all(&n.outputs),
+        output_units: all(&n.output_units),
+        bodies: all(&n.bodies),
     }
 }
 
@@ -266,14 +287,14 @@ fn checks_of(sym: &SymbolicStateSpace) -> Vec<Check> {
         .iter()
         .map(|c| match c {
             ValidityCheck::Pivot { what, value, row } => Check {
-                what: what.to_string(),
+                what: text(&what.to_string()),
                 pivot: true,
                 value: *value,
                 others: row.clone(),
                 nominal_ratio: 0.0,
             },
             ValidityCheck::Negligible { what, value, scale } => Check {
-                what: what.to_string(),
+                what: text(&what.to_string()),
                 pivot: false,
                 value: *value,
                 others: scale.clone(),
@@ -416,8 +437,8 @@ fn param_specs(params: &[Expr]) -> Result<(Vec<Param>, Vec<Expr>), CodegenError>
             name: info.name.clone(),
             field,
             nominal: p.nominal(),
-            unit: info.unit.clone().unwrap_or_default(),
-            description: info.description.clone().unwrap_or_default(),
+            unit: text(&info.unit.clone().unwrap_or_default()),
+            description: text(&info.description.clone().unwrap_or_default()),
         });
         param_exprs.push(*p);
     }

@@ -1,6 +1,9 @@
 //! [`Model::validate`]: names, references, geometry and values, checked before any assembly.
 //! Errors name the item and field; physically dubious but computable input gives warnings.
 //!
+//! 0. **Names**: the model's, the bodies' and the items' names hold no control character,
+//!    bidirectional-text override or line separator (`eom_text::name_problem`): names reach
+//!    terminals, exported files and generated code.
 //! 1. **Values**: every field is finite at the nominal point.
 //! 2. **Bodies**: each has a name, not `ground`, unique; then its own checks
 //!    ([`Item::validate`] of [`Body`]: no negative mass; physical moments of inertia, else a
@@ -122,6 +125,13 @@ impl<S: ModelScalar> Model<S> {
     /// Errors name the item and field. Warnings (physically dubious but computable input) are
     /// returned.
     pub fn validate(&self) -> Result<Vec<String>, ModelError> {
+        if let Some(p) = eom_text::name_problem(&self.name) {
+            return Err(ModelError::Model {
+                item: "the model".into(),
+                field: "name".into(),
+                problem: p,
+            });
+        }
         self.check_values()?;
         let mut cx = Validation {
             model: self,
@@ -185,6 +195,9 @@ impl<S: ModelScalar> Model<S> {
             if !names.insert(n) {
                 return Err(field_error(kind, n, "name", "duplicate item name".into()));
             }
+            if let Some(p) = eom_text::name_problem(n) {
+                return Err(field_error(kind, n, "name", p));
+            }
         }
         Ok(())
     }
@@ -214,19 +227,19 @@ fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), Mo
     let bodies: &'m [Body<S>] = &cx.model.bodies;
     for b in bodies {
         let problem = if b.name.is_empty() {
-            Some("a body needs a name")
+            Some("a body needs a name".to_string())
         } else if &*b.name == GROUND {
-            Some("`ground` is reserved for the fixed frame")
+            Some("`ground` is reserved for the fixed frame".to_string())
         } else if !cx.bodies.insert(&b.name) {
-            Some("duplicate body name")
+            Some("duplicate body name".to_string())
         } else {
-            None
+            eom_text::name_problem(&b.name)
         };
         if let Some(p) = problem {
             return Err(ModelError::Model {
                 item: label("body", &b.name),
                 field: "name".into(),
-                problem: p.into(),
+                problem: p,
             });
         }
         b.validate(cx)?;

@@ -436,8 +436,8 @@ impl HessenbergForm {
     }
 }
 
-/// `10 / ln 10`: dB per unit of `ln |G|²`.
-const DB_PER_NEPER_SQ: f64 = 10.0 / std::f64::consts::LN_10;
+/// `20 / ln 10`: dB per unit of `ln |G|`.
+const DB_PER_NEPER: f64 = 20.0 / std::f64::consts::LN_10;
 
 /// Number of frequencies evaluated together by [`HessenbergForm::evaluate_batch_in`].
 pub const LANES: usize = 4;
@@ -816,14 +816,15 @@ impl FrequencyResponse {
             let mut prev: Option<f64> = None;
             for k in 0..nf {
                 let z = values[base + k];
-                let mag2 = z.norm_sqr();
+                // |G| by `hypot`, not |G|²: the square of a magnitude below 1e-162 underflows
+                // to zero (a velocity's response at 1e-170 Hz is −3404 dB, not −∞ and 0°).
+                let zero = z.re == 0.0 && z.im == 0.0;
                 magnitude_db[base + k] = if singular[k] {
                     f64::INFINITY
                 } else {
-                    // 10·log10(|G|²) via ln (one libm call instead of two).
-                    DB_PER_NEPER_SQ * mag2.ln()
+                    DB_PER_NEPER * z.norm().ln()
                 };
-                let ph = if singular[k] || mag2 == 0.0 {
+                let ph = if singular[k] || zero {
                     prev.unwrap_or(0.0)
                 } else {
                     let raw = z.arg().to_degrees();

@@ -72,6 +72,7 @@
 //! | [`initial`] | the free response from an initial state, and the state that starts one mode alone |
 //! | [`minreal`] | minimal realization (orthogonal staircase, and a PBH test at repeated eigenvalues), with the removed modes reported |
 //! | [`zeros`] | transmission zeros |
+//! | [`model_reduction`] | balanced truncation (with the `2Σσ` bound), DC-matched and modal reduction; unstable and marginal modes kept whole |
 //! | [`sweep`] | parameter sweeps: eigenvalue branches, stability boundaries, stable intervals |
 //!
 //! ## Principles
@@ -139,8 +140,10 @@ pub mod initial;
 pub mod linalg;
 pub mod minreal;
 mod minreal_pbh;
+pub mod model_reduction;
 pub mod modes;
 mod pbh_subspace;
+pub mod reach;
 pub mod sensitivity;
 pub mod small_eigen;
 mod staircase;

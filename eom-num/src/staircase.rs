@@ -86,7 +86,7 @@ impl Reflectors {
 
 /// The Hessenberg tail from coordinate `p`: `diag(I_{p+1}, Q̃)` with `Q̃` faer's block
 /// Householder sequence.
-struct HessenbergTail {
+pub(crate) struct HessenbergTail {
     p: usize,
     /// Householder essentials ((n − p − 1) square, strictly lower part used).
     basis: Mat<f64>,
@@ -96,7 +96,7 @@ struct HessenbergTail {
 
 impl HessenbergTail {
     /// `M[.., p+1..] ← M[.., p+1..] Q̃`.
-    fn apply_right(&self, m: &mut DMatrix<f64>) {
+    pub(crate) fn apply_right(&self, m: &mut DMatrix<f64>) {
         let (rows, cols) = m.shape();
         let k = self.basis.nrows();
         if rows == 0 || k == 0 {
@@ -295,19 +295,11 @@ pub(crate) fn staircase(
     })
 }
 
-/// Steps with one-column blocks from coordinate `p` on (the last reached state), by the
-/// blocked Hessenberg reduction of `a[p.., p..]`. Returns the number of states reached and
-/// the decisions, and the transformation.
-type TailSteps = (usize, Vec<RankDecision>);
-
-fn hessenberg_tail(
-    a: &mut DMatrix<f64>,
-    c: &mut DMatrix<f64>,
-    p: usize,
-    tol: f64,
-    stage: RankStage,
-    first_step: usize,
-) -> Result<(TailSteps, HessenbergTail), NumError> {
+/// Reduces `a[p.., p..]` to upper Hessenberg form in place by faer's blocked reduction,
+/// `a[p.., p..] ← Q̃ᵀ a[p.., p..] Q̃` with zeros below the subdiagonal, and returns `Q̃`
+/// (`a` must have at least `p + 2` rows). Only that block is transformed: the caller
+/// applies the rotation to the rows above and to the other matrices.
+pub(crate) fn hessenberg(a: &mut DMatrix<f64>, p: usize) -> HessenbergTail {
     let n = a.nrows();
     let ns = n - p;
     let k = ns - 1;
@@ -336,7 +328,25 @@ fn hessenberg_tail(
     for j in 0..k {
         a.view_mut((p + j + 2, p + j), (k - j - 1, 1)).fill(0.0);
     }
-    let tail = HessenbergTail { p, basis, factor };
+    HessenbergTail { p, basis, factor }
+}
+
+/// Steps with one-column blocks from coordinate `p` on (the last reached state), by the
+/// blocked Hessenberg reduction of `a[p.., p..]`. Returns the number of states reached and
+/// the decisions, and the transformation.
+type TailSteps = (usize, Vec<RankDecision>);
+
+fn hessenberg_tail(
+    a: &mut DMatrix<f64>,
+    c: &mut DMatrix<f64>,
+    p: usize,
+    tol: f64,
+    stage: RankStage,
+    first_step: usize,
+) -> Result<(TailSteps, HessenbergTail), NumError> {
+    let n = a.nrows();
+    let k = n - p - 1;
+    let tail = hessenberg(a, p);
     // The rows above and the outputs see the same rotation of the columns p+1...
     let mut above = a.view((0, 0), (p, n)).clone_owned();
     tail.apply_right(&mut above);

@@ -9,6 +9,7 @@
 
 use crate::expr::Expr;
 use crate::pool::Sign;
+use crate::rational::Rational;
 use crate::scalar::Elementary;
 
 /// Elementary functions of one argument.
@@ -50,6 +51,13 @@ impl Func {
         Func::Ln,
         Func::Abs,
     ];
+
+    /// Whether `f(k·π)` is infinite for the exact rational `k`: `tan` at the odd multiples
+    /// of π/2. Such an argument is refused like `1/0` and `ln(0)`, rather than evaluated to
+    /// the 1.6e16 that `tan` gives at the rounded `f64` value of π/2.
+    pub fn has_pole_at_pi_times(self, k: &Rational) -> bool {
+        self == Func::Tan && k.as_small().is_some_and(|(_, d)| d == 2)
+    }
 
     /// The name used in text, by the parser and in the simplifier's e-graph.
     pub fn name(self) -> &'static str {
@@ -218,6 +226,32 @@ impl Call {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tan_at_an_exact_odd_multiple_of_half_pi_is_refused_like_a_division_by_zero() {
+        let scope = crate::scope::Scope::new();
+        for text in [
+            "tan(pi/2)",
+            "tan(-pi/2)",
+            "tan(3*pi/2)",
+            "tan(pi/2 + 2*pi)",
+            "1 + tan(π/2)",
+        ] {
+            let e = crate::parse::parse(text, &scope).unwrap_err();
+            assert!(e.to_string().contains("is a pole of tan"), "{text}: {e}");
+        }
+        for (text, value) in [
+            ("tan(pi)", 0.0),
+            ("tan(pi/4)", 1.0),
+            ("tan(1.5707963267948966)", 1.633123935319537e16),
+        ] {
+            let v = crate::parse::parse(text, &scope).unwrap().nominal();
+            assert!(
+                (v - value).abs() <= 1e-15 * value.abs().max(1.0),
+                "{text}: {v}"
+            );
+        }
+    }
 
     #[test]
     fn names_round_trip() {

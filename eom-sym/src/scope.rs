@@ -94,7 +94,7 @@ impl Scope {
     /// The parameter called `name`, or an error listing the known names.
     pub fn lookup(&self, name: &str) -> Result<Expr, SymError> {
         self.get(name).ok_or_else(|| SymError::UnknownParameter {
-            name: name.to_string(),
+            name: eom_text::shown(name),
             known: self.names(),
         })
     }

@@ -81,8 +81,20 @@ fn smallest_singular_value(a: &DMatrix<f64>, pivots: &[(usize, usize)]) -> Resul
     Ok(rank(&sub)?.1.last().copied().unwrap_or(f64::INFINITY))
 }
 
-/// `λ_c`, `λ_e`, how they were found, and warnings.
-pub(crate) type StaticsResult<S> = (Vec<S>, Vec<S>, Statics, Vec<String>);
+/// What the statics found.
+pub(crate) struct StaticsResult<S> {
+    /// The multipliers of the holonomic rows.
+    pub(crate) lambda_c: Vec<S>,
+    /// The multipliers of the elastic rows.
+    pub(crate) lambda_e: Vec<S>,
+    /// How they were found.
+    pub(crate) kind: Statics,
+    /// Per holonomic row: its multiplier is not determined by the statics (it takes part in a
+    /// self-stress of redundant rigid rows; the minimum-norm value is used).
+    pub(crate) not_unique: Vec<bool>,
+    /// Warnings.
+    pub(crate) warnings: Vec<String>,
+}
 
 /// Solve the static preloads (see the module documentation).
 pub(crate) fn solve_statics<S: Scalar>(
@@ -92,22 +104,29 @@ pub(crate) fn solve_statics<S: Scalar>(
     let s = p.h_rows.len();
     // 1. Unloaded.
     if p.applied.iter().all(Scalar::is_zero) && p.known.iter().all(|k| k.1.is_zero()) {
-        return Ok((
-            vec![S::zero(); q],
-            vec![S::zero(); s],
-            Statics::Unloaded,
-            Vec::new(),
-        ));
+        return Ok(StaticsResult {
+            lambda_c: vec![S::zero(); q],
+            lambda_e: vec![S::zero(); s],
+            kind: Statics::Unloaded,
+            not_unique: vec![false; q],
+            warnings: Vec::new(),
+        });
     }
     let length = length_scale(p.j_rows.iter().chain(p.h_rows.iter()));
-    // 2.–3. The common case, decided without an SVD.
+    // The common case, decided without an SVD.
     if let Some(red) = certified_determinate(p, length)? {
         let nu = q + s;
         let sol = solution(&red, nu);
         let (lc, le) = (sol[..q].to_vec(), sol[q..].to_vec());
         let mut warnings = Vec::new();
         check_equilibrium(p, &lc, &le, length, &mut warnings)?;
-        return Ok((lc, le, Statics::Determinate, warnings));
+        return Ok(StaticsResult {
+            lambda_c: lc,
+            lambda_e: le,
+            kind: Statics::Determinate,
+            not_unique: vec![false; q],
+            warnings,
+        });
     }
     // 2. Redundant rigid rows, set aside.
     let (redundant, sv, row_weight) = redundant_rows(p.j_rows, p.dim, length)?;
@@ -126,15 +145,26 @@ pub(crate) fn solve_statics<S: Scalar>(
         lc[i] = lc_kept[k];
     }
     let mut warnings = Vec::new();
+    let mut not_unique = vec![false; q];
     // 5. Minimum norm over the self-stresses of the redundant rows.
     if !redundant.is_empty() {
         kind = Statics::Indeterminate;
-        let moved = minimum_norm(p, &mut lc, &row_weight, redundant.len(), length)?;
+        let (moved, n) = minimum_norm(p, &mut lc, &row_weight, redundant.len(), length)?;
+        // The rows a self-stress moves (entries of the orthonormal basis above rounding).
+        for (i, flag) in not_unique.iter_mut().enumerate() {
+            *flag = n.row(i).amax() > RANK_TOLERANCE;
+        }
         warnings.push(redundancy_warning(p, &redundant, &sv, moved));
     }
     // 6. Equilibrium.
     check_equilibrium(p, &lc, &le, length, &mut warnings)?;
-    Ok((lc, le, kind, warnings))
+    Ok(StaticsResult {
+        lambda_c: lc,
+        lambda_e: le,
+        kind,
+        not_unique,
+        warnings,
+    })
 }
 
 /// Steps 3–4 on a problem without redundant rigid rows.
@@ -157,14 +187,14 @@ fn determinate_or_compatible<S: Scalar>(
 
 /// Step 5: move `λ_c` to the least-norm solution, `μ ← μ − N Nᵀ μ` in the nondimensionalised
 /// multipliers `μ = λ / w` (`N`: orthonormal self-stresses); the largest change relative to
-/// the largest multiplier. The symbolic path cannot carry a choice made at one point.
+/// the largest multiplier, and `N`. The symbolic path cannot carry a choice made at one point.
 fn minimum_norm<S: Scalar>(
     p: &StaticsProblem<'_, S>,
     lc: &mut [S],
     row_weight: &[f64],
     count: usize,
     length: f64,
-) -> Result<f64, ModelError> {
+) -> Result<(f64, DMatrix<f64>), ModelError> {
     let n = self_stress_basis(p.j_rows, p.dim, length, row_weight, count)?;
     let mu = DVector::from_iterator(
         lc.len(),
@@ -175,7 +205,7 @@ fn minimum_norm<S: Scalar>(
     let moved = if top > 0.0 { delta.amax() / top } else { 0.0 };
     if S::SYMBOLIC && moved > RANK_TOLERANCE {
         return Err(ModelError::Unsupported(format!(
-            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic path cannot choose among them for every parameter value; use the numeric or robust path, which take the minimum-norm preloads"
+            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic reduction cannot choose among them for every parameter value (the numeric and robust methods take the minimum-norm preloads)"
         )));
     }
     if !S::SYMBOLIC {
@@ -183,7 +213,7 @@ fn minimum_norm<S: Scalar>(
             *l = *l + S::from_f64(delta[i] * row_weight[i]);
         }
     }
-    Ok(moved)
+    Ok((moved, n))
 }
 
 /// The warning of step 5: which rows, why, and what was done.

@@ -10,7 +10,12 @@ use std::fmt::Write;
 /// The model as the text of a model file that loads back into the same model.
 pub fn to_toml(model: &Model) -> String {
     let mut t = String::new();
-    let _ = writeln!(t, "# {} — written by eom export", model.name);
+    // The comment holds the name escaped: a line break in it would end the comment.
+    let _ = writeln!(
+        t,
+        "# {} — written by eom export",
+        eom_text::escaped(&model.name)
+    );
     let _ = writeln!(t, "\n[model]\nname = {}", quote(&model.name));
     let _ = writeln!(t, "\n[parameters]");
     for p in model.scope.params() {
@@ -145,6 +150,12 @@ fn number(x: f64) -> String {
     } else {
         format!("{x:?}")
     }
+}
+
+/// `s` as a TOML basic string (quoted, with `"`, `\\` and every control character escaped):
+/// the one way eom writes text into a model file.
+pub fn toml_string(s: &str) -> String {
+    quote(s)
 }
 
 /// A TOML basic string.

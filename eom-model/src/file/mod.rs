@@ -48,7 +48,7 @@ mod params;
 mod source;
 mod wing;
 
-pub use export::to_toml;
+pub use export::{to_toml, toml_string};
 pub use params::{ParamRange, ParamSpec};
 pub use source::FilePosition;
 
@@ -77,11 +77,12 @@ pub struct LoadedModel {
 
 /// Reads and loads the model file at `path`; `overrides` replace nominal values by name.
 pub fn load(path: &Path, overrides: &[(&str, f64)]) -> Result<LoadedModel, ModelError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ModelError::File {
-        position: FilePosition::whole(&path.display().to_string()),
-        context: String::new(),
-        problem: format!("cannot be read: {e}"),
-    })?;
+    let text =
+        eom_text::read_limited(path, eom_text::MAX_FILE_BYTES).map_err(|e| ModelError::File {
+            position: FilePosition::whole(&path.display().to_string()),
+            context: String::new(),
+            problem: format!("cannot be read: {e}"),
+        })?;
     load_in(&text, &path.display().to_string(), overrides, path.parent())
 }
 

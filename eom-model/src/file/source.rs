@@ -161,7 +161,7 @@ impl<'a> Table<'a> {
                     &self.context,
                     format!(
                         "unknown key `{}`{hint}; the keys here are: {}",
-                        k.get_ref(),
+                        eom_text::shown(k.get_ref()),
                         known.join(", ")
                     ),
                 ));
@@ -192,7 +192,19 @@ impl<'a> Table<'a> {
         match self.get(key) {
             None => Ok(None),
             Some(v) => match v.get_ref() {
-                DeValue::String(s) => Ok(Some(s.to_string())),
+                DeValue::String(s) => {
+                    // Every string of a file reaches messages, terminals, exported files and
+                    // generated code: no control characters (line breaks only in free text).
+                    let problem = if key == "description" {
+                        eom_text::description_problem(s)
+                    } else {
+                        eom_text::name_problem(s)
+                    };
+                    match problem {
+                        Some(p) => Err(self.field_error(key, &v.span(), p)),
+                        None => Ok(Some(s.to_string())),
+                    }
+                }
                 other => Err(self.field_error(
                     key,
                     &v.span(),
@@ -282,8 +294,11 @@ pub(crate) fn parse_integer(text: &str, radix: u32) -> Option<i64> {
 
 /// The known name closest to `s` (at most two edits away), for "did you mean".
 pub(crate) fn closest<'k>(s: &str, known: &[&'k str]) -> Option<&'k str> {
+    // The distance is at least the difference of the lengths: a long key costs nothing.
+    let n = s.chars().count();
     known
         .iter()
+        .filter(|k| n.abs_diff(k.chars().count()) <= 2)
         .map(|k| (edit_distance(s, k), *k))
         .filter(|(d, _)| *d <= 2)
         .min_by_key(|(d, _)| *d)

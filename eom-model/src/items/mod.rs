@@ -331,10 +331,11 @@ pub(crate) fn map3<S, T>(v: &Vec3<S>, f: &mut dyn FnMut(&S) -> T) -> Vec3<T> {
 /// The label of an item in messages: ``spring `front` ``. Built directly rather than by
 /// `format!`: every reacting item's preload is labelled on every assembly.
 pub(crate) fn label(kind: &str, name: &str) -> String {
+    let name = eom_text::shown(name);
     let mut s = String::with_capacity(kind.len() + name.len() + 3);
     s.push_str(kind);
     s.push_str(" `");
-    s.push_str(name);
+    s.push_str(&name);
     s.push('`');
     s
 }

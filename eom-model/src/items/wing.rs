@@ -656,7 +656,8 @@ mod tests {
             reference: eom_aero::Reference::new(0.7, 0.3, 2.0, [0.0; 3]),
             coefficients: w.derivatives,
         }
-        .dimensional(1.1, v);
+        .dimensional(1.1, v)
+        .unwrap();
         let l = w.damping(v);
         let s = [1.0, -1.0, -1.0, 1.0, -1.0, -1.0];
         for i in 0..6 {

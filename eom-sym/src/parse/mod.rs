@@ -67,9 +67,23 @@ use crate::scope::Scope;
 pub const MAX_DEPTH: usize = 256;
 
 /// Names that are functions when followed by `(`.
-const FUNCTIONS: [&str; 10] = [
+pub const FUNCTIONS: [&str; 10] = [
     "sin", "cos", "tan", "exp", "ln", "log", "abs", "sqrt", "atan2", "float",
 ];
+
+/// Names of the constants (`π` too, which is not an identifier).
+pub const CONSTANTS: [&str; 2] = ["pi", "e"];
+
+/// The names no parameter may have: the constants and the elementary functions (`log` and
+/// `float` stay usable as parameters: `log(`, `float(` are always the functions).
+pub const RESERVED: [&str; 10] = [
+    "pi", "e", "sin", "cos", "tan", "exp", "ln", "abs", "sqrt", "atan2",
+];
+
+/// Whether `name` is one of [`RESERVED`].
+pub fn is_reserved(name: &str) -> bool {
+    RESERVED.contains(&name)
+}
 
 /// Parse `input` with parameters resolved in `scope`.
 ///
@@ -308,18 +322,12 @@ impl<'a> Parser<'a> {
     #[cold]
     #[inline(never)]
     fn error(&self, column: usize, expected: &str, found: &str) -> Box<SymError> {
-        let caret: String = self
-            .input
-            .chars()
-            .take(column.saturating_sub(1))
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
-            .chain(std::iter::once('^'))
-            .collect();
+        let (input, caret) = error_window(self.input, column);
         Box::new(SymError::Parse {
             column,
             expected: expected.to_string(),
-            found: found.to_string(),
-            input: self.input.to_string(),
+            found: eom_text::escaped(found).into_owned(),
+            input,
             caret,
         })
     }
@@ -346,13 +354,13 @@ impl<'a> Parser<'a> {
                 // An operand right after an operand: the user meant a product.
                 Some(p) if matches!(p.tok, Tok::Num(_) | Tok::Ident(_) | Tok::RParen) => format!(
                     "`{}` (implicit multiplication is not allowed: write `{}*{}`)",
-                    t.text(),
-                    p.text(),
-                    t.text()
+                    eom_text::shown(&t.text()),
+                    eom_text::shown(&p.text()),
+                    eom_text::shown(&t.text())
                 ),
-                _ => format!("`{}`", t.text()),
+                _ => format!("`{}`", eom_text::shown(&t.text())),
             },
-            _ => format!("`{}`", t.text()),
+            _ => format!("`{}`", eom_text::shown(&t.text())),
         }
     }
 
@@ -564,11 +572,12 @@ impl<'a> Parser<'a> {
             Some(s) => format!("a known parameter (did you mean `{s}`?)"),
             None => "a known parameter".to_string(),
         };
+        let shown = eom_text::shown(name);
         let found = if known.is_empty() {
-            format!("unknown parameter `{name}`; no parameters are declared")
+            format!("unknown parameter `{shown}`; no parameters are declared")
         } else {
             format!(
-                "unknown parameter `{name}`; known parameters: {}",
+                "unknown parameter `{shown}`; known parameters: {}",
                 known.join(", ")
             )
         };
@@ -719,3 +728,47 @@ fn edit_distance(a: &str, b: &str) -> usize {
 
 #[cfg(test)]
 mod tests;
+
+/// Characters of the input a parse error repeats around its column when the input is longer
+/// than that: a 10 MB expression is not echoed whole.
+const ERROR_WINDOW: usize = 60;
+
+/// The input as a parse error shows it (control characters escaped, a window of
+/// [`ERROR_WINDOW`] characters around `column` when it is longer, marked by `…` and its
+/// length) and the caret line under `column`.
+fn error_window(input: &str, column: usize) -> (String, String) {
+    let n = input.chars().count();
+    let at = column.saturating_sub(1);
+    let (start, end) = if n <= ERROR_WINDOW + ERROR_WINDOW / 3 {
+        (0, n)
+    } else {
+        let start = at
+            .saturating_sub(ERROR_WINDOW / 2)
+            .min(n.saturating_sub(ERROR_WINDOW));
+        (start, (start + ERROR_WINDOW).min(n))
+    };
+    let (mut shown, mut caret) = (String::new(), String::new());
+    if start > 0 {
+        shown.push('…');
+        caret.push(' ');
+    }
+    let mut buf = [0u8; 4];
+    for (k, c) in input.chars().enumerate().skip(start).take(end - start) {
+        let text: std::borrow::Cow<'_, str> = if c == '\t' {
+            "\t".into()
+        } else {
+            eom_text::escaped(c.encode_utf8(&mut buf))
+                .into_owned()
+                .into()
+        };
+        shown.push_str(&text);
+        if k < at {
+            caret.extend(text.chars().map(|x| if x == '\t' { '\t' } else { ' ' }));
+        }
+    }
+    if end < n {
+        shown.push_str(&format!("… ({n} characters)"));
+    }
+    caret.push('^');
+    (shown, caret)
+}

@@ -715,10 +715,15 @@ impl PoolData {
             });
         }
         // Multiples of π.
-        if let Some(k) = self.pi_multiple(a)
-            && let Some(v) = exact_trig(f, &k)
-        {
-            return self.rational(v);
+        if let Some(k) = self.pi_multiple(a) {
+            if f.has_pole_at_pi_times(&k) {
+                return self.invalid(SymError::DivisionByZero {
+                    context: format!("{}({k}·π) is a pole of {}", f.name(), f.name()),
+                });
+            }
+            if let Some(v) = exact_trig(f, &k) {
+                return self.rational(v);
+            }
         }
         // Odd and even functions of a negated argument.
         if let Some(pos) = self.negated(a) {
