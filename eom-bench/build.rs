@@ -1,7 +1,7 @@
 //! Generates and compiles Rust code for every model of the work-precision benchmark with
 //! eom-codegen, so that `eom bench accuracy` times and checks the code users would embed:
-//! each model in `f64` and in `f32` (libm), and the egg-simplified `f64` variant of the bicycle
-//! and the shimmy. The modules are `include!`d from `$OUT_DIR/generated.rs`.
+//! each model in `f64` (with the stability verdict where the model has at most 16 states) and
+//! in `f32` (libm), and the egg-simplified `f64` variant of the bicycle and the shimmy. The modules are `include!`d from `$OUT_DIR/generated.rs`.
 
 use eom_codegen::build::{Generate, write_if_changed};
 use std::path::PathBuf;
@@ -15,6 +15,18 @@ const MODELS: [&str; 9] = [
     "top",
     "chain50",
     "chainp50",
+    "smd_wing",
+    "shimmy_wing",
+];
+
+/// The models whose `f64` module also has the stability verdict (`--stability`: at most 16
+/// states).
+const STABILITY: [&str; 7] = [
+    "smd",
+    "shimmy",
+    "bicycle",
+    "quarter_car",
+    "top",
     "smd_wing",
     "shimmy_wing",
 ];
@@ -34,7 +46,8 @@ fn main() {
         ));
     };
     for m in MODELS {
-        emit(format!("{m}_f64.rs"), builtin(m), &mut index);
+        let g = builtin(m).stability(STABILITY.contains(&m));
+        emit(format!("{m}_f64.rs"), g, &mut index);
     }
     for m in SIMPLIFIED {
         // `simplify_always`: the benchmark measures the simplified code even where the

@@ -1,8 +1,14 @@
 //! Throughput of a parameter sweep on one machine (`eom bench throughput`): the bicycle's
 //! generated `f64` code (`eval_ab`, compiled into this crate by `build.rs`) and the eigenvalues
-//! of its A (`eom_num::modes::eigenvalues_in`, structural zeros deflated exactly) at many
-//! random parameter points, in parallel with rayon — the basis for estimating what a sweep
-//! needs when it outgrows one machine.
+//! of its A at many random parameter points, in parallel with rayon — the basis for
+//! estimating what a sweep needs when it outgrows one machine. The eigenvalues come from the
+//! stack kernel `eom_num::small_eigen` with the structural zeros found once, at the nominal
+//! point, and checked and deflated at every point (`eigenvalues_small_known`).
+//!
+//! The same points also go through the generated `stability` (eom-codegen's `--stability`:
+//! the Liénard–Chipart conditions of the closed-form characteristic polynomial with their
+//! rounding-error bounds, no eigenvalues), timed on its own, and its verdict is compared
+//! with the eigenvalues': the undecided points and any disagreement are counted.
 //!
 //! The points: every one of the 27 parameters drawn uniformly within nominal × (1 ± spread)
 //! (the speed too, so that with the default ±20 % the sweep crosses the weave and the capsize
@@ -15,8 +21,7 @@
 //! the largest real part) is what the work produces, so none of it can be optimised away.
 
 use crate::work_precision::generated::bicycle64 as model;
-use eom_num::modes::{EigenvaluesWorkspace, eigenvalues_in};
-use nalgebra::DMatrix;
+use eom_num::small_eigen::{KnownZeros, eigenvalues_small, eigenvalues_small_known};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -66,14 +71,18 @@ pub struct Throughput {
     pub points: usize,
     /// Worker threads used.
     pub threads: usize,
-    /// Wall-clock time of the whole sweep.
+    /// Wall-clock time of the sweep (points, generated code, eigenvalues).
     pub wall: Duration,
+    /// Wall-clock time of the second pass: the generated verdicts of the same points.
+    pub verdict_wall: Duration,
     /// Thread time spent drawing the points (summed over threads).
     pub sample: Duration,
     /// Thread time spent in the generated code.
     pub eval: Duration,
     /// Thread time spent in the eigenvalues.
     pub eigen: Duration,
+    /// Thread time spent in the generated stability verdict.
+    pub verdict: Duration,
     /// The summary of the results.
     pub summary: Summary,
 }
@@ -92,6 +101,15 @@ pub struct Summary {
     pub min_max_re: f64,
     /// Largest, over the points, of the largest real part of the non-zero eigenvalues.
     pub max_max_re: f64,
+    /// Points the generated verdict calls stable.
+    pub verdict_stable: usize,
+    /// Points the generated verdict leaves undecided (a condition within its rounding bound
+    /// of zero).
+    pub verdict_undecided: usize,
+    /// Points where the generated verdict failed (outside the validity region).
+    pub verdict_failures: usize,
+    /// Points where the generated verdict is decided and differs from the eigenvalues'.
+    pub disagreements: usize,
 }
 
 impl Summary {
@@ -103,14 +121,31 @@ impl Summary {
         }
     }
 
-    /// Adds the eigenvalues of one point.
-    pub fn add(&mut self, eigenvalues: &[Complex64]) {
+    /// Adds the eigenvalues of one point; whether they say it is stable.
+    pub fn add(&mut self, eigenvalues: &[Complex64]) -> bool {
         let re = largest_real_part(eigenvalues);
         if re < 0.0 {
             self.stable += 1;
         }
         self.min_max_re = self.min_max_re.min(re);
         self.max_max_re = self.max_max_re.max(re);
+        re < 0.0
+    }
+
+    /// Adds the generated verdict of a point whose eigenvalues said `stable` (`None`: they
+    /// failed).
+    fn add_verdict(&mut self, verdict: Verdicted, stable: Option<bool>) {
+        match verdict {
+            Err(_) => self.verdict_failures += 1,
+            Ok(model::Verdict::Undecided) => self.verdict_undecided += 1,
+            Ok(v) => {
+                let says = v == model::Verdict::Stable;
+                self.verdict_stable += usize::from(says);
+                if stable.is_some_and(|s| s != says) {
+                    self.disagreements += 1;
+                }
+            }
+        }
     }
 
     fn merge(mut self, o: Summary) -> Summary {
@@ -119,6 +154,10 @@ impl Summary {
         self.stable += o.stable;
         self.min_max_re = self.min_max_re.min(o.min_max_re);
         self.max_max_re = self.max_max_re.max(o.max_max_re);
+        self.verdict_stable += o.verdict_stable;
+        self.verdict_undecided += o.verdict_undecided;
+        self.verdict_failures += o.verdict_failures;
+        self.disagreements += o.disagreements;
         self
     }
 }
@@ -140,6 +179,11 @@ impl Throughput {
     /// Points per second and thread.
     pub fn points_per_second_per_thread(&self) -> f64 {
         self.points_per_second() / self.threads as f64
+    }
+
+    /// Generated verdicts per second of thread time.
+    pub fn verdicts_per_thread_second(&self) -> f64 {
+        self.points as f64 / self.verdict.as_secs_f64().max(1e-12)
     }
 
     /// Thread time per point of a phase, in ns.
@@ -172,33 +216,49 @@ pub fn point(seed: u64, spread: f64, k: u64) -> [f64; N_PARAMS] {
     })
 }
 
-/// Per-thread scratch: the workspace of the eigenvalues and the chunk's matrices.
+/// Per-thread scratch: the chunk's parameters and matrices, the eigenvalues of one point.
 struct Scratch {
-    ws: EigenvaluesWorkspace,
-    a: DMatrix<f64>,
     params: Vec<[f64; N_PARAMS]>,
     mats: Vec<[f64; model::A_LEN]>,
     ok: Vec<bool>,
     eig: Vec<Complex64>,
+    /// Per point of the chunk: the eigenvalues' verdict (`None`: no eigenvalues).
+    stable: Vec<Option<bool>>,
+    verdicts: Vec<Verdicted>,
 }
 
 impl Scratch {
     fn new() -> Self {
         Scratch {
-            ws: EigenvaluesWorkspace::new(model::N_STATES),
-            a: DMatrix::zeros(model::N_STATES, model::N_STATES),
             params: Vec::with_capacity(CHUNK),
             mats: Vec::with_capacity(CHUNK),
             ok: Vec::with_capacity(CHUNK),
             eig: vec![Complex64::new(0.0, 0.0); model::N_STATES],
+            stable: Vec::with_capacity(CHUNK),
+            verdicts: Vec::with_capacity(CHUNK),
         }
     }
 }
 
-/// Times and summary of one chunk.
-type ChunkResult = (Duration, Duration, Duration, Summary);
+/// The structural zeros of the bicycle's A (heading and lateral position), found at the
+/// nominal point (`None` if A cannot be evaluated there: every point then searches for its
+/// own).
+fn known_zeros() -> Option<KnownZeros> {
+    let (mut a, mut b, mut w) = (
+        [0.0; model::A_LEN],
+        [0.0; model::B_LEN],
+        [0.0; model::WORK_LEN],
+    );
+    model::eval_ab(&model::NOMINAL, &mut a, &mut b, &mut w)
+        .ok()
+        .and_then(|()| KnownZeros::of(&a, model::N_STATES).ok())
+}
 
-fn chunk(s: &mut Scratch, opts: &Options, c: usize) -> ChunkResult {
+/// Times (drawing, generated code, eigenvalues), summary and the eigenvalues' verdict per
+/// point (`None`: no eigenvalues) of one chunk.
+type ChunkResult = ([Duration; 3], Summary, Vec<Option<bool>>);
+
+fn chunk(s: &mut Scratch, known: Option<&KnownZeros>, opts: &Options, c: usize) -> ChunkResult {
     let (start, end) = (c * CHUNK, ((c + 1) * CHUNK).min(opts.points));
     let mut summary = Summary::empty();
     let t0 = Instant::now();
@@ -217,20 +277,47 @@ fn chunk(s: &mut Scratch, opts: &Options, c: usize) -> ChunkResult {
     }
     std::hint::black_box(&b);
     let t2 = Instant::now();
+    s.stable.clear();
     for (a, &ok) in s.mats.iter().zip(&s.ok) {
         if !ok {
             summary.eval_failures += 1;
+            s.stable.push(None);
             continue;
         }
-        s.a.as_mut_slice().copy_from_slice(a);
-        match eigenvalues_in(&s.a, &mut s.ws, &mut s.eig) {
-            Ok(()) => summary.add(&s.eig),
-            Err(_) => summary.eigen_failures += 1,
+        let found = match known {
+            Some(k) => eigenvalues_small_known(a, model::N_STATES, k, &mut s.eig),
+            None => eigenvalues_small(a, model::N_STATES, &mut s.eig),
+        };
+        match found {
+            Ok(_) => s.stable.push(Some(summary.add(&s.eig))),
+            Err(_) => {
+                summary.eigen_failures += 1;
+                s.stable.push(None);
+            }
         }
     }
     let t3 = Instant::now();
-    (t1 - t0, t2 - t1, t3 - t2, summary)
+    ([t1 - t0, t2 - t1, t3 - t2], summary, s.stable.clone())
 }
+
+/// The generated verdicts of the points of chunk `c`, and the thread time they took.
+fn verdict_chunk(s: &mut Scratch, opts: &Options, c: usize) -> (Duration, Vec<Verdicted>) {
+    let (start, end) = (c * CHUNK, ((c + 1) * CHUNK).min(opts.points));
+    s.params.clear();
+    s.params
+        .extend((start..end).map(|k| point(opts.seed, opts.spread, k as u64)));
+    let t0 = Instant::now();
+    s.verdicts.clear();
+    s.verdicts.extend(
+        s.params
+            .iter()
+            .map(|p| model::stability(std::hint::black_box(p))),
+    );
+    (t0.elapsed(), s.verdicts.clone())
+}
+
+/// A generated verdict.
+type Verdicted = Result<model::Verdict, model::Error>;
 
 /// Sweeps `opts.points` random points of the bicycle on `opts.threads` threads.
 pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
@@ -240,29 +327,46 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
         .build()
         .map_err(|e| ThroughputError::Pool(e.to_string()))?;
     let chunks = opts.points.div_ceil(CHUNK);
+    let known = known_zeros();
     let start = Instant::now();
-    let zero = (
-        Duration::ZERO,
-        Duration::ZERO,
-        Duration::ZERO,
-        Summary::empty(),
-    );
-    let (sample, eval, eigen, summary) = pool.install(|| {
+    let chunked: Vec<ChunkResult> = pool.install(|| {
         (0..chunks)
             .into_par_iter()
-            .map_init(Scratch::new, |s, c| chunk(s, opts, c))
-            .reduce(
-                || zero.clone(),
-                |x, y| (x.0 + y.0, x.1 + y.1, x.2 + y.2, x.3.merge(y.3)),
-            )
+            .map_init(Scratch::new, |s, c| chunk(s, known.as_ref(), opts, c))
+            .collect()
     });
+    let wall = start.elapsed();
+    // The verdicts without eigenvalues: a second pass over the same points.
+    let start = Instant::now();
+    let verdicts: Vec<(Duration, Vec<Verdicted>)> = pool.install(|| {
+        (0..chunks)
+            .into_par_iter()
+            .map_init(Scratch::new, |s, c| verdict_chunk(s, opts, c))
+            .collect()
+    });
+    let verdict_wall = start.elapsed();
+    let (mut times, mut summary, mut verdict) =
+        ([Duration::ZERO; 3], Summary::empty(), Duration::ZERO);
+    for ((t, sum, stable), (tv, v)) in chunked.into_iter().zip(verdicts) {
+        for k in 0..3 {
+            times[k] += t[k];
+        }
+        verdict += tv;
+        let mut sum = sum;
+        for (v, st) in v.into_iter().zip(stable) {
+            sum.add_verdict(v, st);
+        }
+        summary = summary.merge(sum);
+    }
     Ok(Throughput {
         points: opts.points,
         threads,
-        wall: start.elapsed(),
-        sample,
-        eval,
-        eigen,
+        wall,
+        verdict_wall,
+        sample: times[0],
+        eval: times[1],
+        eigen: times[2],
+        verdict,
         summary,
     })
 }
@@ -271,17 +375,22 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
 pub fn to_text(t: &Throughput) -> String {
     let s = &t.summary;
     let evaluated = t.points - s.eval_failures - s.eigen_failures;
+    let decided = t.points - s.verdict_undecided - s.verdict_failures;
     format!(
         "Throughput: bicycle, generated f64 code (eval_ab) + eigenvalues, {} random points \
          (27 parameters within ±20 % of nominal), {} thread(s)\n\
          wall time: {:.3} s\n\
          points/s: {:.0} total, {:.0} per thread\n\
          thread time per point: {:.1} ns drawing the point, {:.1} ns generated code, \
-         {:.1} ns eigenvalues\n\
+         {:.1} ns eigenvalues ({:.1}× the generated code)\n\
          generated code failures: {}\n\
          eigenvalue failures: {}\n\
          stable points: {} of {} ({:.2} %)\n\
-         largest real part of the non-zero eigenvalues: from {:.6e} to {:.6e} 1/s\n",
+         largest real part of the non-zero eigenvalues: from {:.6e} to {:.6e} 1/s\n\
+         stability verdict without eigenvalues (generated `stability`): {:.1} ns per point, \
+         {:.0} verdicts/s per thread\n\
+         verdicts: {} stable, {} unstable, {} undecided (a condition within its rounding \
+         bound of zero), {} failed; {} of the {} decided differ from the eigenvalues' verdict\n",
         t.points,
         t.threads,
         t.wall.as_secs_f64(),
@@ -290,6 +399,7 @@ pub fn to_text(t: &Throughput) -> String {
         t.ns_per_point(t.sample),
         t.ns_per_point(t.eval),
         t.ns_per_point(t.eigen),
+        t.eigen.as_secs_f64() / t.eval.as_secs_f64().max(1e-12),
         s.eval_failures,
         s.eigen_failures,
         s.stable,
@@ -297,6 +407,14 @@ pub fn to_text(t: &Throughput) -> String {
         100.0 * s.stable as f64 / evaluated.max(1) as f64,
         s.min_max_re,
         s.max_max_re,
+        t.ns_per_point(t.verdict),
+        t.verdicts_per_thread_second(),
+        s.verdict_stable,
+        decided - s.verdict_stable,
+        s.verdict_undecided,
+        s.verdict_failures,
+        s.disagreements,
+        decided,
     )
 }
 
@@ -330,5 +448,8 @@ mod tests {
         assert_eq!(one.summary, two.summary);
         assert_eq!(one.summary.eval_failures + one.summary.eigen_failures, 0);
         assert!(one.summary.stable > 0 && one.summary.stable < one.points);
+        // The verdict without eigenvalues agrees wherever it decides.
+        assert_eq!(one.summary.disagreements, 0);
+        assert_eq!(one.summary.verdict_failures, 0);
     }
 }

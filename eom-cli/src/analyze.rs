@@ -85,8 +85,14 @@ pub struct Analysis {
     pub stable: bool,
     /// One entry per eigenvalue, in the order of `eigenvalues`.
     pub modes: Vec<ModeReport>,
-    /// The input/output view (`null` with a warning if it could not be computed).
+    /// The input/output view (`null` with a warning if it could not be computed, or with
+    /// `minimal_note` when there is nothing to compute).
     pub minimal: Option<MinimalReport>,
+    /// Why the minimal realization was not computed although nothing failed: a model without
+    /// inputs or without outputs has an empty minimal realization (every mode is hidden from
+    /// them), which is said instead of listing every mode as removed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub minimal_note: Option<String>,
     /// Per output/input pair (`null` with a warning if it could not be computed).
     pub steady_state_gain: Option<Vec<GainEntry>>,
     /// Transmission zeros of the minimal realization, sorted by (re, im); `null` when not
@@ -104,6 +110,84 @@ pub struct Analysis {
     /// `∂λ/∂p` of every eigenvalue (only with `--sensitivity`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sensitivity: Option<Vec<SensitivityReport>>,
+    /// The static preloads at the point: every constraint and elastic item's force and moment
+    /// on its first body (`null` with a warning if they could not be computed).
+    pub preloads: Option<crate::preloads::Preloads>,
+    /// The state-space matrices at the point, `ẋ = A x + B u`, `y = C x + D u`, with the
+    /// names of their rows and columns.
+    pub matrices: Matrices,
+}
+
+/// The numeric state-space matrices (rows of numbers) and the names of the states, inputs
+/// and outputs that index them.
+#[derive(Clone, Debug, Serialize)]
+pub struct Matrices {
+    /// The states (rows and columns of A, rows of B, columns of C).
+    pub states: Vec<String>,
+    /// The inputs (columns of B and D).
+    pub inputs: Vec<String>,
+    /// The outputs (rows of C and D).
+    pub outputs: Vec<String>,
+    /// A (states × states), one array per row.
+    #[serde(rename = "A", serialize_with = "rows")]
+    pub a: nalgebra::DMatrix<f64>,
+    /// B (states × inputs).
+    #[serde(rename = "B", serialize_with = "rows")]
+    pub b: nalgebra::DMatrix<f64>,
+    /// C (outputs × states).
+    #[serde(rename = "C", serialize_with = "rows")]
+    pub c: nalgebra::DMatrix<f64>,
+    /// D (outputs × inputs).
+    #[serde(rename = "D", serialize_with = "rows")]
+    pub d: nalgebra::DMatrix<f64>,
+}
+
+impl Matrices {
+    /// The matrices of `ss` with the signals' names as reported.
+    fn of(ss: &StateSpace<f64>, inputs: &[Signal], outputs: &[Signal]) -> Matrices {
+        Matrices::named_by(
+            ss,
+            inputs.iter().map(|s| s.name.clone()).collect(),
+            outputs.iter().map(|s| s.name.clone()).collect(),
+        )
+    }
+
+    /// The matrices of `ss` with its state names and the given input and output names.
+    pub fn named_by(ss: &StateSpace<f64>, inputs: Vec<String>, outputs: Vec<String>) -> Matrices {
+        Matrices {
+            states: ss.names.states.clone(),
+            inputs,
+            outputs,
+            a: ss.a.clone(),
+            b: ss.b.clone(),
+            c: ss.c.clone(),
+            d: ss.d.clone(),
+        }
+    }
+
+    /// For [`crate::matrices::write_matrices`]: `A`, `B`, `C`, `D` and the names.
+    pub fn named(&self) -> crate::matrices::NamedMatrices<'_> {
+        crate::matrices::NamedMatrices {
+            matrices: vec![
+                ("A", &self.a),
+                ("B", &self.b),
+                ("C", &self.c),
+                ("D", &self.d),
+            ],
+            names: vec![
+                ("states", &self.states),
+                ("inputs", &self.inputs),
+                ("outputs", &self.outputs),
+            ],
+        }
+    }
+}
+
+fn rows<S: Serializer>(m: &nalgebra::DMatrix<f64>, s: S) -> Result<S::Ok, S::Error> {
+    s.collect_seq(
+        m.row_iter()
+            .map(|r| r.iter().copied().collect::<Vec<f64>>()),
+    )
 }
 
 /// The sensitivities of one eigenvalue.
@@ -174,10 +258,13 @@ pub struct ModeReport {
     pub time_constant: Option<f64>,
     /// Damped period `2π/|Im λ|` in s (EoM's "wavelength"; `null` for real and zero modes).
     pub period: Option<f64>,
-    /// `stable`, `marginal` or `unstable`.
+    /// `stable` (Re λ < −tolerance), `marginal` (|Re λ| ≤ tolerance) or `unstable`.
     pub stability: &'static str,
     /// Whether the mode decays.
     pub stable: bool,
+    /// The eigenvalue's error estimate in 1/s, the tolerance of its verdict
+    /// (`eom_num::modes::error_estimate`; `eom sweep` judges by the same one).
+    pub tolerance: f64,
     /// Estimated relative error of the eigenvalue from rounding the state matrix's entries
     /// (the componentwise condition number times ε; 0 for an exact zero, and where the
     /// estimate would exceed the memory limit). Above 1e-6 it is also a warning.
@@ -277,7 +364,8 @@ fn method_name(m: Method) -> &'static str {
     }
 }
 
-fn kind_name(k: ModeKind) -> &'static str {
+/// A mode's kind as the output words it.
+pub(crate) fn kind_name(k: ModeKind) -> &'static str {
     match k {
         ModeKind::Zero => "zero",
         ModeKind::Real => "real",
@@ -285,7 +373,8 @@ fn kind_name(k: ModeKind) -> &'static str {
     }
 }
 
-fn stability_name(s: Stability) -> &'static str {
+/// A stability verdict as the output words it.
+pub(crate) fn stability_name(s: Stability) -> &'static str {
     match s {
         Stability::Stable => "stable",
         Stability::Marginal => "marginal",
@@ -307,6 +396,7 @@ fn mode_report(m: &Mode) -> ModeReport {
         period: finite(m.damped_period),
         stability: stability_name(m.stability),
         stable: m.stability == Stability::Stable,
+        tolerance: m.tolerance,
         accuracy: m.accuracy,
     }
 }
@@ -402,11 +492,37 @@ fn linearize_at(
                         source: Box::new(e),
                         alternatives: working_methods(&at_point),
                     },
-                    e => CliError::Model(e),
+                    e => with_alternatives(e, Method::Symbolic, &at_point),
                 })?
         }
-        m => Linearizer::new(&at_point).method(m).run()?,
+        m => Linearizer::new(&at_point)
+            .method(m)
+            .run()
+            .map_err(|e| with_alternatives(e, m, &at_point))?,
     })
+}
+
+/// A reduction that failed for a reason another method may not share (a singular reduced
+/// mass matrix, a feature this method does not support): the error with the methods that
+/// were tried at the point and work. Errors of the model itself pass unchanged.
+fn with_alternatives(
+    e: ModelError,
+    failed: Method,
+    at_point: &eom_model::Model<eom_sym::Expr>,
+) -> CliError {
+    match e {
+        ModelError::Singular(_) | ModelError::Unsupported(_) | ModelError::PivotBreakdown(_) => {
+            CliError::MethodFailed {
+                source: Box::new(e),
+                method: method_name(failed),
+                alternatives: working_methods(at_point)
+                    .into_iter()
+                    .filter(|m| *m != method_name(failed))
+                    .collect(),
+            }
+        }
+        e => CliError::Model(e),
+    }
 }
 
 /// Every analysis of a linearization of the model at the point.
@@ -445,7 +561,16 @@ pub fn analyze_linearized(
         .iter()
         .map(|z| Complex64::new(z.re, z.im))
         .collect();
-    r.wings = crate::wings::wing_reports(&at_point.nominal()?, &eigenvalues, &mut r.warnings);
+    let numeric = at_point.nominal()?;
+    r.preloads = match eom_model::assemble(&numeric) {
+        Ok(a) => Some(crate::preloads::Preloads::of(&numeric, &a)),
+        Err(e) => {
+            r.warnings
+                .push(format!("static preloads not computed: {e}"));
+            None
+        }
+    };
+    r.wings = crate::wings::wing_reports(&numeric, &eigenvalues, &mut r.warnings);
     Ok(r)
 }
 
@@ -510,6 +635,10 @@ fn analyze_state_space(
         },
         move || {
             let want_zeros = ss.inputs() > 0 && ss.outputs() > 0;
+            if !want_zeros {
+                // The receiver is dropped: the modes' thread sends into nothing.
+                return (None, None);
+            }
             // While the PBH pass waits for the eigenvalues, the zeros of the staircases'
             // draft: they are the minimal system's when the pass removes nothing.
             let draft_zeros = std::sync::Mutex::new(None);
@@ -545,18 +674,20 @@ fn analyze_state_space(
                     })
                 }),
             };
-            (reduced, zeros)
+            (Some(reduced), zeros)
         },
     );
     let modes = modes?;
     warnings.extend(accuracy_warnings(&modes));
-    let minimal = match reduced
-        .as_ref()
-        .map_err(|e| CliError::Num(e.clone()))
-        .and_then(|(ssm, rep)| minimal_view(ssm, rep, &modes, &mut warnings))
-    {
-        Ok(m) => Some(m),
-        Err(e) => {
+    let minimal_note = reduced.is_none().then(|| no_signals_note(ss));
+    let minimal = match reduced.as_ref().map(|r| {
+        r.as_ref()
+            .map_err(|e| CliError::Num(e.clone()))
+            .and_then(|(ssm, rep)| minimal_view(ssm, rep, &modes, &mut warnings))
+    }) {
+        None => None,
+        Some(Ok(m)) => Some(m),
+        Some(Err(e)) => {
             warnings.push(format!("minimal realization not computed: {e}"));
             None
         }
@@ -583,7 +714,10 @@ fn analyze_state_space(
         Some(req) => Some(frequency_response(ss, req, &inputs, &outputs)?),
         None => None,
     };
+    let matrices = Matrices::of(ss, &inputs, &outputs);
     Ok(Analysis {
+        matrices,
+        preloads: None,
         model: String::new(),
         method: "",
         parameters: Vec::new(),
@@ -597,6 +731,7 @@ fn analyze_state_space(
         stable: overall_stability(&modes, structural_zeros) == "stable",
         modes: modes.modes.iter().map(mode_report).collect(),
         minimal,
+        minimal_note,
         steady_state_gain,
         zeros,
         warnings,
@@ -605,6 +740,21 @@ fn analyze_state_space(
         sensitivity: None,
         structural_zeros: Vec::new(),
     })
+}
+
+/// Why a model without inputs or outputs has no minimal realization to show.
+fn no_signals_note(ss: &StateSpace<f64>) -> String {
+    let missing = match (ss.inputs(), ss.outputs()) {
+        (0, 0) => "no inputs and no outputs",
+        (0, _) => "no inputs",
+        _ => "no outputs",
+    };
+    format!(
+        "not computed: the model has {missing}, so its minimal realization is empty (every one \
+         of its {} states is hidden from the inputs and outputs); add an actuator and a sensor \
+         to see which modes they reach",
+        ss.states()
+    )
 }
 
 /// Eigenvalues whose estimated relative accuracy (`Mode::accuracy`) is worse than this are
@@ -666,31 +816,34 @@ fn minimal_view(
         .removed
         .iter()
         .map(|r| {
-            let kind = modes
-                .modes
-                .iter()
-                .min_by(|a, b| {
-                    (a.eigenvalue - r.eigenvalue)
-                        .norm()
-                        .total_cmp(&(b.eigenvalue - r.eigenvalue).norm())
-                })
-                .map_or(ModeKind::Real, |m| m.kind);
+            // The nearest mode of the full model: its kind, and its verdict (one verdict per
+            // eigenvalue, by its error estimate, wherever it is shown).
+            let nearest = modes.modes.iter().min_by(|a, b| {
+                (a.eigenvalue - r.eigenvalue)
+                    .norm()
+                    .total_cmp(&(b.eigenvalue - r.eigenvalue).norm())
+            });
+            let kind = nearest.map_or(ModeKind::Real, |m| m.kind);
             let reason = match r.kind {
                 RemovedKind::Uncontrollable => "uncontrollable",
                 RemovedKind::Unobservable => "unobservable",
             };
-            let stability = match r.stability {
-                ModeStability::Stable => "stable",
-                ModeStability::Marginal => "marginal",
-                ModeStability::Unstable => "unstable",
-            };
+            let verdict = nearest.map_or(
+                match r.stability {
+                    ModeStability::Stable => Stability::Stable,
+                    ModeStability::Marginal => Stability::Marginal,
+                    ModeStability::Unstable => Stability::Unstable,
+                },
+                |m| m.stability,
+            );
+            let stability = stability_name(verdict);
             RemovedReport {
                 eigenvalue: r.eigenvalue.into(),
                 reason,
                 stability,
                 kind: kind_name(kind),
                 pbh_residual: r.pbh_residual,
-                note: removed_note(r.eigenvalue, r.kind, r.stability, kind),
+                note: removed_note(r.eigenvalue, r.kind, verdict, kind),
             }
         })
         .collect();
@@ -702,7 +855,7 @@ fn minimal_view(
     })
 }
 
-fn removed_note(z: Complex64, why: RemovedKind, st: ModeStability, kind: ModeKind) -> String {
+fn removed_note(z: Complex64, why: RemovedKind, st: Stability, kind: ModeKind) -> String {
     let what = match kind {
         ModeKind::Zero => "zero (rigid-body/integrator) mode",
         ModeKind::Real => "real mode",
@@ -714,7 +867,7 @@ fn removed_note(z: Complex64, why: RemovedKind, st: ModeStability, kind: ModeKin
     };
     let lam = eigenvalue(z, SIG, false);
     match st {
-        ModeStability::Unstable => format!(
+        Stability::Unstable => format!(
             "UNSTABLE {what} {lam} is {}: {cause}, yet it grows in the physical system",
             if why == RemovedKind::Uncontrollable {
                 "uncontrollable"
@@ -722,7 +875,7 @@ fn removed_note(z: Complex64, why: RemovedKind, st: ModeStability, kind: ModeKin
                 "unobservable"
             }
         ),
-        ModeStability::Marginal => format!(
+        Stability::Marginal => format!(
             "marginal {what} {lam} is {}: {cause}; it does not decay",
             if why == RemovedKind::Uncontrollable {
                 "uncontrollable"
@@ -730,7 +883,7 @@ fn removed_note(z: Complex64, why: RemovedKind, st: ModeStability, kind: ModeKin
                 "unobservable"
             }
         ),
-        ModeStability::Stable => format!(
+        Stability::Stable => format!(
             "stable {what} {lam} is {}: {cause}",
             if why == RemovedKind::Uncontrollable {
                 "uncontrollable"

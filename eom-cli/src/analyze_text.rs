@@ -13,7 +13,7 @@ fn opt(x: Option<f64>, none: &str) -> String {
 fn mode_table(modes: &[ModeReport]) -> String {
     let mut rows = Vec::new();
     for m in modes {
-        let z = Complex64::new(m.eigenvalue.re, m.eigenvalue.im);
+        let z = shown(m);
         let pair = m.kind == "oscillatory";
         if pair && z.im < 0.0 {
             continue;
@@ -50,6 +50,23 @@ fn mode_table(modes: &[ModeReport]) -> String {
     )
 }
 
+/// The rule of the stability column, with the largest tolerance it used.
+pub(crate) fn verdict_rule(modes: &[ModeReport]) -> String {
+    let largest = modes.iter().map(|m| m.tolerance).fold(0.0, f64::max);
+    format!(
+        "  stability: stable when Re λ < −tol, marginal when |Re λ| ≤ tol, tol = the \
+         eigenvalue's error estimate (here at most {} 1/s)\n",
+        g(largest, 2)
+    )
+}
+
+/// A mode's eigenvalue as printed: a part within the eigenvalue's error estimate is 0 (its
+/// value is rounding).
+pub(crate) fn shown(m: &ModeReport) -> Complex64 {
+    let part = |x: f64| if x.abs() <= m.tolerance { 0.0 } else { x };
+    Complex64::new(part(m.eigenvalue.re), part(m.eigenvalue.im))
+}
+
 fn signal_list(s: &[Signal]) -> String {
     if s.is_empty() {
         return "none".into();
@@ -81,6 +98,9 @@ impl Analysis {
 
         if let Some(sens) = &self.sensitivity {
             t.push_str(&sensitivity_text(sens));
+        }
+        if let Some(p) = &self.preloads {
+            t.push_str(&p.to_text());
         }
 
         t.push_str("Warnings\n");
@@ -137,6 +157,7 @@ impl Analysis {
              pole);\n  tau = −1/Re λ (negative: e-folding time of growth); period = 2π/|Im λ| \
              (damped period, EoM's \"wavelength\")\n",
         );
+        t.push_str(&verdict_rule(&self.modes));
         let unstable = self
             .modes
             .iter()
@@ -207,7 +228,10 @@ impl Analysis {
                     }
                 }
             }
-            None => t.push_str("Minimal realization: not computed (see the warnings)\n"),
+            None => match &self.minimal_note {
+                Some(note) => t.push_str(&format!("Minimal realization: {note}\n")),
+                None => t.push_str("Minimal realization: not computed (see the warnings)\n"),
+            },
         }
         t.push('\n');
         t

@@ -3,7 +3,7 @@
 
 use crate::error::CliError;
 use crate::params::ModelChoice;
-use eom_model::{Linearizer, Method, assemble};
+use eom_model::{Linearizer, Method, assemble, reduce_report};
 use serde::Serialize;
 
 /// The summary `eom check` prints.
@@ -29,19 +29,36 @@ pub struct CheckReport {
     pub inputs: Vec<String>,
     /// Outputs.
     pub outputs: Vec<String>,
+    /// What each input and output is, in words: the sign conventions of the actuators (a
+    /// force extending the line from end 2 to end 1) and sensors (end 1 relative to end 2).
+    pub signals: Vec<String>,
     /// Warnings of the loading and of the linearization.
     pub warnings: Vec<String>,
 }
 
-/// Builds, assembles and reduces the model at its defaults.
+/// Builds, assembles and reduces the model at its defaults (the numeric elimination with all
+/// its checks, without forming the dense state space: a model of many bodies is validated in
+/// time and memory linear in its size where its matrices would not fit).
 pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
-    let model = choice.build(&[])?;
+    // A file is loaded once, its own warnings kept (e.g. derivatives an AVL stability-axis
+    // file cannot give).
+    let (model, mut warnings) = match &choice.source {
+        crate::params::Source::File(path) => {
+            let loaded = eom_model::file::load(path, &[])?;
+            (loaded.model, loaded.warnings)
+        }
+        crate::params::Source::Builtin => (choice.build(&[])?, Vec::new()),
+    };
     let numeric = model.nominal()?;
     let assembled = assemble(&numeric)?;
-    // The numeric path first; where it cannot reduce the model (a massless motion, which its
-    // messages suggest the robust path for), the robust path, and the command that works.
-    let (lin, path_note) = match Linearizer::new(&model).method(Method::Numeric).run() {
-        Ok(lin) => (lin, None),
+    // The numeric elimination first; where it cannot reduce the model (a massless motion,
+    // which its messages suggest the robust path for), the robust path, and the command that
+    // works.
+    let states = match reduce_report(&assembled) {
+        Ok(reduction) => {
+            warnings.extend(reduction.warnings.iter().cloned());
+            reduction.position_states + reduction.velocity_states
+        }
         Err(numeric) => {
             // Its advice names the library's path, not a command: replaced by ours.
             let numeric = numeric.to_string().replace(
@@ -50,33 +67,27 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
             );
             match Linearizer::new(&model).method(Method::Robust).run() {
                 Ok(lin) => {
-                    let note = format!(
-                        "the default reduction fails ({}); the robust one reduces the model: analyse \
-                     it with `eom analyze {} --method robust`",
+                    warnings.push(format!(
+                        "the default reduction fails ({}); the robust one reduces the model: \
+                         analyse it with `eom analyze {} --method robust`",
                         numeric,
                         eom_text::shown(&choice.name)
-                    );
-                    (lin, Some(note))
+                    ));
+                    warnings.extend(lin.warnings);
+                    lin.state_space.states()
                 }
                 Err(robust) => {
                     return Err(CliError::BadArgument {
                         argument: eom_text::shown(&choice.name),
                         problem: format!(
                             "no reduction handles this model: the numeric one fails ({numeric}), \
-                         and so does the robust one ({robust})"
+                             and so does the robust one ({robust})"
                         ),
                     });
                 }
             }
         }
     };
-    // The file's own warnings (e.g. derivatives an AVL stability-axis file cannot give).
-    let mut warnings = match &choice.source {
-        crate::params::Source::File(path) => eom_model::file::load(path, &[])?.warnings,
-        crate::params::Source::Builtin => Vec::new(),
-    };
-    warnings.extend(path_note);
-    warnings.extend(lin.warnings);
     let mut items: Vec<(String, usize)> = Vec::new();
     for kind in eom_model::KINDS {
         let n = model.items_of(kind).count();
@@ -92,11 +103,95 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
         degrees_of_freedom: 6 * assembled.bodies.len(),
         holonomic_constraints: assembled.holonomic_rows.len(),
         nonholonomic_constraints: assembled.nonholonomic_rows.len(),
-        states: lin.state_space.states(),
+        states,
         inputs: assembled.inputs.iter().map(|(n, _)| n.clone()).collect(),
         outputs: assembled.outputs.iter().map(|(n, _)| n.clone()).collect(),
+        signals: signal_descriptions(&numeric),
         warnings,
     })
+}
+
+/// The inputs and outputs in words, with their sign conventions: an actuator's input pushes
+/// end 1 (on body 1) away from end 2 (on body 2) along the line (or twists body 1 about it
+/// relative to body 2); a sensor measures end 1 relative to end 2 along the line from end 2 to
+/// end 1 (or body 1's rotation relative to body 2 about it).
+pub fn signal_descriptions(model: &eom_model::Model<f64>) -> Vec<String> {
+    use eom_model::{Actuator, Line, Sensor, SensorFrame, SensorOrder};
+    let fmt = |v: &[f64; 3]| {
+        format!(
+            "({}, {}, {})",
+            crate::format::g(v[0], 4),
+            crate::format::g(v[1], 4),
+            crate::format::g(v[2], 4)
+        )
+    };
+    let direction = |l: &Line<f64>| {
+        let d = [0, 1, 2].map(|k| l.ends[0][k] - l.ends[1][k]);
+        let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if n > 0.0 {
+            fmt(&d.map(|x| x / n))
+        } else {
+            "its line".into()
+        }
+    };
+    let ends = |l: &Line<f64>| {
+        format!(
+            "end 1 on `{}` at {}, end 2 on `{}` at {}",
+            l.bodies[0],
+            fmt(&l.ends[0]),
+            l.bodies[1],
+            fmt(&l.ends[1])
+        )
+    };
+    let mut out = Vec::new();
+    for item in model.items() {
+        let any: &dyn std::any::Any = &**item;
+        if let Some(a) = any.downcast_ref::<Actuator<f64>>() {
+            let l = &a.line;
+            let what = if l.twist {
+                format!(
+                    "a moment (gain·u + rate_gain·u̇) turning `{}` relative to `{}` about {}",
+                    l.bodies[0],
+                    l.bodies[1],
+                    direction(l)
+                )
+            } else {
+                format!(
+                    "a force (gain·u + rate_gain·u̇) pushing end 1 away from end 2 along {} \
+                     (from end 2 to end 1)",
+                    direction(l)
+                )
+            };
+            out.push(format!("input `{}`: {what}; {}", a.name, ends(l)));
+        } else if let Some(s) = any.downcast_ref::<Sensor<f64>>() {
+            let l = &s.line;
+            let order = match s.order {
+                SensorOrder::Displacement => "displacement",
+                SensorOrder::Velocity => "velocity",
+                SensorOrder::Acceleration => "acceleration",
+            };
+            let frame = match (s.order, s.frame) {
+                (SensorOrder::Displacement, _) | (_, SensorFrame::Global) => "",
+                (_, SensorFrame::Local) => " (in the moving bodies' axes)",
+            };
+            let what = if l.twist {
+                format!(
+                    "gain × rotation {order}{frame} of `{}` relative to `{}` about {}",
+                    l.bodies[0],
+                    l.bodies[1],
+                    direction(l)
+                )
+            } else {
+                format!(
+                    "gain × {order}{frame} of end 1 relative to end 2 along {} (from end 2 to \
+                     end 1)",
+                    direction(l)
+                )
+            };
+            out.push(format!("output `{}`: {what}; {}", s.name, ends(l)));
+        }
+    }
+    out
 }
 
 impl CheckReport {
@@ -125,6 +220,9 @@ impl CheckReport {
         ));
         t.push_str(&format!("  inputs: {}\n", list(&self.inputs)));
         t.push_str(&format!("  outputs: {}\n", list(&self.outputs)));
+        for s in &self.signals {
+            t.push_str(&format!("    {s}\n"));
+        }
         for w in &self.warnings {
             t.push_str(&format!("  warning: {w}\n"));
         }

@@ -20,6 +20,14 @@ pub struct CodegenRequest {
     pub simplify_always: bool,
     /// Name of the generated module (default: from the model name).
     pub module: Option<String>,
+    /// Also emit the stability verdict without eigenvalues (`--stability`).
+    pub stability: bool,
+    /// Reduce to this many states first (bases at the nominal point, applied to A(p)…).
+    pub reduce: Option<usize>,
+    /// Modal instead of balanced truncation for `reduce`.
+    pub reduce_modal: bool,
+    /// Also emit `eval_discrete` (zero-order hold at a sample time).
+    pub discrete: bool,
 }
 
 /// Generates the module for the model (with `overrides` as the nominal values, where the
@@ -37,7 +45,8 @@ pub fn codegen(
     let model = choice.build(overrides)?;
     let mut opts = EmitOptions::default()
         .simplify(req.simplify)
-        .simplify_always(req.simplify_always);
+        .simplify_always(req.simplify_always)
+        .stability(req.stability);
     if req.f32 {
         opts = opts.f32();
     }
@@ -47,9 +56,46 @@ pub fn codegen(
     if let Some(m) = &req.module {
         opts = opts.module(m);
     }
-    let emitted = eom_codegen::emit_model(&model, &opts)?;
+    opts = opts.discrete(req.discrete);
+    let (emitted, note) = match req.reduce {
+        None => (eom_codegen::emit_model(&model, &opts)?, String::new()),
+        Some(r) => {
+            use eom_num::model_reduction::ReductionMethod;
+            let sym = eom_model::Linearizer::new(&model).symbolic()?;
+            if opts.model_name.is_none() {
+                opts.model_name = Some(model.name.clone());
+            }
+            let method = if req.reduce_modal {
+                ReductionMethod::Modal
+            } else {
+                ReductionMethod::Balanced
+            };
+            let (e, nominal) = eom_codegen::reduced::emit_reduced(&sym, r, method, &opts).map_err(
+                |e| match e {
+                    eom_codegen::CodegenError::Num(eom_num::NumError::InvalidOption(problem)) => {
+                        CliError::BadArgument {
+                            argument: format!("--reduce {r}"),
+                            problem,
+                        }
+                    }
+                    e => e.into(),
+                },
+            )?;
+            let note = format!(
+                "reduced at the nominal point from {} to {} states by {} truncation ({} kept \
+                 whole); bound 2·Σσ = {}, measured {:e}\n",
+                nominal.full_states,
+                nominal.order(),
+                method.name(),
+                nominal.kept,
+                nominal.bound.map_or("none".into(), |b| format!("{b:e}")),
+                nominal.error.hinf
+            );
+            (e, note)
+        }
+    };
     let written = crate::output::write_output(path, &emitted.source)?;
-    Ok(summary(&emitted, path, req, written))
+    Ok(summary(&emitted, path, req, written) + &note)
 }
 
 /// Without the `codegen` feature: checks the model and parameters (so that usage errors are
@@ -112,6 +158,13 @@ fn summary(
              chain: cost estimate {simplified} against {original})\n"
         )),
         Simplification::NotRun => {}
+    }
+    if req.stability {
+        t.push_str(&format!(
+            "stability: `{}::stability(&p)` (Stable / Unstable / Undecided) from the \
+             Liénard–Chipart conditions with rounding-error bounds\n",
+            e.module
+        ));
     }
     t.push_str(&format!(
         "use it with: include!(\"{}\");  // then `{}::StateSpace`, `{}::Params`, …\n",

@@ -46,6 +46,16 @@ pub enum CliError {
         /// The methods that were tried and reduce the model at this point.
         alternatives: Vec<&'static str>,
     },
+    /// The reduction method asked for failed at the point for a reason of its own.
+    #[error("{source}\n  (with --method {method}; {})", suggestion(alternatives))]
+    MethodFailed {
+        /// Why.
+        source: Box<ModelError>,
+        /// The method that failed.
+        method: &'static str,
+        /// The other methods that were tried and reduce the model at this point.
+        alternatives: Vec<&'static str>,
+    },
     /// A wing file could not be read or solved (the message names the file, line and field).
     #[error(transparent)]
     Aero(#[from] eom_aero::AeroError),
@@ -136,7 +146,7 @@ impl CliError {
 /// The advice after a symbolic reduction failed: only methods that were tried and work.
 fn suggestion(alternatives: &[&str]) -> String {
     match alternatives {
-        [] => "the numeric and robust methods fail at this point too".into(),
+        [] => "no other method reduces the model at this point either".into(),
         [one] => format!("here --method {one} works"),
         _ => format!(
             "here use --method {}, which choose the pivots at the point",

@@ -17,11 +17,14 @@ mod codegen;
 mod error;
 mod format;
 mod list;
+mod matrices;
 mod output;
 mod params;
 mod pictures;
 mod plot;
+mod preloads;
 mod progress;
+mod reduce;
 mod report;
 mod sweep;
 mod symbolic;
@@ -110,6 +113,23 @@ enum Command {
         include it with `include!`."
     )]
     Codegen(CodegenArgs),
+    /// Reduce a model for a controller: Hankel singular values, the error bound per order,
+    /// the error measured on a frequency grid, the modes kept
+    #[command(
+        long_about = "Reduce a model to the dynamics that matter, with its error.\n\n\
+        The modes a reduction must not touch — structural zeros (a vehicle's position and \
+        heading), other zero, marginal and unstable modes — are split off and kept whole; the \
+        stable rest is reduced: --method balanced (square-root balanced truncation, the \
+        default), matchdc (its singular perturbation form: the steady-state gain kept exactly) \
+        or modal (the modes in --band LOW:HIGH Hz, or the slowest ones, kept with their \
+        eigenvalues). Prints the Hankel singular values of the stable part with the bound \
+        2·Σσ on ‖G − G_r‖∞ beyond each order, the error measured on a frequency grid and at \
+        DC, the modes of the reduced model with the full model's eigenvalue each stands for, \
+        and (with --format json) the reduced A, B, C, D. --order R sets the states in all, \
+        --tol E the largest bound (in the units of G); by default the bound is kept below \
+        1e-3 σ₁. --plot FILE.svg draws the singular values and the bound per order."
+    )]
+    Reduce(ReduceArgs),
     /// Show the model in closed form: A, B, C, D, the characteristic polynomial, stability
     /// conditions and transfer functions
     #[command(long_about = "Show the model in closed form.\n\n\
@@ -365,6 +385,17 @@ struct AnalyzeArgs {
     /// The mode of --plot-initial and --plot-modes: its number in the modes table
     #[arg(long, value_name = "K")]
     mode: Option<usize>,
+    /// Write the numeric A, B, C, D with the state, input and output names: NumPy .npz
+    /// (numpy.load) or MATLAB .mat (load, scipy.io.loadmat), by the extension
+    #[arg(long, value_name = "FILE.npz|FILE.mat")]
+    matrices: Option<PathBuf>,
+    /// Add a reduced model (as `eom reduce`): R states in all, or without R the smallest
+    /// order whose bound 2·Σσ is below 1e-3 σ₁
+    #[arg(long, value_name = "R", num_args = 0..=1, default_missing_value = "default")]
+    reduce: Option<String>,
+    /// How --reduce reduces the stable part
+    #[arg(long, value_enum, requires = "reduce")]
+    reduce_method: Option<ReduceMethodArg>,
 }
 
 #[derive(Args, Debug)]
@@ -397,6 +428,51 @@ struct SweepArgs {
     /// labelled along them, the crossings of the imaginary axis marked) into an SVG file
     #[arg(long, value_name = "FILE.svg")]
     plot_locus: Option<PathBuf>,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum ReduceMethodArg {
+    /// Square-root balanced truncation (bound 2·Σσ)
+    Balanced,
+    /// Balanced singular perturbation: the same bound, the steady-state gain matched
+    Matchdc,
+    /// Modal truncation: the modes in --band (or the slowest) kept exactly
+    Modal,
+}
+
+#[derive(Args, Debug)]
+struct ReduceArgs {
+    /// Model name (see `eom list`) or model file (.toml)
+    #[arg(value_name = "MODEL")]
+    model: String,
+    /// Set a parameter (repeatable); the others keep their defaults
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// States of the reduced model in all (the kept ones included)
+    #[arg(long, value_name = "R", conflicts_with = "tol")]
+    order: Option<usize>,
+    /// Largest error bound 2·Σσ (units of G; balanced and matchdc)
+    #[arg(long, value_name = "E")]
+    tol: Option<f64>,
+    /// How the stable part is reduced
+    #[arg(long, value_enum, default_value_t = ReduceMethodArg::Balanced)]
+    method: ReduceMethodArg,
+    /// Modal truncation: keep the stable modes with natural frequency in LOW:HIGH Hz
+    #[arg(long, value_name = "LOW:HIGH")]
+    band: Option<String>,
+    /// Output format
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Draw the Hankel singular values and the bound per order into an SVG file
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+    /// Write the reduced A, B, C, D with the state, input and output names: NumPy .npz
+    /// (numpy.load) or MATLAB .mat (load, scipy.io.loadmat), by the extension
+    #[arg(long, value_name = "FILE.npz|FILE.mat")]
+    matrices: Option<PathBuf>,
+    /// Linearization method
+    #[arg(long = "linearize", value_enum, default_value_t = MethodArg::Numeric)]
+    linearize: MethodArg,
 }
 
 #[derive(Args, Debug)]
@@ -468,6 +544,21 @@ struct CodegenArgs {
     /// Name of the generated module (default: from the model name)
     #[arg(long, value_name = "NAME")]
     module: Option<String>,
+    /// Also emit the characteristic polynomial, the Liénard–Chipart conditions with their
+    /// rounding-error bounds and `stability(p)`, the verdict without eigenvalues (f64 only)
+    #[arg(long)]
+    stability: bool,
+    /// Generate a reduced model of R states: balanced truncation at the nominal point, its
+    /// bases applied to A(p), B(p), C(p) (see `eom reduce`)
+    #[arg(long, value_name = "R")]
+    reduce: Option<usize>,
+    /// With --reduce: modal instead of balanced truncation (the R − kept slowest modes)
+    #[arg(long, requires = "reduce")]
+    reduce_modal: bool,
+    /// Also generate `eval_discrete`: the zero-order-hold Ad = e^{A h}, Bd = ∫e^{A t}dt B at a
+    /// sample time h (no allocation)
+    #[arg(long)]
+    discrete: bool,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -552,6 +643,7 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             }
         }
         Command::Analyze(a) => run_analyze(&a, &mut stderr)?,
+        Command::Reduce(r) => run_reduce(&r, &mut stderr)?,
         Command::Sweep(s) if s.compare.is_some() => sweep_compare(&s, cli.quiet, &mut stderr)?,
         Command::Sweep(s) => run_sweep(&s, cli.quiet, &mut stderr)?,
         Command::Report(r) => {
@@ -578,6 +670,10 @@ fn run(cli: Cli) -> Result<Output, CliError> {
                 simplify: c.simplify,
                 simplify_always: c.simplify_always,
                 module: c.module,
+                stability: c.stability,
+                reduce: c.reduce,
+                reduce_modal: c.reduce_modal,
+                discrete: c.discrete,
             };
             // The summary is a status: standard error (the output may be `/dev/stdout`).
             stderr.push_str(&codegen::codegen(&choice, &overrides, &req, &c.output)?);
@@ -644,6 +740,18 @@ fn run(cli: Cli) -> Result<Output, CliError> {
             if let Some(name) = &req.solve_for {
                 choice.param(name)?;
             }
+            if let Some(n) = req
+                .max_states
+                .filter(|&n| n == 0 || n > eom_sym::closed::MAX_CLOSED_FORM_STATES)
+            {
+                return Err(CliError::BadArgument {
+                    argument: format!("--max-states {n}"),
+                    problem: format!(
+                        "closed forms are derived for 1 to {} states",
+                        eom_sym::closed::MAX_CLOSED_FORM_STATES
+                    ),
+                });
+            }
             let r = symbolic::symbolic(&choice, &texts, &req)?;
             match a.format {
                 SymbolicFormat::Text => r.to_text(),
@@ -677,6 +785,9 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         });
     }
     let plots = analyze_plots(a)?;
+    if let Some(path) = &a.matrices {
+        matrices::format_of("--matrices", path)?;
+    }
     let bode = a.plot.is_some();
     let freq = (a.freq || range.is_some() || a.points.is_some() || bode).then_some(FreqRequest {
         range,
@@ -689,6 +800,31 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
     };
     let lin = analyze::linearize(&choice, &overrides, opts.method)?;
     let r = analyze::analyze_linearized(&choice, &overrides, &opts, &lin)?;
+    let reduced =
+        match &a.reduce {
+            None => None,
+            Some(text) => {
+                let order =
+                    match text.as_str() {
+                        "default" => None,
+                        t => Some(t.trim().parse::<usize>().map_err(|_| {
+                            CliError::BadArgument {
+                    argument: format!("--reduce {}", params::abbreviate(t)),
+                    problem: "expected a number of states (or nothing, for the default order)"
+                        .into(),
+                }
+                        })?),
+                    };
+                let req = reduce::ReduceRequest {
+                    method: reduce_method(a.reduce_method.unwrap_or(ReduceMethodArg::Balanced)),
+                    order,
+                    tol: None,
+                    band: None,
+                    linearization: opts.method,
+                };
+                Some(reduce::report_of(&choice, &overrides, &lin, &req)?.0)
+            }
+        };
     for (option, path) in plots {
         let plot = match option {
             "--plot" => plot::bode::bode_of(&r)?,
@@ -698,10 +834,76 @@ fn run_analyze(a: &AnalyzeArgs, stderr: &mut String) -> Result<String, CliError>
         plot.write(option, path)?;
         stderr.push_str(&plot.notes_text(path));
     }
+    if let Some(path) = &a.matrices {
+        let written = matrices::write_matrices("--matrices", path, &r.matrices.named())?;
+        stderr.push_str(&output::status_line(path, written));
+    }
+    Ok(match (a.format, reduced) {
+        (Format::Text, None) => r.to_text(),
+        (Format::Text, Some(red)) => format!("{}\n{}", r.to_text(), red.to_text()),
+        (Format::Json, None) => json(&r)?,
+        (Format::Json, Some(red)) => {
+            let mut v = serde_json::to_value(&r)?;
+            if let Some(map) = v.as_object_mut() {
+                map.insert("reduction".into(), serde_json::to_value(&red)?);
+            }
+            json(&v)?
+        }
+    })
+}
+
+/// `eom reduce`: the reduction, printed, and its plot.
+fn run_reduce(a: &ReduceArgs, stderr: &mut String) -> Result<String, CliError> {
+    let choice = ModelChoice::resolve(&a.model)?;
+    let overrides = choice.parse_sets(&a.set)?;
+    if let Some(path) = &a.plot {
+        plot::check_target("--plot", path)?;
+    }
+    if let Some(path) = &a.matrices {
+        matrices::format_of("--matrices", path)?;
+    }
+    let band = a
+        .band
+        .as_deref()
+        .map(|b| {
+            params::parse_band(b).map_err(|problem| CliError::BadArgument {
+                argument: format!("--band {}", params::abbreviate(b)),
+                problem,
+            })
+        })
+        .transpose()?;
+    let method = reduce_method(a.method);
+    let req = reduce::ReduceRequest {
+        method,
+        order: a.order,
+        tol: a.tol,
+        band,
+        linearization: a.linearize.into(),
+    };
+    let (r, _) = reduce::reduce(&choice, &overrides, &req)?;
+    if let Some(path) = &a.plot {
+        let plot = plot::hankel::hankel_plot(&r)?;
+        plot.write("--plot", path)?;
+        stderr.push_str(&plot.notes_text(path));
+    }
+    if let Some(path) = &a.matrices {
+        let written = matrices::write_matrices("--matrices", path, &r.matrices.named())?;
+        stderr.push_str(&output::status_line(path, written));
+    }
     Ok(match a.format {
         Format::Text => r.to_text(),
         Format::Json => json(&r)?,
     })
+}
+
+/// The reducer's method for a command-line choice.
+fn reduce_method(m: ReduceMethodArg) -> eom_num::model_reduction::ReductionMethod {
+    use eom_num::model_reduction::ReductionMethod;
+    match m {
+        ReduceMethodArg::Balanced => ReductionMethod::Balanced,
+        ReduceMethodArg::Matchdc => ReductionMethod::MatchDc,
+        ReduceMethodArg::Modal => ReductionMethod::Modal,
+    }
 }
 
 /// The time-response and mode-shape pictures of `eom analyze`.

@@ -372,6 +372,21 @@ pub fn parse_freq_range(text: &str) -> Result<(f64, f64), CliError> {
     Ok((lo, hi))
 }
 
+/// `LOW:HIGH` in Hz for `--band` (0 ≤ LOW ≤ HIGH, both finite).
+pub fn parse_band(text: &str) -> Result<(f64, f64), String> {
+    let (lo, hi) = text
+        .split_once(':')
+        .ok_or_else(|| "expected LOW:HIGH in Hz (e.g. --band 0.5:2)".to_string())?;
+    let lo = parse_number(lo).map_err(|e| format!("LOW: {e}"))?;
+    let hi = parse_number(hi).map_err(|e| format!("HIGH: {e}"))?;
+    if !(lo >= 0.0 && hi >= lo) {
+        return Err(format!(
+            "need 0 ≤ LOW ≤ HIGH, got LOW = {lo:?}, HIGH = {hi:?}"
+        ));
+    }
+    Ok((lo, hi))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

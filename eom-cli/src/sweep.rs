@@ -6,6 +6,12 @@
 //! boundaries located by Brent's method, stable intervals). A value outside the validity
 //! region of the symbolic reduction (a recorded pivot breaks down) is evaluated by the robust
 //! (SVD) path instead, and every such value is reported.
+//!
+//! For the built-in models whose generated code `eom` carries with the stability verdict
+//! (`eom codegen --stability`: smd, shimmy, bicycle, quarter car, top, the wing models), every
+//! grid value also gets the verdict without eigenvalues — the Liénard–Chipart conditions of
+//! the closed-form characteristic polynomial with their rounding-error bounds — and the report
+//! says where it is undecided and whether it agrees with the eigenvalues.
 
 use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
@@ -41,6 +47,71 @@ pub struct SweepReport {
     pub boundary_tolerance: f64,
     /// How the state matrix was evaluated.
     pub evaluation: Evaluation,
+    /// The verdict without eigenvalues at the grid values, where the model's generated code
+    /// is built in.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verdict: Option<VerdictCheck>,
+}
+
+/// The generated stability verdict at the grid values, against the eigenvalues'.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct VerdictCheck {
+    /// Grid values the verdict calls stable.
+    pub stable: usize,
+    /// Grid values it calls unstable (or marginal: not asymptotically stable).
+    pub unstable: usize,
+    /// Grid values where a condition is within its rounding bound of zero.
+    pub undecided: Vec<f64>,
+    /// Grid values outside the validity region of the generated code's rank decisions.
+    pub failed: Vec<f64>,
+    /// Decided grid values where the eigenvalues say the opposite (stable against unstable;
+    /// a marginal point agrees with either).
+    pub disagreements: Vec<f64>,
+}
+
+/// The verdict without eigenvalues at every grid value of `result` (`base`: the parameter
+/// values in the model's order, `k` the swept one), for a built-in model that has it.
+fn verdict_check(
+    choice: &ModelChoice,
+    names: &[String],
+    base: &[f64],
+    k: usize,
+    result: &SweepResult,
+) -> Option<VerdictCheck> {
+    if !matches!(choice.source, crate::params::Source::Builtin) {
+        return None;
+    }
+    let gv = eom_bench::work_precision::generated::stability(&choice.name)?;
+    // The generated parameters by name (the same model, so the same names).
+    let order: Vec<usize> = gv
+        .names
+        .iter()
+        .map(|n| names.iter().position(|m| m == n))
+        .collect::<Option<_>>()?;
+    let mut out = VerdictCheck::default();
+    for pt in &result.points {
+        let mut v = base.to_vec();
+        v[k] = pt.value;
+        let p: Vec<f64> = order.iter().map(|&i| v[i]).collect();
+        match (gv.verdict)(&p) {
+            None => out.failed.push(pt.value),
+            Some(0) => out.undecided.push(pt.value),
+            Some(x) => {
+                let stable = x == 1;
+                out.stable += usize::from(stable);
+                out.unstable += usize::from(!stable);
+                let opposite = match pt.stability {
+                    PointStability::Stable => !stable,
+                    PointStability::Unstable => stable,
+                    PointStability::Marginal => false,
+                };
+                if opposite {
+                    out.disagreements.push(pt.value);
+                }
+            }
+        }
+    }
+    Some(out)
 }
 
 /// The sweep grid.
@@ -221,6 +292,7 @@ pub fn sweep_with(
         .into_iter()
         .filter(|(n, _)| n != &spec.name)
         .collect();
+    let verdict = verdict_check(choice, &names, &base, k, &result);
     Ok(SweepReport {
         model: choice.name.clone(),
         result,
@@ -241,7 +313,39 @@ pub fn sweep_with(
             symbolic_unavailable: unavailable,
             fallback,
         },
+        verdict,
     })
+}
+
+impl VerdictCheck {
+    fn to_text(&self, p: &str) -> String {
+        let list = |v: &[f64]| v.iter().map(|x| g(*x, 8)).collect::<Vec<_>>().join(", ");
+        let mut t = format!(
+            "\nStability without eigenvalues (the generated Liénard–Chipart verdict, \
+             `eom codegen --stability`): {} stable, {} unstable or marginal, {} undecided",
+            self.stable,
+            self.unstable,
+            self.undecided.len()
+        );
+        if !self.undecided.is_empty() {
+            t.push_str(&format!(" ({p} = {})", list(&self.undecided)));
+        }
+        if !self.failed.is_empty() {
+            t.push_str(&format!(
+                ", outside its validity region at {p} = {}",
+                list(&self.failed)
+            ));
+        }
+        if self.disagreements.is_empty() {
+            t.push_str("; it agrees with the eigenvalues wherever it decides\n");
+        } else {
+            t.push_str(&format!(
+                "; it DISAGREES with the eigenvalues at {p} = {}\n",
+                list(&self.disagreements)
+            ));
+        }
+        t
+    }
 }
 
 /// Most eigenvalues shown per row of the text table.
@@ -359,7 +463,11 @@ impl SweepReport {
                         PointStability::Unstable => "unstable",
                     }
                     .to_string(),
-                    pt.max_real.map_or_else(|| "-".into(), |x| g(x, 5)),
+                    match (pt.max_real, pt.tolerance) {
+                        (Some(x), Some(tol)) => format!("{} ±{}", g(x, 5), g(tol, 2)),
+                        (Some(x), None) => g(x, 5),
+                        _ => "-".into(),
+                    },
                     self.eigenvalue_cell(pt),
                 ]
             })
@@ -368,12 +476,17 @@ impl SweepReport {
             &[
                 p.as_str(),
                 "stability",
-                "max Re λ",
+                "max Re λ ± tol",
                 "eigenvalues [1/s] (least stable first)",
             ],
             &rows,
             2,
         ));
+        t.push_str(
+            "  stability: stable when every branch has Re λ < −tol, marginal when one has \
+             |Re λ| ≤ tol and none is unstable;\n  tol = the eigenvalue's error estimate, the \
+             same rule as eom analyze (JSON: points[].tolerance)\n",
+        );
         t.push('\n');
 
         t.push_str(&format!(
@@ -420,6 +533,22 @@ impl SweepReport {
         }
         for i in &r.stable_intervals {
             t.push_str(&format!("  [{}, {}]\n", i.lo, i.hi));
+        }
+        if let Some(v) = &self.verdict {
+            t.push_str(&v.to_text(p));
+        }
+        let marginal: Vec<String> = r
+            .points
+            .iter()
+            .filter(|pt| pt.stability == PointStability::Marginal)
+            .map(|pt| g(pt.value, 10))
+            .collect();
+        if !marginal.is_empty() {
+            t.push_str(&wrap_list(
+                &format!("  marginal (not in the intervals) at {p} ="),
+                &marginal,
+                100,
+            ));
         }
         t
     }

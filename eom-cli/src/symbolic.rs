@@ -64,6 +64,12 @@ pub struct PolynomialOut {
 pub struct ConditionOut {
     /// `expression > 0`.
     pub expression: String,
+    /// `false` when the condition holds for no parameter values: the model is never
+    /// asymptotically stable (see `never`).
+    pub satisfiable: bool,
+    /// Why the model is never asymptotically stable (only when `satisfiable` is false).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub never: Option<String>,
     /// `coefficient k` or `hurwitz k`.
     pub source: String,
     /// Factors of known sign divided out.
@@ -114,9 +120,13 @@ pub struct SymbolicReport {
     /// ωₙ and ζ of a two-state model.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub second_order: Option<SecondOrderOut>,
-    /// `--stability`.
+    /// `--stability`: the conditions, all of which must hold (empty: always stable, by the
+    /// parameters' declared signs; one unsatisfiable condition: never).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stability: Option<Vec<ConditionOut>>,
+    /// `--stability` in words: `always`, `never: …` or `when all conditions hold`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stability_verdict: Option<String>,
     /// `--transfer`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub transfer_functions: Vec<TransferOut>,
@@ -203,6 +213,7 @@ fn build_report(
         characteristic_polynomial: None,
         second_order: None,
         stability: None,
+        stability_verdict: None,
         transfer_functions: Vec::new(),
         notes: Vec::new(),
         latex: LatexParts::default(),
@@ -311,9 +322,11 @@ fn closed_forms(
                 .into(),
         );
     }
-    report.latex.polynomial = Some(polynomial_latex(&p.polynomial.coefficients));
-    report.mathml.polynomial = Some(mathml::polynomial(&p.polynomial.coefficients, "s"));
-    report.characteristic_polynomial = Some(polynomial_out(&p));
+    // Shown factored where they factor (`kf*kr*(a + b)^2`, not the expansion).
+    let shown = factored_all(&cf, &p.polynomial.coefficients);
+    report.latex.polynomial = Some(polynomial_latex(&shown));
+    report.mathml.polynomial = Some(mathml::polynomial(&shown, "s"));
+    report.characteristic_polynomial = Some(polynomial_out(&p, &shown));
     if let Some(so) = cf.second_order(&p)? {
         report.second_order = Some(second_order_out(&so));
         report.latex.second_order = Some((
@@ -331,8 +344,29 @@ fn closed_forms(
             None => None,
         };
         let conds = cf.stability_conditions(&p)?;
+        let coefficients = &p.polynomial.coefficients;
         let mut out = Vec::new();
         for c in &conds {
+            if !c.satisfiable {
+                let never = never_reason(c, coefficients);
+                report
+                    .latex
+                    .conditions
+                    .push(format!("\\text{{never: {never}}}"));
+                report.mathml.conditions.push(format!(
+                    "<mtext>never: {}</mtext>",
+                    crate::plot::shape::escape(&never)
+                ));
+                out.push(ConditionOut {
+                    expression: c.expression.to_string(),
+                    satisfiable: false,
+                    never: Some(never),
+                    source: source_name(c.source),
+                    divided_out: c.divided_out.iter().map(|x| x.to_string()).collect(),
+                    boundary: None,
+                });
+                continue;
+            }
             let boundary = match x {
                 Some(x) => cf.solve_boundary(c.expression, x)?,
                 None => None,
@@ -350,6 +384,11 @@ fn closed_forms(
             }
             out.push(condition_out(c, boundary.as_ref()));
         }
+        report.stability_verdict = Some(match out.iter().find(|c| !c.satisfiable) {
+            Some(c) => format!("never: {}", c.never.as_deref().unwrap_or_default()),
+            None if out.is_empty() => "always".into(),
+            None => "when all conditions hold".into(),
+        });
         report.stability = Some(out);
     }
     if req.transfer {
@@ -362,7 +401,9 @@ fn closed_forms(
         };
         for out in 0..c.nrows() {
             for inp in 0..b.ncols() {
-                let tf = cf.transfer_function([&a, b, c, d], out, inp)?;
+                let mut tf = cf.transfer_function([&a, b, c, d], out, inp)?;
+                tf.numerator.coefficients = factored_all(&cf, &tf.numerator.coefficients);
+                tf.denominator.coefficients = factored_all(&cf, &tf.denominator.coefficients);
                 let (o, i) = (
                     name(&names.outputs, out, "y"),
                     name(&names.inputs, inp, "u"),
@@ -433,14 +474,44 @@ fn polynomial_latex(c: &[Expr]) -> String {
     if t.is_empty() { "0".into() } else { t }
 }
 
-fn polynomial_out(p: &CharacteristicPolynomial) -> PolynomialOut {
+/// Each expression factored where it factors.
+fn factored_all(cf: &ClosedForms, c: &[Expr]) -> Vec<Expr> {
+    c.iter().map(|&x| cf.factored(x).unwrap_or(x)).collect()
+}
+
+/// Why a condition that can never hold fails, in words.
+fn never_reason(c: &StabilityCondition, coefficients: &[Expr]) -> String {
+    match c.source {
+        ConditionSource::Coefficient(k) if c.expression.is_zero() => {
+            // A mechanical system without damping has only even powers of s.
+            let undamped = coefficients
+                .iter()
+                .enumerate()
+                .all(|(j, x)| j % 2 == 0 || x.is_zero());
+            format!(
+                "the s^{k} coefficient vanishes{}",
+                if undamped { " (no damping)" } else { "" }
+            )
+        }
+        ConditionSource::Coefficient(k) => {
+            format!("the s^{k} coefficient is negative for all parameter values")
+        }
+        ConditionSource::HurwitzMinor(k) => {
+            format!("the Hurwitz determinant Δ{k} is negative for all parameter values")
+        }
+    }
+}
+
+fn source_name(s: ConditionSource) -> String {
+    match s {
+        ConditionSource::Coefficient(k) => format!("coefficient {k}"),
+        ConditionSource::HurwitzMinor(k) => format!("hurwitz {k}"),
+    }
+}
+
+fn polynomial_out(p: &CharacteristicPolynomial, shown: &[Expr]) -> PolynomialOut {
     PolynomialOut {
-        coefficients: p
-            .polynomial
-            .coefficients
-            .iter()
-            .map(|c| c.to_string())
-            .collect(),
+        coefficients: shown.iter().map(|c| c.to_string()).collect(),
         zero_roots: p.zero_roots,
         scale: p.scale.to_string(),
         normalized: p.normalized,
@@ -457,10 +528,9 @@ fn second_order_out(so: &SecondOrder) -> SecondOrderOut {
 fn condition_out(c: &StabilityCondition, b: Option<&Boundary>) -> ConditionOut {
     ConditionOut {
         expression: c.expression.to_string(),
-        source: match c.source {
-            ConditionSource::Coefficient(k) => format!("coefficient {k}"),
-            ConditionSource::HurwitzMinor(k) => format!("hurwitz {k}"),
-        },
+        satisfiable: true,
+        never: None,
+        source: source_name(c.source),
         divided_out: c.divided_out.iter().map(|x| x.to_string()).collect(),
         boundary: b.map(|b| b.roots.iter().map(|r| r.to_string()).collect()),
     }
@@ -532,15 +602,24 @@ impl SymbolicReport {
             ));
         }
         if let Some(conds) = &self.stability {
-            t.push_str("\nasymptotically stable exactly when (all of):\n");
-            for c in conds {
-                t.push_str(&format!("  {} > 0      [{}]\n", c.expression, c.source));
-                if let Some(b) = &c.boundary {
-                    t.push_str(&format!("    boundary: {}\n", b.join(", ")));
+            if let Some(c) = conds.iter().find(|c| !c.satisfiable) {
+                t.push_str(&format!(
+                    "\nnever asymptotically stable: {}\n",
+                    c.never.as_deref().unwrap_or_default()
+                ));
+            } else if conds.is_empty() {
+                t.push_str(
+                    "\nasymptotically stable always: every condition holds by the parameters' \
+                     declared signs\n",
+                );
+            } else {
+                t.push_str("\nasymptotically stable exactly when (all of):\n");
+                for c in conds {
+                    t.push_str(&format!("  {} > 0      [{}]\n", c.expression, c.source));
+                    if let Some(b) = &c.boundary {
+                        t.push_str(&format!("    boundary: {}\n", b.join(", ")));
+                    }
                 }
-            }
-            if conds.is_empty() {
-                t.push_str("  (always: every condition holds by the parameters' declared signs)\n");
             }
         }
         for tf in &self.transfer_functions {

@@ -76,8 +76,13 @@ fn errors_are_within_the_smoke_test_bounds_and_files_are_written() {
             assert!(value(row, "published_err") <= tol, "{method}: {row:?}");
         }
     }
-    // smd: numeric, robust, tape, f64, f32; bicycle: the same and the egg variant.
-    assert_eq!(seen, 11, "{csv}");
+    // smd: numeric, robust, tape, f64, f32; bicycle: the same and the egg variant; both: the
+    // two eigensolvers on the reference's A.
+    assert_eq!(seen, 15, "{csv}");
+    for solver in ["eigenvalues: small kernel", "eigenvalues: faer"] {
+        let n = rows.iter().filter(|r| r["method"] == solver).count();
+        assert_eq!(n, 2, "{solver}: {csv}");
+    }
     let f64_rows = rows
         .iter()
         .filter(|r| r["method"] == "generated f64")

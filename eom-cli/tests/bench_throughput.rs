@@ -1,6 +1,7 @@
 //! `eom bench throughput`: the sweep's summary (stable points, range of the largest real part)
 //! equals that of a plain loop over the same points through another path of the library (the
-//! symbolic reduction evaluated on the tape, `eom_num` eigenvalues), and bad arguments exit 2.
+//! symbolic reduction evaluated on the tape, faer's eigenvalues), the generated verdict without
+//! eigenvalues agrees wherever it decides, and bad arguments exit 2.
 
 mod common;
 use common::eom;
@@ -70,13 +71,32 @@ fn summary_equals_a_plain_loop_over_the_same_points() {
         let p = point(opts.seed, opts.spread, k as u64);
         let values: Vec<f64> = order.iter().map(|&j| p[j]).collect();
         let ss = compiled.evaluate(&values).expect("tape");
-        let e = eom_num::modes::eigenvalues(&ss.a).expect("eigenvalues");
+        // faer's solver, not the small kernel the sweep uses.
+        let mut e = vec![num_complex::Complex64::new(0.0, 0.0); ss.a.nrows()];
+        let mut ws = eom_num::modes::EigenvaluesWorkspace::new(ss.a.nrows());
+        eom_num::modes::eigenvalues_faer_in(&ss.a, &mut ws, &mut e).expect("eigenvalues");
         let re = largest_real_part(&e);
         want_stable += usize::from(re < 0.0);
         lo = lo.min(re);
         hi = hi.max(re);
     }
     assert_eq!(stable, want_stable, "{out}");
+    // The verdict without eigenvalues: decided where it says so, and then the same.
+    let verdicts: Vec<usize> = field(out, "verdicts:")
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|w| !w.is_empty())
+        .map(|w| w.parse().expect("a count"))
+        .collect();
+    let [v_stable, v_unstable, undecided, failed, differ, decided] = verdicts[..6] else {
+        panic!("verdict counts: {out}");
+    };
+    assert_eq!((failed, differ), (0, 0), "{out}");
+    assert_eq!(v_stable + v_unstable, decided, "{out}");
+    assert_eq!(decided + undecided, n, "{out}");
+    assert!(
+        v_stable <= want_stable && want_stable <= v_stable + undecided,
+        "{out}"
+    );
     assert!(stable > 0 && stable < n, "both kinds of points: {out}");
     for (got, want) in range.iter().zip([lo, hi]) {
         assert!(

@@ -78,6 +78,11 @@ impl Generate {
         self.opts = self.opts.functions(f);
         self
     }
+    /// Also emit the stability verdict without eigenvalues (`EmitOptions::stability`).
+    pub fn stability(mut self, on: bool) -> Self {
+        self.opts = self.opts.stability(on);
+        self
+    }
     /// Fix a parameter at a value (partial evaluation).
     pub fn fix(mut self, name: &str, value: f64) -> Self {
         self.opts = self.opts.fix(name, value);

@@ -12,6 +12,9 @@ pub enum CodegenError {
     /// The model layer failed (validating, assembling or reducing the model).
     #[error(transparent)]
     Model(#[from] eom_model::ModelError),
+    /// The numeric reduction of the model (`--reduce`) failed.
+    #[error("reduction: {0}")]
+    Num(#[from] eom_num::NumError),
     /// A numeric constant that has no finite value in the chosen precision.
     #[error("{matrix}: the constant {value:?} is not finite in {precision}")]
     NonFiniteConstant {

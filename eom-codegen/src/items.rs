@@ -245,6 +245,10 @@ fn errors() -> TokenStream {
             D,
             /// Map from the state to the physical coordinates (`N_COORDS × N_STATES`).
             Phys,
+            /// The discrete state matrix of `eval_discrete` (where generated).
+            Ad,
+            /// The discrete input matrix of `eval_discrete` (where generated).
+            Bd,
         }
 
         /// Why an evaluation produced no result.
@@ -270,6 +274,9 @@ fn errors() -> TokenStream {
                 /// Column of the entry.
                 col: u16,
             },
+            /// The sample time given to `eval_discrete` (where generated) is not finite and
+            /// non-negative.
+            SampleTime,
         }
 
         // `Result<(), Error>` fits in one register on 64-bit targets (returned in it).
@@ -284,7 +291,7 @@ fn errors() -> TokenStream {
             pub fn what(&self) -> Option<&'static str> {
                 match *self {
                     Error::Validity { check } => CHECKS.get(check as usize).copied(),
-                    Error::NonFinite { .. } => None,
+                    Error::NonFinite { .. } | Error::SampleTime => None,
                 }
             }
         }
@@ -294,6 +301,7 @@ fn errors() -> TokenStream {
                 match self {
                     Error::Validity { check } => write!(f, "outside the validity region: check {} fails ({})", check, self.what().unwrap_or("unknown check")),
                     Error::NonFinite { matrix, row, col } => write!(f, "entry ({}, {}) of {:?} is not finite", row, col, matrix),
+                    Error::SampleTime => write!(f, "the sample time is not finite and non-negative"),
                 }
             }
         }

@@ -45,6 +45,31 @@
 //!   `Result<(), Error>` is returned in a register; `what()` gives the failing check's
 //!   description).
 //!
+//! With [`EmitOptions::stability`] (`eom codegen --stability`) the module also has the
+//! stability verdict without eigenvalues, `f64` only, for models of up to
+//! [`MAX_STABILITY_STATES`] states:
+//! * `characteristic_polynomial(p, c, e)`: the coefficients of `p(s)`, the closed-form
+//!   characteristic polynomial `det(sI − A) = s^ZERO_ROOTS · p(s) / scale` of
+//!   `eom symbolic` (from the descriptor pencil, the structural zero roots divided out), each
+//!   with a bound `e[k]` on its rounding error;
+//! * `stability_conditions(p, c, e)`: the Liénard–Chipart conditions (every coefficient, then
+//!   the Hurwitz determinants `Δ_{d−1}, Δ_{d−3}, …`), normalised by the leading coefficient's
+//!   sign, with their bounds (`CONDITIONS` names them);
+//! * `stability(p) -> Result<Verdict, Error>`: `Stable` when every condition exceeds its
+//!   bound, `Unstable` when one is certainly not positive (unstable or marginal),
+//!   `Undecided` when one is within its bound of zero. `Verdict` is `#[repr(i8)]` (`1`, `-1`,
+//!   `0`), so the function can be wrapped for a foreign caller as it is.
+//!
+//! The bounds come from a running error analysis that the generated code carries out next to
+//! the values (Higham, *Accuracy and Stability of Numerical Algorithms*, §3.3): every value
+//! has a bound on its distance from the exact value of its formula at the given parameters,
+//! propagated operation by operation. For the bicycle (27 parameters, a quartic) `stability`
+//! costs about 250 ns, a quarter of its eigenvalues' time, and at 10⁶ random points within
+//! ±20 % of nominal it decides every point, as the eigenvalues do (`eom bench throughput`).
+//! The a-priori bound by the same program on absolute values would cost half as much, but the
+//! bicycle's constant coefficient cancels so much that it left 38 % of those points
+//! undecided.
+//!
 //! ## Lowering
 //!
 //! One `let` per unique operation of the DAG, and beyond that:
@@ -101,16 +126,20 @@
 #![forbid(unsafe_code)]
 
 pub mod build;
+mod discrete;
 mod error;
 mod items;
 mod options;
 mod problem;
+pub mod reduced;
 mod render;
+mod stability;
 
 pub use eom_sym::lower::CodeOps;
 pub use error::CodegenError;
 pub use options::{DEFAULT_CHUNK, EmitOptions, Functions, MathLib, Precision};
 pub use render::FunctionStats;
+pub use stability::MAX_STABILITY_STATES;
 
 use eom_model::{Linearizer, Model, SymbolicStateSpace};
 use eom_sym::{Expr, OpCount};
@@ -264,8 +293,27 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
     };
 
     let mut items = items::module_items(&ctx, opts, work_len)?;
+    if opts.stability {
+        items.extend(stability_items(sym, &ctx, &specs, opts)?);
+    }
     if ctx.trig.get() {
         items.extend(render::sincos_item(&ctx)?);
+    }
+    let mut extra: Vec<String> = opts.extra_items.clone();
+    if opts.discrete {
+        if !opts.functions.ab {
+            return Err(CodegenError::BadOption {
+                option: "discrete",
+                problem: "eval_discrete evaluates A and B through eval_ab: keep it".into(),
+            });
+        }
+        extra.push(discrete::source(opts.precision));
+    }
+    for src in &extra {
+        let ts: TokenStream = src
+            .parse()
+            .map_err(|e| CodegenError::Syntax(format!("added items: {e}")))?;
+        items.extend(ts);
     }
     let docs = module_doc(&problem, opts, &emitted_stats);
     let docs = docs.iter().map(|l| quote!(#[doc = #l]));
@@ -308,6 +356,55 @@ fn emit_once(sym: &SymbolicStateSpace, opts: &EmitOptions) -> Result<Emitted, Co
         module,
         stats: emitted_stats,
     })
+}
+
+/// The stability items ([`EmitOptions::stability`]).
+fn stability_items(
+    sym: &SymbolicStateSpace,
+    ctx: &Ctx,
+    specs: &[FnSpec],
+    opts: &EmitOptions,
+) -> Result<TokenStream, CodegenError> {
+    if opts.precision != Precision::F64 {
+        return Err(CodegenError::BadOption {
+            option: "stability",
+            problem: "the stability verdict is generated in f64 only (its rounding bounds \
+                      assume f64 arithmetic)"
+                .into(),
+        });
+    }
+    let fixed: Vec<(Expr, Expr)> = ctx
+        .problem
+        .fixed
+        .iter()
+        .map(|(name, v)| {
+            let p = sym
+                .params
+                .iter()
+                .copied()
+                .find(|p| p.param_info().is_some_and(|i| &i.name == name))
+                .expect("a fixed parameter is one of the model's");
+            Ok((p, Expr::float(*v)?))
+        })
+        .collect::<Result<_, CodegenError>>()?;
+    let form = stability::StabilityForm::new(sym, &fixed)?;
+    // The rank decisions of the reduction must hold for the polynomial to be the model's;
+    // they are tested by the first kernel, which checks them all.
+    let validate = if ctx.problem.checks.iter().any(|c| !c.pivot) {
+        let spec = specs.first().expect("at least one function");
+        let name = Ident::new(spec.name, Span::call_site());
+        let args = spec.mats.iter().map(|m| {
+            let len = Ident::new(
+                &format!("{}_LEN", m.lower().to_uppercase()),
+                Span::call_site(),
+            );
+            quote!(&mut [0.0; #len])
+        });
+        Some(quote!(#name(p, #(#args,)* &mut [0.0; WORK_LEN])?;))
+    } else {
+        None
+    };
+    stability::render(ctx, &form, validate)
 }
 
 /// The module's name, after checking that the sizes fit the generated `Error`.
@@ -506,6 +603,14 @@ fn module_doc(p: &Problem, opts: &EmitOptions, stats: &EmitStats) -> Vec<String>
         n.bodies.len(),
         list(&n.bodies, &[])
     ));
+    if !opts.notes.is_empty() {
+        d.push(String::new());
+        d.extend(opts.notes.iter().map(|l| format!(" {l}")));
+    }
+    if opts.discrete {
+        d.push(String::new());
+        d.push(" `eval_discrete` gives the zero-order-hold `Ad = e^{A h}`, `Bd = ∫₀ʰ e^{A t} dt B` at a sample time `h` (scaling and squaring with a Padé approximant sized by the norm, Higham 2005; no allocation, the caller's `DiscreteWork`).".into());
+    }
     d.push(String::new());
     d.push(" # Parameters".into());
     d.push(String::new());

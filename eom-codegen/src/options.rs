@@ -92,6 +92,18 @@ pub struct EmitOptions {
     /// Parameters to fix at a value before lowering (partial evaluation): they disappear from
     /// the generated interface, and everything that depends only on them is folded.
     pub fixed: Vec<(String, f64)>,
+    /// Also emit the characteristic polynomial, the Liénard–Chipart conditions with their
+    /// rounding-error bounds and the verdict `stability` (`f64` only; models of up to
+    /// [`MAX_STABILITY_STATES`](crate::MAX_STABILITY_STATES) states).
+    pub stability: bool,
+    /// Also emit `eval_discrete` (needs `eval_ab`): the zero-order-hold `Ad = e^{A h}`,
+    /// `Bd = ∫₀ʰ e^{A t} dt B` at a sample time h, by scaling and squaring with a Padé
+    /// approximant, without allocation.
+    pub discrete: bool,
+    /// Lines added to the module's documentation (what was done to the model before).
+    pub notes: Vec<String>,
+    /// Rust items added to the module as they are (constants describing the model).
+    pub extra_items: Vec<String>,
 }
 
 impl Default for EmitOptions {
@@ -106,6 +118,10 @@ impl Default for EmitOptions {
             max_temporaries: DEFAULT_CHUNK,
             functions: Functions::default(),
             fixed: Vec::new(),
+            stability: false,
+            discrete: false,
+            notes: Vec::new(),
+            extra_items: Vec::new(),
         }
     }
 }
@@ -159,6 +175,16 @@ impl EmitOptions {
     /// Which functions to emit.
     pub fn functions(mut self, f: Functions) -> Self {
         self.functions = f;
+        self
+    }
+    /// Emit the stability verdict without eigenvalues (see [`EmitOptions::stability`]).
+    pub fn stability(mut self, on: bool) -> Self {
+        self.stability = on;
+        self
+    }
+    /// Also emit `eval_discrete`, the zero-order-hold discretisation at a sample time.
+    pub fn discrete(mut self, on: bool) -> Self {
+        self.discrete = on;
         self
     }
     /// Fix a parameter at a value (partial evaluation); may be called repeatedly.

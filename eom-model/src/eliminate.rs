@@ -389,6 +389,9 @@ struct Elim<'w, S> {
     records: Vec<PivotRecord<S>>,
     /// Per eligible column, its inertia at the nominal point (empty: no preference).
     weights: &'w [f64],
+    /// Per eligible column, whether to keep it independent rather than eliminate it when
+    /// the choice is free (empty: no preference).
+    keep: &'w [bool],
 }
 
 impl<S: Scalar> Elim<'_, S> {
@@ -478,6 +481,7 @@ impl<S: Scalar> Elim<'_, S> {
     fn choose(&mut self) -> Option<(usize, usize)> {
         let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
         let weight = |c: usize| self.weights.get(c).copied().unwrap_or(0.0);
+        let kept = |c: usize| self.keep.get(c).copied().unwrap_or(false);
         for r in 0..self.row_state.len() {
             let st = &mut self.row_state[r];
             if st.pivoted {
@@ -506,16 +510,20 @@ impl<S: Scalar> Elim<'_, S> {
                 let better = match best {
                     None => true,
                     Some((bm, br, _, bc)) => {
-                        mk < bm
-                            || (mk == bm && -ratio < br)
-                            || (mk == bm && -ratio == br && weight(c) < weight(bc))
+                        (!kept(c) && kept(bc))
+                            || (kept(c) == kept(bc) && mk < bm)
+                            || (kept(c) == kept(bc) && mk == bm && -ratio < br)
+                            || (kept(c) == kept(bc)
+                                && mk == bm
+                                && -ratio == br
+                                && weight(c) < weight(bc))
                     }
                 };
                 if better {
                     best = Some((mk, -ratio, r, c));
                     // No fill-in at the row's largest entry cannot be beaten, and ties go
                     // to the first found: stop searching (unless a lighter column may tie).
-                    if mk == 0 && ratio == 1.0 && self.weights.is_empty() {
+                    if mk == 0 && ratio == 1.0 && self.weights.is_empty() && self.keep.is_empty() {
                         return Some((r, c));
                     }
                 }
@@ -546,6 +554,21 @@ pub fn rref<S: Scalar>(
     forced: &[(usize, usize)],
     plan: Option<&EliminationPlan>,
     weights: &[f64],
+) -> Result<Rref<S>, ModelError> {
+    rref_keeping(rows, eligible, forced, plan, weights, &[])
+}
+
+/// [`rref`] that eliminates the columns not marked in `keep` first, among all pivots that pass
+/// the threshold (before the fill-in, the ratio and the inertia decide): the position
+/// constraints keep the rotations of pinned point masses as the independent coordinates (a
+/// pendulum bob's angle rather than its sideways position), whatever the lengths.
+pub fn rref_keeping<S: Scalar>(
+    rows: RowStore<S>,
+    eligible: usize,
+    forced: &[(usize, usize)],
+    plan: Option<&EliminationPlan>,
+    weights: &[f64],
+    keep: &[bool],
 ) -> Result<Rref<S>, ModelError> {
     let nrows = rows.nrows();
     // Validity records are needed when the result is symbolic (valid elsewhere only if its
@@ -618,6 +641,7 @@ pub fn rref<S: Scalar>(
         },
         records: Vec::new(),
         weights,
+        keep,
     };
 
     if let Some(plan) = plan {

@@ -25,7 +25,7 @@ pub enum ModelError {
     #[error("singular: {0}")]
     Singular(String),
     /// A pivot recorded in the symbolic elimination plan broke down at the evaluation point:
-    /// the symbolic result is not valid there (use the robust numeric path).
+    /// the symbolic result is not valid there (the numeric and robust methods reduce at the point).
     #[error("outside the validity region of the symbolic reduction: {0}")]
     PivotBreakdown(String),
     /// A model feature that this path does not support (the message says which path does).

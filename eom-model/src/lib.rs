@@ -118,8 +118,8 @@ pub mod validate;
 
 pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
-    Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Reaction, RowLabel, Rows, Term,
-    assemble,
+    Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Preload, Reaction, RowLabel, Rows,
+    Statics, Term, assemble,
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
@@ -127,7 +127,7 @@ pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
 pub use reduce::{
     CheckLabel, Coord, ReducedDescriptor, Reduction, ReductionPlan, ReductionReport, ValidityCheck,
-    reduce,
+    reduce, reduce_report,
 };
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};

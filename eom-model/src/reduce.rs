@@ -25,7 +25,9 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
-use super::eliminate::{EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref};
+use super::eliminate::{
+    EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref, rref_keeping,
+};
 use super::items::Name;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
@@ -354,7 +356,26 @@ pub fn reduce<S: Scalar>(
     let dyn_ = cx.project_dynamics(&sel, &pos, &velo)?;
     let [a_ss, b_ss, gamma] = absorb_input_rates(&pos, &dyn_)?;
     let (c_out, d_out) = outputs(a, &sel, &dyn_, &a_ss, &b_ss, &gamma)?;
-    cx.finish(sel, pos, velo, dyn_, [a_ss, b_ss, c_out, d_out])
+    cx.finish(sel, pos, velo, dyn_, [a_ss, b_ss, c_out, d_out], &gamma)
+}
+
+/// The numeric reduction of [`reduce`] without its dense result: every step and every check
+/// of the nominal point, and the report (`position_states + velocity_states` states), but no
+/// dense `A` and map to the physical coordinates, whose `(2n)² + 6 b · 2n` entries (n
+/// freedoms, b bodies) are what a model of many bodies cannot hold: 10 000 bodies on sliders
+/// needed 15.7 GB for them (issue 27, item 7). For validating a model (`eom check`).
+///
+/// Errors: as [`reduce`].
+pub fn reduce_report(a: &Assembled<f64>) -> Result<ReductionReport, ModelError> {
+    let mut cx = Reducer::new(a, None);
+    let sel = cx.pin_coordinates();
+    let pos = cx.eliminate_positions(&sel)?;
+    let velo = cx.eliminate_velocities(&sel, &pos)?;
+    let dyn_ = cx.project_dynamics(&sel, &pos, &velo)?;
+    let [a_ss, b_ss, gamma] = absorb_input_rates(&pos, &dyn_)?;
+    outputs(a, &sel, &dyn_, &a_ss, &b_ss, &gamma)?;
+    cx.check_nominal()?;
+    Ok(cx.report)
 }
 
 /// What the steps share: the assembled model, the plan to replay, the checks and the report.
@@ -502,12 +523,21 @@ impl<'a, S: Scalar> Reducer<'a, S> {
     fn eliminate_positions(&mut self, sel: &Selection<S>) -> Result<Positions<S>, ModelError> {
         let (a, n) = (self.a, sel.active.len());
         let jlabel = |r: usize| a.holonomic_rows[sel.j_keep[r]].clone();
-        let rj = rref(
+        // The rotations of point masses kept: a pinned point mass's angle is the coordinate
+        // users expect (a pendulum bob's, not its sideways position), and a rotation without
+        // inertia of its own costs the reduced mass matrix nothing (the inertia tie-break
+        // would eliminate it first).
+        let inertia = sel.inertia();
+        let keep: Vec<bool> = (sel.active.iter().zip(&inertia))
+            .map(|(&g, &i)| g % 6 >= 3 && i == 0.0)
+            .collect();
+        let rj = rref_keeping(
             to_rows(&sel.jm),
             n,
             &[],
             self.plan.map(|p| &p.position),
-            &sel.inertia(),
+            &inertia,
+            &keep,
         )?;
         let mut checks = Vec::new();
         record_checks(
@@ -692,7 +722,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
                 .map(|&r| self.coord_name(sel.active[velo.indep_w[r]], true))
                 .collect();
             return Err(ModelError::Unsupported(format!(
-                "the reduced mass matrix is singular at the nominal point (massless motion of {}): the symbolic-numeric path needs every independent velocity to carry inertia; use the robust numeric path, which reduces index-1 descriptor models",
+                "the reduced mass matrix is singular at the nominal point (massless motion of {}): this reduction needs every independent velocity to carry inertia (the robust method, with orthonormal bases and a descriptor reduction, handles index-1 descriptor models)",
                 names.join(", ")
             )));
         }
@@ -712,6 +742,20 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         })
     }
 
+    /// Without a plan (pivots chosen here): every recorded decision holds at the nominal
+    /// point.
+    fn check_nominal(&self) -> Result<(), ModelError> {
+        if self.plan.is_none()
+            && let Some(bad) = self.checks.iter().find(|c| !c.holds_nominal())
+        {
+            return Err(ModelError::Singular(format!(
+                "at the nominal point: {}",
+                bad.what()
+            )));
+        }
+        Ok(())
+    }
+
     /// The result: the state names, the map back to the physical coordinates, the dense
     /// matrices, and (choosing pivots) the check that every recorded decision holds at the
     /// nominal point.
@@ -722,6 +766,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         velo: Velocities<S>,
         dyn_: Dynamics<S>,
         [a_ss, b_ss, c_out, d_out]: [SparseMatrix<S>; 4],
+        gamma: &SparseMatrix<S>,
     ) -> Result<Reduction<S>, ModelError> {
         let a = self.a;
         let nx = pos.indep_p.len() + velo.indep_w.len();
@@ -734,6 +779,10 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             .map(|&k| self.coord_name(sel.active[k], false))
             .collect();
         states.extend((velo.indep_w.iter()).map(|&k| self.coord_name(sel.active[k], true)));
+        // With rate inputs the states are x̃ = x − Γu: named for what they are.
+        for (i, name) in states.iter_mut().enumerate() {
+            name.push_str(&shifted_by(gamma.row(i), &a.inputs));
+        }
         let names = SignalNames {
             states,
             inputs: a.inputs.iter().map(|x| x.0.clone()).collect(),
@@ -750,14 +799,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             phys: to_dense(&phys),
             names,
         };
-        if self.plan.is_none()
-            && let Some(bad) = self.checks.iter().find(|c| !c.holds_nominal())
-        {
-            return Err(ModelError::Singular(format!(
-                "at the nominal point: {}",
-                bad.what()
-            )));
-        }
+        self.check_nominal()?;
         let plan = ReductionPlan {
             active: sel.active,
             j_rows: sel.j_keep,
@@ -777,6 +819,29 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             },
         })
     }
+}
+
+/// ` − c₁·u₁ + c₂·u₂ …`: the shift `Γu` of a state `x̃ = x − Γu` (step 5), from its row of `Γ`
+/// and the inputs' names; empty when the row is zero.
+fn shifted_by<S: Scalar>(row: &[(usize, S)], inputs: &[(String, String)]) -> String {
+    let mut t = String::new();
+    for (j, c) in row.iter().filter(|e| !e.1.is_zero()) {
+        let label = c.label();
+        let (sign, coef) = match label.strip_prefix('-') {
+            Some(rest) => ("+", rest.to_string()),
+            None => ("−", label),
+        };
+        let coef = if coef == "1" {
+            String::new()
+        } else if coef.contains(['+', '-', '*', '/', ' ', '^']) {
+            format!("({coef})·")
+        } else {
+            format!("{coef}·")
+        };
+        let input = inputs.get(*j).map_or("u", |x| x.0.as_str());
+        t.push_str(&format!(" {sign} {coef}{input}"));
+    }
+    t
 }
 
 /// Step 1 without a plan: a holonomic row with a single entry pins its coordinate, kept

@@ -7,7 +7,9 @@
 //!    descriptor construction of the EoM software (Minaker et al.), but with the rank
 //!    decisions taken on equilibrated matrices (scale-aware, not dependent on units) and the
 //!    complements built per block: `P = null(J)` for the positions, `W = null([J; N])` for the
-//!    velocities, `R = [P 0 0; G W 0; 0 0 I]` with `G` the least-norm velocity that the
+//!    velocities (each per group of coordinates that the constraint rows join,
+//!    [`nullspace_structured`], so that coordinates no constraint couples are never mixed and
+//!    an exact decoupling of the motion stays exact in the reduced model), `R = [P 0 0; G W 0; 0 0 I]` with `G` the least-norm velocity that the
 //!    position constraint's rate `J w = J V p` requires, `L = diag(P, W, I)`. A single SVD
 //!    complement of the whole constraint matrix would be as valid, but it mixes positions and
 //!    velocities (of different units) in every state, so the state matrix could not be
@@ -28,7 +30,7 @@ use super::assemble::Assembled;
 use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
 use eom_num::descriptor::{DescriptorOptions, DescriptorReport, descriptor_to_state_space};
-use eom_num::linalg::{Equilibrate, RankTolerance, nullspace, nullspace_equilibrated};
+use eom_num::linalg::{Equilibrate, RankTolerance, nullspace_equilibrated, nullspace_structured};
 use eom_num::{Descriptor, SignalNames, StateSpace};
 use eom_sym::matrix::SparseMatrix;
 use nalgebra::DMatrix;
@@ -220,7 +222,7 @@ fn complements(
         if mat.nrows() == 0 {
             return Ok((DMatrix::identity(d, d), f64::INFINITY));
         }
-        let ns = nullspace_equilibrated(mat, RankTolerance::Default, Equilibrate::Both)?;
+        let ns = nullspace_structured(mat, RankTolerance::Default, Some(Equilibrate::Both))?;
         Ok((ns.basis, ns.gap))
     };
     let (p, gap_p) = complement(j)?;
@@ -236,7 +238,7 @@ fn complements(
         let rows = if nw == 0 {
             DMatrix::identity(d, d)
         } else {
-            nullspace(&w.transpose(), RankTolerance::Default)?.basis
+            nullspace_structured(&w.transpose(), RankTolerance::Default, None)?.basis
         };
         let jr = &jn * &rows;
         let y = jr

@@ -1,5 +1,7 @@
 //! Eigenvalues on a 6-state and a 50-state model: the allocating `eigenvalues` against the
-//! workspace kernel `eigenvalues_in` (the one sweeps call), and modes with vectors.
+//! workspace kernel `eigenvalues_in` (the one sweeps call), and modes with vectors; for 4, 6
+//! and 16 states the stack kernel `eigenvalues_small` (which `eigenvalues_in` takes up to 16
+//! states) against faer's QR algorithm on the same matrix (`eigenvalues_faer_in`).
 //!
 //! Run: `cargo bench -p eom-num --bench eigen`.
 
@@ -7,7 +9,10 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use eom_num::StateSpace;
-use eom_num::modes::{EigenvaluesWorkspace, Modes, eigenvalues, eigenvalues_in};
+use eom_num::modes::{
+    EigenvaluesWorkspace, Modes, eigenvalues, eigenvalues_faer_in, eigenvalues_in,
+};
+use eom_num::small_eigen::eigenvalues_small;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -47,6 +52,23 @@ fn bench(cr: &mut Criterion) {
         .unwrap();
         group.bench_with_input(BenchmarkId::new("modes", n), &ss, |b, ss| {
             b.iter(|| Modes::compute(black_box(ss)).unwrap())
+        });
+    }
+    for n in [4usize, 6, 16] {
+        let a = matrix(n);
+        let mut out = vec![Complex64::new(0.0, 0.0); n];
+        group.bench_with_input(BenchmarkId::new("small kernel", n), &a, |b, a| {
+            b.iter(|| {
+                eigenvalues_small(black_box(a.as_slice()), n, &mut out).unwrap();
+                black_box(&out);
+            })
+        });
+        let mut ws = EigenvaluesWorkspace::new(n);
+        group.bench_with_input(BenchmarkId::new("faer", n), &a, |b, a| {
+            b.iter(|| {
+                eigenvalues_faer_in(black_box(a), &mut ws, &mut out).unwrap();
+                black_box(&out);
+            })
         });
     }
     group.finish();

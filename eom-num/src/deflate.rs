@@ -59,7 +59,7 @@ pub(crate) fn deflate_in_place(
     chop(a, n);
     loop {
         let before = order.len();
-        remove_zero_columns(a, n, removed, order);
+        remove_zero_columns(a, n, removed, |j| order.push(j));
         if let Some(c) = find_pair(a, n, removed, keys) {
             apply(a, n, c, removed);
             combos.push(c);
@@ -95,10 +95,153 @@ fn chop(a: &mut [f64], n: usize) {
     }
 }
 
-/// Removes states with a zero column (on the kept rows) until none is left.
-fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], order: &mut Vec<usize>) {
+/// [`deflate_in_place`] for matrices of at most [`crate::small_eigen::MAX_N`] states, without
+/// recording the changes of coordinates and without allocation: the number of structural
+/// zeros (`removed` marks them; `a` is transformed as there). The same decisions in the same
+/// order, found through each column's pattern of nonzero rows as a bit mask (a zero column
+/// and a candidate pair are then one comparison of masks each).
+pub(crate) fn deflate_small(a: &mut [f64], n: usize, removed: &mut [bool]) -> usize {
+    deflate_small_recorded(a, n, removed, |_| ())
+}
+
+/// One decision of [`deflate_small`], in the order taken.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum DeflationStep {
+    /// A state whose column is zero on the states kept at that moment.
+    Zero(usize),
+    /// A pair combined by the change of coordinates.
+    Pair(Combine),
+}
+
+/// [`deflate_small`], telling `step` of each decision.
+pub(crate) fn deflate_small_recorded(
+    a: &mut [f64],
+    n: usize,
+    removed: &mut [bool],
+    mut step: impl FnMut(DeflationStep),
+) -> usize {
+    debug_assert!(n <= crate::small_eigen::MAX_N && a.len() == n * n);
+    removed.iter_mut().for_each(|r| *r = false);
+    if n == 0 {
+        return 0;
+    }
+    let mut masks = [0u32; crate::small_eigen::MAX_N];
+    chop_with_masks(a, n, &mut masks);
+    let mut kept: u32 = (1u32 << n) - 1;
+    let mut count = 0;
     loop {
-        let before = order.len();
+        let before = count;
+        // Zero columns on the kept rows, repeatedly (in increasing order, as
+        // `remove_zero_columns`).
+        loop {
+            let mut any = false;
+            for j in 0..n {
+                if kept & (1 << j) != 0 && masks[j] & kept == 0 {
+                    kept &= !(1 << j);
+                    removed[j] = true;
+                    step(DeflationStep::Zero(j));
+                    count += 1;
+                    any = true;
+                }
+            }
+            if !any {
+                break;
+            }
+        }
+        // The first pair (i < j) of kept columns with the same pattern that agree.
+        let mut found = None;
+        'search: for i in (0..n).filter(|&i| kept & (1 << i) != 0) {
+            for j in (i + 1..n).filter(|&j| kept & (1 << j) != 0) {
+                if masks[i] & kept == masks[j] & kept
+                    && let Some(c) = pair(a, n, removed, i, j)
+                {
+                    found = Some(c);
+                    break 'search;
+                }
+            }
+        }
+        if let Some(c) = found {
+            step(DeflationStep::Pair(c));
+            apply(a, n, c, removed);
+            removed[c.i] = true;
+            kept &= !(1 << c.i);
+            count += 1;
+            // The change of coordinates moved entries of row j in every column.
+            for (col, m) in a.chunks_exact(n).zip(masks.iter_mut()) {
+                *m = col
+                    .iter()
+                    .enumerate()
+                    .fold(0, |m, (r, x)| if *x != 0.0 { m | (1 << r) } else { m });
+            }
+        }
+        if count == before {
+            return count;
+        }
+    }
+}
+
+/// Replays recorded decisions of [`deflate_small_recorded`] on another matrix of the same
+/// structure: each is checked as it is taken (a zero column exactly zero on the states kept
+/// at that moment, after the chop; a pair agreeing as [`find_pair`] requires) and applied.
+/// `None` when one does not hold (the caller then searches afresh), else the number of
+/// structural zeros. Zeros the recorded matrix did not have are not searched for.
+pub(crate) fn replay_small(
+    a: &mut [f64],
+    n: usize,
+    removed: &mut [bool],
+    steps: &[DeflationStep],
+) -> Option<usize> {
+    removed.iter_mut().for_each(|r| *r = false);
+    let mut masks = [0u32; crate::small_eigen::MAX_N];
+    chop_with_masks(a, n, &mut masks);
+    for s in steps {
+        match *s {
+            DeflationStep::Zero(j) => {
+                let col = &a[j * n..(j + 1) * n];
+                if removed[j] || col.iter().zip(&*removed).any(|(x, r)| !r && *x != 0.0) {
+                    return None;
+                }
+                removed[j] = true;
+            }
+            DeflationStep::Pair(c) => {
+                if removed[c.i] || removed[c.j] || pair(a, n, removed, c.i, c.j) != Some(c) {
+                    return None;
+                }
+                apply(a, n, c, removed);
+                removed[c.i] = true;
+            }
+        }
+    }
+    Some(steps.len())
+}
+
+/// [`chop`], and each column's nonzero rows as a bit mask.
+fn chop_with_masks(a: &mut [f64], n: usize, masks: &mut [u32]) {
+    let mut row_max = [0.0f64; crate::small_eigen::MAX_N];
+    for col in a.chunks_exact(n) {
+        for (m, x) in row_max.iter_mut().zip(col) {
+            *m = m.max(x.abs());
+        }
+    }
+    let f = CHOP_ULPS * n as f64 * f64::EPSILON;
+    for (col, mask) in a.chunks_exact_mut(n).zip(masks.iter_mut()) {
+        let mut m = 0;
+        for (r, (x, rm)) in col.iter_mut().zip(&row_max).enumerate() {
+            if x.abs() <= f * rm {
+                *x = 0.0;
+            } else {
+                m |= 1 << r;
+            }
+        }
+        *mask = m;
+    }
+}
+
+/// Removes states with a zero column (on the kept rows) until none is left, telling `found`
+/// of each in order.
+fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], mut found: impl FnMut(usize)) {
+    loop {
+        let mut any = false;
         for j in 0..n {
             if removed[j] {
                 continue;
@@ -106,10 +249,11 @@ fn remove_zero_columns(a: &[f64], n: usize, removed: &mut [bool], order: &mut Ve
             let col = &a[j * n..(j + 1) * n];
             if (0..n).all(|i| removed[i] || col[i] == 0.0) {
                 removed[j] = true;
-                order.push(j);
+                found(j);
+                any = true;
             }
         }
-        if order.len() == before {
+        if !any {
             return;
         }
     }
@@ -122,6 +266,10 @@ fn find_pair(
     removed: &[bool],
     keys: &mut Vec<(u64, usize)>,
 ) -> Option<Combine> {
+    if n <= crate::small_eigen::MAX_N {
+        // The same answer as the small kernel's (which has no room for keys).
+        return find_pair_among_few(a, n, removed);
+    }
     keys.clear();
     for j in (0..n).filter(|&j| !removed[j]) {
         keys.push((column_key(&a[j * n..(j + 1) * n], removed), j));
@@ -132,15 +280,37 @@ fn find_pair(
         if k1 != k2 {
             continue;
         }
-        let (ci, cj) = (&a[i * n..(i + 1) * n], &a[j * n..(j + 1) * n]);
-        for s in [1.0, -1.0] {
-            let same = |r: usize| {
-                let (x, y) = (ci[r], s * cj[r]);
-                (x == 0.0) == (y == 0.0) && (x - y).abs() <= PAIR_ULPS * f64::EPSILON * x.abs()
-            };
-            if (0..n).all(|r| removed[r] || same(r)) {
-                return Some(Combine { i, j, s });
+        if let Some(c) = pair(a, n, removed, i, j) {
+            return Some(c);
+        }
+    }
+    None
+}
+
+/// [`find_pair`] by comparing every two kept columns (i < j, the first pair in that order):
+/// for a few states cheaper than hashing and sorting, and it misses no pair.
+fn find_pair_among_few(a: &[f64], n: usize, removed: &[bool]) -> Option<Combine> {
+    for i in (0..n).filter(|&i| !removed[i]) {
+        for j in (i + 1..n).filter(|&j| !removed[j]) {
+            if let Some(c) = pair(a, n, removed, i, j) {
+                return Some(c);
             }
+        }
+    }
+    None
+}
+
+/// Whether kept columns i and j agree up to sign (to [`PAIR_ULPS`], with the same zeros) on
+/// the kept rows.
+fn pair(a: &[f64], n: usize, removed: &[bool], i: usize, j: usize) -> Option<Combine> {
+    let (ci, cj) = (&a[i * n..(i + 1) * n], &a[j * n..(j + 1) * n]);
+    for s in [1.0, -1.0] {
+        let same = |r: usize| {
+            let (x, y) = (ci[r], s * cj[r]);
+            (x == 0.0) == (y == 0.0) && (x - y).abs() <= PAIR_ULPS * f64::EPSILON * x.abs()
+        };
+        if (0..n).all(|r| removed[r] || same(r)) {
+            return Some(Combine { i, j, s });
         }
     }
     None

@@ -17,8 +17,13 @@
 //!    massless coordinates) are split off before the SVD, so that their part of the
 //!    nullspace — and of A22 below — is exact rather than rotated by rounding.
 //! 3. If E has full rank, `ẋ = E⁻¹A x + E⁻¹B u` (LU) in the original coordinates.
-//!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ`, the last n − r
-//!    equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1).
+//!    Otherwise, in the coordinates `x = V [x₁; x₂]` and equations `Uᵀ` — or, when the
+//!    nullspace of E is exactly its zero rows and columns and E11 decouples into groups of
+//!    coordinates, in the descriptor's own coordinates
+//!    split by a permutation, E11 kept and later solved with by LU instead of Σ⁻¹ (the
+//!    rotation by V mixes coordinates within every group of equal singular values, equal
+//!    masses say, and turns an exact decoupling into a rounding-level coupling) — the last
+//!    n − r equations are algebraic: `0 = A21 x₁ + A22 x₂ + B2 u`. A22 must be invertible (index 1).
 //!    Its rows are algebraic equations and its columns algebraic variables, whose units are
 //!    arbitrary (the Schur complement does not depend on them), so its rank is decided by
 //!    SVD of the row- and column-equilibrated A22; the equilibrated A22 is then factored by
@@ -28,7 +33,8 @@
 //!    [`NumError::SingularPencil`] when `sE − A` is singular for every s (tested at two
 //!    generic complex points), [`NumError::HigherIndex`] otherwise.
 //! 4. The Schur complement gives
-//!    `A_s = Σ⁻¹(A11 − A12 A22⁻¹ A21)`, `B_s = Σ⁻¹(B1 − A12 A22⁻¹ B2)`,
+//!    `A_s = Σ⁻¹(A11 − A12 A22⁻¹ A21)`, `B_s = Σ⁻¹(B1 − A12 A22⁻¹ B2)` (E11⁻¹ for Σ⁻¹ when
+//!    permuted),
 //!    `C_s = C1 − C2 A22⁻¹ A21`, `D_s = D − C2 A22⁻¹ B2`,
 //!    and the physical map is transformed the same way as C (with u = 0, as for mode shapes):
 //!    `phys_s = P1 − P2 A22⁻¹ A21` where `[P1 P2] = phys · S · V`.
@@ -39,11 +45,11 @@
 //! eigenvalues with a scale-aware test instead of a fixed bound like `|λ| < 1e9`; see
 //! [`GenEigOptions`].
 
+use faer::MatMut;
 use faer::diag::DiagMut;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::evd::ComputeEigenvectors;
 use faer::linalg::gevd::{gevd_real, gevd_scratch};
-use faer::{MatMut, Par};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
@@ -254,6 +260,9 @@ struct ERank {
     rank: Rank,
     /// The nullspace of E is exactly its zero rows and columns.
     structural: bool,
+    /// Those rows and columns, when `structural`, E is not of full rank and its kept block
+    /// E11 decouples (then the coordinates are permuted, not rotated).
+    split: Option<Split>,
     condition: f64,
 }
 
@@ -265,6 +274,9 @@ struct Blocks {
     pt: DMatrix<f64>,
     r: usize,
     k: usize,
+    /// The kept block E11 of E when the coordinates were permuted, not rotated: the
+    /// equations are then solved with it instead of scaled by Σ⁻¹.
+    e11: Option<DMatrix<f64>>,
 }
 
 /// Step 3 (rank deficient): the invertibility decision on A22, and its equilibrated LU
@@ -381,7 +393,8 @@ fn decide_e_rank(
     warnings: &mut Vec<String>,
 ) -> Result<ERank, NumError> {
     let n = e.nrows();
-    let (f, zeros) = structured_svd(e)?;
+    let (f, split) = structured_svd(e)?;
+    let zeros = split.as_ref().map_or(0, |s| s.rows.1.len());
     let smax = f.singular_values.first().copied().unwrap_or(0.0);
     let e_rank = rank_from(&f.singular_values, opts.rank_tol.threshold(smax, n, n));
     let r = e_rank.rank;
@@ -397,8 +410,20 @@ fn decide_e_rank(
              model is stiff (nearly massless coordinates kept as dynamic)"
         ));
     }
+    let structural = n - r == zeros;
+    // Permuted rather than rotated only where there is structure to keep: E11 decouples into
+    // groups of coordinates. A coupled E11 is rotated as before (its SVD is then the more
+    // accurate factorization: the truck–trailer's gain at its split zero pair lost a digit
+    // to the LU of a coupled E11).
+    let split = split.filter(|sp| {
+        structural && {
+            let e11 = e.select_rows(&sp.rows.0).select_columns(&sp.cols.0);
+            crate::linalg::column_groups(&e11).len() > 1
+        }
+    });
     Ok(ERank {
-        structural: n - r == zeros,
+        structural,
+        split,
         svd: f,
         rank: e_rank,
         condition,
@@ -455,8 +480,16 @@ fn full_rank(
 }
 
 impl Blocks {
-    /// Step 3, rank deficient: the coordinates `x = V [x₁; x₂]` and equations `Uᵀ`.
+    /// Step 3, rank deficient: the coordinates `x = V [x₁; x₂]` and equations `Uᵀ` — or,
+    /// when the nullspace of E is exactly its zero rows and columns, the same split by a
+    /// permutation, E11 kept as it is. The rotation by V would mix the dynamic coordinates
+    /// (arbitrarily, within every group of equal singular values, e.g. equal masses) and turn
+    /// the exact zeros of a decoupled model into rounding errors; the permutation keeps the
+    /// descriptor's own coordinates as the states.
     fn rotate(p: &Pencil, e: &ERank) -> Self {
+        if let Some(split) = &e.split {
+            return Blocks::permute(p, split);
+        }
         let f = &e.svd;
         let ut = f.u.transpose();
         let r = e.rank.rank;
@@ -467,6 +500,23 @@ impl Blocks {
             pt: &p.ph * &f.v,
             r,
             k: p.e.nrows() - r,
+            e11: None,
+        }
+    }
+
+    /// The split by a permutation (see [`Blocks::rotate`]).
+    fn permute(p: &Pencil, split: &Split) -> Self {
+        let rows: Vec<usize> = split.rows.0.iter().chain(&split.rows.1).copied().collect();
+        let cols: Vec<usize> = split.cols.0.iter().chain(&split.cols.1).copied().collect();
+        let r = split.rows.0.len();
+        Blocks {
+            at: p.a.select_rows(&rows).select_columns(&cols),
+            bt: p.b.select_rows(&rows),
+            ct: p.c.select_columns(&cols),
+            pt: p.ph.select_columns(&cols),
+            r,
+            k: p.e.nrows() - r,
+            e11: Some(p.e.select_rows(&split.rows.0).select_columns(&split.cols.0)),
         }
     }
 
@@ -585,10 +635,26 @@ fn schur_complement(
     let xb = x.columns(r, m);
     let mut a_s = a11 - a12 * xa;
     let mut b_s = b1 - a12 * xb;
-    for i in 0..r {
-        let inv = 1.0 / e.svd.singular_values[i];
-        a_s.row_mut(i).scale_mut(inv);
-        b_s.row_mut(i).scale_mut(inv);
+    match &blocks.e11 {
+        Some(e11) => {
+            let mut rhs = DMatrix::zeros(r, r + m);
+            rhs.columns_mut(0, r).copy_from(&a_s);
+            rhs.columns_mut(r, m).copy_from(&b_s);
+            let x = e11.clone().lu().solve(&rhs).ok_or_else(|| {
+                NumError::Singular(format!(
+                    "E11 ({r}×{r}) has full numerical rank but its LU factorisation broke down"
+                ))
+            })?;
+            a_s = x.columns(0, r).into_owned();
+            b_s = x.columns(r, m).into_owned();
+        }
+        None => {
+            for i in 0..r {
+                let inv = 1.0 / e.svd.singular_values[i];
+                a_s.row_mut(i).scale_mut(inv);
+                b_s.row_mut(i).scale_mut(inv);
+            }
+        }
     }
     let c_s = c1 - c2 * xa;
     let d_s = &d.d - c2 * xb;
@@ -610,8 +676,9 @@ fn schur_complement(
 
 /// SVD of E with exactly zero rows and columns split off: if E has z zero rows and z zero
 /// columns, `E = P_r [[E11, 0], [0, 0]] P_cᵀ`, only E11 is decomposed and the null part of
-/// U, V consists of exact unit vectors. Returns the SVD and z.
-fn structured_svd(e: &DMatrix<f64>) -> Result<(crate::linalg::Svd, usize), NumError> {
+/// U, V consists of exact unit vectors. Returns the SVD and the split (`None` when E has no
+/// zero rows, or not as many zero rows as zero columns).
+fn structured_svd(e: &DMatrix<f64>) -> Result<(crate::linalg::Svd, Option<Split>), NumError> {
     let n = e.nrows();
     let zr: Vec<usize> = (0..n)
         .filter(|&i| e.row(i).iter().all(|&x| x == 0.0))
@@ -620,7 +687,7 @@ fn structured_svd(e: &DMatrix<f64>) -> Result<(crate::linalg::Svd, usize), NumEr
         .filter(|&j| e.column(j).iter().all(|&x| x == 0.0))
         .collect();
     if zr.is_empty() || zr.len() != zc.len() {
-        return Ok((svd(e)?, 0));
+        return Ok((svd(e)?, None));
     }
     let z = zr.len();
     let nr: Vec<usize> = (0..n).filter(|i| !zr.contains(i)).collect();
@@ -652,8 +719,19 @@ fn structured_svd(e: &DMatrix<f64>) -> Result<(crate::linalg::Svd, usize), NumEr
             singular_values: sv,
             v,
         },
-        z,
+        Some(Split {
+            rows: (nr, zr),
+            cols: (nc, zc),
+        }),
     ))
+}
+
+/// The exactly zero rows and columns of E split off by [`structured_svd`]: `(nonzero, zero)`
+/// indices of each.
+#[derive(Clone, Debug)]
+struct Split {
+    rows: (Vec<usize>, Vec<usize>),
+    cols: (Vec<usize>, Vec<usize>),
 }
 
 fn rank_from(s: &[f64], threshold: f64) -> Rank {
@@ -742,11 +820,12 @@ pub fn generalized_eigenvalues_with(
     if n > 0 {
         let mut aw = a.clone();
         let mut ew = e.clone();
+        let par = crate::linalg::par(n);
         let req = gevd_scratch::<f64>(
             n,
             ComputeEigenvectors::No,
             ComputeEigenvectors::No,
-            Par::Seq,
+            par,
             Default::default(),
         );
         let mut buf = MemBuffer::new(req);
@@ -758,7 +837,7 @@ pub fn generalized_eigenvalues_with(
             DiagMut::from_slice_mut(&mut beta),
             None,
             None,
-            Par::Seq,
+            par,
             MemStack::new(&mut buf),
             Default::default(),
         )

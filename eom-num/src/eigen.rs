@@ -16,7 +16,7 @@
 use faer::diag::DiagMut;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::evd::evd_real;
-use faer::{Mat, MatRef, Par};
+use faer::{Mat, MatRef};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
@@ -132,14 +132,15 @@ fn eigen_packed(a: &DMatrix<f64>, balance: bool, keep_left: bool) -> Result<Eige
     let mut ul = Mat::<f64>::zeros(n, n);
     let mut ur = Mat::<f64>::zeros(n, n);
     if n > 0 {
-        let mut buf = MemBuffer::new(crate::modes::eig_scratch(n, true));
+        let par = crate::linalg::par(n);
+        let mut buf = MemBuffer::new(crate::modes::eig_scratch(n, true, par));
         evd_real(
             MatRef::from_column_major_slice(&ab, n, n),
             DiagMut::from_slice_mut(&mut re),
             DiagMut::from_slice_mut(&mut im),
             Some(ul.as_mut()),
             Some(ur.as_mut()),
-            Par::Seq,
+            par,
             MemStack::new(&mut buf),
             Default::default(),
         )
@@ -521,7 +522,8 @@ fn scaled_product(p: &DMatrix<f64>, scale: &[f64], u: MatRef<'_, f64>) -> DMatri
         }
         let lhs = MatRef::from_column_major_slice(pd.as_slice(), rows, n);
         let dst = faer::MatMut::from_column_major_slice_mut(out.as_mut_slice(), rows, cols);
-        faer::linalg::matmul::matmul(dst, faer::Accum::Replace, lhs, u, 1.0, Par::Seq);
+        let par = crate::linalg::par(rows.max(n));
+        faer::linalg::matmul::matmul(dst, faer::Accum::Replace, lhs, u, 1.0, par);
     }
     out
 }

@@ -42,7 +42,7 @@ use faer::linalg::householder::{
     apply_block_householder_sequence_on_the_right_in_place_scratch,
     apply_block_householder_sequence_on_the_right_in_place_with_conj,
 };
-use faer::{Conj, Mat, Par};
+use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -214,9 +214,10 @@ impl HessenbergForm {
         if n > 1 {
             let bs =
                 faer::linalg::qr::no_pivoting::factor::recommended_block_size::<f64>(n - 1, n - 1);
+            let par = crate::linalg::par(n);
             let mut householder = Mat::<f64>::zeros(bs, n - 1);
             let req = StackReq::any_of(&[
-                hessenberg_in_place_scratch::<f64>(n, bs, Par::Seq, Default::default()),
+                hessenberg_in_place_scratch::<f64>(n, bs, par, Default::default()),
                 apply_block_householder_sequence_on_the_right_in_place_scratch::<f64>(
                     n - 1,
                     bs,
@@ -227,7 +228,7 @@ impl HessenbergForm {
             hessenberg_in_place(
                 hm.as_mut(),
                 householder.as_mut(),
-                Par::Seq,
+                par,
                 MemStack::new(&mut buf),
                 Default::default(),
             );
@@ -236,7 +237,7 @@ impl HessenbergForm {
                 householder.as_ref(),
                 Conj::No,
                 q.as_mut().submatrix_mut(1, 1, n - 1, n - 1),
-                Par::Seq,
+                par,
                 MemStack::new(&mut buf),
             );
             for j in 0..n {

@@ -65,12 +65,14 @@
 //! | [`linalg`] | SVD rank and nullspace decisions with their gap, equilibration of mixed units, condition numbers, balancing, nalgebra ↔ faer |
 //! | [`descriptor`] | descriptor → state space for index-1 pencils, finite generalized eigenvalues |
 //! | [`modes`] | eigenvalues (also without allocation), modal quantities, mode shapes, instantaneous centres of rotation |
+//! | [`small_eigen`] | eigenvalues of matrices up to 16 × 16 on the stack (the sweeps' kernel) |
 //! | [`freq`] | frequency response of every input/output pair, magnitude and unwrapped phase |
 //! | [`gain`] | steady-state gains, with integrating outputs identified |
 //! | [`time`] | impulse, step and sampled-input responses by exact ZOH discretisation |
 //! | [`initial`] | the free response from an initial state, and the state that starts one mode alone |
 //! | [`minreal`] | minimal realization (orthogonal staircase, and a PBH test at repeated eigenvalues), with the removed modes reported |
 //! | [`zeros`] | transmission zeros |
+//! | [`model_reduction`] | balanced truncation (with the `2Σσ` bound), DC-matched and modal reduction; unstable and marginal modes kept whole |
 //! | [`sweep`] | parameter sweeps: eigenvalue branches, stability boundaries, stable intervals |
 //!
 //! ## Principles
@@ -101,9 +103,11 @@
 //! for sweeps that call them millions of times.
 //!
 //! **Dense algorithms from faer, public types from nalgebra.** Eigenvectors, QZ, SVD and
-//! Hessenberg reductions come from faer (always called with `Par::Seq`: the systems are
-//! small, and sweeps parallelise at the outer level); `DMatrix<f64>` is the public matrix
-//! type and provides the matrix exponential.
+//! Hessenberg reductions come from faer: sequential below [`linalg::PARALLEL_MIN`] states
+//! (sweeps parallelise over their points), on every thread of the current rayon pool above
+//! (a model of a thousand bodies); eigenvalues up to 16 states from the stack kernel of
+//! [`small_eigen`]. `DMatrix<f64>` is the public matrix type and provides the matrix
+//! exponential.
 //!
 //! ## Where eom-num deliberately differs from EoM.jl
 //!
@@ -136,9 +140,12 @@ pub mod initial;
 pub mod linalg;
 pub mod minreal;
 mod minreal_pbh;
+pub mod model_reduction;
 pub mod modes;
 mod pbh_subspace;
+pub mod reach;
 pub mod sensitivity;
+pub mod small_eigen;
 mod staircase;
 pub mod statespace;
 pub mod sweep;

@@ -7,8 +7,9 @@
 //! from, the threshold, and the gap `σ_r / σ_{r+1}` across the threshold. A gap close to one
 //! means the decision was close and the result should be reported as fragile.
 //!
-//! faer is always called with [`Par::Seq`]: the systems handled here are small, and threading
-//! was measured slower on the two-core build machine (and would fight with rayon sweeps).
+//! faer runs sequentially on matrices below [`PARALLEL_MIN`] rows (threading small
+//! factorisations costs more than it saves, and would fight with rayon sweeps over points),
+//! in parallel above.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::svd::ComputeSvdVectors;
@@ -98,7 +99,22 @@ pub struct Svd {
     pub v: DMatrix<f64>,
 }
 
-/// Full SVD of `m` (faer, sequential).
+/// Matrices of at least this many rows (or columns) are factorised with faer's parallel
+/// kernels on the threads of the current rayon pool: a model of a thousand bodies then uses
+/// every core inside each dense step. Below it the threads cost more than they save (and
+/// sweeps of small models parallelise over their points instead).
+pub const PARALLEL_MIN: usize = 200;
+
+/// The parallelism of a dense step on matrices of size `n` (see [`PARALLEL_MIN`]).
+pub(crate) fn par(n: usize) -> Par {
+    if n >= PARALLEL_MIN && rayon::current_num_threads() > 1 {
+        Par::rayon(0)
+    } else {
+        Par::Seq
+    }
+}
+
+/// Full SVD of `m` (faer; in parallel from [`PARALLEL_MIN`] rows or columns).
 ///
 /// Errors: [`NumError::NonFinite`] for NaN/∞ entries, [`NumError::NoConvergence`] if the
 /// iteration fails.
@@ -106,6 +122,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
     check_finite(m, "matrix passed to the SVD")?;
     let (r, c) = m.shape();
     let k = r.min(c);
+    let par = par(r.max(c));
     let mut u = Mat::<f64>::zeros(r, r);
     let mut v = Mat::<f64>::zeros(c, c);
     let mut s = faer::diag::Diag::<f64>::zeros(k);
@@ -115,7 +132,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             c,
             ComputeSvdVectors::Full,
             ComputeSvdVectors::Full,
-            Par::Seq,
+            par,
             Default::default(),
         );
         let mut buf = MemBuffer::new(req);
@@ -124,7 +141,7 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             s.as_mut(),
             Some(u.as_mut()),
             Some(v.as_mut()),
-            Par::Seq,
+            par,
             MemStack::new(&mut buf),
             Default::default(),
         )
@@ -150,12 +167,13 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         return Ok(Vec::new());
     }
     let mut s = faer::diag::Diag::<f64>::zeros(k);
+    let par = par(r.max(c));
     let req = faer::linalg::svd::svd_scratch::<f64>(
         r,
         c,
         ComputeSvdVectors::No,
         ComputeSvdVectors::No,
-        Par::Seq,
+        par,
         Default::default(),
     );
     let mut buf = MemBuffer::new(req);
@@ -164,7 +182,7 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         s.as_mut(),
         None,
         None,
-        Par::Seq,
+        par,
         MemStack::new(&mut buf),
         Default::default(),
     )
@@ -413,6 +431,148 @@ pub fn nullspace_equilibrated(
         ns.basis = orthonormalize(&x);
     }
     Ok(ns)
+}
+
+/// [`nullspace`] (or [`nullspace_equilibrated`] with `equilibrate`) of a matrix that
+/// decouples: the columns are grouped by the rows that join them (two columns are in one
+/// group when some row has exact nonzeros in both, transitively), and each group's nullspace
+/// is found on its own rows, so that every basis vector lies within one group — a column on
+/// which no row depends is its own unit vector. One SVD of the whole matrix would return an
+/// arbitrary orthonormal basis of the whole nullspace, mixing coordinates that the equations
+/// never couple; in such a basis an exact decoupling of the model (in-plane against
+/// out-of-plane motion) survives only to rounding, and a minimal realization cannot see it.
+///
+/// The decision is the same as on the whole matrix: the singular values of a matrix that is
+/// block diagonal after permutations are those of its blocks, and the threshold is taken from
+/// the largest of them and the whole matrix's size. Row and column equilibration act within
+/// the groups, as they would on the whole. The singular values reported are all of them, the
+/// zeros of the empty rows and columns included, largest first.
+///
+/// Errors: as [`nullspace`].
+pub fn nullspace_structured(
+    m: &DMatrix<f64>,
+    tol: RankTolerance,
+    equilibrate_with: Option<Equilibrate>,
+) -> Result<Nullspace, NumError> {
+    tol.validate()?;
+    check_finite(m, "matrix passed to the SVD")?;
+    let (r, n) = m.shape();
+    let groups = column_groups(m);
+    if groups.len() <= 1 {
+        return match equilibrate_with {
+            Some(mode) => nullspace_equilibrated(m, tol, mode),
+            None => nullspace(m, tol),
+        };
+    }
+    // Per group: its singular values, the right singular vectors and the column scaling.
+    let mut parts = Vec::with_capacity(groups.len());
+    for (rows, cols) in &groups {
+        let sub = DMatrix::from_fn(rows.len(), cols.len(), |i, j| m[(rows[i], cols[j])]);
+        let (sub, scale) = match equilibrate_with {
+            Some(mode) => {
+                let (e, s) = equilibrate(&sub, mode)?;
+                (e, Some(s.cols))
+            }
+            None => (sub, None),
+        };
+        let f = if rows.is_empty() {
+            Svd {
+                u: DMatrix::zeros(0, 0),
+                singular_values: Vec::new(),
+                v: DMatrix::identity(cols.len(), cols.len()),
+            }
+        } else {
+            svd(&sub)?
+        };
+        parts.push((f, scale));
+    }
+    let smax = parts
+        .iter()
+        .filter_map(|(f, _)| f.singular_values.first().copied())
+        .fold(0.0f64, f64::max);
+    let threshold = tol.threshold(smax, r, n);
+    let mut all: Vec<f64> = parts
+        .iter()
+        .flat_map(|(f, _)| f.singular_values.iter().copied())
+        .collect();
+    all.resize(r.min(n), 0.0);
+    all.sort_by(|a, b| b.total_cmp(a));
+    let d = decide(all, threshold);
+    let mut basis = DMatrix::zeros(n, n - d.rank);
+    let mut at = 0;
+    for ((_, cols), (f, scale)) in groups.iter().zip(&parts) {
+        let rank = f.singular_values.iter().filter(|&&s| s > threshold).count();
+        let k = cols.len() - rank;
+        if k == 0 {
+            continue;
+        }
+        let mut null = f.v.columns(rank, k).into_owned();
+        if let Some(sc) = scale.as_ref().filter(|sc| sc.iter().any(|&x| x != 1.0)) {
+            for (i, mut row) in null.row_iter_mut().enumerate() {
+                row.scale_mut(sc[i]);
+            }
+            null = orthonormalize(&null);
+        }
+        for (i, &c) in cols.iter().enumerate() {
+            for j in 0..k {
+                basis[(c, at + j)] = null[(i, j)];
+            }
+        }
+        at += k;
+    }
+    debug_assert_eq!(at, n - d.rank);
+    Ok(Nullspace {
+        basis,
+        rank: d.rank,
+        singular_values: d.singular_values,
+        threshold: d.threshold,
+        gap: d.gap,
+        margin: d.margin,
+    })
+}
+
+/// The groups of [`nullspace_structured`]: `(rows, columns)`, in the order of their first
+/// column; every nonzero row lies in exactly one group.
+pub(crate) fn column_groups(m: &DMatrix<f64>) -> Vec<(Vec<usize>, Vec<usize>)> {
+    let (r, n) = m.shape();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    let mut row_first = vec![None; r];
+    for (i, first) in row_first.iter_mut().enumerate() {
+        let mut cols = (0..n).filter(|&j| m[(i, j)] != 0.0);
+        if let Some(j0) = cols.next() {
+            *first = Some(j0);
+            for j in cols {
+                let (a, b) = (root(&mut parent, j0), root(&mut parent, j));
+                if a != b {
+                    parent[b] = a;
+                }
+            }
+        }
+    }
+    let mut group_of = vec![usize::MAX; n];
+    let mut groups: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
+    for j in 0..n {
+        let g = root(&mut parent, j);
+        if group_of[g] == usize::MAX {
+            group_of[g] = groups.len();
+            groups.push((Vec::new(), Vec::new()));
+        }
+        groups[group_of[g]].1.push(j);
+    }
+    for (i, first) in row_first.into_iter().enumerate() {
+        if let Some(j0) = first {
+            let g = root(&mut parent, j0);
+            groups[group_of[g]].0.push(i);
+        }
+    }
+    groups
 }
 
 /// Orthonormal basis of the column space of a full-column-rank matrix.

@@ -21,6 +21,7 @@ use num_complex::Complex64;
 use crate::error::NumError;
 use crate::minreal::{RankDecision, RankStage, eigenvalues_sorted, sort_complex, svd_full};
 use crate::pbh_subspace::{cluster_pbh, lower_bandwidth};
+use crate::reach::{block_triangular_eigenvalues, reachable};
 use crate::staircase::{StaircaseForm, staircase};
 
 /// Eigenvalues of a square matrix, sorted by (re, im).
@@ -106,6 +107,8 @@ enum Factor {
     Staircase(StaircaseForm),
     /// A rotation of the PBH pass, its kept columns only.
     Dense(DMatrix<f64>),
+    /// The states a structural reduction kept, in order.
+    Select(Vec<usize>),
 }
 
 /// The part of `(A, B, C)` a [`reduce`] keeps, `a = Q1ᵀ A Q1`, `b = Q1ᵀ B`, `c = C Q1`,
@@ -121,6 +124,8 @@ pub(crate) struct Reduction {
     /// The eigenvalues of `a`, when the last PBH pass computed them and nothing was removed
     /// since (for reuse by the next stage).
     pub eigenvalues: Option<Vec<Complex64>>,
+    /// States removed by the structure ([`Reduction::structural`]), no rank decision.
+    pub structural: usize,
     factors: Vec<Factor>,
 }
 
@@ -135,6 +140,7 @@ impl Reduction {
                     m.columns(0, s.kept).clone_owned()
                 }
                 Factor::Dense(q) => m * q,
+                Factor::Select(kept) => m.select_columns(kept),
             };
         }
         m
@@ -151,6 +157,7 @@ impl Reduction {
             removed: Vec::new(),
             decisions: Vec::new(),
             eigenvalues: None,
+            structural: 0,
             factors: Vec::new(),
         }
     }
@@ -158,6 +165,29 @@ impl Reduction {
     /// The dual `(aᵀ, cᵀ, bᵀ)` of the kept part, as a new reduction.
     pub fn dual(&self) -> Self {
         Reduction::new(self.a.transpose(), self.c.transpose(), self.b.transpose())
+    }
+
+    /// Removes the states no input reaches in the graph of the kept part's `(a, b)`
+    /// ([`crate::reach`]): exactly uncontrollable, no rank decision. Returns how many (also
+    /// added to `structural`).
+    pub fn structural(&mut self) -> Result<usize, NumError> {
+        let k = self.a.nrows();
+        let reached = reachable(&self.a, &self.b);
+        let kept: Vec<usize> = (0..k).filter(|&i| reached[i]).collect();
+        if kept.len() == k {
+            return Ok(0);
+        }
+        let gone: Vec<usize> = (0..k).filter(|&i| !reached[i]).collect();
+        self.removed.extend(block_triangular_eigenvalues(
+            &self.a.select_rows(&gone).select_columns(&gone),
+        )?);
+        self.a = self.a.select_rows(&kept).select_columns(&kept);
+        self.b = self.b.select_rows(&kept);
+        self.c = self.c.select_columns(&kept);
+        self.eigenvalues = None;
+        self.factors.push(Factor::Select(kept));
+        self.structural += gone.len();
+        Ok(gone.len())
     }
 
     /// One controllability staircase with tolerance `tol` (decisions named `stage`) on the

@@ -2,7 +2,9 @@
 //!
 //! * [`eigenvalues`] — the eigenvalues of a square matrix, sorted by (real, imaginary) part;
 //!   [`eigenvalues_in`] is the same with a caller-owned [`EigenvaluesWorkspace`] and no
-//!   allocation, for sweeps that call it millions of times.
+//!   allocation, for sweeps that call it millions of times. Up to
+//!   [`small_eigen::MAX_N`] states both use the stack kernel of [`small_eigen`], beyond
+//!   that faer's QR algorithm ([`eigenvalues_faer_in`]).
 //! * [`Modes::compute`] — per mode: eigenvalue, kind, natural frequency, damping ratio, time
 //!   constant, damped period, stability, eigenvalue condition number, mode shape in physical
 //!   coordinates and, per body, the instantaneous centre of rotation and rotation axis.
@@ -14,11 +16,14 @@
 //! tolerance
 //!
 //! ```text
-//! tolᵢ = tol_factor · n · ε · ‖Ã‖_F · κᵢ          κᵢ = ‖xᵢ‖ ‖yᵢ‖ / |yᵢᴴ xᵢ|
+//! tolᵢ = max(tol_factor · n · ε · ‖Ã‖_F · κᵢ,  ε · |yᵢ|ᵀ|A||xᵢ| / |yᵢᴴ xᵢ|)     κᵢ = ‖xᵢ‖ ‖yᵢ‖ / |yᵢᴴ xᵢ|
 //! ```
 //!
 //! where Ã is the balanced matrix and xᵢ, yᵢ its right and left eigenvectors: first-order
-//! perturbation theory says a backward-stable eigensolver moves λᵢ by about `ε ‖Ã‖ κᵢ`. So a
+//! perturbation theory says a backward-stable eigensolver moves λᵢ by about `ε ‖Ã‖ κᵢ`, and
+//! rounding every entry of A moves it by the second term ([`error_estimate`]). This error
+//! estimate is the one tolerance of every stability verdict, here and in sweeps
+//! ([`stability_of`], [`eigenvalues_with_errors`]). So a
 //! simple slow pole of a stiff system (|λ| = 1e-8 ‖A‖, κ ≈ 1) is *not* mistaken for zero,
 //! while a rigid-body double zero, which a backward-stable solver splits into ±√ε‖A‖ with
 //! κ ≈ 1/√ε, *is* recognised as zero. With `tol = tolᵢ`:
@@ -53,6 +58,7 @@ use crate::NumError;
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
+use crate::small_eigen;
 use crate::statespace::{StateSpace, check_finite, in_range};
 
 fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
@@ -79,6 +85,11 @@ fn check_square(a: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
 /// [`NumError::NoConvergence`].
 pub fn eigenvalues(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {
     check_square(a, "A")?;
+    if a.nrows() <= small_eigen::MAX_N {
+        let mut out = vec![Complex64::new(0.0, 0.0); a.nrows()];
+        small_eigen::eigenvalues_small(a.as_slice(), a.nrows(), &mut out)?;
+        return Ok(out);
+    }
     let mut ws = EigenvaluesWorkspace::new(a.nrows());
     let mut out = vec![Complex64::new(0.0, 0.0); a.nrows()];
     eigenvalues_in(a, &mut ws, &mut out)?;
@@ -108,19 +119,19 @@ impl std::fmt::Debug for EigenvaluesWorkspace {
     }
 }
 
-pub(crate) fn eig_scratch(n: usize, vectors: bool) -> StackReq {
+pub(crate) fn eig_scratch(n: usize, vectors: bool, par: Par) -> StackReq {
     let v = if vectors {
         ComputeEigenvectors::Yes
     } else {
         ComputeEigenvectors::No
     };
-    evd_scratch::<f64>(n, v, v, Par::Seq, Default::default())
+    evd_scratch::<f64>(n, v, v, par, Default::default())
 }
 
 /// Bytes of scratch memory an [`EigenvaluesWorkspace`] for an n × n matrix holds (faer's
 /// stack requirement plus four length-n/n² buffers).
 pub fn eigenvalues_workspace_bytes(n: usize) -> usize {
-    eig_scratch(n, false).size_bytes() + 8 * (n * n + 3 * n)
+    eig_scratch(n, false, Par::Seq).size_bytes() + 8 * (n * n + 3 * n)
 }
 
 impl EigenvaluesWorkspace {
@@ -137,7 +148,7 @@ impl EigenvaluesWorkspace {
             scale: vec![1.0; n],
             re: vec![0.0; n],
             im: vec![0.0; n],
-            buf: MemBuffer::new(eig_scratch(n, false)),
+            buf: MemBuffer::new(eig_scratch(n, false, Par::Seq)),
         }
     }
 
@@ -149,12 +160,32 @@ impl EigenvaluesWorkspace {
 
 /// [`eigenvalues`] without allocation: `out` (length n) receives the sorted eigenvalues.
 ///
+/// Matrices of up to [`small_eigen::MAX_N`] states go to the stack kernel
+/// [`small_eigen::eigenvalues_small`] (the workspace is then not used), larger ones to
+/// faer's QR algorithm ([`eigenvalues_faer_in`]); both deflate the structural zeros first and
+/// balance.
+///
 /// Errors: [`NumError::Dimension`] when `a`, the workspace and `out` disagree in size,
 /// [`NumError::NonFinite`], [`NumError::NoConvergence`].
 pub fn eigenvalues_in(
     a: &DMatrix<f64>,
     ws: &mut EigenvaluesWorkspace,
     out: &mut [Complex64],
+) -> Result<(), NumError> {
+    if ws.n <= small_eigen::MAX_N {
+        if a.nrows() != ws.n || a.ncols() != ws.n || out.len() != ws.n {
+            check_eigenvalues_in(a, ws, out)?;
+        }
+        small_eigen::eigenvalues_small(a.as_slice(), ws.n, out)?;
+        return Ok(());
+    }
+    eigenvalues_faer_in(a, ws, out)
+}
+
+fn check_eigenvalues_in(
+    a: &DMatrix<f64>,
+    ws: &EigenvaluesWorkspace,
+    out: &[Complex64],
 ) -> Result<(), NumError> {
     let n = ws.n;
     if a.nrows() != n || a.ncols() != n || out.len() != n {
@@ -168,6 +199,21 @@ pub fn eigenvalues_in(
     if a.iter().any(|x| !in_range(*x)) {
         return check_finite(a, "A");
     }
+    Ok(())
+}
+
+/// [`eigenvalues_in`] by faer's QR algorithm (`Par::Seq`) for every size: the path of the
+/// matrices above [`small_eigen::MAX_N`] states, public so that the small kernel can be
+/// compared with it (`eom bench accuracy`).
+///
+/// Errors: as [`eigenvalues_in`].
+pub fn eigenvalues_faer_in(
+    a: &DMatrix<f64>,
+    ws: &mut EigenvaluesWorkspace,
+    out: &mut [Complex64],
+) -> Result<(), NumError> {
+    check_eigenvalues_in(a, ws, out)?;
+    let n = ws.n;
     if n == 0 {
         return Ok(());
     }
@@ -274,7 +320,8 @@ pub struct Mode {
     /// Eigenvalue condition number κ = ‖x‖‖y‖/|yᴴx| (on the balanced matrix); large values
     /// flag nearly defective (repeated) eigenvalues.
     pub condition: f64,
-    /// The tolerance used for this mode's decisions (see the module docs).
+    /// The eigenvalue's error estimate in 1/s ([`error_estimate`]): the tolerance of this
+    /// mode's decisions (zero, real, marginal; see the module docs).
     pub tolerance: f64,
     /// Estimated relative error of the eigenvalue caused by rounding every entry of A (as
     /// assembling a model in floating point does): `ε |y|ᵀ|A||x| / (|yᴴx| |λ|)` with x, y the
@@ -370,7 +417,7 @@ impl Modes {
         let mut shapes = shapes.into_iter();
         let mut modes = Vec::with_capacity(n);
         for (k, comp) in componentwise.iter().enumerate() {
-            let tol = opts.tol_factor * n as f64 * f64::EPSILON * eig.norm * eig.condition[k];
+            let tol = estimate_of(&eig, k, *comp, opts.tol_factor);
             let mut mode = classify(eig.values[k], tol);
             mode.condition = eig.condition[k];
             let size = eig.values[k].norm();
@@ -470,16 +517,66 @@ pub(crate) fn classify_matrix(a: &DMatrix<f64>) -> Result<Vec<Mode>, NumError> {
         .collect())
 }
 
-/// Modal quantities from one eigenvalue and its tolerance (no shape).
-fn classify(lambda: Complex64, tol: f64) -> Mode {
-    let (re, im) = (lambda.re, lambda.im);
-    let stability = if re.abs() <= tol {
+/// The error estimate of eigenvalue `k` of an `n × n` matrix, in 1/s: the tolerance of every
+/// decision about it (zero, real, marginal). The larger of the eigensolver's first-order
+/// bound `tol_factor · n · ε · ‖Ã‖_F · κ` (Ã balanced, κ the eigenvalue's condition number)
+/// and the movement caused by rounding every entry of A, `ε · |y|ᵀ|A||x| / |yᴴx|`
+/// (`componentwise`, 0 where not estimated).
+pub fn error_estimate(
+    n: usize,
+    norm: f64,
+    condition: f64,
+    componentwise: f64,
+    tol_factor: f64,
+) -> f64 {
+    (tol_factor * n as f64 * f64::EPSILON * norm * condition).max(f64::EPSILON * componentwise)
+}
+
+/// The one stability verdict on an eigenvalue (modes, sweeps, stable intervals, boundaries):
+/// marginal when `|Re λ|` is within the eigenvalue's error estimate `tolerance` (its sign is
+/// then not known), else stable or unstable by the sign of `Re λ`.
+pub fn stability_of(re: f64, tolerance: f64) -> Stability {
+    if re.abs() <= tolerance {
         Stability::Marginal
     } else if re < 0.0 {
         Stability::Stable
     } else {
         Stability::Unstable
-    };
+    }
+}
+
+/// Every eigenvalue of `a`, sorted by (real, imaginary) part, with its error estimate
+/// ([`error_estimate`] with the default `tol_factor`): what [`Modes::compute`] decides its
+/// verdicts by, for callers that need the verdicts without the modes (a sweep).
+///
+/// Errors: those of [`eigenvalues`], and [`NumError::TooLarge`] beyond the memory limit for
+/// the eigenvectors.
+pub fn eigenvalues_with_errors(a: &DMatrix<f64>) -> Result<Vec<(Complex64, f64)>, NumError> {
+    check_square(a, "A")?;
+    let n = a.nrows();
+    let eig = eigen_full(a, true, true)?;
+    let componentwise = eig.componentwise(a).unwrap_or_else(|| vec![0.0; n]);
+    let f = ModeOptions::default().tol_factor;
+    Ok((0..n)
+        .map(|k| (eig.values[k], estimate_of(&eig, k, componentwise[k], f)))
+        .collect())
+}
+
+/// [`error_estimate`] of eigenvalue `k` of a decomposition; 0 for an exact zero (a structural
+/// zero deflated before the eigensolve: exact by construction, whatever the condition number
+/// of its lifted vectors says).
+fn estimate_of(eig: &crate::eigen::Eigen, k: usize, componentwise: f64, tol_factor: f64) -> f64 {
+    if eig.values[k] == Complex64::new(0.0, 0.0) {
+        return 0.0;
+    }
+    let n = eig.values.len();
+    error_estimate(n, eig.norm, eig.condition[k], componentwise, tol_factor)
+}
+
+/// Modal quantities from one eigenvalue and its tolerance (no shape).
+fn classify(lambda: Complex64, tol: f64) -> Mode {
+    let (re, im) = (lambda.re, lambda.im);
+    let stability = stability_of(re, tol);
     let marginal = stability == Stability::Marginal;
     let (kind, wn, zeta, tau, period) = if lambda.norm() <= tol {
         (ModeKind::Zero, 0.0, None, f64::INFINITY, f64::INFINITY)

@@ -35,7 +35,7 @@ use faer::linalg::householder::{
     apply_block_householder_sequence_on_the_right_in_place_scratch,
     apply_block_householder_sequence_on_the_right_in_place_with_conj,
 };
-use faer::{Conj, Mat, MatMut, Par};
+use faer::{Conj, Mat, MatMut};
 use nalgebra::DMatrix;
 
 use crate::error::NumError;
@@ -86,7 +86,7 @@ impl Reflectors {
 
 /// The Hessenberg tail from coordinate `p`: `diag(I_{p+1}, Q̃)` with `Q̃` faer's block
 /// Householder sequence.
-struct HessenbergTail {
+pub(crate) struct HessenbergTail {
     p: usize,
     /// Householder essentials ((n − p − 1) square, strictly lower part used).
     basis: Mat<f64>,
@@ -96,7 +96,7 @@ struct HessenbergTail {
 
 impl HessenbergTail {
     /// `M[.., p+1..] ← M[.., p+1..] Q̃`.
-    fn apply_right(&self, m: &mut DMatrix<f64>) {
+    pub(crate) fn apply_right(&self, m: &mut DMatrix<f64>) {
         let (rows, cols) = m.shape();
         let k = self.basis.nrows();
         if rows == 0 || k == 0 {
@@ -112,7 +112,7 @@ impl HessenbergTail {
             self.factor.as_ref(),
             Conj::No,
             full.submatrix_mut(0, self.p + 1, rows, k),
-            Par::Seq,
+            crate::linalg::par(rows.max(k)),
             MemStack::new(&mut buf),
         );
     }
@@ -295,6 +295,42 @@ pub(crate) fn staircase(
     })
 }
 
+/// Reduces `a[p.., p..]` to upper Hessenberg form in place by faer's blocked reduction,
+/// `a[p.., p..] ← Q̃ᵀ a[p.., p..] Q̃` with zeros below the subdiagonal, and returns `Q̃`
+/// (`a` must have at least `p + 2` rows). Only that block is transformed: the caller
+/// applies the rotation to the rows above and to the other matrices.
+pub(crate) fn hessenberg(a: &mut DMatrix<f64>, p: usize) -> HessenbergTail {
+    let n = a.nrows();
+    let ns = n - p;
+    let k = ns - 1;
+    let bs = faer::linalg::qr::no_pivoting::factor::recommended_block_size::<f64>(k, k);
+    let mut factor = Mat::<f64>::zeros(bs, k);
+    let par = crate::linalg::par(ns);
+    let req = StackReq::any_of(&[hessenberg_in_place_scratch::<f64>(
+        ns,
+        bs,
+        par,
+        Default::default(),
+    )]);
+    let mut buf = MemBuffer::new(req);
+    {
+        let full = MatMut::from_column_major_slice_mut(a.as_mut_slice(), n, n);
+        hessenberg_in_place(
+            full.submatrix_mut(p, p, ns, ns),
+            factor.as_mut(),
+            par,
+            MemStack::new(&mut buf),
+            Default::default(),
+        );
+    }
+    // The essentials below the subdiagonal, kept for Q, then cleared.
+    let basis = Mat::<f64>::from_fn(k, k, |i, j| if i > j { a[(p + 1 + i, p + j)] } else { 0.0 });
+    for j in 0..k {
+        a.view_mut((p + j + 2, p + j), (k - j - 1, 1)).fill(0.0);
+    }
+    HessenbergTail { p, basis, factor }
+}
+
 /// Steps with one-column blocks from coordinate `p` on (the last reached state), by the
 /// blocked Hessenberg reduction of `a[p.., p..]`. Returns the number of states reached and
 /// the decisions, and the transformation.
@@ -309,33 +345,8 @@ fn hessenberg_tail(
     first_step: usize,
 ) -> Result<(TailSteps, HessenbergTail), NumError> {
     let n = a.nrows();
-    let ns = n - p;
-    let k = ns - 1;
-    let bs = faer::linalg::qr::no_pivoting::factor::recommended_block_size::<f64>(k, k);
-    let mut factor = Mat::<f64>::zeros(bs, k);
-    let req = StackReq::any_of(&[hessenberg_in_place_scratch::<f64>(
-        ns,
-        bs,
-        Par::Seq,
-        Default::default(),
-    )]);
-    let mut buf = MemBuffer::new(req);
-    {
-        let full = MatMut::from_column_major_slice_mut(a.as_mut_slice(), n, n);
-        hessenberg_in_place(
-            full.submatrix_mut(p, p, ns, ns),
-            factor.as_mut(),
-            Par::Seq,
-            MemStack::new(&mut buf),
-            Default::default(),
-        );
-    }
-    // The essentials below the subdiagonal, kept for Q, then cleared.
-    let basis = Mat::<f64>::from_fn(k, k, |i, j| if i > j { a[(p + 1 + i, p + j)] } else { 0.0 });
-    for j in 0..k {
-        a.view_mut((p + j + 2, p + j), (k - j - 1, 1)).fill(0.0);
-    }
-    let tail = HessenbergTail { p, basis, factor };
+    let k = n - p - 1;
+    let tail = hessenberg(a, p);
     // The rows above and the outputs see the same rotation of the columns p+1...
     let mut above = a.view((0, 0), (p, n)).clone_owned();
     tail.apply_right(&mut above);

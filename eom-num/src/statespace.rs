@@ -87,14 +87,19 @@ pub(crate) fn in_range(x: f64) -> bool {
 /// Checks that every entry of `m` is finite and within [`crate::MAX_ENTRY`]; the error names
 /// the matrix and the entry.
 pub(crate) fn check_finite(m: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
+    check_finite_slice(m.as_slice(), m.nrows(), m.ncols(), name)
+}
+
+/// [`check_finite`] of a column-major `nrows × ncols` matrix given as a slice.
+pub(crate) fn check_finite_slice(
+    m: &[f64],
+    nrows: usize,
+    ncols: usize,
+    name: &str,
+) -> Result<(), NumError> {
     if let Some(k) = m.iter().position(|x| !in_range(*x)) {
-        let (i, j) = (k % m.nrows().max(1), k / m.nrows().max(1));
-        let at = format!(
-            "{name}[{i}, {j}] = {:?} ({}×{} matrix)",
-            m[k],
-            m.nrows(),
-            m.ncols()
-        );
+        let (i, j) = (k % nrows.max(1), k / nrows.max(1));
+        let at = format!("{name}[{i}, {j}] = {:?} ({nrows}×{ncols} matrix)", m[k]);
         if m[k].is_finite() {
             return Err(NumError::OutOfRange(format!(
                 "{at}: larger in magnitude than {:e}, beyond which the products inside the \

@@ -31,8 +31,8 @@
 //! its sign and size carry no information. This replaces EoM.jl's absolute `|z| < 1e9`
 //! cut-off, which depends on the units of the model.
 
+use faer::Spec;
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::{Par, Spec};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
@@ -364,7 +364,7 @@ fn qz_eigenvalues(
     let mut s_re = faer::diag::Diag::<f64>::zeros(n);
     let mut s_im = faer::diag::Diag::<f64>::zeros(n);
     let mut beta = faer::diag::Diag::<f64>::zeros(n);
-    let par = Par::Seq;
+    let par = crate::linalg::par(n);
     let mut mem = MemBuffer::new(faer::linalg::gevd::gevd_scratch::<f64>(
         n,
         faer::linalg::evd::ComputeEigenvectors::No,

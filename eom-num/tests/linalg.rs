@@ -219,3 +219,47 @@ fn errors_name_the_problem() {
         Err(NumError::InvalidOption(_))
     ));
 }
+
+/// A matrix that decouples into two groups of columns (and a column no row touches): the
+/// structured nullspace has the rank of the whole matrix's, every basis vector lies in one
+/// group, the untouched column is its own unit vector, and the basis is an orthonormal basis
+/// of the nullspace.
+#[test]
+fn structured_nullspace_keeps_decoupled_coordinates_apart() {
+    use eom_num::linalg::{Equilibrate, RankTolerance, nullspace, nullspace_structured};
+    // Columns 0, 2, 5 joined by rows 0, 2; columns 1, 3 by row 1; column 4 untouched.
+    let m = DMatrix::from_row_slice(
+        3,
+        6,
+        &[
+            1.0, 0.0, 2.0, 0.0, 0.0, 0.0, //
+            0.0, 3.0, 0.0, -1e3, 0.0, 0.0, //
+            0.0, 0.0, 1.0, 0.0, 0.0, 4.0,
+        ],
+    );
+    for eq in [None, Some(Equilibrate::Both)] {
+        let ns = nullspace_structured(&m, RankTolerance::Default, eq).unwrap();
+        let whole = nullspace(&m, RankTolerance::Default).unwrap();
+        assert_eq!(ns.rank, whole.rank);
+        assert_eq!(ns.basis.ncols(), 3);
+        assert!((&m * &ns.basis).norm() < 1e-12);
+        let gram = ns.basis.transpose() * &ns.basis;
+        assert!((gram - DMatrix::<f64>::identity(3, 3)).norm() < 1e-12);
+        let groups: [&[usize]; 3] = [&[0, 2, 5], &[1, 3], &[4]];
+        for j in 0..3 {
+            let col = ns.basis.column(j);
+            let inside: Vec<usize> = groups
+                .iter()
+                .enumerate()
+                .filter(|(_, g)| g.iter().any(|&i| col[i] != 0.0))
+                .map(|(k, _)| k)
+                .collect();
+            assert_eq!(inside.len(), 1, "column {j} spans groups {inside:?}: {col}");
+        }
+        // The untouched coordinate: exactly e₄.
+        assert!((0..3).any(|j| ns.basis[(4, j)].abs() == 1.0));
+        // The singular values are all of the whole matrix's (three, largest first).
+        assert_eq!(ns.singular_values.len(), 3);
+        assert!(ns.singular_values.windows(2).all(|w| w[0] >= w[1]));
+    }
+}

@@ -232,3 +232,110 @@ fn invalid_cluster_rtol_is_named() {
         }
     }
 }
+
+/// `N` identical decoupled damped oscillators `A = I_N ⊗ A₀` driven through `B = B_N ⊗ b₀`
+/// (force per unit of each input on each oscillator) and seen through `C = C_N ⊗ c₀`
+/// (position). The Markov parameters are `C Aʲ B = (C_N B_N) ⊗ (c₀ A₀ʲ b₀)`, and the
+/// scalar oscillator is minimal (order 2), so the Hankel rank, the minimal order, is
+/// `2 · rank(C_N B_N)` (issue 27, item 7).
+fn identical_oscillators(bn: &DMatrix<f64>, cn: &DMatrix<f64>) -> StateSpace<f64> {
+    let n = bn.nrows();
+    let a0 = oscillator(2.0, 0.05);
+    let a = block_diag(&vec![a0; n]);
+    let b = DMatrix::from_fn(2 * n, bn.ncols(), |i, j| {
+        if i % 2 == 1 { bn[(i / 2, j)] } else { 0.0 }
+    });
+    let c = DMatrix::from_fn(cn.nrows(), 2 * n, |i, j| {
+        if j % 2 == 0 { cn[(i, j / 2)] } else { 0.0 }
+    });
+    let d = DMatrix::zeros(cn.nrows(), bn.ncols());
+    StateSpace::new(a, b, c, d).unwrap()
+}
+
+/// Every removed mode of `rep` is the oscillator's `−ζω ± iω√(1 − ζ²)`, confirmed by PBH.
+fn removed_are_the_oscillator(rep: &eom_num::minreal::MinrealReport) {
+    let wd = 2.0 * (1.0f64 - 0.05 * 0.05).sqrt();
+    for r in &rep.removed {
+        assert!(
+            (r.eigenvalue.re + 0.1).abs() < 1e-12 && (r.eigenvalue.im.abs() - wd).abs() < 1e-12,
+            "{r:?}"
+        );
+        assert!(r.pbh_residual.unwrap() <= rep.rtol, "{r:?}");
+    }
+}
+
+#[test]
+fn identical_oscillators_keep_two_states_per_independent_input_output_pair() {
+    let n = 200;
+    let unit = |rows: usize, cols: usize, ones: &[(usize, usize)]| {
+        let mut m = DMatrix::zeros(rows, cols);
+        for &(i, j) in ones {
+            m[(i, j)] = 1.0;
+        }
+        m
+    };
+    // (B_N, C_N, rank(C_N B_N), what)
+    let cases = [
+        (
+            unit(n, 1, &[(0, 0)]),
+            unit(1, n, &[(0, 0)]),
+            1,
+            "one input, one sensor, one body",
+        ),
+        (
+            unit(n, 5, &[(0, 0), (1, 1), (2, 2), (3, 3), (4, 4)]),
+            unit(5, n, &[(0, 0), (1, 1), (2, 2), (3, 3), (4, 4)]),
+            5,
+            "five inputs and sensors on five bodies",
+        ),
+        (
+            unit(n, 1, &[(0, 0), (1, 0), (2, 0), (3, 0), (4, 0), (5, 0)]),
+            unit(1, n, &[(0, 0)]),
+            1,
+            "one input shared by six bodies",
+        ),
+        (
+            unit(n, 2, &[(0, 0), (1, 1)]),
+            unit(1, n, &[(0, 0), (0, 1)]),
+            1,
+            "two inputs, one sensor of their sum",
+        ),
+    ];
+    for (bn, cn, rank, what) in cases {
+        let sys = identical_oscillators(&bn, &cn);
+        let (min, rep) = minimal_realization(&sys, &MinrealOptions::default()).unwrap();
+        assert_eq!(min.states(), 2 * rank, "{what}");
+        assert_eq!(rep.removed.len(), 2 * n - 2 * rank, "{what}");
+        removed_are_the_oscillator(&rep);
+        assert!(tf_rel_error(&min, &sys, &points()) < 1e-12, "{what}");
+    }
+    // Without inputs every state is removed by the structure alone.
+    let sys = identical_oscillators(&DMatrix::zeros(n, 0), &DMatrix::zeros(0, n));
+    let (min, rep) = minimal_realization(&sys, &MinrealOptions::default()).unwrap();
+    assert_eq!((min.states(), rep.structurally_uncontrollable), (0, 2 * n));
+    removed_are_the_oscillator(&rep);
+}
+
+/// The same oscillators in coordinates that hide the structure (a random orthogonal
+/// change): no exact zero is left, and the cluster of identical eigenvalues is decided by
+/// the staircase and the PBH pass, with the same orders.
+#[test]
+fn hidden_identical_oscillators_keep_two_states_per_input() {
+    let n = 20;
+    for (inputs, seed) in [(1, 1), (3, 2)] {
+        let bn = DMatrix::from_fn(n, inputs, |i, j| if i == j { 1.0 } else { 0.0 });
+        let cn = bn.transpose();
+        let sys = identical_oscillators(&bn, &cn);
+        let hidden = hide(sys.a.clone(), sys.b.clone(), sys.c.clone(), seed);
+        let (min, rep) = minimal_realization(&hidden, &MinrealOptions::default()).unwrap();
+        assert_eq!(min.states(), 2 * inputs, "{inputs} inputs");
+        assert_eq!(rep.structurally_uncontrollable, 0);
+        for r in &rep.removed {
+            assert!(r.pbh_residual.unwrap() <= rep.rtol, "{r:?}");
+        }
+        assert!(
+            tf_rel_error(&min, &hidden, &points()) < 1e-8,
+            "{inputs} inputs"
+        );
+    }
+}

@@ -87,6 +87,17 @@ pub enum SymError {
     /// A model feature that this path does not support (the message says which path does).
     #[error("not supported: {0}")]
     Unsupported(String),
+    /// A closed form of a model larger than the limit of [`crate::closed::ClosedForms`]
+    /// (its `with_max_states`; the expansion by minors grows as `n·2ⁿ`).
+    #[error("{what} of a {states}-state model: closed forms are limited to {limit} states")]
+    TooManyStates {
+        /// The closed form asked for.
+        what: String,
+        /// The model's number of states.
+        states: usize,
+        /// The limit in force.
+        limit: usize,
+    },
     /// The expression contains an operation without a value (division by zero, …).
     #[error("invalid expression: {0}")]
     Invalid(Box<SymError>),

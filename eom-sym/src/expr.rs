@@ -289,13 +289,14 @@ impl Expr {
                     .into(),
             });
         }
-        if matches!(
-            info.name.as_str(),
-            "pi" | "e" | "sin" | "cos" | "tan" | "exp" | "ln" | "abs" | "sqrt" | "atan2"
-        ) {
+        if crate::parse::is_reserved(&info.name) {
             return Err(SymError::BadParameter {
                 name: info.name,
-                problem: "the name is reserved for a constant or function".into(),
+                problem: format!(
+                    "the name is reserved: {} (constants and functions) cannot be parameters: \
+                     choose another name",
+                    crate::parse::RESERVED.join(", ")
+                ),
             });
         }
         if !info.nominal.is_finite() {

@@ -59,6 +59,11 @@ pub trait Scalar:
     fn is_zero(&self) -> bool;
     /// Is this exactly one?
     fn is_one(&self) -> bool;
+    /// A short text for names and messages: the number for numeric types (the nominal value,
+    /// shortest round-trip form), the expression for symbolic ones.
+    fn label(&self) -> String {
+        format!("{}", self.nominal())
+    }
     /// `1 / self`.
     fn recip(self) -> Self {
         Self::one() / self
@@ -203,6 +208,9 @@ fn big_to_dd(r: &Rational) -> Dd {
 
 impl Scalar for Expr {
     const SYMBOLIC: bool = true;
+    fn label(&self) -> String {
+        self.to_string()
+    }
     fn zero() -> Expr {
         Expr::zero()
     }

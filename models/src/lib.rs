@@ -35,6 +35,7 @@ mod applications;
 mod bicycle;
 mod catalogue;
 mod chainp;
+pub mod generate;
 mod vehicles;
 pub mod wings;
 

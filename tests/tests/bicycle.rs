@@ -220,6 +220,57 @@ fn one_hundred_twenty_six_speeds() {
     eprintln!("bicycle 126 speeds: worst abs error {worst:.1e}");
 }
 
+/// The small-matrix kernel that sweeps use (`eom_num::small_eigen`, structural zeros deflated
+/// exactly, then Francis QR on the stack) on the full 6-state matrix of the symbolic path: two
+/// exact zeros and the four lean/steer roots at the 126 speeds, to 1e-12 absolute (the
+/// coalescing pair near 0.684 m/s by its sum and product), as accurate as faer's solver.
+#[test]
+fn small_kernel_at_one_hundred_twenty_six_speeds() {
+    let model = models::build("bicycle", &[]).unwrap();
+    let sym = Linearizer::new(&model).symbolic().unwrap();
+    let rows = read_csv(include_str!("../data/bicycle_eigs_126_speeds.csv"));
+    let (mut worst, mut worst_faer) = (0.0f64, 0.0f64);
+    let mut ws = eom_num::modes::EigenvaluesWorkspace::new(6);
+    for r in rows {
+        let exp: Vec<Complex64> = (0..4)
+            .map(|k| Complex64::new(r[1 + 2 * k], r[2 + 2 * k]))
+            .collect();
+        let a = sym
+            .evaluate(&model.scope.values_with(&[("v", r[0])]).unwrap())
+            .unwrap()
+            .a;
+        let mut all = vec![Complex64::new(0.0, 0.0); 6];
+        let zeros = eom_num::small_eigen::eigenvalues_small(a.as_slice(), 6, &mut all).unwrap();
+        assert_eq!(zeros, 2, "v = {}: {all:?}", r[0]);
+        let got: Vec<Complex64> = all.iter().copied().filter(|z| z.norm() != 0.0).collect();
+        assert_eq!(got.len(), 4, "v = {}: {all:?}", r[0]);
+        let mut faer = vec![Complex64::new(0.0, 0.0); 6];
+        eom_num::modes::eigenvalues_faer_in(&a, &mut ws, &mut faer).unwrap();
+        let faer: Vec<Complex64> = faer.into_iter().filter(|z| z.norm() != 0.0).collect();
+        if (r[0] - 0.684).abs() < 0.05 {
+            let (s, p) = pair_sum_product(&got);
+            let (se, pe) = pair_sum_product(&exp);
+            assert!(
+                (s - se).abs() < 1e-11 && (p - pe).abs() < 1e-10,
+                "v = {}: sum {s} vs {se}, product {p} vs {pe}",
+                r[0]
+            );
+        } else {
+            let err = max_abs_error(&got, &exp);
+            worst = worst.max(err);
+            worst_faer = worst_faer.max(max_abs_error(&faer, &exp));
+            assert!(err <= 1e-12, "v = {}: abs error {err:e}", r[0]);
+        }
+    }
+    eprintln!(
+        "bicycle 126 speeds, small kernel: worst abs error {worst:.1e} (faer {worst_faer:.1e})"
+    );
+    assert!(
+        worst <= 4.0 * worst_faer.max(1e-15),
+        "{worst:e} vs faer's {worst_faer:e}"
+    );
+}
+
 /// Sum and product of the two eigenvalues closest to each other (the coalescing pair).
 fn pair_sum_product(e: &[Complex64]) -> (f64, f64) {
     let mut best = (0, 1, f64::INFINITY);

@@ -8,23 +8,28 @@ use plotters::prelude::*;
 const FLOOR: f64 = 1e-17;
 
 /// The methods' colours, in the order of [`METHODS`].
-const COLOURS: [RGBColor; 6] = [
+const COLOURS: [RGBColor; 8] = [
     RGBColor(31, 100, 180),
     RGBColor(230, 110, 0),
     RGBColor(30, 130, 50),
     RGBColor(200, 30, 40),
     RGBColor(130, 60, 170),
     RGBColor(120, 80, 40),
+    RGBColor(0, 150, 160),
+    RGBColor(90, 90, 90),
 ];
 
-/// The methods in legend order.
-const METHODS: [&str; 6] = [
+/// The methods in legend order (the eigensolvers last: their time is per eigensolve of the
+/// reference's A, not per A).
+const METHODS: [&str; 8] = [
     "numeric",
     "robust",
     "symbolic (tape)",
     "generated f64",
     "generated f32",
     "generated f64 egg",
+    super::SMALL_KERNEL,
+    super::FAER_SOLVER,
 ];
 
 fn chart_err(e: impl std::fmt::Display) -> WorkPrecisionError {
@@ -49,6 +54,11 @@ fn draw_marker<DB: DrawingBackend>(
         )),
         3 => area.draw(&Cross::new(at, 6, c.stroke_width(3))),
         4 => area.draw(&Circle::new(at, 6, c.filled())),
+        6 => area.draw(&Rectangle::new(
+            [(x - 4, y - 4), (x + 4, y + 4)],
+            c.filled(),
+        )),
+        7 => area.draw(&Cross::new(at, 8, c.stroke_width(1))),
         _ => area.draw(&Circle::new(at, 3, c.filled())),
     }
     .map_err(chart_err)

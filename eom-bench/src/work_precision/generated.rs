@@ -13,6 +13,47 @@ mod code {
 /// The bicycle's generated `f64` module (for the throughput sweep).
 pub(crate) use code::gen64::bicycle as bicycle64;
 
+/// The stability verdict without eigenvalues of a built-in model's generated `f64` module
+/// (`eom codegen --stability`, compiled by `build.rs`).
+#[derive(Clone, Copy)]
+pub struct GenVerdict {
+    /// The parameters, in the order [`GenVerdict::verdict`] takes their values.
+    pub names: &'static [&'static str],
+    /// `stability(p)`: `1` stable, `-1` unstable (or marginal), `0` undecided; `None` outside
+    /// the validity region of the reduction's rank decisions.
+    pub verdict: fn(&[f64]) -> Option<i8>,
+}
+
+macro_rules! verdict {
+    ($m:path) => {{
+        use $m as g;
+        fn verdict(p: &[f64]) -> Option<i8> {
+            let p: &[f64; g::N_PARAMS] = p.try_into().ok()?;
+            g::stability(p).ok().map(|v| v as i8)
+        }
+        GenVerdict {
+            names: &g::PARAM_NAMES,
+            verdict,
+        }
+    }};
+}
+
+/// The generated stability verdict of a built-in model, where `build.rs` makes one (the
+/// models of at most 16 states).
+pub fn stability(model: &str) -> Option<GenVerdict> {
+    use code::gen64;
+    Some(match model {
+        "smd" => verdict!(gen64::smd),
+        "shimmy" => verdict!(gen64::shimmy),
+        "bicycle" => verdict!(gen64::bicycle),
+        "quarter_car" => verdict!(gen64::quarter_car),
+        "top" => verdict!(gen64::top),
+        "smd_wing" => verdict!(gen64::smd_wing),
+        "shimmy_wing" => verdict!(gen64::shimmy_wing),
+        _ => return None,
+    })
+}
+
 /// A and B (column-major, converted to `f64`).
 pub type Ab = (DMatrix<f64>, DMatrix<f64>);
 

@@ -83,7 +83,11 @@ impl<'a> ReferenceModel<'a> {
                 "A is not finite at {values:?}"
             )));
         }
-        let approx = eom_num::modes::eigenvalues(&a)?;
+        // The starting values from faer's solver, not the small-matrix kernel that the chart
+        // grades: where Newton's method does not settle, the reference keeps them.
+        let mut approx = vec![Complex64::new(0.0, 0.0); n];
+        let mut ws = eom_num::modes::EigenvaluesWorkspace::new(n);
+        eom_num::modes::eigenvalues_faer_in(&a, &mut ws, &mut approx)?;
         let mut eigenvalues = Vec::with_capacity(n);
         let mut unrefined = 0;
         for z in &approx {

@@ -81,11 +81,8 @@ impl Side<'_> {
                 pieces = super::zoom::clipped(&pieces, half);
             }
             for run in pieces {
-                let style = self.color.stroke_width(super::CURVE_WIDTH);
                 if self.dashed && run.len() > 1 {
-                    chart
-                        .draw_series(std::iter::once(DashedPathElement::new(run, 8, 5, style)))
-                        .map_err(drawing)?;
+                    super::draw_dashed(chart, run, self.color)?;
                 } else {
                     super::draw_runs(chart, &[run], self.color)?;
                 }

@@ -60,6 +60,9 @@ pub struct Sketch {
     pub joints: Vec<Node>,
     /// Points at which an item holds a body to the ground.
     pub grounds: Vec<[f64; 3]>,
+    /// The z component of the sum of the loads fixed in ground axes (the weights): negative
+    /// when gravity points along −z (z up), positive in z-down axes, 0 without such loads.
+    pub load_z: f64,
 }
 
 /// The points of an item: its `location` (point items) and its `ends` (line items).
@@ -98,8 +101,19 @@ impl Sketch {
                 bodies.iter().position(|b| b.name == name)
             }
         };
+        let load_z = model
+            .items()
+            .iter()
+            .filter_map(|i| {
+                let any: &dyn std::any::Any = &**i;
+                any.downcast_ref::<eom_model::Load<f64>>()
+            })
+            .filter(|l| &*l.frame == eom_model::GROUND)
+            .map(|l| l.force[2])
+            .sum();
         let mut s = Sketch {
             bodies: bodies.clone(),
+            load_z,
             ..Sketch::default()
         };
         for item in model.items() {

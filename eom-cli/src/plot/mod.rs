@@ -14,6 +14,7 @@
 pub mod bode;
 pub mod compare;
 pub mod geometry;
+pub mod hankel;
 pub mod locus;
 pub mod poles;
 pub mod shape;
@@ -154,19 +155,97 @@ pub(crate) fn drawing<E: std::fmt::Display>(e: E) -> CliError {
     CliError::Plot(e.to_string())
 }
 
-/// Draws into an SVG string of `size` pixels: white background, then `draw`.
+std::thread_local! {
+    /// The data curves of the plot being rendered, drawn at sub-pixel precision: plotters'
+    /// SVG backend rounds every coordinate to a whole pixel, which makes smooth curves
+    /// stair-stepped. [`render`] splices them into its SVG (over everything else).
+    static CURVES: std::cell::RefCell<Option<String>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Draws into an SVG string of `size` pixels: white background, then `draw`; the data curves
+/// of [`draw_runs`] and [`draw_dashed`] go in at sub-pixel precision.
 pub(crate) fn render(
     size: (u32, u32),
     draw: impl FnOnce(&Area<'_>) -> Result<(), CliError>,
 ) -> Result<String, CliError> {
     let mut svg = String::new();
-    {
+    let outer = CURVES.with(|c| c.replace(Some(String::new())));
+    let drawn = (|| {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         draw(&root)?;
-        root.present().map_err(drawing)?;
-    }
+        root.present().map_err(drawing)
+    })();
+    let curves = CURVES.with(|c| c.replace(outer)).unwrap_or_default();
+    drawn?;
+    let end = svg.rfind("</svg>").unwrap_or(svg.len());
+    svg.insert_str(end, &curves);
     Ok(svg)
+}
+
+/// Data to pixel coordinates of a chart without rounding: plotters' own map (linear or
+/// logarithmic) at a resolution of 2⁻²⁴ of the axis, scaled to its pixels.
+fn pixels<X, Y>(chart: &Chart<'_, '_, X, Y>, run: &[(f64, f64)]) -> Vec<(f64, f64)>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    const FINE: i32 = 1 << 24;
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let (x0, y0) = chart.backend_coord(&(xr.start, yr.start));
+    let (x1, y1) = chart.backend_coord(&(xr.end, yr.end));
+    let spec = chart.as_coord_spec();
+    let (xs, ys) = (spec.x_spec(), spec.y_spec());
+    run.iter()
+        .map(|&(x, y)| {
+            let fx = f64::from(xs.map(&x, (0, FINE))) / f64::from(FINE);
+            let fy = f64::from(ys.map(&y, (0, FINE))) / f64::from(FINE);
+            (
+                f64::from(x0) + fx * f64::from(x1 - x0),
+                f64::from(y0) + fy * f64::from(y1 - y0),
+            )
+        })
+        .collect()
+}
+
+/// A polyline of data coordinates at sub-pixel precision into the curves of the plot being
+/// rendered (`dash`: lengths of the dashes and gaps); `false` when no [`render`] is running.
+fn overlay<X, Y>(
+    chart: &Chart<'_, '_, X, Y>,
+    run: &[(f64, f64)],
+    color: RGBColor,
+    width: u32,
+    dash: Option<(u32, u32)>,
+) -> bool
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    use std::fmt::Write;
+    if CURVES.with(|c| c.borrow().is_none()) {
+        return false;
+    }
+    let points = pixels(chart, run);
+    CURVES.with(|c| {
+        let mut c = c.borrow_mut();
+        let Some(out) = c.as_mut() else {
+            return false;
+        };
+        let RGBColor(r, g, b) = color;
+        let dash = dash.map_or_else(String::new, |(on, off)| {
+            format!(" stroke-dasharray=\"{on},{off}\"")
+        });
+        let _ = write!(
+            out,
+            "<polyline fill=\"none\" opacity=\"1\" stroke=\"#{r:02X}{g:02X}{b:02X}\"{dash} \
+             stroke-width=\"{width}\" points=\""
+        );
+        for (x, y) in points {
+            let _ = write!(out, "{x:.2},{y:.2} ");
+        }
+        out.push_str("\"/>\n");
+        true
+    })
 }
 
 /// Splits the area below the title into the chart region and the legend column.
@@ -347,11 +426,34 @@ where
             chart
                 .draw_series(std::iter::once(Circle::new(p, 3, color.filled())))
                 .map_err(drawing)?;
-        } else {
+        } else if !overlay(chart, run, color, CURVE_WIDTH, None) {
             chart
                 .draw_series(std::iter::once(PathElement::new(run.clone(), style)))
                 .map_err(drawing)?;
         }
+    }
+    Ok(())
+}
+
+/// A dashed data curve (dashes and gaps of 8 and 5 pixels), at sub-pixel precision.
+pub(crate) fn draw_dashed<X, Y>(
+    chart: &mut Chart<'_, '_, X, Y>,
+    run: Series,
+    color: RGBColor,
+) -> Result<(), CliError>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    if !overlay(chart, &run, color, CURVE_WIDTH, Some((8, 5))) {
+        chart
+            .draw_series(std::iter::once(DashedPathElement::new(
+                run,
+                8,
+                5,
+                color.stroke_width(CURVE_WIDTH),
+            )))
+            .map_err(drawing)?;
     }
     Ok(())
 }

@@ -5,8 +5,9 @@
 //! rotates in the view, as a red ring with a cross.
 //!
 //! Planar models (geometry and motion in two axes) get one view; 3-D models three: side
-//! (x–z), front (y–z) and top (x–y). The vertical axis is z, drawn upward unless the bodies
-//! lie below z = 0 (a model in the z-down axes of vehicle dynamics, like the bicycle).
+//! (x–z), front (y–z) and top (x–y). The vertical axis is z, drawn so that the model's
+//! weights point down the page (a model in the z-down axes of vehicle dynamics, like the
+//! bicycle, has +z down); without weights, upward unless the bodies lie below z = 0.
 
 use super::geometry::{EdgeKind, Node, Sketch, displacement};
 use nalgebra::Vector3;
@@ -48,8 +49,13 @@ pub struct ShapeDrawing<'a> {
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
-/// Whether z grows downward: the bodies' mass centres lie below z = 0 on average.
+/// Whether z grows downward on the page: the model's weights point along +z (z-down axes,
+/// like the bicycle's), so that gravity points down in the picture; without weights, when
+/// the bodies' mass centres lie below z = 0 on average.
 fn z_down(s: &Sketch) -> bool {
+    if s.load_z != 0.0 {
+        return s.load_z > 0.0;
+    }
     let n = s.bodies.len().max(1) as f64;
     s.bodies.iter().map(|b| b.centre[2]).sum::<f64>() / n < 0.0
 }

@@ -276,6 +276,7 @@ mod tests {
             max_real: None,
             stability: PointStability::Stable,
             norm: 1.0,
+            tolerance: None,
         }
     }
 

@@ -114,6 +114,24 @@ impl Page {
         ));
     }
 
+    /// Writes one part of the page by `make`; when it fails, whatever it wrote is taken back
+    /// and the part is a section `id` with its `title` saying why it could not be made, so
+    /// that one part that cannot be made never costs the whole page.
+    pub fn part<E: std::fmt::Display>(
+        &mut self,
+        id: &str,
+        title: &str,
+        make: impl FnOnce(&mut Page) -> Result<(), E>,
+    ) {
+        let (body, toc) = (self.body.len(), self.toc.len());
+        if let Err(e) = make(self) {
+            self.body.truncate(body);
+            self.toc.truncate(toc);
+            self.section(id, title);
+            self.note(&format!("This part could not be made: {e}"));
+        }
+    }
+
     /// The whole document.
     pub fn finish(self, title: &str, intro: &str) -> String {
         let toc: String = self

@@ -98,20 +98,16 @@ fn page(
     bar.stage("analyze");
     let analysis = analyze::analyze_linearized(choice, overrides, &opts, &lin)?;
     let model = choice.build(overrides)?.nominal()?;
-    let swept: Option<SweepReport> = match sweep {
-        Some(spec) => {
-            bar.stage("sweep");
-            let others: Vec<(String, f64)> = overrides
-                .iter()
-                .filter(|(k, _)| k != &spec.name)
-                .cloned()
-                .collect();
-            Some(crate::sweep::sweep_with(choice, spec, &others, &|| {
-                bar.tick()
-            })?)
-        }
-        None => None,
-    };
+    // A sweep that fails is said in its section; the rest of the page stands.
+    let swept: Option<Result<SweepReport, CliError>> = sweep.map(|spec| {
+        bar.stage("sweep");
+        let others: Vec<(String, f64)> = overrides
+            .iter()
+            .filter(|(k, _)| k != &spec.name)
+            .cloned()
+            .collect();
+        crate::sweep::sweep_with(choice, spec, &others, &|| bar.tick())
+    });
     let mut p = html::Page::default();
     let cx = sections::Context {
         choice,
@@ -121,15 +117,23 @@ fn page(
     };
     bar.stage("model and modes");
     sections::model(&mut p, &cx);
-    sections::modes(&mut p, &cx)?;
+    sections::preloads(&mut p, &cx);
+    p.part("modes", "Modes", |p| sections::modes(p, &cx));
     bar.stage("responses");
     sections::io_view(&mut p, &cx);
-    sections::responses(&mut p, &cx)?;
+    p.part("bode", "Frequency response", |p| {
+        sections::responses(p, &cx)
+    });
     if let (Some(s), Some(spec)) = (&swept, sweep) {
-        sections::sweep(&mut p, &cx, s, spec)?;
+        p.part("sweep", &format!("Sweep of {}", spec.name), |p| match s {
+            Ok(s) => sections::sweep(p, &cx, s, spec).map_err(|e| e.to_string()),
+            Err(e) => Err(format!("the sweep failed: {e}")),
+        });
     }
+    bar.stage("reduction");
+    sections::reduction(&mut p, &cx, overrides)?;
     bar.stage("closed forms");
-    sections::closed_forms(&mut p, &cx)?;
+    p.part("closed", "Closed forms", |p| sections::closed_forms(p, &cx));
     sections::warnings(&mut p, &cx);
     let intro = format!(
         "{} states, {} inputs, {} outputs; {} at this point. Written by eom {}; every picture \

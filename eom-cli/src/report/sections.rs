@@ -91,6 +91,49 @@ pub fn model(p: &mut Page, cx: &Context<'_>) {
     );
 }
 
+/// The static preloads: every item's force and moment on its first body.
+pub fn preloads(p: &mut Page, cx: &Context<'_>) {
+    p.section("preloads", "Static preloads");
+    let Some(pre) = &cx.analysis.preloads else {
+        p.note("Not computed (see the warnings).");
+        return;
+    };
+    if pre.statics == "unloaded" {
+        p.text("None: no loads act on the model.");
+        return;
+    }
+    p.text(&format!(
+        "The force and moment each constraint and elastic item exerts on its first body at the \
+         equilibrium the model's geometry describes, in model axes (moments about the item's \
+         point; a spring's tension positive when it pulls). The statics is {}.",
+        pre.statics
+    ));
+    let (rows, quiet) = pre.rows();
+    if !rows.is_empty() {
+        p.table(
+            &[
+                "item",
+                "on body",
+                "force [N]",
+                "moment [N m]",
+                "tension",
+                "note",
+            ],
+            &rows,
+            2,
+        );
+    }
+    if quiet > 0 {
+        p.text(&format!("{quiet} other item(s) carry no preload."));
+    }
+    if pre.items.iter().any(|x| !x.unique) {
+        p.note(
+            "Not unique: the model has redundant rigid constraints, and any multiple of their \
+             self-stress balances the loads too; the minimum-norm preloads are shown.",
+        );
+    }
+}
+
 fn or_none(s: &str) -> String {
     if s.is_empty() {
         "none".into()
@@ -107,7 +150,7 @@ fn mode_rows(modes: &[ModeReport]) -> Vec<Vec<String>> {
         .map(|(k, m)| {
             vec![
                 (k + 1).to_string(),
-                eigenvalue(z(&m.eigenvalue), SIG, m.kind == "oscillatory"),
+                eigenvalue(crate::analyze_text::shown(m), SIG, m.kind == "oscillatory"),
                 g(m.natural_frequency_hz, SIG),
                 opt(m.damping_ratio, "–"),
                 opt(m.time_constant, "∞"),
@@ -194,7 +237,10 @@ pub fn io_view(p: &mut Page, cx: &Context<'_>) {
                 );
             }
         }
-        None => p.note("The minimal realization could not be computed (see the warnings)."),
+        None => match &a.minimal_note {
+            Some(note) => p.note(&format!("Minimal realization: {note}.")),
+            None => p.note("The minimal realization could not be computed (see the warnings)."),
+        },
     }
     p.section("gains", "Steady-state gains");
     match &a.steady_state_gain {
@@ -262,6 +308,64 @@ pub fn responses(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
             ),
         );
     }
+    Ok(())
+}
+
+/// Above this many states the report leaves the reduction out (its Gramian factors cost
+/// O(n³) with a large constant; `eom reduce` still does it).
+const REDUCTION_STATES: usize = 400;
+
+/// A reduced model (balanced truncation to the default order): the Hankel singular values with
+/// the bound per order, the error, the modes kept.
+pub fn reduction(
+    p: &mut Page,
+    cx: &Context<'_>,
+    overrides: &[(String, f64)],
+) -> Result<(), CliError> {
+    let ss = &cx.lin.state_space;
+    if ss.inputs() == 0 || ss.outputs() == 0 || ss.states() == 0 {
+        return Ok(());
+    }
+    p.section("reduction", "Reduced model");
+    if ss.states() > REDUCTION_STATES {
+        p.note(&format!(
+            "{} states: the reduction is left out of the report (eom reduce does it).",
+            ss.states()
+        ));
+        return Ok(());
+    }
+    let req = crate::reduce::ReduceRequest {
+        method: eom_num::model_reduction::ReductionMethod::Balanced,
+        order: None,
+        tol: None,
+        band: None,
+        linearization: cx.lin.method,
+    };
+    let (r, _) = crate::reduce::report_of(cx.choice, overrides, cx.lin, &req)?;
+    p.text(&format!(
+        "Balanced truncation of the stable part ({} kept whole: zero, marginal and unstable \
+         modes, {} structural zeros) to the smallest order whose bound 2·Σσ is below \
+         1e-3 σ₁: {} of {} states. Bound {}, error measured on {} frequencies {} (at {} Hz), \
+         steady-state gain error {}.",
+        r.kept_whole,
+        r.structural_zeros,
+        r.states,
+        r.full_states,
+        r.bound.map_or("none".into(), |b| g(b, SIG)),
+        r.measured.points,
+        g(r.measured.hinf, SIG),
+        g(r.measured.at_hz, SIG),
+        g(r.measured.dc, SIG)
+    ));
+    if !r.hankel_singular_values.is_empty() {
+        p.figure(
+            &plot::hankel::hankel_plot(&r)?.svg,
+            "Hankel singular values of the stable part, at the order that keeps each, and the \
+             bound 2·Σσ beyond every order.",
+        );
+    }
+    let (head, rows) = r.modes_table();
+    p.table(&head, &rows, 1);
     Ok(())
 }
 
@@ -371,11 +475,23 @@ pub fn closed_forms(p: &mut Page, cx: &Context<'_>) -> Result<(), CliError> {
         p.formula("ωn =", wm, wl);
         p.formula("ζ =", zm, zl);
     }
-    if !m.conditions.is_empty() {
-        p.text("Asymptotically stable exactly when all of these hold:");
-    }
-    for (cm, cl) in m.conditions.iter().zip(&l.conditions) {
-        p.formula("", cm, cl);
+    match r.stability_verdict.as_deref() {
+        Some(v) if v.starts_with("never: ") => {
+            p.text(&format!(
+                "Never asymptotically stable: {}.",
+                v.trim_start_matches("never: ")
+            ));
+        }
+        Some("always") => p.text(
+            "Asymptotically stable for all parameter values: every condition holds by the \
+             parameters' declared signs.",
+        ),
+        _ => {
+            p.text("Asymptotically stable exactly when all of these hold:");
+            for (cm, cl) in m.conditions.iter().zip(&l.conditions) {
+                p.formula("", cm, cl);
+            }
+        }
     }
     for ((o, i, tm), (_, _, tl)) in m.transfer.iter().zip(&l.transfer) {
         p.formula(&format!("{o} / {i} ="), tm, tl);

@@ -10,11 +10,13 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::str::FromStr;
 
+mod bounded;
 mod checks;
 mod finite;
 mod function;
 mod ready;
 
+pub(crate) use bounded::{BoundedCode, render_bounded};
 pub(crate) use function::{render_fn, sincos_item};
 use ready::{Part, by_ready, latency};
 

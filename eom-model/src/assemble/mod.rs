@@ -87,10 +87,18 @@ pub struct Preload<S> {
     pub item: String,
     /// Force exerted on body 1 by the item (global axes).
     pub force: Vec3<S>,
-    /// Moment exerted on body 1 by the item.
+    /// Moment exerted on body 1 by the item, about the item's point (a line item: about its
+    /// end on body 1).
     pub moment: Vec3<S>,
     /// For line items: the tension (twist items: the torque).
     pub tension: Option<S>,
+    /// Whether the statics determines it: `false` for an item whose constraint rows take part
+    /// in a self-stress of redundant rigid constraints (any multiple of the self-stress
+    /// balances the loads as well; the minimum-norm preloads are used).
+    pub unique: bool,
+    /// Whether it is computed: `false` for a beam, whose end loads are not (it is reported as
+    /// zero and adds no geometric stiffness).
+    pub computed: bool,
 }
 
 /// How the static preloads were obtained.
@@ -165,10 +173,16 @@ pub fn assemble<S: ModelScalar>(model: &Model<S>) -> Result<Assembled<S>, ModelE
     let warnings = model.validate()?;
     let mut cx = item_terms(model, warnings)?;
     let k_el = std::mem::replace(&mut cx.stiffness, Triplets::new(0, 0)).build();
-    let (lambda_c, lambda_e, statics, warnings) = statics(&cx, &k_el)?;
-    cx.warnings.extend(warnings);
-    let (k_t, preloads) = tangent_stiffness(&cx, &lambda_c, &lambda_e);
-    result(model, cx, k_el, k_t, preloads, statics)
+    let st = statics(&cx, &k_el)?;
+    cx.warnings.extend(st.warnings);
+    let (k_t, mut preloads) = tangent_stiffness(&cx, &st.lambda_c, &st.lambda_e);
+    // Holonomic items come first, in the order of their rows.
+    let mut start = 0;
+    for (r, p) in cx.holonomic.reactions.iter().zip(preloads.iter_mut()) {
+        p.unique = !st.not_unique[start..start + r.rows].iter().any(|&x| x);
+        start += r.rows;
+    }
+    result(model, cx, k_el, k_t, preloads, st.kind)
 }
 
 /// Step 2: the terms of every body and item.

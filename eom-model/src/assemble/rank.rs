@@ -111,6 +111,102 @@ pub(crate) fn complete_pivots(a: &DMatrix<f64>, r: usize) -> Vec<(usize, usize)>
     piv
 }
 
+/// The inverse of the square matrix `s` (column-major, k × k) by Gauss–Jordan elimination
+/// with partial pivoting; `None` when a pivot is exactly zero or an entry is not finite.
+fn inverse(mut s: Vec<f64>, k: usize) -> Option<Vec<f64>> {
+    let mut inv = vec![0.0; k * k];
+    for i in 0..k {
+        inv[i * k + i] = 1.0;
+    }
+    for c in 0..k {
+        let p = (c..k).max_by(|&x, &y| s[c * k + x].abs().total_cmp(&s[c * k + y].abs()))?;
+        let pv = s[c * k + p];
+        if pv == 0.0 || !pv.is_finite() {
+            return None;
+        }
+        if p != c {
+            for j in 0..k {
+                s.swap(j * k + p, j * k + c);
+                inv.swap(j * k + p, j * k + c);
+            }
+        }
+        let r = 1.0 / pv;
+        for j in 0..k {
+            s[j * k + c] *= r;
+            inv[j * k + c] *= r;
+        }
+        for i in (0..k).filter(|&i| i != c) {
+            let f = s[c * k + i];
+            if f != 0.0 {
+                for j in 0..k {
+                    s[j * k + i] -= f * s[j * k + c];
+                    inv[j * k + i] -= f * inv[j * k + c];
+                }
+            }
+        }
+    }
+    inv.iter().all(|x| x.is_finite()).then_some(inv)
+}
+
+/// Safety factor of the certificates below over the rounding of their own arithmetic.
+const CERTIFICATE_MARGIN: f64 = 4.0;
+
+/// A certificate, without an SVD, that `a` (m × n, m ≥ n) has full column rank by the
+/// decision of [`rank`] and that the square submatrix at `pivots` (n row–column pairs) is at
+/// least `fraction` as well conditioned as any other square submatrix of n rows would be:
+/// `σ_min(S) ≥ fraction · σ_n(a)`, which bounds the submatrix complete pivoting selects too.
+///
+/// The bounds: `σ_n(a) ≥ σ_min(S) ≥ 1/‖S⁻¹‖_F` (a submatrix's smallest singular value is at
+/// most the whole one's), `σ_1(a) ≤ ‖a‖_F`, and `σ_n(a) ≤ ‖a x‖/‖x‖` for `x` the column of
+/// `S⁻¹` of largest norm (the direction `S` stretches least). Each holds with a margin of
+/// [`CERTIFICATE_MARGIN`]; when one does not, the caller decides by the SVD. The cost is one
+/// inverse of an n × n matrix.
+pub(crate) fn certify_full_column_rank(
+    a: &DMatrix<f64>,
+    pivots: &[(usize, usize)],
+    fraction: f64,
+) -> bool {
+    let n = a.ncols();
+    if pivots.len() != n || a.nrows() < n || n == 0 {
+        return false;
+    }
+    let mut s = vec![0.0; n * n];
+    for (i, &(r, _)) in pivots.iter().enumerate() {
+        for (j, &(_, c)) in pivots.iter().enumerate() {
+            s[j * n + i] = a[(r, c)];
+        }
+    }
+    let Some(inv) = inverse(s, n) else {
+        return false;
+    };
+    let inv_f = eom_num::linalg::frobenius_norm(&inv);
+    let a_f = eom_num::linalg::frobenius_norm(a.as_slice());
+    let lower = 1.0 / inv_f;
+    // (NaN fails the comparison: no certificate.)
+    let certified = lower > CERTIFICATE_MARGIN * RANK_TOLERANCE * a_f;
+    if !certified {
+        return false;
+    }
+    // The column of S⁻¹ of largest norm, as a vector over a's columns (S's columns are a's
+    // columns in pivot order).
+    let norms: Vec<f64> = inv
+        .chunks_exact(n)
+        .map(eom_num::linalg::frobenius_norm)
+        .collect();
+    let k = (0..n)
+        .max_by(|&x, &y| norms[x].total_cmp(&norms[y]))
+        .unwrap_or(0);
+    let mut x = vec![0.0; n];
+    for (i, &(_, c)) in pivots.iter().enumerate() {
+        x[c] = inv[k * n + i];
+    }
+    let ax: Vec<f64> = (0..a.nrows())
+        .map(|r| (0..n).map(|c| a[(r, c)] * x[c]).sum())
+        .collect();
+    let upper = eom_num::linalg::frobenius_norm(&ax) / eom_num::linalg::frobenius_norm(&x);
+    lower >= CERTIFICATE_MARGIN * fraction * upper
+}
+
 /// An elimination plan for `nrows` rows from pivots: the rows without a pivot are redundant.
 pub(crate) fn plan_of(pivots: Vec<(usize, usize)>, nrows: usize) -> EliminationPlan {
     let mut used = vec![false; nrows];
@@ -197,6 +293,23 @@ mod tests {
         assert_eq!(r, 2);
         let p = complete_pivots(&a, r);
         assert!(p.iter().all(|&(i, _)| i != 2), "{p:?}");
+    }
+
+    #[test]
+    fn certificate_of_full_rank_and_good_pivots() {
+        // 3 × 2, well conditioned: rows 0 and 1 are good pivots.
+        let a = DMatrix::from_row_slice(3, 2, &[1.0, 0.5, -0.5, 1.0, 0.2, 0.3]);
+        assert!(certify_full_column_rank(&a, &[(0, 0), (1, 1)], 1e-2));
+        // The same matrix with rank 1 to within 1e-12: no certificate (the SVD decides).
+        let b = DMatrix::from_row_slice(3, 2, &[1.0, 2.0, 2.0, 4.0 + 1e-12, 0.5, 1.0]);
+        assert!(!certify_full_column_rank(&b, &[(0, 0), (1, 1)], 1e-2));
+        // Full rank, but the chosen rows are nearly dependent while another pair is not:
+        // no certificate that they are within 1e-2 of the best.
+        let c = DMatrix::from_row_slice(3, 2, &[1.0, 1.0, 1.0, 1.0 + 1e-6, 0.0, 1.0]);
+        assert!(!certify_full_column_rank(&c, &[(0, 0), (1, 1)], 1e-2));
+        assert!(certify_full_column_rank(&c, &[(0, 0), (2, 1)], 1e-2));
+        // Wrong number of pivots.
+        assert!(!certify_full_column_rank(&a, &[(0, 0)], 1e-2));
     }
 
     #[test]

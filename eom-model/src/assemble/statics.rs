@@ -29,8 +29,8 @@
 
 use super::context::{ItemRow, KnownPreload};
 use super::rank::{
-    RANK_TOLERANCE, complete_pivots, coordinate_weight, equilibrate_columns, length_scale, plan_of,
-    rank, redundant_rows, self_stress_basis,
+    RANK_TOLERANCE, certify_full_column_rank, complete_pivots, coordinate_weight,
+    equilibrate_columns, length_scale, plan_of, rank, redundant_rows, self_stress_basis,
 };
 use super::{RowLabel, Statics};
 use crate::eliminate::{Row, RowStore, Rref, rref};
@@ -81,8 +81,20 @@ fn smallest_singular_value(a: &DMatrix<f64>, pivots: &[(usize, usize)]) -> Resul
     Ok(rank(&sub)?.1.last().copied().unwrap_or(f64::INFINITY))
 }
 
-/// `λ_c`, `λ_e`, how they were found, and warnings.
-pub(crate) type StaticsResult<S> = (Vec<S>, Vec<S>, Statics, Vec<String>);
+/// What the statics found.
+pub(crate) struct StaticsResult<S> {
+    /// The multipliers of the holonomic rows.
+    pub(crate) lambda_c: Vec<S>,
+    /// The multipliers of the elastic rows.
+    pub(crate) lambda_e: Vec<S>,
+    /// How they were found.
+    pub(crate) kind: Statics,
+    /// Per holonomic row: its multiplier is not determined by the statics (it takes part in a
+    /// self-stress of redundant rigid rows; the minimum-norm value is used).
+    pub(crate) not_unique: Vec<bool>,
+    /// Warnings.
+    pub(crate) warnings: Vec<String>,
+}
 
 /// Solve the static preloads (see the module documentation).
 pub(crate) fn solve_statics<S: Scalar>(
@@ -92,14 +104,30 @@ pub(crate) fn solve_statics<S: Scalar>(
     let s = p.h_rows.len();
     // 1. Unloaded.
     if p.applied.iter().all(Scalar::is_zero) && p.known.iter().all(|k| k.1.is_zero()) {
-        return Ok((
-            vec![S::zero(); q],
-            vec![S::zero(); s],
-            Statics::Unloaded,
-            Vec::new(),
-        ));
+        return Ok(StaticsResult {
+            lambda_c: vec![S::zero(); q],
+            lambda_e: vec![S::zero(); s],
+            kind: Statics::Unloaded,
+            not_unique: vec![false; q],
+            warnings: Vec::new(),
+        });
     }
     let length = length_scale(p.j_rows.iter().chain(p.h_rows.iter()));
+    // The common case, decided without an SVD.
+    if let Some(red) = certified_determinate(p, length)? {
+        let nu = q + s;
+        let sol = solution(&red, nu);
+        let (lc, le) = (sol[..q].to_vec(), sol[q..].to_vec());
+        let mut warnings = Vec::new();
+        check_equilibrium(p, &lc, &le, length, &mut warnings)?;
+        return Ok(StaticsResult {
+            lambda_c: lc,
+            lambda_e: le,
+            kind: Statics::Determinate,
+            not_unique: vec![false; q],
+            warnings,
+        });
+    }
     // 2. Redundant rigid rows, set aside.
     let (redundant, sv, row_weight) = redundant_rows(p.j_rows, p.dim, length)?;
     let keep: Vec<usize> = (0..q).filter(|i| !redundant.contains(i)).collect();
@@ -117,15 +145,26 @@ pub(crate) fn solve_statics<S: Scalar>(
         lc[i] = lc_kept[k];
     }
     let mut warnings = Vec::new();
+    let mut not_unique = vec![false; q];
     // 5. Minimum norm over the self-stresses of the redundant rows.
     if !redundant.is_empty() {
         kind = Statics::Indeterminate;
-        let moved = minimum_norm(p, &mut lc, &row_weight, redundant.len(), length)?;
+        let (moved, n) = minimum_norm(p, &mut lc, &row_weight, redundant.len(), length)?;
+        // The rows a self-stress moves (entries of the orthonormal basis above rounding).
+        for (i, flag) in not_unique.iter_mut().enumerate() {
+            *flag = n.row(i).amax() > RANK_TOLERANCE;
+        }
         warnings.push(redundancy_warning(p, &redundant, &sv, moved));
     }
     // 6. Equilibrium.
     check_equilibrium(p, &lc, &le, length, &mut warnings)?;
-    Ok((lc, le, kind, warnings))
+    Ok(StaticsResult {
+        lambda_c: lc,
+        lambda_e: le,
+        kind,
+        not_unique,
+        warnings,
+    })
 }
 
 /// Steps 3–4 on a problem without redundant rigid rows.
@@ -148,14 +187,14 @@ fn determinate_or_compatible<S: Scalar>(
 
 /// Step 5: move `λ_c` to the least-norm solution, `μ ← μ − N Nᵀ μ` in the nondimensionalised
 /// multipliers `μ = λ / w` (`N`: orthonormal self-stresses); the largest change relative to
-/// the largest multiplier. The symbolic path cannot carry a choice made at one point.
+/// the largest multiplier, and `N`. The symbolic path cannot carry a choice made at one point.
 fn minimum_norm<S: Scalar>(
     p: &StaticsProblem<'_, S>,
     lc: &mut [S],
     row_weight: &[f64],
     count: usize,
     length: f64,
-) -> Result<f64, ModelError> {
+) -> Result<(f64, DMatrix<f64>), ModelError> {
     let n = self_stress_basis(p.j_rows, p.dim, length, row_weight, count)?;
     let mu = DVector::from_iterator(
         lc.len(),
@@ -166,7 +205,7 @@ fn minimum_norm<S: Scalar>(
     let moved = if top > 0.0 { delta.amax() / top } else { 0.0 };
     if S::SYMBOLIC && moved > RANK_TOLERANCE {
         return Err(ModelError::Unsupported(format!(
-            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic path cannot choose among them for every parameter value; use the numeric or robust path, which take the minimum-norm preloads"
+            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic reduction cannot choose among them for every parameter value (the numeric and robust methods take the minimum-norm preloads)"
         )));
     }
     if !S::SYMBOLIC {
@@ -174,7 +213,7 @@ fn minimum_norm<S: Scalar>(
             *l = *l + S::from_f64(delta[i] * row_weight[i]);
         }
     }
-    Ok(moved)
+    Ok((moved, n))
 }
 
 /// The warning of step 5: which rows, why, and what was done.
@@ -199,9 +238,14 @@ fn redundancy_warning<S>(
     )
 }
 
-/// Step 2: the reduced rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known
-/// preloads `[0 S | preload]`.
-fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rref<S>, ModelError> {
+/// The rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known preloads
+/// `[0 S | preload]`, and the same without the right-hand side in `f64`, nondimensionalised
+/// (moment equations over the length scale, columns scaled to unit largest entry): the
+/// matrix of the rank decisions.
+fn balance_system<S: Scalar>(
+    p: &StaticsProblem<'_, S>,
+    length: f64,
+) -> (RowStore<S>, DMatrix<f64>) {
     let d = p.dim;
     let q = p.j_rows.len();
     let nu = q + p.h_rows.len();
@@ -228,7 +272,6 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
             rows.push_row(&[one, (nu, pre)]);
         }
     }
-    // The pivots: complete pivoting on the nondimensionalised matrix, to its numerical rank.
     let nrows = rows.nrows();
     let mut a = DMatrix::<f64>::zeros(nrows, nu);
     for i in 0..nrows {
@@ -242,6 +285,34 @@ fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rr
         }
     }
     equilibrate_columns(&mut a);
+    (rows, a)
+}
+
+/// The common case without an SVD: the sparse elimination's own pivots determine every
+/// multiplier, and a certificate ([`certify_full_column_rank`]) shows that the rank
+/// decisions by SVD would agree — the holonomic rows independent (none redundant), the
+/// force balance of full rank, the own pivots as well conditioned as [`OWN_PIVOTS`] asks. The
+/// reduced rows then, or `None` when the certificate does not hold.
+fn certified_determinate<S: Scalar>(
+    p: &StaticsProblem<'_, S>,
+    length: f64,
+) -> Result<Option<Rref<S>>, ModelError> {
+    let (rows, a) = balance_system(p, length);
+    let nu = a.ncols();
+    let own = rref(rows, nu, &[], None, &[])?;
+    // `a`'s columns of the holonomic rows are those rows nondimensionalised exactly as
+    // `redundant_rows` scales them (padded with zero rows): full column rank of `a` with a
+    // margin makes the holonomic rows independent with the same margin.
+    Ok(certify_full_column_rank(&a, &own.plan.pivots, OWN_PIVOTS).then_some(own))
+}
+
+/// Step 3: the reduced rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known
+/// preloads `[0 S | preload]`.
+fn force_balance<S: Scalar>(p: &StaticsProblem<'_, S>, length: f64) -> Result<Rref<S>, ModelError> {
+    let (rows, a) = balance_system(p, length);
+    let nu = a.ncols();
+    let nrows = rows.nrows();
+    // The pivots: complete pivoting on the nondimensionalised matrix, to its numerical rank.
     let (r, _) = rank(&a)?;
     // The sparse elimination's own pivots (fewest fill-ins, so the smallest expressions) when
     // they are as many as the numerical rank and independent on the nondimensionalised

@@ -36,6 +36,8 @@ pub(crate) fn add_reactions<S: Scalar>(
                     force: f,
                     moment: m,
                     tension: None,
+                    unique: true,
+                    computed: true,
                 }
             }
             // A beam carries end loads but adds no geometric stiffness (the simplest
@@ -45,6 +47,8 @@ pub(crate) fn add_reactions<S: Scalar>(
                 force: zero3(),
                 moment: zero3(),
                 tension: None,
+                unique: true,
+                computed: false,
             },
         };
         preloads.push(preload);
@@ -77,6 +81,8 @@ fn line_preload<S: Scalar>(item: String, t: S, u: &Vec3<S>, twist: bool) -> Prel
             force: zero3(),
             moment: scale(t, u),
             tension: Some(t),
+            unique: true,
+            computed: true,
         }
     } else {
         Preload {
@@ -84,6 +90,8 @@ fn line_preload<S: Scalar>(item: String, t: S, u: &Vec3<S>, twist: bool) -> Prel
             force: scale(t, u),
             moment: zero3(),
             tension: Some(t),
+            unique: true,
+            computed: true,
         }
     }
 }

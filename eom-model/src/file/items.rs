@@ -8,6 +8,7 @@ use crate::Model;
 use crate::error::ModelError;
 use crate::items::*;
 use eom_sym::{Expr, Scope};
+use std::collections::HashSet;
 use toml::de::DeValue;
 
 /// The fields every kind accepts besides its own.
@@ -46,8 +47,10 @@ pub(crate) struct Builder<'a> {
     pub(super) decl: &'a Declarations,
     pub(super) model: &'a mut Model,
     /// Names taken so far, for duplicate detection (items and bodies have separate name
-    /// spaces, as in the Rust API).
-    items: Vec<String>,
+    /// spaces, as in the Rust API); sets, so that a file of many items loads in linear time.
+    items: HashSet<String>,
+    /// The bodies declared so far.
+    bodies: HashSet<String>,
     /// Where each body and item was defined, by its label in the model's messages
     /// (``flex point `spring` ``), for errors found after loading.
     pub spans: Vec<(String, std::ops::Range<usize>)>,
@@ -66,7 +69,8 @@ impl<'a> Builder<'a> {
             ctx,
             decl,
             model,
-            items: Vec::new(),
+            items: HashSet::new(),
+            bodies: HashSet::new(),
             spans: Vec::new(),
             warnings: Vec::new(),
         }
@@ -143,9 +147,9 @@ impl<'a> Builder<'a> {
         self.spans
             .push((crate::items::label(kind, name), t.span.clone()));
         let taken = if kind == "body" {
-            self.model.body(name).is_some() || name == GROUND
+            self.bodies.contains(name) || name == GROUND
         } else {
-            self.items.iter().any(|n| n == name)
+            self.items.contains(name)
         };
         if taken {
             let span = t.get("name").map(|x| x.span()).unwrap_or(t.span.clone());
@@ -156,8 +160,10 @@ impl<'a> Builder<'a> {
             };
             return Err(t.field_error("name", &span, problem));
         }
-        if kind != "body" {
-            self.items.push(name.to_string());
+        if kind == "body" {
+            self.bodies.insert(name.to_string());
+        } else {
+            self.items.insert(name.to_string());
         }
         Ok(())
     }
@@ -247,11 +253,11 @@ impl<'a> Builder<'a> {
     ) -> Result<String, ModelError> {
         let name = match m {
             Some(_) => mirror_name(name)
-                .filter(|n| self.model.body(n).is_some())
+                .filter(|n| self.bodies.contains(n))
                 .unwrap_or_else(|| name.to_string()),
             None => name.to_string(),
         };
-        if name == GROUND || self.model.body(&name).is_some() {
+        if name == GROUND || self.bodies.contains(&name) {
             return Ok(name);
         }
         let known: Vec<String> = std::iter::once(GROUND.to_string())

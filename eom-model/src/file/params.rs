@@ -5,6 +5,7 @@ use super::source::{Ctx, Table, Value, array_of, parse_integer};
 use crate::Model;
 use crate::error::ModelError;
 use eom_sym::{Assumption, Expr, ParamInfo, Scope, SymError};
+use std::collections::HashMap;
 use std::ops::Range;
 use toml::de::DeValue;
 
@@ -173,8 +174,9 @@ pub(crate) struct Declarations {
     pub derived_text: Vec<(String, String)>,
     /// Parse scope: the independent parameters and one placeholder per derived one.
     parse_scope: Scope,
-    /// Placeholder → its definition in independent parameters.
-    placeholders: Vec<(Expr, Expr)>,
+    /// Placeholder's parameter index → the placeholder and its definition in independent
+    /// parameters.
+    placeholders: HashMap<u32, (Expr, Expr)>,
 }
 
 impl Declarations {
@@ -183,13 +185,21 @@ impl Declarations {
         Ok(self.parse_scope.clone())
     }
 
-    /// `text` parsed, derived names replaced by their definitions.
+    /// `text` parsed, derived names replaced by their definitions: only those it uses, so
+    /// that a file with many derived parameters loads in time linear in its size.
     pub fn expr(&self, text: &str) -> Result<Expr, SymError> {
         let e = eom_sym::parse(text, &self.parse_scope)?;
         if self.placeholders.is_empty() {
+            return Ok(e);
+        }
+        let used: Vec<(Expr, Expr)> = Expr::params_of(&[e])
+            .into_iter()
+            .filter_map(|k| self.placeholders.get(&k).copied())
+            .collect();
+        if used.is_empty() {
             Ok(e)
         } else {
-            e.subs(&self.placeholders)
+            e.subs(&used)
         }
     }
 }
@@ -249,12 +259,25 @@ pub(crate) fn declare(
                 assume: spec.range.assumption(),
             })
             .map_err(|e| {
+                let problem = match &e {
+                    ModelError::Sym(s) => declaration_problem(s),
+                    e => e.to_string(),
+                };
                 root.ctx
-                    .error(span, &format!("parameter `{}`", spec.name), e.to_string())
+                    .error(span, &format!("parameter `{}`", spec.name), problem)
             })?;
         scope_params.push(p);
     }
     let (parse_scope, placeholders) = resolve_derived(root.ctx, model, &scope_params, &derived)?;
+    let placeholders = placeholders
+        .into_iter()
+        .map(|(h, e)| {
+            (
+                h.param_index().expect("a placeholder is a parameter"),
+                (h, e),
+            )
+        })
+        .collect();
     Ok(Declarations {
         specs: specs.into_iter().map(|s| s.0).collect(),
         derived_text: derived.into_iter().map(|d| (d.0, d.1)).collect(),
@@ -358,11 +381,13 @@ fn resolve_derived(
             return Err(ctx.error(span, &format!("parameter `{name}`"), "declared twice"));
         }
         // A placeholder parameter (never part of the model's scope).
-        holders.push(
-            scope
-                .declare(name, 0.0)
-                .map_err(|e| ctx.error(span, &format!("parameter `{name}`"), e.to_string()))?,
-        );
+        holders.push(scope.declare(name, 0.0).map_err(|e| {
+            ctx.error(
+                span,
+                &format!("parameter `{name}`"),
+                declaration_problem(&e),
+            )
+        })?);
     }
     let mut parsed = Vec::new();
     for (name, text, span) in derived {
@@ -371,44 +396,68 @@ fn resolve_derived(
             .map_err(|e| string_error(ctx, span, &format!("parameter `{name}`"), text, &e))?;
         parsed.push(e);
     }
-    // Resolve in dependency order.
+    // Resolve in dependency order (Kahn's algorithm on the placeholders each definition
+    // uses), each definition substituted with the resolved definitions of its own
+    // dependencies only: linear in the number of derived parameters and their sizes.
+    let index_of: HashMap<u32, usize> = holders
+        .iter()
+        .enumerate()
+        .map(|(j, h)| (h.param_index().expect("param"), j))
+        .collect();
+    let deps: Vec<Vec<usize>> = parsed
+        .iter()
+        .map(|e| {
+            Expr::params_of(&[*e])
+                .into_iter()
+                .filter_map(|k| index_of.get(&k).copied())
+                .collect()
+        })
+        .collect();
+    let mut waiting: Vec<usize> = deps.iter().map(Vec::len).collect();
+    let mut users: Vec<Vec<usize>> = vec![Vec::new(); derived.len()];
+    for (k, d) in deps.iter().enumerate() {
+        for &j in d {
+            users[j].push(k);
+        }
+    }
+    let mut ready: Vec<usize> = (0..derived.len())
+        .rev()
+        .filter(|&k| waiting[k] == 0)
+        .collect();
     let mut done: Vec<Option<Expr>> = vec![None; derived.len()];
-    let mut map: Vec<(Expr, Expr)> = Vec::new();
-    while done.iter().any(Option::is_none) {
-        let before = map.len();
-        for k in 0..derived.len() {
-            if done[k].is_some() {
-                continue;
-            }
-            let deps = Expr::params_of(&[parsed[k]]);
-            let ready = holders.iter().enumerate().all(|(j, h)| {
-                done[j].is_some() || !deps.contains(&h.param_index().expect("param"))
-            });
-            if ready {
-                let e = if map.is_empty() {
-                    parsed[k]
-                } else {
-                    parsed[k].subs(&map)?
-                };
-                done[k] = Some(e);
-                map.push((holders[k], e));
-            }
-        }
-        if map.len() == before {
-            let k = done.iter().position(Option::is_none).expect("one left");
-            let cycle: Vec<&str> = (0..derived.len())
-                .filter(|&j| done[j].is_none())
-                .map(|j| derived[j].0.as_str())
+    let mut map: Vec<(Expr, Expr)> = Vec::with_capacity(derived.len());
+    while let Some(k) = ready.pop() {
+        let e = if deps[k].is_empty() {
+            parsed[k]
+        } else {
+            let own: Vec<(Expr, Expr)> = deps[k]
+                .iter()
+                .map(|&j| (holders[j], done[j].expect("resolved first")))
                 .collect();
-            return Err(ctx.error(
-                &derived[k].2,
-                &format!("parameter `{}`", derived[k].0),
-                format!(
-                    "derived parameters depend on each other in a cycle: {}",
-                    cycle.join(", ")
-                ),
-            ));
+            parsed[k].subs(&own)?
+        };
+        done[k] = Some(e);
+        map.push((holders[k], e));
+        for &u in &users[k] {
+            waiting[u] -= 1;
+            if waiting[u] == 0 {
+                ready.push(u);
+            }
         }
+    }
+    if let Some(k) = done.iter().position(Option::is_none) {
+        let cycle: Vec<&str> = (0..derived.len())
+            .filter(|&j| done[j].is_none())
+            .map(|j| derived[j].0.as_str())
+            .collect();
+        return Err(ctx.error(
+            &derived[k].2,
+            &format!("parameter `{}`", derived[k].0),
+            format!(
+                "derived parameters depend on each other in a cycle: {}",
+                cycle.join(", ")
+            ),
+        ));
     }
     Ok((scope, map))
 }
@@ -508,4 +557,13 @@ pub(crate) fn vector(
 fn empty_table() -> &'static toml::de::DeTable<'static> {
     static EMPTY: std::sync::OnceLock<toml::de::DeTable<'static>> = std::sync::OnceLock::new();
     EMPTY.get_or_init(Default::default)
+}
+
+/// What is wrong with a declaration, without the parameter's name (the file's message names it
+/// already).
+fn declaration_problem(e: &eom_sym::SymError) -> String {
+    match e {
+        eom_sym::SymError::BadParameter { problem, .. } => problem.clone(),
+        e => e.to_string(),
+    }
 }

@@ -7,8 +7,11 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 
 use super::assign::assign_pinned;
-use super::{Boundary, Branches, Crossing, Ctx, Sweep, SweepError, effective_re};
+use super::{Boundary, Branches, Crossing, Ctx, Sweep, SweepError, effective_re, errors_of};
 use crate::modes::EigenvaluesWorkspace;
+
+/// Branch values at an off-grid point, `‖A‖_F` there, and the error estimates (when asked for).
+pub(super) type Tracked = (Vec<Complex64>, f64, Option<Vec<f64>>);
 
 impl Branches {
     /// The sign changes of the non-neutral branches between grid points outside the band,
@@ -98,9 +101,10 @@ where
         xs: &[f64],
         tracked: &[Vec<Complex64>],
         z: usize,
-    ) -> Result<(Vec<Complex64>, f64), SweepError<E>> {
+        errors: bool,
+    ) -> Result<Tracked, SweepError<E>> {
         let n = tracked[0].len();
-        let e = self.eval(x, &mut None, Some(n))?;
+        let e = self.eval(x, &mut None, Some(n), errors)?;
         // Neighbouring grid points (xs is monotone).
         let k = xs
             .windows(2)
@@ -111,7 +115,9 @@ where
         } else {
             interpolate(xs[k], &tracked[k], xs[k + 1], &tracked[k + 1], x)
         };
-        Ok((assign_pinned(&pred, &e.eig, &pred, z), e.norm))
+        let values = assign_pinned(&pred, &e.eig, &pred, z);
+        let errors = e.errors.as_ref().map(|err| errors_of(&values, &e.eig, err));
+        Ok((values, e.norm, errors))
     }
 
     /// Brent's method on g(x) = Re λ_j(x) inside a bracket with a sign change.
@@ -197,7 +203,7 @@ where
             // Identify the branches at the trial value against the values interpolated
             // between the two ends of the current bracket.
             let pred = interpolate(xa, &va, xc, &vc, xb);
-            let ev = self.eval(xb, &mut ws, Some(n))?;
+            let ev = self.eval(xb, &mut ws, Some(n), false)?;
             evaluations += 1;
             vb = assign_pinned(&pred, &ev.eig, &pred, z);
             fb = effective_re(&vb, j, neutral);

@@ -22,10 +22,13 @@
 //!    neutral branches (their sum is ≈ 0, accurately, as a trace): where a real root crosses
 //!    zero next to a neutral zero, the two form a defective double eigenvalue whose members are
 //!    only known to √ε, while their sum stays accurate to ε.
-//! 4. **Stability per point**: a point is stable when every non-neutral branch has
-//!    `Re λ < −band`, unstable when one has `Re λ > band`, marginal otherwise, with
-//!    `band = marginal_rtol · ‖A(x)‖_F` (default `marginal_rtol = 100 · n · ε`): real parts
-//!    inside the band are rounding noise and carry no sign.
+//! 4. **Stability per point**: each branch's verdict is [`crate::modes::stability_of`] with
+//!    its eigenvalue's error estimate at that point ([`crate::modes::eigenvalues_with_errors`],
+//!    the tolerance `eom analyze` judges the same eigenvalue by), plus those of the neutral
+//!    branches its real part is taken with: a real part within it is rounding noise and
+//!    carries no sign. A point is stable when every non-neutral branch is, unstable when one
+//!    is, marginal otherwise. [`Sweep::with_marginal_rtol`] replaces the estimates by a band
+//!    `rtol · ‖A(x)‖_F` (faster: no eigenvectors).
 //! 5. **Boundaries**: every sign change of the real part of a tracked branch between two
 //!    points outside the band brackets a boundary, located by Brent's method (re-evaluating
 //!    `A` at trial values, re-identifying the branch by an assignment against the branch
@@ -33,10 +36,11 @@
 //!    (default 1e-10, plus 4ε|x|). A conjugate pair gives one boundary, reported with the
 //!    eigenvalue of non-negative imaginary part. Two crossings of one branch inside one grid
 //!    cell are not seen: refine the grid if that matters.
-//! 6. **Stable intervals**: the boundaries cut the sweep range into segments; a segment is
-//!    stable when it has no unstable point and at least one stable one (a segment with no
-//!    grid point inside is judged at its midpoint). Adjacent stable segments are merged.
-//!    Endpoints are boundaries or the ends of the sweep.
+//! 6. **Stable intervals**: the boundaries and the marginal grid points cut the sweep range
+//!    into segments; a segment is stable when it has no unstable point and at least one
+//!    stable one (a segment with no grid point inside is judged at its midpoint). Adjacent
+//!    stable segments are merged, but not across a marginal point. Endpoints are boundaries,
+//!    marginal points or the ends of the sweep.
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -48,7 +52,7 @@ mod boundary;
 
 use crate::error::NumError;
 use crate::minreal::{cser, sort_complex};
-use crate::modes::{EigenvaluesWorkspace, eigenvalues_in};
+use crate::modes::{EigenvaluesWorkspace, Stability, eigenvalues_in, eigenvalues_with_errors};
 use assign::assign_pinned;
 
 /// Errors of [`Sweep::run`]: the caller's model error passed through with the parameter
@@ -80,14 +84,17 @@ pub enum SweepError<E> {
     Setup(NumError),
 }
 
-/// Stability class of a sweep point (neutral branches excluded).
+/// Stability class of a sweep point (neutral branches excluded); in JSON the words of the
+/// modes' verdicts (`stable`, `marginal`, `unstable`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum PointStability {
-    /// Every non-neutral branch has `Re λ < −band`.
+    /// Every non-neutral branch has `Re λ` below minus its error estimate.
     Stable,
-    /// No branch has `Re λ > band`, but one is inside the band (or every branch is neutral).
+    /// No branch is unstable, but the real part of one is within its error estimate (or every
+    /// branch is neutral).
     Marginal,
-    /// Some branch has `Re λ > band`.
+    /// Some branch has `Re λ` above its error estimate.
     Unstable,
 }
 
@@ -106,6 +113,9 @@ pub struct SweepPoint {
     pub stability: PointStability,
     /// `‖A(x)‖_F`, the scale of the thresholds at this point.
     pub norm: f64,
+    /// The tolerance of [`SweepPoint::max_real`]'s verdict: the error estimate of the branch
+    /// of largest real part (with the neutral branches'), in 1/s (`None` if all are neutral).
+    pub tolerance: Option<f64>,
 }
 
 /// A tracked eigenvalue branch.
@@ -118,8 +128,10 @@ pub struct BranchInfo {
     pub neutral: bool,
 }
 
-/// Direction of a stability boundary as the parameter increases.
+/// Direction of a stability boundary as the parameter increases (in JSON `destabilizing`,
+/// `stabilizing`, as printed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Crossing {
     /// The real part goes from negative to positive.
     Destabilizing,
@@ -242,8 +254,10 @@ impl Sweep {
         self
     }
 
-    /// Relative half-width of the band around `Re λ = 0` inside which a real part has no sign
-    /// (default `100 · n · ε`).
+    /// Relative half-width of a band `rtol · ‖A(x)‖_F` around `Re λ = 0` inside which a real
+    /// part has no sign, instead of each eigenvalue's error estimate (the default, the
+    /// tolerance of `Modes`; the band needs no eigenvectors, but its verdicts can differ from
+    /// those of the modes at the same point).
     pub fn with_marginal_rtol(mut self, rtol: f64) -> Self {
         self.marginal_rtol = Some(rtol);
         self
@@ -365,7 +379,8 @@ impl Sweep {
     {
         // The first point alone: its size predicts the memory of the whole sweep (matrices
         // while evaluating, the eigenvalues of every point, the tracked branches).
-        let first = ctx.eval(self.values[0], &mut None, None)?;
+        let errors = self.marginal_rtol.is_none();
+        let first = ctx.eval(self.values[0], &mut None, None, errors)?;
         let n = first.eig.len();
         crate::budget::check(
             &format!(
@@ -379,7 +394,7 @@ impl Sweep {
         .map_err(SweepError::Setup)?;
         let evals: Vec<Result<Eval, SweepError<E>>> = self.values[1..]
             .par_iter()
-            .map_init(|| None, |ws, &x| ctx.eval(x, ws, None))
+            .map_init(|| None, |ws, &x| ctx.eval(x, ws, None, errors))
             .collect();
         let mut pts = Vec::with_capacity(self.values.len());
         pts.push(first);
@@ -453,16 +468,24 @@ impl Sweep {
             })
             .collect();
         let neutral_idx: Vec<usize> = (0..n).filter(|&j| neutral[j]).collect();
-        let marginal_rtol = self
-            .marginal_rtol
-            .unwrap_or(100.0 * (n.max(1) as f64) * f64::EPSILON);
+        let errors = pts
+            .iter()
+            .zip(&tracked)
+            .map(|(p, t)| p.errors.as_ref().map(|e| errors_of(t, &p.eig, e)))
+            .collect::<Option<Vec<_>>>();
         Branches {
             norms: pts.iter().map(|p| p.norm).collect(),
             tracked,
             z,
             neutral,
             neutral_idx,
-            marginal_rtol,
+            band: match errors {
+                Some(e) => Band::Errors(e),
+                None => Band::Relative(
+                    self.marginal_rtol
+                        .unwrap_or(100.0 * n as f64 * f64::EPSILON),
+                ),
+            },
         }
     }
 
@@ -487,8 +510,17 @@ impl Sweep {
             (xs[xs.len() - 1], xs[0])
         };
         let mut cuts = vec![lo_all];
+        // Marginal grid points are not stable: they end intervals as boundaries do (a real
+        // part that touches zero there without crossing it).
+        let marginal: Vec<f64> = points
+            .iter()
+            .filter(|p| p.stability == PointStability::Marginal)
+            .map(|p| p.value)
+            .collect();
         if self.locate {
             cuts.extend(boundaries.iter().map(|b| b.value));
+            cuts.extend(marginal.iter().copied());
+            cuts.sort_by(f64::total_cmp);
         } else {
             // Without located boundaries, cut at the grid cells where a sign changes: the
             // stable side ends at its last grid point.
@@ -512,12 +544,13 @@ impl Sweep {
             let inside: Vec<usize> = (0..points.len())
                 .filter(|&k| {
                     let x = xs[k];
-                    let above = if lo == lo_all || !self.locate {
+                    let is_marginal = marginal.contains(&x);
+                    let above = if (lo == lo_all && !is_marginal) || !self.locate {
                         x >= lo
                     } else {
                         x > lo + margin
                     };
-                    let below = if hi == hi_all || !self.locate {
+                    let below = if (hi == hi_all && !is_marginal) || !self.locate {
                         x <= hi
                     } else {
                         x < hi - margin
@@ -530,8 +563,9 @@ impl Sweep {
                     false
                 } else {
                     let mid = 0.5 * (lo + hi);
-                    let (eig, norm) = ctx.eval_tracked(mid, xs, &br.tracked, br.z)?;
-                    br.classify(&eig, norm).1 == PointStability::Stable
+                    let errors = matches!(br.band, Band::Errors(_));
+                    let (eig, norm, err) = ctx.eval_tracked(mid, xs, &br.tracked, br.z, errors)?;
+                    br.classify(&eig, norm, err.as_deref()).1 == PointStability::Stable
                 }
             } else {
                 let any_unstable = inside
@@ -544,7 +578,7 @@ impl Sweep {
             };
             if stable {
                 match stable_intervals.last_mut() {
-                    Some(last) if last.hi == lo => last.hi = hi,
+                    Some(last) if last.hi == lo && !marginal.contains(&lo) => last.hi = hi,
                     _ => stable_intervals.push(StableInterval { lo, hi }),
                 }
             }
@@ -564,7 +598,31 @@ struct Branches {
     z: usize,
     neutral: Vec<bool>,
     neutral_idx: Vec<usize>,
-    marginal_rtol: f64,
+    band: Band,
+}
+
+/// Within what a real part has no sign (step 4).
+enum Band {
+    /// The error estimate of every branch at every grid point (the default).
+    Errors(Vec<Vec<f64>>),
+    /// `rtol · ‖A(x)‖_F` ([`Sweep::with_marginal_rtol`]).
+    Relative(f64),
+}
+
+/// The error estimate of each of `values` (copies of entries of `eig`, in another order),
+/// looked up by its bits; a value that occurs more than once gets the largest estimate.
+fn errors_of(values: &[Complex64], eig: &[Complex64], errors: &[f64]) -> Vec<f64> {
+    let key = |z: &Complex64| (z.re.to_bits(), z.im.to_bits());
+    let mut by_value: std::collections::HashMap<(u64, u64), f64> =
+        std::collections::HashMap::with_capacity(eig.len());
+    for (z, &e) in eig.iter().zip(errors) {
+        let slot = by_value.entry(key(z)).or_insert(0.0);
+        *slot = slot.max(e);
+    }
+    values
+        .iter()
+        .map(|z| by_value.get(&key(z)).copied().unwrap_or(f64::INFINITY))
+        .collect()
 }
 
 impl Branches {
@@ -573,7 +631,10 @@ impl Branches {
     /// trace): where a real root crosses zero next to a neutral zero the two form a defective
     /// double eigenvalue, each known only to √ε, but their sum stays accurate.
     fn sign(&self, k: usize, j: usize) -> i8 {
-        let band = self.marginal_rtol * self.norms[k];
+        let band = match &self.band {
+            Band::Errors(e) => self.tolerance(&e[k], j),
+            Band::Relative(rtol) => rtol * self.norms[k],
+        };
         let re = effective_re(&self.tracked[k], j, &self.neutral_idx);
         if re > band {
             1
@@ -584,20 +645,50 @@ impl Branches {
         }
     }
 
-    /// Step 4: the largest real part of the non-neutral branches and the stability class of
-    /// a point with these branch values.
-    fn classify(&self, eig: &[Complex64], norm: f64) -> (Option<f64>, PointStability) {
-        let b = self.marginal_rtol * norm;
-        let mut max_re: Option<f64> = None;
+    /// The error estimate of branch `j`'s real part taken with the neutral branches', from
+    /// the estimates `e` of every branch at one point.
+    fn tolerance(&self, e: &[f64], j: usize) -> f64 {
+        e[j] + self
+            .neutral_idx
+            .iter()
+            .filter(|&&k| k != j)
+            .map(|&k| e[k])
+            .sum::<f64>()
+    }
+
+    /// Step 4: the largest real part of the non-neutral branches, its tolerance and the
+    /// stability class of a point with these branch values (and error estimates, unless the
+    /// band is relative): every branch judged by [`crate::modes::stability_of`].
+    fn classify(
+        &self,
+        eig: &[Complex64],
+        norm: f64,
+        errors: Option<&[f64]>,
+    ) -> (Option<(f64, f64)>, PointStability) {
+        let mut max_re: Option<(f64, f64)> = None;
+        let (mut unstable, mut marginal) = (false, false);
         for j in (0..eig.len()).filter(|&j| !self.neutral[j]) {
             let re = effective_re(eig, j, &self.neutral_idx);
-            max_re = Some(max_re.map_or(re, |m: f64| m.max(re)));
+            let tol = match (errors, &self.band) {
+                (Some(e), _) => self.tolerance(e, j),
+                (None, Band::Relative(rtol)) => rtol * norm,
+                (None, Band::Errors(_)) => f64::INFINITY,
+            };
+            match crate::modes::stability_of(re, tol) {
+                Stability::Unstable => unstable = true,
+                Stability::Marginal => marginal = true,
+                Stability::Stable => {}
+            }
+            if max_re.is_none_or(|(m, _)| re > m) {
+                max_re = Some((re, tol));
+            }
         }
-        let st = match max_re {
-            None => PointStability::Marginal,
-            Some(m) if m > b => PointStability::Unstable,
-            Some(m) if m < -b => PointStability::Stable,
-            Some(_) => PointStability::Marginal,
+        let st = if max_re.is_none() || (marginal && !unstable) {
+            PointStability::Marginal
+        } else if unstable {
+            PointStability::Unstable
+        } else {
+            PointStability::Stable
         };
         (max_re, st)
     }
@@ -606,13 +697,18 @@ impl Branches {
     fn points(&self, xs: &[f64]) -> Vec<SweepPoint> {
         (0..self.tracked.len())
             .map(|k| {
-                let (max_real, stability) = self.classify(&self.tracked[k], self.norms[k]);
+                let errors = match &self.band {
+                    Band::Errors(e) => Some(e[k].as_slice()),
+                    Band::Relative(_) => None,
+                };
+                let (max, stability) = self.classify(&self.tracked[k], self.norms[k], errors);
                 SweepPoint {
                     value: xs[k],
                     eigenvalues: self.tracked[k].clone(),
-                    max_real,
+                    max_real: max.map(|m| m.0),
                     stability,
                     norm: self.norms[k],
+                    tolerance: max.map(|m| m.1),
                 }
             })
             .collect()
@@ -622,6 +718,8 @@ impl Branches {
 struct Eval {
     /// The eigenvalues, the exact zeros of deflated zero rows and columns first.
     eig: Vec<Complex64>,
+    /// Their error estimates, when asked for (0 for the exact zeros).
+    errors: Option<Vec<f64>>,
     norm: f64,
 }
 
@@ -673,12 +771,14 @@ where
         }
     }
 
-    /// Evaluates A(x) and its eigenvalues; `expect` is the size A must have.
+    /// Evaluates A(x) and its eigenvalues, with their error estimates when `errors`;
+    /// `expect` is the size A must have.
     fn eval(
         &self,
         x: f64,
         ws: &mut Option<EigenvaluesWorkspace>,
         expect: Option<usize>,
+        errors: bool,
     ) -> Result<Eval, SweepError<E>> {
         let a = (self.f)(x).map_err(|source| SweepError::Model {
             param: self.param.to_string(),
@@ -704,6 +804,21 @@ where
         let core = reduced.as_ref().unwrap_or(&a);
         let m = core.nrows();
         let mut eig = vec![Complex64::new(0.0, 0.0); n];
+        if errors {
+            let mut err = vec![0.0; n];
+            if m > 0 {
+                let with = eigenvalues_with_errors(core).map_err(|e| self.numeric(x, e))?;
+                for (k, (z, e)) in with.into_iter().enumerate() {
+                    eig[zeros + k] = z;
+                    err[zeros + k] = e;
+                }
+            }
+            return Ok(Eval {
+                eig,
+                errors: Some(err),
+                norm: a.norm(),
+            });
+        }
         if m > 0 {
             if ws.as_ref().is_none_or(|w| w.dim() != m) {
                 *ws = Some(EigenvaluesWorkspace::new(m));
@@ -714,6 +829,7 @@ where
         }
         Ok(Eval {
             eig,
+            errors: None,
             norm: a.norm(),
         })
     }

@@ -4,7 +4,7 @@ use super::{CharacteristicPolynomial, ClosedForms, det};
 use crate::error::SymError;
 use crate::expr::Expr;
 use crate::rational::Rational;
-use crate::simplify::poly::{Poly, content_in};
+use crate::simplify::poly::{Poly, content_in, square_free};
 use crate::simplify::rational_fn::{Fail, RationalField, Rf};
 
 /// Where a stability condition comes from.
@@ -56,6 +56,16 @@ impl ClosedForms {
     ) -> Result<Vec<StabilityCondition>, SymError> {
         let a = &p.polynomial.coefficients;
         let n = a.len().saturating_sub(1);
+        // A coefficient that vanishes identically (below the leading one) can never be
+        // positive: no parameter values make the polynomial stable, and that is all to say.
+        if let Some(k) = (0..n).find(|&k| a[k].is_zero()) {
+            return Ok(vec![StabilityCondition {
+                expression: Expr::zero(),
+                source: ConditionSource::Coefficient(k),
+                divided_out: Vec::new(),
+                satisfiable: false,
+            }]);
+        }
         let mut raw: Vec<(ConditionSource, Expr)> = Vec::new();
         for k in (0..=n).rev() {
             raw.push((ConditionSource::Coefficient(k), a[k]));
@@ -68,12 +78,12 @@ impl ClosedForms {
         let exprs: Vec<Expr> = raw.iter().map(|(_, e)| *e).collect();
         crate::expr::in_pool_of(&exprs, || {
             let mut field = RationalField::new(&exprs, &self.limits)?.ok();
-            let mut factored: Vec<(ConditionSource, Vec<Expr>)> = raw
+            let mut factored: Vec<(ConditionSource, Vec<Factor>)> = raw
                 .into_iter()
                 .map(|(source, e)| {
                     let f = match field.as_mut() {
-                        Some(f) => factors_of(f, e).unwrap_or_else(|| vec![e]),
-                        None => vec![e],
+                        Some(f) => factors_of(f, e).unwrap_or_else(|| vec![Factor::of(e)]),
+                        None => vec![Factor::of(e)],
                     };
                     (source, f)
                 })
@@ -83,8 +93,8 @@ impl ClosedForms {
             factored.sort_by_key(|(_, f)| {
                 let open: Vec<Expr> = f
                     .iter()
-                    .copied()
-                    .filter(|x| !x.sign().is_positive())
+                    .filter(|x| x.sign != Some(true))
+                    .map(|x| x.expr)
                     .collect();
                 (open.len(), Expr::dag_size(&open))
             });
@@ -98,6 +108,25 @@ impl ClosedForms {
                 }
             }
             Ok(out)
+        })
+    }
+
+    /// `e` as the product of its factors: the numeric content, the parameters dividing every
+    /// term, the contents with respect to each parameter and the square-free parts, each
+    /// power once (`kf*kr*(a + b)^2`, not its expansion). `e` itself when nothing factors or
+    /// a bound of the exact algebra is reached.
+    pub fn factored(&self, e: Expr) -> Result<Expr, SymError> {
+        if e.is_number() || e.param_index().is_some() {
+            return Ok(e);
+        }
+        crate::expr::in_pool_of(&[e], || {
+            let Ok(mut field) = RationalField::new(&[e], &self.limits)? else {
+                return Ok(e);
+            };
+            Ok(match factors_of(&mut field, e) {
+                Some(f) if f.len() > 1 => Expr::product(f.iter().map(|x| x.expr)),
+                _ => e,
+            })
         })
     }
 
@@ -134,9 +163,10 @@ impl ClosedForms {
     }
 }
 
-/// The Hurwitz determinant `Δₖ` of `a₀ + a₁s + … + aₙsⁿ`: the leading `k × k` minor of the
-/// matrix with entries `H[i][j] = a(n − 2j + i)` (1-based, zero outside `0..=n`).
-fn hurwitz_minor(a: &[Expr], k: usize) -> Expr {
+/// The Hurwitz determinant `Δₖ` of `a₀ + a₁s + … + aₙsⁿ` (`a` lowest first): the leading
+/// `k × k` minor of the matrix with entries `H[i][j] = a(n − 2j + i)` (1-based, zero outside
+/// `0..=n`), expanded by minors, unsimplified (the form code generation evaluates).
+pub fn hurwitz_minor(a: &[Expr], k: usize) -> Expr {
     let n = a.len() as i64 - 1;
     let entry = |i: usize, j: usize| -> Expr {
         let idx = n - 2 * (j as i64 + 1) + (i as i64 + 1);
@@ -152,10 +182,34 @@ fn hurwitz_minor(a: &[Expr], k: usize) -> Expr {
     det::det(&m)
 }
 
+/// A factor of a condition, with its sign when its terms fix it.
+#[derive(Clone, Copy, Debug)]
+struct Factor {
+    expr: Expr,
+    /// `Some(true)`: positive for all parameter values allowed (every term a product of
+    /// positive atoms with a positive coefficient, or its sign known otherwise);
+    /// `Some(false)`: negative likewise; `None`: not known.
+    sign: Option<bool>,
+}
+
+impl Factor {
+    fn of(expr: Expr) -> Factor {
+        let s = expr.sign();
+        let sign = if s.is_positive() {
+            Some(true)
+        } else if s.is_nonpos() && s.is_nonzero() {
+            Some(false)
+        } else {
+            None
+        };
+        Factor { expr, sign }
+    }
+}
+
 /// The factors of `e` (numerator and denominator): numeric content, atoms of the monomial
-/// content, contents with respect to each variable, and the primitive rest (`None` when a
-/// bound is reached).
-fn factors_of(f: &mut RationalField, e: Expr) -> Option<Vec<Expr>> {
+/// content, contents with respect to each variable, and the square-free parts of the
+/// primitive rest, a factor of multiplicity k given k times (`None` when a bound is reached).
+fn factors_of(f: &mut RationalField, e: Expr) -> Option<Vec<Factor>> {
     let rf = match f.value(e) {
         Ok(r) => r,
         Err(Fail::Limit(_) | Fail::ZeroDenominator) => return None,
@@ -165,7 +219,24 @@ fn factors_of(f: &mut RationalField, e: Expr) -> Option<Vec<Expr>> {
     if !rf.den.is_constant() {
         split(f, &rf.den, &mut polys)?;
     }
-    Some(polys.iter().map(|p| render(f, p)).collect())
+    let positive: Vec<bool> = f.atoms().iter().map(|a| a.sign().is_positive()).collect();
+    Some(
+        polys
+            .iter()
+            .map(|p| {
+                let mut x = Factor::of(render(f, p));
+                // Every term a product of positive atoms: the sign of the coefficients.
+                if x.sign.is_none() && p.vars().iter().zip(&positive).all(|(&v, &pos)| !v || pos) {
+                    if p.terms.iter().all(|t| t.1.signum() > 0) {
+                        x.sign = Some(true);
+                    } else if p.terms.iter().all(|t| t.1.is_negative()) {
+                        x.sign = Some(false);
+                    }
+                }
+                x
+            })
+            .collect(),
+    )
 }
 
 /// Appends the factors of `p` to `out`.
@@ -197,8 +268,13 @@ fn split(f: &mut RationalField, p: &Poly, out: &mut Vec<Poly>) -> Option<()> {
             split(f, &c, out)?;
         }
     }
-    if !rest.is_constant() {
-        out.push(rest);
+    if let Some(v) = (0..n).find(|&v| rest.vars()[v]) {
+        // Every factor left involves every variable of `rest`: its square-free parts.
+        for (q, k) in square_free(&rest, v, &mut f.budget).ok()? {
+            for _ in 0..k {
+                out.push(q.clone());
+            }
+        }
     }
     Some(())
 }
@@ -218,17 +294,16 @@ fn render(f: &mut RationalField, p: &Poly) -> Expr {
 /// nothing is left to require).
 fn condition(
     source: ConditionSource,
-    factors: Vec<Expr>,
+    factors: Vec<Factor>,
     known: &mut Vec<Expr>,
 ) -> Option<StabilityCondition> {
     let mut negative = false;
     let mut kept = Vec::new();
     let mut dropped = Vec::new();
-    for x in factors {
-        let s = x.sign();
-        if s.is_positive() || known.contains(&x) {
+    for Factor { expr: x, sign } in factors {
+        if sign == Some(true) || known.contains(&x) {
             dropped.push(x);
-        } else if (s.is_nonpos() && s.is_nonzero()) || known.contains(&-x) {
+        } else if sign == Some(false) || known.contains(&-x) {
             negative = !negative;
             dropped.push(x);
         } else {

@@ -34,7 +34,7 @@ mod hurwitz;
 mod modal;
 mod transfer;
 
-pub use hurwitz::{Boundary, ConditionSource, StabilityCondition};
+pub use hurwitz::{Boundary, ConditionSource, StabilityCondition, hurwitz_minor};
 pub use modal::SecondOrder;
 pub use transfer::TransferFunction;
 
@@ -87,6 +87,9 @@ pub struct CharacteristicPolynomial {
     pub normalized: bool,
 }
 
+/// The largest model whose closed forms [`ClosedForms::with_max_states`] can allow.
+pub const MAX_CLOSED_FORM_STATES: usize = 24;
+
 /// Closed forms with explicit bounds on the exact algebra (builder).
 #[derive(Clone, Debug)]
 pub struct ClosedForms {
@@ -115,19 +118,22 @@ impl ClosedForms {
         self
     }
 
-    /// The largest matrix accepted (the expansion by minors grows as `n·2ⁿ`).
+    /// The largest model accepted, in states (the expansion by minors grows as `n·2ⁿ`; at
+    /// most [`MAX_CLOSED_FORM_STATES`]).
     pub fn with_max_states(mut self, n: usize) -> Self {
         self.max_states = n;
         self
     }
 
+    /// Refuses a model of more than `max_states` states (at most [`MAX_CLOSED_FORM_STATES`]).
     fn check_size(&self, n: usize, what: &str) -> Result<(), SymError> {
-        if n > self.max_states || n > 24 {
-            return Err(SymError::Unsupported(format!(
-                "{what} of a {n}-state model: closed forms are limited to {} states \
-                 (raise the limit with `with_max_states`, up to 24)",
-                self.max_states.min(24)
-            )));
+        let limit = self.max_states.min(MAX_CLOSED_FORM_STATES);
+        if n > limit {
+            return Err(SymError::TooManyStates {
+                what: what.to_string(),
+                states: n,
+                limit,
+            });
         }
         Ok(())
     }

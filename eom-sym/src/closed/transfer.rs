@@ -56,7 +56,8 @@ impl ClosedForms {
                 d.ncols()
             )));
         }
-        self.check_size(n + 1, "a transfer function")?;
+        // The limit is the model's size: the bordered determinant is one larger.
+        self.check_size(n, "a transfer function")?;
         let entries: Vec<Expr> = a.iter().chain(b.iter()).chain(c.iter()).copied().collect();
         crate::expr::in_pool_of(&entries, || {
             let mut m = det::pencil(None, a);

@@ -67,9 +67,23 @@ use crate::scope::Scope;
 pub const MAX_DEPTH: usize = 256;
 
 /// Names that are functions when followed by `(`.
-const FUNCTIONS: [&str; 10] = [
+pub const FUNCTIONS: [&str; 10] = [
     "sin", "cos", "tan", "exp", "ln", "log", "abs", "sqrt", "atan2", "float",
 ];
+
+/// Names of the constants (`π` too, which is not an identifier).
+pub const CONSTANTS: [&str; 2] = ["pi", "e"];
+
+/// The names no parameter may have: the constants and the elementary functions (`log` and
+/// `float` stay usable as parameters: `log(`, `float(` are always the functions).
+pub const RESERVED: [&str; 10] = [
+    "pi", "e", "sin", "cos", "tan", "exp", "ln", "abs", "sqrt", "atan2",
+];
+
+/// Whether `name` is one of [`RESERVED`].
+pub fn is_reserved(name: &str) -> bool {
+    RESERVED.contains(&name)
+}
 
 /// Parse `input` with parameters resolved in `scope`.
 ///

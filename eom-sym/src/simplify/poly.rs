@@ -379,6 +379,25 @@ impl Poly {
         }))
     }
 
+    /// `∂self/∂x_v` (lowering the exponent of `v` keeps the lexicographic order of the terms
+    /// that remain).
+    pub(crate) fn derivative(&self, v: usize, b: &mut Budget) -> Result<Poly, WorkLimit> {
+        b.tick(self.terms.len())?;
+        let mut terms = Vec::with_capacity(self.terms.len());
+        for (e, c) in &self.terms {
+            if e[v] == 0 {
+                continue;
+            }
+            let mut ex = e.clone();
+            ex[v] -= 1;
+            terms.push((ex, ov(c.mul(&Rational::int(i64::from(e[v]))))?));
+        }
+        Ok(Poly {
+            nvars: self.nvars,
+            terms,
+        })
+    }
+
     /// Divide by the leading coefficient.
     pub(crate) fn monic(&self, b: &mut Budget) -> Result<Poly, WorkLimit> {
         let lc = self.lc();
@@ -433,6 +452,38 @@ pub(crate) fn gcd(a: &Poly, b: &Poly, bud: &mut Budget) -> Result<Poly, WorkLimi
     let c = gcd(&ca, &cb, bud)?;
     let g = prs(pa, pb, v, bud)?;
     c.mul(&g, bud)?.monic(bud)
+}
+
+/// The square-free decomposition of `p` (Yun's algorithm in the variable `v`): `(f, k)` with
+/// `p = c · Π fᵏ`, the `f` monic, square-free and pairwise coprime (`c` a constant). Every
+/// factor of `p` must involve `v` (its content in `v` a constant), which holds for the
+/// primitive part left after the contents in every variable are divided out.
+pub(crate) fn square_free(
+    p: &Poly,
+    v: usize,
+    bud: &mut Budget,
+) -> Result<Vec<(Poly, u32)>, WorkLimit> {
+    let dp = p.derivative(v, bud)?;
+    let a0 = gcd(p, &dp, bud)?;
+    let divide = |x: &Poly, y: &Poly, bud: &mut Budget| -> Result<Poly, WorkLimit> {
+        x.div_exact(y, bud)?.ok_or(WorkLimit::Work)
+    };
+    let mut b = divide(p, &a0, bud)?;
+    let mut c = divide(&dp, &a0, bud)?;
+    let mut d = c.sub(&b.derivative(v, bud)?, bud)?;
+    let mut out = Vec::new();
+    let mut k = 1;
+    while !b.is_constant() {
+        let a = gcd(&b, &d, bud)?;
+        if !a.is_constant() {
+            out.push((a.monic(bud)?, k));
+        }
+        b = divide(&b, &a, bud)?;
+        c = divide(&d, &a, bud)?;
+        d = c.sub(&b.derivative(v, bud)?, bud)?;
+        k += 1;
+    }
+    Ok(out)
 }
 
 /// The gcd of the coefficients with respect to `v`, monic.

@@ -16,12 +16,20 @@
 //! result is not finite), [`Controller::tick`] returns the error and the caller falls back (here:
 //! zero torque) instead of using garbage matrices.
 //!
+//! [`Predictor`] runs at 1 kHz on a reduced, discretised model: the bicycle reduced to five
+//! states by balanced truncation at the nominal point (its two exact zeros kept, the fast castor
+//! mode dropped), generated with `eval_discrete`, which gives `Ad = e^{A h}` and
+//! `Bd = ∫₀ʰ e^{A t} dt B` at the current speed every tick without allocation; it predicts the
+//! next reduced state `z⁺ = Ad z + Bd u` (`z = Wᵀ x`) exactly for the reduced model, instead of
+//! the Euler step above.
+//!
 //! The crate is `#![no_std]` and compiles for `thumbv7em-none-eabihf` (see `check-thumbv7em.sh`).
 
 #![no_std]
 #![warn(missing_docs)]
 
 include!(concat!(env!("OUT_DIR"), "/bicycle.rs"));
+include!(concat!(env!("OUT_DIR"), "/bicycle_reduced.rs"));
 
 #[doc(hidden)]
 pub mod nostd_check;
@@ -141,5 +149,93 @@ impl Controller {
     /// A of the last successful tick (column-major).
     pub fn a(&self) -> &[f32; A_LEN] {
         &self.a
+    }
+}
+
+/// Sample rate of the [`Predictor`], Hz.
+pub const PREDICTOR_RATE_HZ: f32 = 1000.0;
+
+/// Index of the speed among the reduced module's parameters.
+const RV: usize = {
+    let mut k = 0;
+    while !matches!(bicycle_reduced::PARAM_NAMES[k].as_bytes(), b"v") {
+        k += 1;
+    }
+    k
+};
+
+/// A one-step predictor at 1 kHz on the reduced, discretised bicycle: every tick the
+/// zero-order-hold matrices at the measured speed, the prediction of the next reduced state,
+/// and how far the previous prediction was from this tick's measurement.
+pub struct Predictor {
+    params: [f32; bicycle_reduced::N_PARAMS],
+    ad: [f32; bicycle_reduced::A_LEN],
+    bd: [f32; bicycle_reduced::B_LEN],
+    work: bicycle_reduced::DiscreteWork,
+    predicted: Option<[f32; bicycle_reduced::N_STATES]>,
+}
+
+impl Predictor {
+    /// A predictor for the bicycle with `params`.
+    pub fn new(params: bicycle_reduced::Params) -> Self {
+        Predictor {
+            params: params.to_array(),
+            ad: [0.0; bicycle_reduced::A_LEN],
+            bd: [0.0; bicycle_reduced::B_LEN],
+            work: bicycle_reduced::DiscreteWork::new(),
+            predicted: None,
+        }
+    }
+
+    /// The reduced state `z = Wᵀ x` of a full state (in the order of the full model's states,
+    /// [`bicycle::STATE_NAMES`]).
+    pub fn reduce(x: &[f32; bicycle_reduced::FULL_STATES]) -> [f32; bicycle_reduced::N_STATES] {
+        core::array::from_fn(|j| {
+            (0..bicycle_reduced::FULL_STATES)
+                .map(|i| bicycle_reduced::REDUCE_W[i + j * bicycle_reduced::FULL_STATES] * x[i])
+                .sum()
+        })
+    }
+
+    /// One tick (1 ms): the measured speed and full state, the steer torque held over the
+    /// coming tick. Returns the largest difference between the reduced state and the one the
+    /// previous tick predicted (0 on the first tick). Outside the validity region the error
+    /// comes back and the prediction is dropped.
+    pub fn tick(
+        &mut self,
+        speed: f32,
+        x: &[f32; bicycle_reduced::FULL_STATES],
+        torque: f32,
+    ) -> Result<f32, bicycle_reduced::Error> {
+        self.params[RV] = speed;
+        let h = 1.0 / PREDICTOR_RATE_HZ;
+        if let Err(e) = bicycle_reduced::eval_discrete(
+            &self.params,
+            h,
+            &mut self.ad,
+            &mut self.bd,
+            &mut self.work,
+        ) {
+            self.predicted = None;
+            return Err(e);
+        }
+        let n = bicycle_reduced::N_STATES;
+        let z = Self::reduce(x);
+        let residual = match &self.predicted {
+            Some(p) => p
+                .iter()
+                .zip(&z)
+                .fold(0.0f32, |m, (p, z)| m.max(libm::fabsf(p - z))),
+            None => 0.0,
+        };
+        let next: [f32; bicycle_reduced::N_STATES] = core::array::from_fn(|i| {
+            let mut s = self.bd[i + STEER * n] * torque;
+            for (j, zj) in z.iter().enumerate() {
+                s += self.ad[i + j * n] * zj;
+            }
+            s
+        });
+        self.predicted = Some(next);
+        Ok(residual)
     }
 }

@@ -87,3 +87,66 @@ fn outside_the_validity_region_a_tick_is_an_error() {
     assert!(fresh.contains(&1.0), "constants written at construction");
     assert_eq!(*ctl.a(), a);
 }
+
+/// The 1 kHz predictor on the reduced, discretised model against the full plant (integrated
+/// with steps of 10 µs) under a steer torque: the one-step prediction of the reduced state is
+/// close, over a speed ramp.
+#[test]
+fn reduced_discrete_predictor_at_1_khz_tracks_the_full_plant() {
+    use controller::{Predictor, bicycle_reduced};
+    let mut params = plant::Params::NOMINAL.to_array();
+    let iv = plant::PARAM_NAMES
+        .iter()
+        .position(|n| *n == "v")
+        .expect("v");
+    let lean = plant::STATE_NAMES
+        .iter()
+        .position(|n| *n == "rear frame.rx")
+        .expect("lean");
+    let steer = plant::INPUT_NAMES
+        .iter()
+        .position(|n| *n == "T_delta")
+        .expect("steer");
+    let (mut a, mut b, mut w) = (
+        [0.0; plant::A_LEN],
+        [0.0; plant::B_LEN],
+        [0.0; plant::WORK_LEN],
+    );
+    let mut x = [0.0f64; plant::N_STATES];
+    x[lean] = 0.05;
+    let mut pred = Predictor::new(bicycle_reduced::Params::NOMINAL);
+    let (mut worst, mut size) = (0.0f32, 0.0f32);
+    for tick in 0..2000 {
+        let v = 4.5 + 0.0005 * tick as f64;
+        let torque = 0.5 * (tick as f64 * 0.004).sin();
+        let xf: [f32; bicycle_reduced::FULL_STATES] = core::array::from_fn(|k| x[k] as f32);
+        let r = pred
+            .tick(v as f32, &xf, torque as f32)
+            .expect("valid on the ride");
+        if tick > 0 {
+            worst = worst.max(r);
+        }
+        size = size.max(
+            Predictor::reduce(&xf)
+                .iter()
+                .fold(0.0f32, |m, z| m.max(z.abs())),
+        );
+        params[iv] = v;
+        plant::eval_ab(&params, &mut a, &mut b, &mut w).expect("plant");
+        for _ in 0..100 {
+            let dx: Vec<f64> = (0..plant::N_STATES)
+                .map(|i| {
+                    b[i + steer * plant::N_STATES] * torque
+                        + (0..plant::N_STATES)
+                            .map(|j| a[i + j * plant::N_STATES] * x[j])
+                            .sum::<f64>()
+                })
+                .collect();
+            for (xi, d) in x.iter_mut().zip(dx) {
+                *xi += 1e-5 * d;
+            }
+        }
+    }
+    eprintln!("largest one-step residual {worst:.3e} against reduced states up to {size:.3e}");
+    assert!(worst < 1e-3 * size, "residual {worst} against {size}");
+}

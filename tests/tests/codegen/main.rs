@@ -58,6 +58,8 @@ macro_rules! generated {
                 g::Error::NonFinite { matrix, row, col } => {
                     GenErr::NonFinite(format!("{matrix:?}"), row as usize, col as usize)
                 }
+                // Only `eval_discrete` returns it, and these tests do not call it.
+                g::Error::SampleTime => unreachable!("no eval_discrete here"),
             }
         }
         fn params(p: &[f64]) -> [$ty; g::N_PARAMS] {
@@ -357,4 +359,5 @@ mod accuracy;
 mod hostile;
 mod interpreter;
 mod kernels;
+mod stability;
 mod text;

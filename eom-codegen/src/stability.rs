@@ -1,0 +1,255 @@
+//! Stability without eigenvalues (`EmitOptions::stability`): the characteristic polynomial's
+//! coefficients and the Liénard–Chipart conditions as straight-line code in the parameters,
+//! each with a bound on its rounding error, and a verdict that says "undecided" where a
+//! condition is within its bound of zero.
+//!
+//! The polynomial is the closed form `eom symbolic` computes (`eom_sym::closed`):
+//! `det(sI − A) = s^k · p(s) / scale` from the descriptor pencil `det(sE − F)/det(E)` of the
+//! reduction, the `k` structural zero roots divided out exactly (they are neutral, as the
+//! eigenvalue verdict's structural zeros are). With `p(s) = a₀ + a₁s + … + a_d s^d`, the
+//! roots of `p` all have negative real parts exactly when (Liénard & Chipart 1914; Gantmacher,
+//! *The Theory of Matrices*, vol. 2, XV §13) every coefficient has the sign of `a_d` and the
+//! Hurwitz determinants `Δ_{d−1}, Δ_{d−3}, …` (taken on `p·sign(a_d)`) are positive. The
+//! conditions are evaluated as such from the coefficients' formulas — no factor of known
+//! sign is divided out, so they hold whatever the parameters' values.
+//!
+//! The bounds come from the a-priori analysis of the straight-line code, with magnitudes the
+//! code computes next to the values (see `render/bounded.rs`): a condition whose value
+//! exceeds its bound has the sign computed, whatever the rounding.
+
+use crate::CodegenError;
+use crate::render::{BoundedCode, Ctx, render_bounded};
+use eom_model::SymbolicStateSpace;
+use eom_sym::closed::{ClosedForms, hurwitz_minor};
+use eom_sym::lower::{Rounding, lower};
+use eom_sym::{Expr, subs_many};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+/// The largest model (states) whose characteristic polynomial is formed for `--stability`
+/// (the expansion by minors grows as `n·2ⁿ`).
+pub const MAX_STABILITY_STATES: usize = 16;
+
+/// The polynomial and the conditions, as expressions of the generated code's parameters.
+pub(crate) struct StabilityForm {
+    /// The degree of `p`.
+    degree: usize,
+    /// The structural zero roots divided out.
+    zero_roots: usize,
+    /// `a₀ … a_d`, then the Hurwitz determinants.
+    conditions: Vec<Expr>,
+    /// Per condition: its description, and its degree in the coefficients (the power of
+    /// `sign(a_d)` that normalises it).
+    labels: Vec<(String, usize)>,
+}
+
+impl StabilityForm {
+    /// The form of `sym`, with the fixed parameters (`fixed`: parameter and value)
+    /// substituted first.
+    pub(crate) fn new(
+        sym: &SymbolicStateSpace,
+        fixed: &[(Expr, Expr)],
+    ) -> Result<StabilityForm, CodegenError> {
+        let (e, f) = sym.pencil();
+        let n = f.nrows();
+        if n > MAX_STABILITY_STATES {
+            return Err(CodegenError::BadOption {
+                option: "stability",
+                problem: format!(
+                    "the characteristic polynomial of a {n}-state model is not formed (at most {MAX_STABILITY_STATES} states)"
+                ),
+            });
+        }
+        let sub = |m: &nalgebra::DMatrix<Expr>| -> Result<nalgebra::DMatrix<Expr>, CodegenError> {
+            if fixed.is_empty() {
+                return Ok(m.clone());
+            }
+            let v = subs_many(m.as_slice(), fixed)?;
+            Ok(nalgebra::DMatrix::from_vec(m.nrows(), m.ncols(), v))
+        };
+        let (e, f) = (sub(&e)?, sub(&f)?);
+        let p = ClosedForms::default()
+            .with_max_states(MAX_STABILITY_STATES)
+            .pencil_polynomial(Some(&e), &f)?;
+        let a = p.polynomial.coefficients.clone();
+        let d = a.len().saturating_sub(1);
+        let mut conditions = a.clone();
+        let mut labels: Vec<(String, usize)> = (0..=d)
+            .map(|k| (format!("coefficient of s^{k}"), 1))
+            .collect();
+        let mut k = d.saturating_sub(1);
+        while k >= 2 {
+            conditions.push(hurwitz_minor(&a, k));
+            labels.push((format!("Hurwitz determinant Δ{k}"), k));
+            k -= 2;
+        }
+        Ok(StabilityForm {
+            degree: d,
+            zero_roots: p.zero_roots,
+            conditions,
+            labels,
+        })
+    }
+}
+
+/// The items of the generated module: constants, `Verdict`, `characteristic_polynomial`,
+/// `stability_conditions`, `stability`. `validate`, when given, is a
+/// statement that returns the generated `Error` when the point `p` is outside the validity
+/// region of the reduction's rank decisions.
+pub(crate) fn render(
+    ctx: &Ctx,
+    form: &StabilityForm,
+    validate: Option<TokenStream>,
+) -> Result<TokenStream, CodegenError> {
+    let lowered = lower(
+        &form.conditions,
+        &ctx.problem.param_exprs,
+        &[],
+        Rounding::Free,
+    )?;
+    let nc = form.conditions.len();
+    let d = form.degree;
+    let k = form.zero_roots;
+    let scalar = raw_body(ctx, &lowered)?;
+    let labels = form.labels.iter().map(|(l, _)| l.as_str());
+    let degrees = form.labels.iter().map(|(_, g)| *g);
+    let lead = d;
+    let check = validate.unwrap_or_default();
+    let doc_raw = " The coefficients `a₀ … a_d` of `p(s)` (as computed: not normalised by \
+                   the sign of `a_d`) and the Hurwitz determinants, with bounds on their \
+                   rounding errors.";
+    Ok(quote! {
+        /// The degree `d` of `p(s)`, the characteristic polynomial with its structural zero
+        /// roots divided out: `det(sI − A) = s^ZERO_ROOTS · p(s) / scale`.
+        pub const POLY_DEGREE: usize = #d;
+        /// The structural zero roots of `det(sI − A)` (neutral in the verdict).
+        pub const ZERO_ROOTS: usize = #k;
+        /// The number of Liénard–Chipart conditions.
+        pub const N_CONDITIONS: usize = #nc;
+        /// What each condition is: the coefficients of `p(s)` from `s⁰` up, then the Hurwitz
+        /// determinants.
+        pub const CONDITIONS: [&str; N_CONDITIONS] = [#(#labels),*];
+        /// The degree of each condition in the coefficients: the power of `sign(a_d)` that
+        /// normalises it.
+        pub const CONDITION_DEGREES: [usize; N_CONDITIONS] = [#(#degrees),*];
+
+        /// Whether every root of `p(s)` (every eigenvalue but the structural zeros) has a
+        /// negative real part, decided from the conditions and their rounding-error bounds.
+        /// `#[repr(i8)]`: `-1`, `0`, `1` across a foreign-function boundary.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        #[repr(i8)]
+        pub enum Verdict {
+            /// A condition is certainly not positive (at most minus its bound, or exactly
+            /// zero with no rounding): some root has a real part ≥ 0 (unstable or marginal).
+            Unstable = -1,
+            /// No condition is negative beyond its bound, but one (or the leading coefficient)
+            /// is within its bound of zero: rounding could change the answer.
+            Undecided = 0,
+            /// Every condition is positive beyond its bound.
+            Stable = 1,
+        }
+
+        #[doc = #doc_raw]
+        #[inline(always)]
+        fn stability_raw(p: &[f64; N_PARAMS], c: &mut [f64; N_CONDITIONS], e: &mut [f64; N_CONDITIONS]) {
+            #scalar
+        }
+
+        /// The conditions normalised by the sign of the leading coefficient; `false` (left
+        /// as computed) when that sign is not decided.
+        #[inline(always)]
+        fn normalise(c: &mut [f64; N_CONDITIONS], e: &[f64; N_CONDITIONS]) -> bool {
+            let lead = c[#lead];
+            if !(lead.abs() > e[#lead]) {
+                return false;
+            }
+            if lead < 0.0 {
+                for (x, g) in c.iter_mut().zip(CONDITION_DEGREES) {
+                    if g % 2 == 1 {
+                        *x = -*x;
+                    }
+                }
+            }
+            true
+        }
+
+        /// The verdict from the raw conditions.
+        #[inline(always)]
+        fn verdict_of(c: &mut [f64; N_CONDITIONS], e: &[f64; N_CONDITIONS]) -> Verdict {
+            if !normalise(c, e) {
+                return Verdict::Undecided;
+            }
+            let (mut negative, mut open) = (false, false);
+            for (x, b) in c.iter().zip(e) {
+                // `x ≤ −b`: the exact value is ≤ 0 (a condition exactly 0, such as the
+                // damping of an undamped model, fails: marginal is not stable).
+                negative |= *x <= -*b;
+                open |= !(*x > *b);
+            }
+            if negative {
+                Verdict::Unstable
+            } else if open {
+                Verdict::Undecided
+            } else {
+                Verdict::Stable
+            }
+        }
+
+        /// The coefficients `a₀ … a_d` of `p(s)` (`c`, lowest first) and bounds on their
+        /// rounding errors (`e`: `|c[k] − a_k| ≤ e[k]`, `a_k` the exact value at `p`).
+        pub fn characteristic_polynomial(
+            p: &[f64; N_PARAMS],
+            c: &mut [f64; POLY_DEGREE + 1],
+            e: &mut [f64; POLY_DEGREE + 1],
+        ) {
+            let (mut cc, mut ee) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
+            stability_raw(p, &mut cc, &mut ee);
+            c.copy_from_slice(&cc[..POLY_DEGREE + 1]);
+            e.copy_from_slice(&ee[..POLY_DEGREE + 1]);
+        }
+
+        /// The Liénard–Chipart conditions (see [`CONDITIONS`]), each `> 0` for stability,
+        /// normalised by the sign of the leading coefficient, with bounds on their rounding
+        /// errors. Returns `false` (conditions left as computed) when the leading
+        /// coefficient is within its bound of zero.
+        pub fn stability_conditions(
+            p: &[f64; N_PARAMS],
+            c: &mut [f64; N_CONDITIONS],
+            e: &mut [f64; N_CONDITIONS],
+        ) -> bool {
+            stability_raw(p, c, e);
+            normalise(c, e)
+        }
+
+        /// The stability verdict at `p` without eigenvalues: [`Verdict::Stable`] when every
+        /// Liénard–Chipart condition exceeds its rounding-error bound, [`Verdict::Unstable`]
+        /// when one is at most minus its bound, [`Verdict::Undecided`] otherwise (and when a
+        /// value is not finite). Errors: the point is outside the validity region of the
+        /// reduction's rank decisions (pivots need no check here: a divisor near zero makes
+        /// the bounds infinite, and the verdict undecided).
+        pub fn stability(p: &[f64; N_PARAMS]) -> Result<Verdict, Error> {
+            #check
+            let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
+            stability_raw(p, &mut c, &mut e);
+            Ok(verdict_of(&mut c, &e))
+        }
+    })
+}
+
+/// The body of `stability_raw`: the parameters' locals, the bounded code, the stores.
+fn raw_body(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
+    let BoundedCode { body, roots } = render_bounded(ctx, lowered)?;
+    let params = ctx.problem.params.iter().enumerate().map(|(i, p)| {
+        let local = format_ident!("{}", p.local);
+        quote!(let #local: f64 = p[#i];)
+    });
+    let stores = roots
+        .iter()
+        .enumerate()
+        .map(|(i, (v, e))| quote!(c[#i] = #v; e[#i] = #e;));
+    Ok(quote! {
+        #(#params)*
+        #body
+        #(#stores)*
+    })
+}

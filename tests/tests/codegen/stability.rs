@@ -1,0 +1,306 @@
+//! The generated stability verdict (`eom codegen --stability`, modules `stab::MODEL`):
+//!
+//! * its rounding-error bounds hold: every coefficient and Liénard–Chipart condition the
+//!   code computes is within its bound of the same formula evaluated in double-double;
+//! * where it decides, its verdict is the eigenvalues' (faer's solver on the tape's A, the
+//!   structural zeros deflated exactly, a point stable when every other eigenvalue has a
+//!   negative real part), and it leaves few points undecided;
+//! * the bicycle: the published speeds' stability (Meijaard et al. 2007: weave speed 4.29 m/s,
+//!   capsize speed 6.02 m/s), and the spring–mass–damper's polynomial `m s² + c s + k`.
+
+use super::*;
+use eom_sym::Dd;
+use eom_sym::closed::{ClosedForms, hurwitz_minor};
+use eom_sym::tape::eval_generic;
+use rand::{Rng, SeedableRng, rngs::StdRng};
+
+/// Values and their rounding-error bounds.
+type WithBounds = (Vec<f64>, Vec<f64>);
+
+/// One generated module's stability functions (`f64` in and out).
+struct Stab {
+    model: &'static str,
+    /// The verdict: `-1`, `0`, `1`, or `None` on an error.
+    verdict: fn(&[f64]) -> Option<i8>,
+    /// `stability_conditions`: whether normalised, values, bounds.
+    conditions: fn(&[f64]) -> (bool, WithBounds),
+    /// `characteristic_polynomial`: values, bounds.
+    polynomial: fn(&[f64]) -> WithBounds,
+    degrees: &'static [usize],
+    zero_roots: usize,
+}
+
+macro_rules! stab {
+    ($model:expr, $m:path) => {{
+        use $m as g;
+        fn arr(p: &[f64]) -> [f64; g::N_PARAMS] {
+            p.try_into().expect("parameter count")
+        }
+        fn verdict(p: &[f64]) -> Option<i8> {
+            g::stability(&arr(p)).ok().map(|v| v as i8)
+        }
+        fn conditions(p: &[f64]) -> (bool, WithBounds) {
+            let (mut c, mut e) = ([0.0; g::N_CONDITIONS], [0.0; g::N_CONDITIONS]);
+            let ok = g::stability_conditions(&arr(p), &mut c, &mut e);
+            (ok, (c.to_vec(), e.to_vec()))
+        }
+        fn polynomial(p: &[f64]) -> WithBounds {
+            let (mut c, mut e) = ([0.0; g::POLY_DEGREE + 1], [0.0; g::POLY_DEGREE + 1]);
+            g::characteristic_polynomial(&arr(p), &mut c, &mut e);
+            (c.to_vec(), e.to_vec())
+        }
+        Stab {
+            model: $model,
+            verdict,
+            conditions,
+            polynomial,
+            degrees: &g::CONDITION_DEGREES,
+            zero_roots: g::ZERO_ROOTS,
+        }
+    }};
+}
+
+fn all() -> Vec<Stab> {
+    vec![
+        stab!("smd", stab::smd),
+        stab!("pendulum", stab::pendulum),
+        stab!("shimmy", stab::shimmy),
+        stab!("bicycle", stab::bicycle),
+        stab!("quarter_car", stab::quarter_car),
+        stab!("top", stab::top),
+        stab!("disk", stab::disk),
+        stab!("chain3", stab::chain3),
+        stab!("smd_wing", stab::smd_wing),
+        stab!("shimmy_wing", stab::shimmy_wing),
+    ]
+}
+
+/// The conditions' formulas as the generator forms them: the pencil's characteristic
+/// polynomial, then the Hurwitz determinants `Δ_{d−1}, Δ_{d−3}, …`.
+fn condition_exprs(sym: &SymbolicStateSpace) -> (Vec<eom_sym::Expr>, usize) {
+    let (e, f) = sym.pencil();
+    let p = ClosedForms::default()
+        .with_max_states(16)
+        .pencil_polynomial(Some(&e), &f)
+        .expect("closed form");
+    let a = p.polynomial.coefficients.clone();
+    let d = a.len() - 1;
+    let mut out = a.clone();
+    let mut k = d.saturating_sub(1);
+    while k >= 2 {
+        out.push(hurwitz_minor(&a, k));
+        k -= 2;
+    }
+    (out, p.zero_roots)
+}
+
+/// The eigenvalues' verdict: whether every eigenvalue that is not a structural zero (faer,
+/// after the exact deflation) has a negative real part; `None` when the largest real part
+/// is within rounding (1e-9 of the spectral radius) of zero, where the eigenvalues cannot
+/// tell (an undamped model's ±iω).
+fn eigen_stable(a: &DMatrix<f64>) -> Option<bool> {
+    let n = a.nrows();
+    let mut e = vec![Complex64::new(0.0, 0.0); n];
+    let mut ws = eom_num::modes::EigenvaluesWorkspace::new(n);
+    eom_num::modes::eigenvalues_faer_in(a, &mut ws, &mut e).expect("eigenvalues");
+    let nonzero = e.iter().filter(|z| **z != Complex64::new(0.0, 0.0));
+    let radius = nonzero.clone().fold(0.0f64, |m, z| m.max(z.norm()));
+    let top = nonzero.fold(f64::NEG_INFINITY, |m, z| m.max(z.re));
+    if top.abs() <= 1e-9 * radius {
+        None
+    } else {
+        Some(top < 0.0)
+    }
+}
+
+fn random_point(rng: &mut StdRng, nominal: &[f64], spread: f64) -> Vec<f64> {
+    nominal
+        .iter()
+        .map(|&x| {
+            let f = rng.random_range(1.0 - spread..1.0 + spread);
+            if x == 0.0 { f - 1.0 } else { x * f }
+        })
+        .collect()
+}
+
+#[test]
+fn bounds_hold_against_double_double() {
+    for g in all() {
+        let r = reference(g.model);
+        let (exprs, zero_roots) = condition_exprs(&r.sym);
+        assert_eq!(zero_roots, g.zero_roots, "{}", g.model);
+        let pos: std::collections::HashMap<u32, usize> = r
+            .sym
+            .params
+            .iter()
+            .enumerate()
+            .map(|(k, p)| (p.param_index().expect("a parameter"), k))
+            .collect();
+        let nominal = r.model.scope.nominal_values();
+        let mut rng = StdRng::seed_from_u64(31);
+        let mut worst = 0.0f64;
+        for _ in 0..200 {
+            let values = random_point(&mut rng, &nominal, 0.3);
+            let exact =
+                eval_generic::<Dd>(&exprs, |i| pos.get(&i).map(|&k| Dd::from_f64(values[k])))
+                    .expect("double-double");
+            let (coef, coef_err) = (g.polynomial)(&values);
+            let (ok, (cond, cond_err)) = (g.conditions)(&values);
+            let d = coef.len() - 1;
+            let sign = if exact[d].to_f64() < 0.0 { -1.0 } else { 1.0 };
+            for k in 0..exact.len() {
+                let want = exact[k].to_f64();
+                let (got, bound) = if k <= d {
+                    (coef[k], coef_err[k])
+                } else {
+                    (cond[k], cond_err[k])
+                };
+                let err = (Dd::from_f64(got) - exact[k]).to_f64().abs();
+                assert!(
+                    err <= bound,
+                    "{} condition {k}: {got:e} vs exact {want:e}: error {err:e} above its bound {bound:e} at {values:?}",
+                    g.model
+                );
+                if bound > 0.0 {
+                    worst = worst.max(err / bound);
+                }
+                // Normalised by the leading coefficient's sign where it is decided.
+                if ok {
+                    let s = if g.degrees[k] % 2 == 1 { sign } else { 1.0 };
+                    let err = (Dd::from_f64(cond[k]) - exact[k] * Dd::from_f64(s))
+                        .to_f64()
+                        .abs();
+                    assert!(err <= cond_err[k], "{} normalised condition {k}", g.model);
+                }
+            }
+        }
+        eprintln!(
+            "{}: the largest rounding error is {worst:.2} of its bound",
+            g.model
+        );
+    }
+}
+
+#[test]
+fn verdict_is_the_eigenvalues_where_decided() {
+    let mut report = String::new();
+    for g in all() {
+        let r = reference(g.model);
+        let nominal = r.model.scope.nominal_values();
+        let mut rng = StdRng::seed_from_u64(20261121);
+        let (mut undecided, mut stable, mut marginal, mut points) = (0, 0, 0, 0);
+        for _ in 0..2000 {
+            let values = random_point(&mut rng, &nominal, 0.3);
+            let Ok(ss) = r.sym.evaluate(&values) else {
+                continue;
+            };
+            points += 1;
+            let verdict = (g.verdict)(&values).expect("inside the validity region");
+            let Some(want) = eigen_stable(&ss.a) else {
+                // Marginal: not asymptotically stable, whatever the verdict decides.
+                assert_ne!(verdict, 1, "{}: a marginal point called stable", g.model);
+                marginal += 1;
+                continue;
+            };
+            match verdict {
+                0 => undecided += 1,
+                v => {
+                    assert_eq!(
+                        v == 1,
+                        want,
+                        "{}: verdict {v}, eigenvalues {} at {values:?}",
+                        g.model,
+                        if want { "stable" } else { "not stable" }
+                    );
+                    stable += usize::from(want);
+                }
+            }
+        }
+        report.push_str(&format!(
+            "{}: {points} points, {stable} stable, {marginal} marginal, {undecided} undecided\n",
+            g.model
+        ));
+        assert!(points >= 1000, "{}: {points} points evaluated", g.model);
+        assert!(
+            undecided * 100 <= points,
+            "{}: {undecided} of {points} undecided",
+            g.model
+        );
+    }
+    eprint!("{report}");
+}
+
+#[test]
+fn bicycle_at_the_published_speeds() {
+    use stab::bicycle as g;
+    let model = models::build("bicycle", &[]).expect("bicycle");
+    let names = model.scope.names();
+    let at = |v: f64| -> [f64; g::N_PARAMS] {
+        let values = model.scope.values_with(&[("v", v)]).expect("values");
+        let mut p = g::NOMINAL;
+        for (k, name) in g::PARAM_NAMES.iter().enumerate() {
+            let i = names.iter().position(|n| n == name).expect("a parameter");
+            p[k] = values[i];
+        }
+        p
+    };
+    // Meijaard et al. (2007): weave speed 4.292 m/s, capsize speed 6.024 m/s; stable between.
+    for (v, stable) in [
+        (1.0, false),
+        (4.0, false),
+        (4.28, false),
+        (4.30, true),
+        (5.0, true),
+        (6.0, true),
+        (6.02, true),
+        (6.03, false),
+        (7.0, false),
+        (10.0, false),
+    ] {
+        let want = if stable {
+            g::Verdict::Stable
+        } else {
+            g::Verdict::Unstable
+        };
+        assert_eq!(g::stability(&at(v)), Ok(want), "v = {v}");
+    }
+    // Zero roots: heading and lateral position; the rest a quartic.
+    assert_eq!((g::ZERO_ROOTS, g::POLY_DEGREE), (2, 4));
+}
+
+#[test]
+fn spring_mass_damper_polynomial() {
+    use stab::smd as g;
+    let (m, c, k) = (2.0, 0.3, 50.0);
+    let mut p = g::NOMINAL;
+    for (i, name) in g::PARAM_NAMES.iter().enumerate() {
+        p[i] = match *name {
+            "m" => m,
+            "c" => c,
+            "k" => k,
+            _ => p[i],
+        };
+    }
+    let (mut a, mut e) = ([0.0; g::POLY_DEGREE + 1], [0.0; g::POLY_DEGREE + 1]);
+    g::characteristic_polynomial(&p, &mut a, &mut e);
+    // p(s) ∝ m s² + c s + k.
+    assert_eq!(g::POLY_DEGREE, 2);
+    let scale = a[2] / m;
+    assert!((a[1] / scale - c).abs() <= 1e-15 * c && (a[0] / scale - k).abs() <= 1e-15 * k);
+    assert_eq!(g::stability(&p), Ok(g::Verdict::Stable));
+    let mut undamped = p;
+    for (i, name) in g::PARAM_NAMES.iter().enumerate() {
+        if *name == "c" {
+            undamped[i] = 0.0;
+        }
+    }
+    // No damping: marginal, which is not asymptotically stable: the condition `c > 0` is
+    // exactly 0 here (computed without rounding, bound 0).
+    assert_eq!(g::stability(&undamped), Ok(g::Verdict::Unstable));
+    for (i, name) in g::PARAM_NAMES.iter().enumerate() {
+        if *name == "c" {
+            undamped[i] = -0.1;
+        }
+    }
+    assert_eq!(g::stability(&undamped), Ok(g::Verdict::Unstable));
+}
