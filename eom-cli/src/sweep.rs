@@ -17,7 +17,9 @@ use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
 use eom_model::{Linearizer, Method, Model, ModelError};
-use eom_num::sweep::{Crossing, PointStability, Sweep, SweepPoint, SweepResult};
+use eom_num::sweep::{
+    Crossing, PointStability, StableInterval, Sweep, SweepPoint, SweepResult,
+};
 use eom_sym::{Expr, SymError};
 use models::CatalogueError;
 use nalgebra::DMatrix;
@@ -482,11 +484,14 @@ impl SweepReport {
             &rows,
             2,
         ));
-        t.push_str(
+        t.push_str(&format!(
             "  stability: stable when every branch has Re λ < −tol, marginal when one has \
              |Re λ| ≤ tol and none is unstable;\n  tol = the eigenvalue's error estimate, the \
-             same rule as eom analyze (JSON: points[].tolerance)\n",
-        );
+             same rule as eom analyze (JSON: points[].tolerance); no ±tol: every |Re λ| there \
+             exceeds\n  10·n·ε·‖A‖_F·{k}, beyond the estimate of any eigenvalue of condition \
+             number below {k}, so none was computed\n",
+            k = g(eom_num::sweep::SCREEN_CONDITION, 2)
+        ));
         t.push('\n');
 
         t.push_str(&format!(
@@ -532,7 +537,13 @@ impl SweepReport {
             ));
         }
         for i in &r.stable_intervals {
-            t.push_str(&format!("  [{}, {}]\n", i.lo, i.hi));
+            t.push_str(&format!("  {}\n", interval_text(r, i, |x| x.to_string())));
+        }
+        if !r.stable_intervals.is_empty() {
+            t.push_str(
+                "  ( and ): the end is a boundary or a marginal point, not itself stable; [ and ]: \
+                 a stable grid point (JSON: stable_intervals as [lo, hi])\n",
+            );
         }
         if let Some(v) = &self.verdict {
             t.push_str(&v.to_text(p));
@@ -552,4 +563,27 @@ impl SweepReport {
         }
         t
     }
+}
+
+/// A stable interval as written (`num` writes its ends): an end where stability is lost (a
+/// boundary or a marginal grid point) is not in the interval and is written open, an end at
+/// a stable grid point closed.
+pub fn interval_text(
+    r: &SweepResult,
+    i: &StableInterval,
+    num: impl Fn(f64) -> String,
+) -> String {
+    let open_at = |x: f64| {
+        r.boundaries.iter().any(|b| b.value == x)
+            || r.points
+                .iter()
+                .any(|pt| pt.value == x && pt.stability != PointStability::Stable)
+    };
+    format!(
+        "{}{}, {}{}",
+        if open_at(i.lo) { '(' } else { '[' },
+        num(i.lo),
+        num(i.hi),
+        if open_at(i.hi) { ')' } else { ']' }
+    )
 }

@@ -78,6 +78,48 @@ fn json(args: &[&str]) -> serde_json::Value {
     serde_json::from_str(&out).unwrap_or_else(|e| panic!("eom {args:?}: not JSON ({e})"))
 }
 
+/// Issue 26 item 2, one verdict: at two grid points of the sweep, `eom analyze` at the same
+/// value judges the modes as the sweep judged its branches (the sweep leaves out the neutral
+/// branches, identically zero; `eom analyze` calls such modes `zero`): a point is unstable
+/// exactly when a mode is, stable only when every mode but the zero ones is, marginal only
+/// when one of them is marginal (or every mode is zero); a marginal point states its
+/// tolerance.
+fn one_verdict(m: &str, p: &str, sweep: &serde_json::Value) {
+    for k in [0, 2] {
+        let pt = &sweep["points"][k];
+        let x = pt["value"].as_f64().expect("a value");
+        let set = format!("{p}={x:?}");
+        let a = json(&["analyze", m, "--set", &set, "--format", "json"]);
+        let modes = a["modes"].as_array().expect("modes");
+        let judged = |kind_zero: bool, verdict: &str| {
+            modes.iter().any(|md| {
+                (md["kind"] == "zero") == kind_zero && md["stability"] == verdict
+            })
+        };
+        let verdict = pt["stability"].as_str().expect("a verdict");
+        let all_zero = modes.iter().all(|md| md["kind"] == "zero");
+        let any_unstable = judged(false, "unstable") || judged(true, "unstable");
+        let ok = match verdict {
+            "unstable" => any_unstable,
+            "stable" => !any_unstable && !judged(false, "marginal"),
+            "marginal" => !any_unstable && (judged(false, "marginal") || all_zero),
+            _ => false,
+        };
+        assert!(
+            ok,
+            "{m} at {set}: the sweep says {verdict}, eom analyze's modes {:?}",
+            modes
+                .iter()
+                .map(|md| (md["eigenvalue"].to_string(), md["kind"].to_string(), md["stability"].to_string()))
+                .collect::<Vec<_>>()
+        );
+        // A marginal point states the tolerance its real part is within.
+        if verdict == "marginal" && pt["max_real"].is_number() {
+            assert!(pt["tolerance"].is_number(), "{m} at {set}: {pt}");
+        }
+    }
+}
+
 /// One model through every command.
 fn every_command(case: &Case, dir: &Path) {
     let m = case.name.as_str();
@@ -106,6 +148,7 @@ fn every_command(case: &Case, dir: &Path) {
     let grid = format!("{p}={lo}:{hi}:5");
     let s = json(&["sweep", m, "--param", &grid, "--format", "json", "--quiet"]);
     assert_eq!(s["points"].as_array().expect("points").len(), 5, "{m}");
+    one_verdict(m, p, &s);
 
     let sym = ok(&["symbolic", m]);
     assert!(sym.contains("A ("), "{m}: {sym}");

@@ -213,5 +213,42 @@ fn bench_minreal_zeros(cr: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_grid, bench_boundaries, bench_minreal_zeros);
+/// The verdicts' error estimates (eigenvectors) where a verdict could depend on them, against
+/// the same sweep judged by a relative band without any eigenvectors (the cost of a sweep
+/// before the estimates): the target is a ratio within 1.1. The lightly damped chain-like
+/// family keeps real parts near 0 (estimates at most points), the shimmy crosses twice.
+fn bench_verdicts(cr: &mut Criterion) {
+    let mut group = cr.benchmark_group("sweep_verdicts");
+    group.sample_size(15);
+    group.measurement_time(Duration::from_secs(4));
+    let (a0, a1) = family(6, 1);
+    let cases: Vec<(&str, usize)> = vec![("shimmy3", 2000), ("random6", 2000)];
+    for (name, points) in cases {
+        let f = |x: f64| -> Result<DMatrix<f64>, String> {
+            if name == "shimmy3" {
+                shimmy(x)
+            } else {
+                Ok(&a0 + &a1 * x)
+            }
+        };
+        let sweep = Sweep::linspace(0.0, 1.0, points).with_boundaries(false);
+        group.throughput(Throughput::Elements(points as u64));
+        group.bench_function(BenchmarkId::new("estimates_where_needed", name), |b| {
+            b.iter(|| black_box(sweep.run(f).unwrap()))
+        });
+        let band = sweep.clone().with_marginal_rtol(300.0 * f64::EPSILON);
+        group.bench_function(BenchmarkId::new("relative_band_baseline", name), |b| {
+            b.iter(|| black_box(band.run(f).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_grid,
+    bench_boundaries,
+    bench_minreal_zeros,
+    bench_verdicts
+);
 criterion_main!(benches);

@@ -6,7 +6,8 @@ mod analysis_support;
 
 use analysis_support::{eig_nalgebra, mat, rand_orth, rng};
 use eom_num::NumError;
-use eom_num::sweep::{Crossing, PointStability, Sweep, SweepError};
+use eom_num::modes::{Stability, eigenvalues_with_errors, stability_of};
+use eom_num::sweep::{Crossing, PointStability, Sweep, SweepError, screen_bound};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -423,4 +424,62 @@ fn grid_only_mode_reports_grid_intervals() {
         (iv.lo - 0.4).abs() < 1e-12 && (iv.hi - 0.6).abs() < 1e-12,
         "{iv:?}"
     );
+}
+
+/// The point verdict the rule gives with every eigenvalue's error estimate computed at that
+/// point (no neutral branches): unstable when one is, marginal when one is within its
+/// estimate, stable otherwise.
+fn verdict_with_estimates(a: &DMatrix<f64>) -> PointStability {
+    let judged: Vec<Stability> = eigenvalues_with_errors(a)
+        .unwrap()
+        .iter()
+        .map(|(z, tol)| stability_of(z.re, *tol))
+        .collect();
+    if judged.contains(&Stability::Unstable) {
+        PointStability::Unstable
+    } else if judged.contains(&Stability::Marginal) {
+        PointStability::Marginal
+    } else {
+        PointStability::Stable
+    }
+}
+
+/// Non-normal: eigenvalues −x and −2x with condition number ≈ 1e6/x (a triangular matrix
+/// turned by a fixed rotation, so that balancing cannot undo it), so that their error
+/// estimates exceed |Re λ| for small x: marginal there, though the real parts are negative.
+fn non_normal(x: f64) -> Result<DMatrix<f64>, String> {
+    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+    let r = mat(&[&[c, -s], &[s, c]]);
+    Ok(r.transpose() * mat(&[&[-x, 1e6], &[0.0, -2.0 * x]]) * r)
+}
+
+/// The estimates are computed only where a verdict could depend on them (some |Re λ| within
+/// `screen_bound`); every point's verdict is still the rule's with all estimates, and the
+/// points that state no tolerance are those beyond the bound.
+#[test]
+fn estimates_only_where_a_verdict_could_change_with_the_same_verdicts() {
+    let cases: [(&str, Box<dyn Fn(f64) -> DMatrix<f64> + Sync>, f64, f64); 3] = [
+        ("shimmy", Box::new(|x| shimmy(x).unwrap()), 0.0, 1.0),
+        ("crossing pairs", Box::new(|x| crossing_pairs(x).unwrap()), 0.0, 2.0),
+        ("non-normal", Box::new(|x| non_normal(x).unwrap()), 1e-3, 200.0),
+    ];
+    for (name, f, lo, hi) in cases {
+        let res = Sweep::linspace(lo, hi, 201)
+            .run(|x| Ok::<_, String>(f(x)))
+            .unwrap();
+        let (mut with, mut without) = (0, 0);
+        for p in &res.points {
+            let a = f(p.value);
+            assert_eq!(p.stability, verdict_with_estimates(&a), "{name} at {}", p.value);
+            let bound = screen_bound(a.nrows(), a.norm());
+            let near = p.eigenvalues.iter().any(|z| z.re.abs() <= bound);
+            assert_eq!(p.tolerance.is_some(), near, "{name} at {}: {p:?}", p.value);
+            if near { with += 1 } else { without += 1 }
+        }
+        // Each family has points of both kinds.
+        assert!(with > 0 && without > 0, "{name}: {with} with, {without} without");
+    }
+    // The non-normal family is marginal where its estimates exceed its real parts.
+    let res = Sweep::linspace(1e-3, 200.0, 201).run(non_normal).unwrap();
+    assert_eq!(res.points[0].stability, PointStability::Marginal);
 }

@@ -27,8 +27,14 @@
 //!    the tolerance `eom analyze` judges the same eigenvalue by), plus those of the neutral
 //!    branches its real part is taken with: a real part within it is rounding noise and
 //!    carries no sign. A point is stable when every non-neutral branch is, unstable when one
-//!    is, marginal otherwise. [`Sweep::with_marginal_rtol`] replaces the estimates by a band
-//!    `rtol · ‖A(x)‖_F` (faster: no eigenvectors).
+//!    is, marginal otherwise. The estimates need eigenvectors, about ten times the cost of the
+//!    eigenvalues, so they are computed only at points where one could change a verdict:
+//!    where some real part is within [`screen_bound`] (`tol_factor · n · ε · ‖A‖_F ·`
+//!    [`SCREEN_CONDITION`]), which no estimate of an eigenvalue with condition number below
+//!    [`SCREEN_CONDITION`] = 1e9 exceeds, or some nonzero eigenvalue is small enough to be
+//!    neutral. Elsewhere the sign
+//!    decides, as the estimate would, and the point states no tolerance.
+//!    [`Sweep::with_marginal_rtol`] replaces the estimates by a band `rtol · ‖A(x)‖_F`.
 //! 5. **Boundaries**: every sign change of the real part of a tracked branch between two
 //!    points outside the band brackets a boundary, located by Brent's method (re-evaluating
 //!    `A` at trial values, re-identifying the branch by an assignment against the branch
@@ -114,7 +120,9 @@ pub struct SweepPoint {
     /// `‖A(x)‖_F`, the scale of the thresholds at this point.
     pub norm: f64,
     /// The tolerance of [`SweepPoint::max_real`]'s verdict: the error estimate of the branch
-    /// of largest real part (with the neutral branches'), in 1/s (`None` if all are neutral).
+    /// of largest real part (with the neutral branches'), in 1/s. `None` if all are neutral,
+    /// and where the estimates were not computed because no verdict at this point could
+    /// depend on them: every real part beyond [`screen_bound`] (module documentation, step 4).
     pub tolerance: Option<f64>,
 }
 
@@ -351,6 +359,7 @@ impl Sweep {
         let ctx = Ctx {
             f: &f,
             param: &self.param,
+            neutral_rtol: self.neutral_rtol,
         };
         let pts = self.evaluate_grid(&ctx)?;
         let (tracked, z) = self.follow_branches(&pts);
@@ -468,11 +477,12 @@ impl Sweep {
             })
             .collect();
         let neutral_idx: Vec<usize> = (0..n).filter(|&j| neutral[j]).collect();
-        let errors = pts
-            .iter()
-            .zip(&tracked)
-            .map(|(p, t)| p.errors.as_ref().map(|e| errors_of(t, &p.eig, e)))
-            .collect::<Option<Vec<_>>>();
+        let errors = self.marginal_rtol.is_none().then(|| {
+            pts.iter()
+                .zip(&tracked)
+                .map(|(p, t)| p.errors.as_ref().map(|e| errors_of(t, &p.eig, e)))
+                .collect::<Vec<_>>()
+        });
         Branches {
             norms: pts.iter().map(|p| p.norm).collect(),
             tracked,
@@ -603,8 +613,10 @@ struct Branches {
 
 /// Within what a real part has no sign (step 4).
 enum Band {
-    /// The error estimate of every branch at every grid point (the default).
-    Errors(Vec<Vec<f64>>),
+    /// The error estimate of every branch at every grid point (the default); `None` at a
+    /// point where every real part is beyond [`screen_bound`], so that no estimate changes a
+    /// sign's verdict there (not computed).
+    Errors(Vec<Option<Vec<f64>>>),
     /// `rtol · ‖A(x)‖_F` ([`Sweep::with_marginal_rtol`]).
     Relative(f64),
 }
@@ -632,7 +644,7 @@ impl Branches {
     /// double eigenvalue, each known only to √ε, but their sum stays accurate.
     fn sign(&self, k: usize, j: usize) -> i8 {
         let band = match &self.band {
-            Band::Errors(e) => self.tolerance(&e[k], j),
+            Band::Errors(e) => e[k].as_ref().map_or(0.0, |e| self.tolerance(e, j)),
             Band::Relative(rtol) => rtol * self.norms[k],
         };
         let re = effective_re(&self.tracked[k], j, &self.neutral_idx);
@@ -656,25 +668,28 @@ impl Branches {
             .sum::<f64>()
     }
 
-    /// Step 4: the largest real part of the non-neutral branches, its tolerance and the
-    /// stability class of a point with these branch values (and error estimates, unless the
-    /// band is relative): every branch judged by [`crate::modes::stability_of`].
+    /// Step 4: the largest real part of the non-neutral branches, its tolerance (`None` where
+    /// the estimates were not needed) and the stability class of a point with these branch
+    /// values (and error estimates, unless the band is relative): every branch judged by
+    /// [`crate::modes::stability_of`]. Without estimates under an error band every real part
+    /// is beyond [`screen_bound`], outside any estimate it could have: its sign decides.
     fn classify(
         &self,
         eig: &[Complex64],
         norm: f64,
         errors: Option<&[f64]>,
-    ) -> (Option<(f64, f64)>, PointStability) {
-        let mut max_re: Option<(f64, f64)> = None;
+    ) -> (Option<(f64, Option<f64>)>, PointStability) {
+        let mut max_re: Option<(f64, Option<f64>)> = None;
         let (mut unstable, mut marginal) = (false, false);
         for j in (0..eig.len()).filter(|&j| !self.neutral[j]) {
             let re = effective_re(eig, j, &self.neutral_idx);
             let tol = match (errors, &self.band) {
-                (Some(e), _) => self.tolerance(e, j),
-                (None, Band::Relative(rtol)) => rtol * norm,
-                (None, Band::Errors(_)) => f64::INFINITY,
+                (Some(e), _) => Some(self.tolerance(e, j)),
+                (None, Band::Relative(rtol)) => Some(rtol * norm),
+                // Not computed: beyond the screen, or an exact zero (estimate 0).
+                (None, Band::Errors(_)) => (re == 0.0).then_some(0.0),
             };
-            match crate::modes::stability_of(re, tol) {
+            match crate::modes::stability_of(re, tol.unwrap_or(0.0)) {
                 Stability::Unstable => unstable = true,
                 Stability::Marginal => marginal = true,
                 Stability::Stable => {}
@@ -698,7 +713,7 @@ impl Branches {
         (0..self.tracked.len())
             .map(|k| {
                 let errors = match &self.band {
-                    Band::Errors(e) => Some(e[k].as_slice()),
+                    Band::Errors(e) => e[k].as_deref(),
                     Band::Relative(_) => None,
                 };
                 let (max, stability) = self.classify(&self.tracked[k], self.norms[k], errors);
@@ -708,7 +723,7 @@ impl Branches {
                     max_real: max.map(|m| m.0),
                     stability,
                     norm: self.norms[k],
-                    tolerance: max.map(|m| m.1),
+                    tolerance: max.and_then(|m| m.1),
                 }
             })
             .collect()
@@ -718,7 +733,8 @@ impl Branches {
 struct Eval {
     /// The eigenvalues, the exact zeros of deflated zero rows and columns first.
     eig: Vec<Complex64>,
-    /// Their error estimates, when asked for (0 for the exact zeros).
+    /// Their error estimates (0 for the exact zeros), when asked for and needed: `None` where
+    /// every real part is beyond [`screen_bound`] (see [`Ctx::needs_estimates`]).
     errors: Option<Vec<f64>>,
     norm: f64,
 }
@@ -757,6 +773,8 @@ fn deflate_zero_lines(a: &DMatrix<f64>) -> (Option<DMatrix<f64>>, usize) {
 struct Ctx<'a, F> {
     f: &'a F,
     param: &'a str,
+    /// [`Sweep::with_neutral_rtol`]: eigenvalues this small get their estimates (step 4).
+    neutral_rtol: f64,
 }
 
 impl<F, E> Ctx<'_, F>
@@ -803,22 +821,8 @@ where
         let (reduced, zeros) = deflate_zero_lines(&a);
         let core = reduced.as_ref().unwrap_or(&a);
         let m = core.nrows();
+        let norm = a.norm();
         let mut eig = vec![Complex64::new(0.0, 0.0); n];
-        if errors {
-            let mut err = vec![0.0; n];
-            if m > 0 {
-                let with = eigenvalues_with_errors(core).map_err(|e| self.numeric(x, e))?;
-                for (k, (z, e)) in with.into_iter().enumerate() {
-                    eig[zeros + k] = z;
-                    err[zeros + k] = e;
-                }
-            }
-            return Ok(Eval {
-                eig,
-                errors: Some(err),
-                norm: a.norm(),
-            });
-        }
         if m > 0 {
             if ws.as_ref().is_none_or(|w| w.dim() != m) {
                 *ws = Some(EigenvaluesWorkspace::new(m));
@@ -827,12 +831,62 @@ where
                 eigenvalues_in(core, w, &mut eig[zeros..]).map_err(|e| self.numeric(x, e))?;
             }
         }
+        if !errors || !self.needs_estimates(&eig[zeros..], core.norm(), norm) {
+            return Ok(Eval {
+                eig,
+                errors: None,
+                norm,
+            });
+        }
+        let mut err = vec![0.0; n];
+        let with = eigenvalues_with_errors(core).map_err(|e| self.numeric(x, e))?;
+        for (k, (z, e)) in with.into_iter().enumerate() {
+            eig[zeros + k] = z;
+            err[zeros + k] = e;
+        }
         Ok(Eval {
             eig,
-            errors: None,
-            norm: a.norm(),
+            errors: Some(err),
+            norm,
         })
     }
+
+    /// Whether any of the eigenvalues `eig` of a matrix of Frobenius norm `core_norm` (the
+    /// state matrix, of norm `norm`, without its zero lines) could be judged differently with
+    /// its error estimate than by its sign alone: a real part within [`screen_bound`], or a
+    /// modulus small enough to make it a neutral branch (whose estimate every other branch's
+    /// tolerance includes). An exact zero (a structural zero the eigensolver deflates) has
+    /// the estimate 0 by definition ([`crate::modes::eigenvalues_with_errors`]): nothing to
+    /// compute.
+    fn needs_estimates(&self, eig: &[Complex64], core_norm: f64, norm: f64) -> bool {
+        let bound = screen_bound(eig.len(), core_norm);
+        let neutral = self.neutral_rtol * norm;
+        eig.iter()
+            .filter(|z| **z != Complex64::new(0.0, 0.0))
+            .any(|z| z.re.abs() <= bound || z.norm() <= neutral)
+    }
+}
+
+/// The condition number up to which a real part beyond [`screen_bound`] is certainly outside
+/// its eigenvalue's error estimate. An eigenvalue of larger condition number κ lies within
+/// about `‖A‖/κ` of a matrix with a multiple eigenvalue (Wilkinson), here `1e-9 ‖A‖`; a
+/// multiple eigenvalue split by rounding has κ ≈ 1/√ε ≈ 7e7, fifteen times below. Beyond
+/// it a model is defective to working precision away from `Re λ = 0` (within `1e-6 ‖A‖` of
+/// zero the neutral test computes the estimates anyway), and `eom analyze` at that point
+/// still judges it by its estimate.
+pub const SCREEN_CONDITION: f64 = 1e9;
+
+/// The real part beyond which an eigenvalue of an `m × m` matrix of Frobenius norm `norm`
+/// with condition number below [`SCREEN_CONDITION`] keeps its sign's verdict whatever its
+/// error estimate: `tol_factor · m · ε · ‖A‖_F · SCREEN_CONDITION`, above both terms of
+/// [`crate::modes::error_estimate`] (the componentwise term is at most `ε ‖A‖_F κ`, and
+/// balancing does not increase `‖A‖_F`).
+pub fn screen_bound(m: usize, norm: f64) -> f64 {
+    crate::modes::ModeOptions::default().tol_factor
+        * m as f64
+        * f64::EPSILON
+        * norm
+        * SCREEN_CONDITION
 }
 
 /// Real part of branch `j` plus those of the neutral branches (see step 4 of `run`).
