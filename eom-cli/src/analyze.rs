@@ -311,12 +311,28 @@ pub struct GainEntry {
     pub input: String,
     /// `output unit/input unit` (empty when both are unitless).
     pub unit: String,
-    /// The finite gain `G(0)`.
+    /// The finite gain `G(0)`, as computed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub value: Option<f64>,
+    /// The error estimate of [`GainEntry::value`] (`eom_num::gain::SteadyStateGain::errors`):
+    /// a value within it has no known sign and prints as 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_estimate: Option<f64>,
     /// The output integrates a constant input.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub integrating: Option<Integrating>,
+}
+
+impl GainEntry {
+    /// The finite gain as printed: 0 where it is within its error estimate (rounding of an
+    /// exact 0), with the estimate to state beside it.
+    pub fn shown(&self) -> Option<(f64, Option<f64>)> {
+        let v = self.value?;
+        Some(match self.error_estimate {
+            Some(e) if v.abs() <= e => (0.0, Some(e)),
+            _ => (v, None),
+        })
+    }
 }
 
 /// An integrating pair: `G(s)` has a pole of order `order` at 0.
@@ -908,10 +924,10 @@ fn gain_entries(
     let mut out = Vec::with_capacity(inputs.len() * outputs.len());
     for (i, o) in outputs.iter().enumerate() {
         for (j, u) in inputs.iter().enumerate() {
-            let (value, integrating) = match gain.get(i, j) {
-                Gain::Finite(v) => (Some(v), None),
+            let (value, error_estimate, integrating) = match gain.get(i, j) {
+                Gain::Finite(v) => (Some(v), Some(gain.errors[(i, j)]), None),
                 Gain::Integrating { order, coefficient } => {
-                    (None, Some(Integrating { order, coefficient }))
+                    (None, None, Some(Integrating { order, coefficient }))
                 }
             };
             out.push(GainEntry {
@@ -919,6 +935,7 @@ fn gain_entries(
                 input: u.name.clone(),
                 unit: ratio_unit(&o.unit, &u.unit),
                 value,
+                error_estimate,
                 integrating,
             });
         }

@@ -252,8 +252,14 @@ impl Analysis {
                         } else {
                             format!(" {}", e.unit)
                         };
-                        let v = match (&e.value, &e.integrating) {
-                            (Some(v), _) => format!("{}{unit}", g(*v, SIG)),
+                        let v = match (e.shown(), &e.integrating) {
+                            (Some((v, None)), _) => format!("{}{unit}", g(v, SIG)),
+                            (Some((v, Some(err))), _) => format!(
+                                "{}{unit} (computed {} within its error estimate {})",
+                                g(v, SIG),
+                                g(e.value.unwrap_or(v), 3),
+                                g(err, 2)
+                            ),
                             (None, Some(i)) if i.order == 1 => format!(
                                 "integrating: a unit step gives a ramp of slope {}{unit} per s",
                                 g(i.coefficient, SIG)

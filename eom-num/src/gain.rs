@@ -120,6 +120,12 @@ pub struct SteadyStateGain {
     /// [`SteadyStateGain::a_rank`] has no singular values (its margin is a lower bound) and
     /// [`SteadyStateGain::condition`] is the upper bound `‖A‖ ‖A⁻¹‖` of [`RegularBounds`].
     pub certificate: Option<RegularBounds>,
+    /// The error estimate of each finite gain (outputs × inputs; 0 for an integrating pair):
+    /// the first-order effect of a backward-stable LU solve and of rounding the products,
+    /// `10·k·ε·(|yᵢ|ᵀ|M||xⱼ| + |cᵢ|ᵀ|xⱼ|) + ε|Dᵢⱼ|` with `M` the (balanced) matrix solved
+    /// (A, or A₁ without the zero modes) of order k, `xⱼ = M⁻¹bⱼ`, `yᵢ = M⁻ᵀcᵢ` (Skeel's
+    /// componentwise bound). A gain within it has no known sign and prints as 0.
+    pub errors: DMatrix<f64>,
 }
 
 impl SteadyStateGain {
@@ -273,7 +279,7 @@ fn gain_at_tolerance(
     let (a, b, c) = balanced(ss);
     let mut warnings = Vec::new();
     if let Some(cert) = certify_regular(&a, &opts.rank_tol, factor)? {
-        return regular(ss, &b, &c, cert, opts, warnings);
+        return regular(ss, (&a, &b, &c), cert, opts, warnings);
     }
     let sv = singular_values(&a)?;
     let smax = sv.first().copied().unwrap_or(0.0);
@@ -294,7 +300,7 @@ fn gain_at_tolerance(
             condition,
             bounds: None,
         };
-        return regular(ss, &b, &c, cert, opts, warnings);
+        return regular(ss, (&a, &b, &c), cert, opts, warnings);
     }
 
     let ZeroSplit {
@@ -316,7 +322,8 @@ fn gain_at_tolerance(
     let c1 = &c * &v1;
 
     // Finite part.
-    let (fin, condition, a1_min) = finite_part(&a1, &b1, &c1, &ss.d, opts, &mut warnings)?;
+    let (fin, fin_errors, condition, a1_min) =
+        finite_part(&a1, &b1, &c1, &ss.d, opts, &mut warnings)?;
 
     // Markov-like coefficients Mₖ = C V₀ Nᵏ W₀ B and their rounding-level tolerances.
     let w0n = singular_values(&w0.into_owned())?
@@ -371,6 +378,9 @@ fn gain_at_tolerance(
         decisions,
         warnings,
         certificate: None,
+        errors: DMatrix::from_fn(p, m, |i, j| {
+            if order[(i, j)] > 0 { 0.0 } else { fin_errors[(i, j)] }
+        }),
     })
 }
 
@@ -491,8 +501,9 @@ fn balanced(ss: &StateSpace<f64>) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) 
     (a, b, c)
 }
 
-/// The gain of the nonzero modes, `D − C₁ A₁⁻¹ B₁`, the condition number of `A₁` and its
-/// smallest singular value.
+/// The gain of the nonzero modes, `D − C₁ A₁⁻¹ B₁`, its error estimates
+/// ([`SteadyStateGain::errors`]), the condition number of `A₁` and its smallest singular
+/// value.
 fn finite_part(
     a1: &DMatrix<f64>,
     b1: &DMatrix<f64>,
@@ -500,7 +511,7 @@ fn finite_part(
     d: &DMatrix<f64>,
     opts: &GainOptions,
     warnings: &mut Vec<String>,
-) -> Result<(DMatrix<f64>, f64, f64), NumError> {
+) -> Result<(DMatrix<f64>, DMatrix<f64>, f64, f64), NumError> {
     let s1 = singular_values(a1)?;
     let smallest = s1.last().copied().unwrap_or(0.0);
     let condition = if s1.is_empty() {
@@ -515,19 +526,42 @@ fn finite_part(
             "A without its zero modes has condition number {condition:.3e}"
         ));
     }
-    let fin = if a1.nrows() == 0 {
-        d.clone()
+    let (fin, errors) = if a1.nrows() == 0 {
+        (d.clone(), d.map(|v| f64::EPSILON * v.abs()))
     } else {
-        let x = a1.clone().lu().solve(b1).ok_or_else(|| {
+        let singular = || {
             NumError::Singular(format!(
                 "A restricted to its nonzero modes ({}×{}) is singular",
                 a1.nrows(),
                 a1.nrows()
             ))
-        })?;
-        d - c1 * x
+        };
+        let lu = a1.clone().lu();
+        let x = lu.solve(b1).ok_or_else(singular)?;
+        let y = a1.transpose().lu().solve(&c1.transpose()).ok_or_else(singular)?;
+        let errors = solve_errors(a1, c1, d, &x, &y);
+        (d - c1 * x, errors)
     };
-    Ok((fin, condition, smallest))
+    Ok((fin, errors, condition, smallest))
+}
+
+/// [`SteadyStateGain::errors`] of `D − C X` with `X = M⁻¹ B` and `Y = M⁻ᵀ Cᵀ` (columns
+/// `xⱼ`, `yᵢ`): `10·k·ε·(|yᵢ|ᵀ|M||xⱼ| + |cᵢ|ᵀ|xⱼ|) + ε|Dᵢⱼ|`.
+fn solve_errors(
+    m: &DMatrix<f64>,
+    c: &DMatrix<f64>,
+    d: &DMatrix<f64>,
+    x: &DMatrix<f64>,
+    y: &DMatrix<f64>,
+) -> DMatrix<f64> {
+    let k = m.nrows() as f64;
+    let (mabs, xabs, yabs, cabs) = (m.abs(), x.abs(), y.abs(), c.abs());
+    let solve = yabs.transpose() * mabs * &xabs;
+    let product = cabs * &xabs;
+    DMatrix::from_fn(d.nrows(), d.ncols(), |i, j| {
+        10.0 * k * f64::EPSILON * (solve[(i, j)] + product[(i, j)])
+            + f64::EPSILON * d[(i, j)].abs()
+    })
 }
 
 /// The zero-eigenvalue chain of `mat`: a basis of `ker mat^ν` and the index ν, each nullspace
@@ -696,8 +730,7 @@ fn certify_regular(
 /// The regular case: `G(0) = D − C A⁻¹ B` with the LU factors.
 fn regular(
     ss: &StateSpace<f64>,
-    b: &DMatrix<f64>,
-    c: &DMatrix<f64>,
+    (a, b, c): (&DMatrix<f64>, &DMatrix<f64>, &DMatrix<f64>),
     reg: Regular,
     opts: &GainOptions,
     mut warnings: Vec<String>,
@@ -711,18 +744,22 @@ fn regular(
             reg.condition.log10()
         ));
     }
-    let g = if n == 0 {
-        ss.d.clone()
+    let (g, errors) = if n == 0 {
+        (ss.d.clone(), ss.d.map(|v| f64::EPSILON * v.abs()))
     } else {
-        let rhs = faer_view(b);
-        let x = faer::linalg::solvers::Solve::solve(&reg.lu, rhs);
+        use faer::linalg::solvers::Solve;
+        let x = reg.lu.solve(faer_view(b));
         let x = DMatrix::from_fn(n, b.ncols(), |i, j| x[(i, j)]);
-        if x.iter().any(|v| !v.is_finite()) {
+        let ct = c.transpose();
+        let y = reg.lu.solve_transpose(faer_view(&ct));
+        let y = DMatrix::from_fn(n, c.nrows(), |i, j| y[(i, j)]);
+        if x.iter().chain(y.iter()).any(|v| !v.is_finite()) {
             return Err(NumError::Singular(format!(
                 "A ({n}×{n}) passed the rank test but its LU solve is not finite"
             )));
         }
-        &ss.d - c * x
+        let errors = solve_errors(a, c, &ss.d, &x, &y);
+        (&ss.d - c * x, errors)
     };
     Ok(SteadyStateGain {
         gains: g.map(Gain::Finite),
@@ -734,5 +771,6 @@ fn regular(
         decisions: Vec::new(),
         warnings,
         certificate: reg.bounds,
+        errors,
     })
 }

@@ -263,3 +263,71 @@ fn a_heading_pair_rounded_apart_gives_the_closed_form_gain() {
     );
     assert_eq!(g.zero_dimension, 2, "{g:?}");
 }
+
+/// Integer systems whose exact gain is 0 but whose computed gain is rounding: A (3×3,
+/// integer, |det| > 1 so that A⁻¹b is not exact in binary), b integer and c = (adj(A) b) × w
+/// (a cross product with an integer w), so that c·A⁻¹b = c·adj(A)b / det = 0 exactly. The
+/// error estimate holds every computed gain (the exact value is 0), is not vacuous (at most
+/// 1e-9 |c||A⁻¹b|), and the computed gains are not all exactly 0 (rounding happened).
+#[test]
+fn gains_that_are_exactly_zero_are_within_their_error_estimate() {
+    use rand::Rng;
+    let mut r = rng(26);
+    let (mut nonzero, mut cases) = (0, 0);
+    while cases < 200 {
+        let m: [[i64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| r.random_range(-9..=9)));
+        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        if det.abs() < 2 {
+            continue;
+        }
+        cases += 1;
+        // adj(A)ᵢⱼ = cofactor of (j, i).
+        let cof = |i: usize, j: usize| {
+            let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+            let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+            m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+        };
+        let b: [i64; 3] = std::array::from_fn(|_| r.random_range(-9..=9));
+        let adj_b: [i64; 3] = std::array::from_fn(|i| (0..3).map(|k| cof(k, i) * b[k]).sum());
+        let w: [i64; 3] = std::array::from_fn(|_| r.random_range(-9..=9));
+        let c = [
+            adj_b[1] * w[2] - adj_b[2] * w[1],
+            adj_b[2] * w[0] - adj_b[0] * w[2],
+            adj_b[0] * w[1] - adj_b[1] * w[0],
+        ];
+        assert_eq!((0..3).map(|i| c[i] * adj_b[i]).sum::<i64>(), 0);
+        let f = |v: i64| v as f64;
+        let ss = StateSpace::new(
+            DMatrix::from_fn(3, 3, |i, j| f(m[i][j])),
+            DMatrix::from_fn(3, 1, |i, _| f(b[i])),
+            DMatrix::from_fn(1, 3, |_, j| f(c[j])),
+            DMatrix::zeros(1, 1),
+        )
+        .expect("a valid model");
+        let g = steady_state_gain(&ss).expect("a regular A");
+        let (Gain::Finite(v), err) = (g.get(0, 0), g.errors[(0, 0)]) else {
+            panic!("finite gain expected");
+        };
+        let scale: f64 = (0..3).map(|i| f(c[i]).abs() * f(adj_b[i]).abs()).sum::<f64>()
+            / f(det).abs();
+        assert!(v.abs() <= err, "case {cases}: gain {v:e}, estimate {err:e}");
+        assert!(
+            err <= 1e-9 * scale.max(1.0),
+            "case {cases}: estimate {err:e}, scale {scale}"
+        );
+        nonzero += usize::from(v != 0.0);
+    }
+    assert!(nonzero >= 10, "{nonzero} of 200 gains were not exactly 0");
+}
+
+/// A gain well away from 0 is far outside its estimate (it is not printed as 0).
+#[test]
+fn a_nonzero_gain_is_far_outside_its_error_estimate() {
+    let g = steady_state_gain(&smd(2.0, 3.0, 5.0)).expect("gain");
+    let (Gain::Finite(v), err) = (g.get(0, 0), g.errors[(0, 0)]) else {
+        panic!("finite gain expected");
+    };
+    assert!(err > 0.0 && err < 1e-12 * v.abs(), "{v} ± {err}");
+}
