@@ -94,6 +94,15 @@ fn codegen_writes_a_module() {
     let src = std::fs::read_to_string(&path).unwrap();
     assert!(src.contains("pub mod smd"), "{src}");
     assert!(src.contains("f32"));
+    // The discrete matrices and the sample-time error only with --discrete (the module
+    // without them compiles in tests/tests/codegen, whose match on `Error` and `Matrix` is
+    // exhaustive without them).
+    let variants = ["SampleTime", "Ad,", "Bd,", "eval_discrete"];
+    assert!(variants.iter().all(|v| !src.contains(v)), "{src}");
+    let r = eom(&["codegen", "smd", "-o", file, "--discrete"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let src = std::fs::read_to_string(&path).unwrap();
+    assert!(variants.iter().all(|v| src.contains(v)), "{src}");
 }
 
 #[cfg(not(feature = "codegen"))]

@@ -20,7 +20,7 @@ pub(crate) fn module_items(
     let mut ts = sizes(ctx, work_len);
     ts.extend(names(ctx)?);
     ts.extend(params_struct(ctx)?);
-    ts.extend(errors());
+    ts.extend(errors(opts.discrete));
     if opts.functions.abcd {
         ts.extend(state_space());
     }
@@ -228,8 +228,30 @@ fn params_struct(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
     })
 }
 
-/// The matrices and the error type of the module, and the slow path's failure search.
-fn errors() -> TokenStream {
+/// The matrices and the error type of the module, and the slow path's failure search; the
+/// discrete matrices `Ad`, `Bd` and the error `SampleTime` only with `eval_discrete`
+/// (`discrete`), so that a module without it has no variant it never returns.
+fn errors(discrete: bool) -> TokenStream {
+    let (discrete_matrices, sample_time, sample_time_none, sample_time_text) = if discrete {
+        (
+            quote! {
+                /// The discrete state matrix of `eval_discrete`.
+                Ad,
+                /// The discrete input matrix of `eval_discrete`.
+                Bd,
+            },
+            quote! {
+                /// The sample time given to `eval_discrete` is not finite and non-negative.
+                SampleTime,
+            },
+            quote!(| Error::SampleTime),
+            quote! {
+                Error::SampleTime => write!(f, "the sample time is not finite and non-negative"),
+            },
+        )
+    } else {
+        Default::default()
+    };
     let mut ts = quote! {
         /// The matrices, for error reports.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -245,10 +267,7 @@ fn errors() -> TokenStream {
             D,
             /// Map from the state to the physical coordinates (`N_COORDS × N_STATES`).
             Phys,
-            /// The discrete state matrix of `eval_discrete` (where generated).
-            Ad,
-            /// The discrete input matrix of `eval_discrete` (where generated).
-            Bd,
+            #discrete_matrices
         }
 
         /// Why an evaluation produced no result.
@@ -274,9 +293,7 @@ fn errors() -> TokenStream {
                 /// Column of the entry.
                 col: u16,
             },
-            /// The sample time given to `eval_discrete` (where generated) is not finite and
-            /// non-negative.
-            SampleTime,
+            #sample_time
         }
 
         // `Result<(), Error>` fits in one register on 64-bit targets (returned in it).
@@ -291,7 +308,7 @@ fn errors() -> TokenStream {
             pub fn what(&self) -> Option<&'static str> {
                 match *self {
                     Error::Validity { check } => CHECKS.get(check as usize).copied(),
-                    Error::NonFinite { .. } | Error::SampleTime => None,
+                    Error::NonFinite { .. } #sample_time_none => None,
                 }
             }
         }
@@ -301,7 +318,7 @@ fn errors() -> TokenStream {
                 match self {
                     Error::Validity { check } => write!(f, "outside the validity region: check {} fails ({})", check, self.what().unwrap_or("unknown check")),
                     Error::NonFinite { matrix, row, col } => write!(f, "entry ({}, {}) of {:?} is not finite", row, col, matrix),
-                    Error::SampleTime => write!(f, "the sample time is not finite and non-negative"),
+                    #sample_time_text
                 }
             }
         }

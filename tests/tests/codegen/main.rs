@@ -58,8 +58,19 @@ macro_rules! generated {
                 g::Error::NonFinite { matrix, row, col } => {
                     GenErr::NonFinite(format!("{matrix:?}"), row as usize, col as usize)
                 }
-                // Only `eval_discrete` returns it, and these tests do not call it.
-                g::Error::SampleTime => unreachable!("no eval_discrete here"),
+                // No `SampleTime`: modules without `eval_discrete` have no such variant (the
+                // match is exhaustive without it, or this does not compile).
+            }
+        }
+        // Nor the discrete matrices `Ad`, `Bd` (exhaustive without them).
+        #[allow(dead_code)]
+        fn matrix_name(m: g::Matrix) -> &'static str {
+            match m {
+                g::Matrix::A => "A",
+                g::Matrix::B => "B",
+                g::Matrix::C => "C",
+                g::Matrix::D => "D",
+                g::Matrix::Phys => "Phys",
             }
         }
         fn params(p: &[f64]) -> [$ty; g::N_PARAMS] {
