@@ -4,9 +4,10 @@
 //! mirrors it), a square where it starts and a triangle where it ends, and each stability
 //! boundary as a ring on the imaginary axis with its value.
 
+use super::labels::Placer;
 use super::{
-    Mark, Plot, STABLE_FILL, axis_range, bounds, color, draw_legend, draw_mesh, draw_runs, drawing,
-    render, runs, union, with_title,
+    Mark, Plot, STABLE_FILL, axis_range_or, bounds, color, denoised, draw_legend, draw_mesh,
+    draw_runs, drawing, render, runs, union, with_title,
 };
 use crate::error::CliError;
 use crate::format::g;
@@ -16,6 +17,12 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// Size of the plot in pixels.
 const SIZE: (u32, u32) = (1100, 820);
+
+/// Font size of the labels in the SVG, in pixels.
+const LABEL_PX: f64 = 11.0;
+
+/// plotters writes a font of size s as font-size s/1.24 in the SVG.
+const SVG_SCALE: f64 = 1.24;
 
 /// Places along a path where the parameter is shown.
 const LABELS: usize = 5;
@@ -66,10 +73,15 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
             "{left_out} eigenvalue value(s) are NaN or infinite and are not drawn"
         ));
     }
-    let re = bounds(paths.iter().flatten().map(|p| p.0));
-    let im = bounds(paths.iter().flatten().map(|p| p.1));
-    let x = axis_range(union(re, Some((0.0, 0.0))), 0.08);
-    let y = axis_range(union(im, Some((0.0, 0.0))), 0.08);
+    // Parts within their error estimate are rounding (0); an axis of zeros (the imaginary
+    // axis of a purely real locus, the real axis of an undamped one) takes the size of the
+    // other one instead of ±1.
+    let noise = super::sweep::noise(r);
+    let re = denoised(bounds(paths.iter().flatten().map(|p| p.0)), noise);
+    let im = denoised(bounds(paths.iter().flatten().map(|p| p.1)), noise);
+    let size = |s: Option<(f64, f64)>| s.map_or(0.0, |(lo, hi)| 0.5 * lo.abs().max(hi.abs()));
+    let x = axis_range_or(union(re, Some((0.0, 0.0))), 0.08, size(im));
+    let y = axis_range_or(union(im, Some((0.0, 0.0))), 0.08, size(re));
     let p = &r.param;
     let unit_text = if unit.is_empty() {
         String::new()
@@ -124,10 +136,45 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
                 )))
                 .map_err(drawing)?;
         }
-        let style = ("sans-serif", 13)
+        let style = ("sans-serif", LABEL_PX * SVG_SCALE)
             .into_font()
             .color(&BLACK)
-            .pos(Pos::new(HPos::Left, VPos::Bottom));
+            .pos(Pos::new(HPos::Left, VPos::Top));
+        // Labels go where they overlap no other label: the boundaries' first, then the
+        // parameter values along the paths (a value with no free place is not labelled).
+        let (xs, ys) = chart.plotting_area().get_pixel_range();
+        let mut placer = Placer::new([
+            f64::from(xs.start),
+            f64::from(ys.start),
+            f64::from(xs.end),
+            f64::from(ys.end),
+        ]);
+        let mut labels: Vec<(String, (f64, f64), f64)> = Vec::new();
+        for b in &r.boundaries {
+            let text = format!("{p} = {}", g(b.value, 6));
+            labels.push((text, (b.eigenvalue.re, b.eigenvalue.im.abs()), 10.0));
+        }
+        for path in &paths {
+            for i in label_indices(path.len()) {
+                let (zr, zi) = path[i];
+                if zi >= 0.0 && super::plottable(zr) && super::plottable(zi) {
+                    labels.push((g(r.points[i].value, 4), (zr, zi), 5.0));
+                }
+            }
+        }
+        for (text, at, gap) in labels {
+            let (px, py) = chart.backend_coord(&at);
+            if let Some((left, top)) =
+                placer.place(&text, LABEL_PX, (f64::from(px), f64::from(py)), gap)
+            {
+                let offset = ((left - f64::from(px)) as i32, (top - f64::from(py)) as i32);
+                chart
+                    .draw_series(std::iter::once(
+                        EmptyElement::at(at) + Text::new(text, offset, style.clone()),
+                    ))
+                    .map_err(drawing)?;
+            }
+        }
         for (k, path) in paths.iter().enumerate() {
             let c = color(k);
             draw_runs(&mut chart, &runs(path.iter().copied()), c)?;
@@ -148,12 +195,6 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
                     chart.draw_series(std::iter::once(Circle::new(at, 3, c.filled())))
                 };
                 drawn.map_err(drawing)?;
-                if zi >= 0.0 {
-                    let text = g(r.points[i].value, 4);
-                    chart
-                        .draw_series(std::iter::once(Text::new(text, (zr, zi), style.clone())))
-                        .map_err(drawing)?;
-                }
             }
         }
         for b in &r.boundaries {
@@ -166,14 +207,6 @@ pub fn locus_plot(model: &str, r: &SweepResult, unit: &str) -> Result<Plot, CliE
                     )))
                     .map_err(drawing)?;
             }
-            let text = format!("{p} = {}", g(b.value, 6));
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    text,
-                    (b.eigenvalue.re, b.eigenvalue.im.abs()),
-                    style.clone(),
-                )))
-                .map_err(drawing)?;
         }
         draw_legend(&legend, &rows)
     })?;

@@ -15,6 +15,7 @@ pub mod bode;
 pub mod compare;
 pub mod geometry;
 pub mod hankel;
+pub mod labels;
 pub mod locus;
 pub mod poles;
 pub mod shape;
@@ -253,7 +254,14 @@ pub(crate) fn with_title<'a>(
     root: &Area<'a>,
     title: &str,
 ) -> Result<(Area<'a>, Area<'a>), CliError> {
-    let body = root.titled(title, (FONT, 26)).map_err(drawing)?;
+    // plotters writes a font of size s as font-size s/1.24 in the SVG; the title shrinks
+    // to fit the picture's width (a long model name or file path).
+    const SVG_SCALE: f64 = 1.24;
+    let (width, _) = root.dim_in_pixel();
+    let px = labels::fitting_size(title, 26.0 / SVG_SCALE, 8.0, f64::from(width) - 20.0);
+    let body = root
+        .titled(title, (FONT, px * SVG_SCALE))
+        .map_err(drawing)?;
     let (w, _) = body.dim_in_pixel();
     Ok(body.split_horizontally(w.saturating_sub(LEGEND_WIDTH)))
 }
@@ -288,17 +296,42 @@ pub(crate) fn union(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> Option<(f64
 /// millionth of their magnitude, get ±10 % of their magnitude (±1 around zero), because a
 /// zero-width axis has no scale at all. No data gives `[0, 1]`.
 pub(crate) fn axis_range(span: Option<(f64, f64)>, pad: f64) -> (f64, f64) {
+    axis_range_or(span, pad, 1.0)
+}
+
+/// [`axis_range`], with data that are all exactly zero spanning `±zero_half` instead of ±1:
+/// the scale of the plot's other data (a purely real root locus gets an imaginary axis of
+/// the real parts' size, not ±1). A `zero_half` that is not positive and finite means 1.
+pub(crate) fn axis_range_or(span: Option<(f64, f64)>, pad: f64, zero_half: f64) -> (f64, f64) {
     let Some((lo, hi)) = span else {
         return (0.0, 1.0);
     };
     let scale = lo.abs().max(hi.abs());
     if hi - lo <= 1e-6 * scale || scale == 0.0 {
         let mid = 0.5 * (lo + hi);
-        let half = if scale == 0.0 { 1.0 } else { 0.1 * scale };
+        let half = if scale != 0.0 {
+            0.1 * scale
+        } else if zero_half.is_finite() && zero_half > 0.0 {
+            zero_half
+        } else {
+            1.0
+        };
         return (mid - half, mid + half);
     }
     let d = pad * (hi - lo);
     (lo - d, hi + d)
+}
+
+/// A data span whose values are all within `noise` of zero (their error estimate: rounding,
+/// not data) taken as exactly zero, so that an axis is not scaled to rounding noise.
+pub(crate) fn denoised(span: Option<(f64, f64)>, noise: f64) -> Option<(f64, f64)> {
+    span.map(|(lo, hi)| {
+        if lo.abs().max(hi.abs()) <= noise {
+            (0.0, 0.0)
+        } else {
+            (lo, hi)
+        }
+    })
 }
 
 /// A logarithmic axis range for positive data spanning `span`. A range that holds no power
@@ -468,13 +501,18 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    let fmt = |v: &f64| g(*v, 4);
+    // A tick at zero computed as −0.3 + 3 × 0.1 is −5.55e-17: a tick within a billionth
+    // of the axis width of zero is 0.
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let at_zero = |v: f64, r: &std::ops::Range<f64>| v.abs() <= 1e-9 * (r.end - r.start).abs();
+    let x_fmt = |v: &f64| if at_zero(*v, &xr) { "0".into() } else { g(*v, 4) };
+    let y_fmt = |v: &f64| if at_zero(*v, &yr) { "0".into() } else { g(*v, 4) };
     chart
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .x_label_formatter(&fmt)
-        .y_label_formatter(&fmt)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
         // Few light lines: the data curves, not the grid, should catch the eye.
         .max_light_lines(4)
         .light_line_style(RGBColor(240, 240, 240))
@@ -666,6 +704,11 @@ mod tests {
         let (lo, hi) = axis_range(Some((5.0, 5.0)), 0.05);
         assert!((lo - 4.5).abs() < 1e-12 && (hi - 5.5).abs() < 1e-12);
         assert_eq!(axis_range(Some((0.0, 10.0)), 0.1), (-1.0, 11.0));
+        // Data all zero take the other data's scale; noise within its estimate is zero.
+        assert_eq!(axis_range_or(Some((0.0, 0.0)), 0.05, 5.0), (-5.0, 5.0));
+        assert_eq!(axis_range_or(Some((0.0, 0.0)), 0.05, 0.0), (-1.0, 1.0));
+        assert_eq!(denoised(Some((-1.1e-16, 0.0)), 1e-14), Some((0.0, 0.0)));
+        assert_eq!(denoised(Some((-0.5, 0.0)), 1e-14), Some((-0.5, 0.0)));
         assert_eq!(
             bounds([f64::NAN, 2.0, -1.0, f64::INFINITY]),
             Some((-1.0, 2.0))

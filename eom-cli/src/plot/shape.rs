@@ -9,6 +9,7 @@
 //! weights point down the page (a model in the z-down axes of vehicle dynamics, like the
 //! bicycle, has +z down); without weights, upward unless the bodies lie below z = 0.
 
+use super::labels::{Placer, text_width};
 use super::geometry::{EdgeKind, Node, Sketch, displacement};
 use nalgebra::Vector3;
 use num_complex::Complex64;
@@ -100,6 +101,9 @@ fn views(s: &Sketch, disp: &[Vector3<Complex64>]) -> Vec<View> {
     }
 }
 
+/// Font size of the body names, in pixels.
+const LABEL_PX: f64 = 12.0;
+
 /// The SVG document of a mode shape (or of the model at rest).
 pub fn shape_svg(d: &ShapeDrawing<'_>) -> String {
     let s = d.sketch;
@@ -125,7 +129,8 @@ pub fn shape_svg(d: &ShapeDrawing<'_>) -> String {
     let mut out = String::new();
     let _ = write!(
         out,
-        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif"><rect width="100%" height="100%" fill="white"/><text x="10" y="24" font-size="17">{}</text>"##,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif"><rect width="100%" height="100%" fill="white"/><text x="10" y="24" font-size="{:.1}">{}</text>"##,
+        super::labels::fitting_size(&d.title, 17.0, 8.0, width - 20.0),
         escape(&d.title)
     );
     for (k, v) in views.iter().enumerate() {
@@ -279,7 +284,11 @@ fn view_svg(
         animated_edges(out, nodes, disp, &f, edges);
         centres_of_rotation(out, s, m, &f);
     }
-    body_dots(out, s, nodes, disp, &f, animated);
+    // The view's caption is taken; body names go where they fit inside the panel.
+    let caption = format!("{} ({} →, {} {vdir})", view.name, AXES[view.h], AXES[view.v]);
+    let mut placer = Placer::new([2.0, 2.0, panel.0 - 2.0, panel.1 - 2.0]);
+    placer.take([12.0, 8.0, 12.0 + text_width(&caption, 14.0), 26.0]);
+    body_dots(out, s, nodes, disp, &f, animated, &mut placer);
 }
 
 /// The positions of the two ends of edge `k` (nominal when `phase` is `None`).
@@ -351,6 +360,7 @@ fn body_dots(
     disp: &[Vector3<Complex64>],
     f: &Frame,
     animated: bool,
+    placer: &mut Placer,
 ) {
     let first_centre = nodes.len() - s.bodies.len();
     for (i, (n, d)) in nodes.iter().zip(disp).enumerate() {
@@ -371,14 +381,17 @@ fn body_dots(
             r##"<circle cx="{x:.1}" cy="{y:.1}" r="{r}" fill="{fill}" stroke="#222">{anim}</circle>"##
         );
         if is_body {
+            // Beside the dot where it overlaps no other name and stays in the panel; a name
+            // with no such place is left out (the names are in the model's tables).
             let name = &s.bodies[i - first_centre].name;
-            let _ = write!(
-                out,
-                r##"<text x="{:.1}" y="{:.1}" font-size="12" fill="#444">{}</text>"##,
-                x + 7.0,
-                y - 7.0,
-                escape(name)
-            );
+            if let Some((left, top)) = placer.place(name, LABEL_PX, (x, y), 6.0) {
+                let _ = write!(
+                    out,
+                    r##"<text x="{left:.1}" y="{:.1}" font-size="{LABEL_PX}" fill="#444">{}</text>"##,
+                    top + 0.95 * LABEL_PX,
+                    escape(name)
+                );
+            }
         }
     }
 }

@@ -7,8 +7,8 @@
 
 use super::zoom::Zoom;
 use super::{
-    Area, Chart, Mark, Plot, STABLE_FILL, Series, axis_range, bounds, color, draw_legend,
-    draw_mesh, draw_runs, drawing, plottable, render, runs, union, with_title, with_unit,
+    Area, Chart, Mark, Plot, STABLE_FILL, Series, axis_range, axis_range_or, bounds, color, draw_legend,
+    denoised, draw_mesh, draw_runs, drawing, plottable, render, runs, union, with_title, with_unit,
 };
 use crate::error::CliError;
 use crate::format::g;
@@ -69,6 +69,30 @@ fn branches(r: &SweepResult) -> (Vec<Branch>, usize) {
         })
         .collect();
     (curves, left_out)
+}
+
+/// The largest error estimate the sweep states (`points[].tolerance`): real parts within it
+/// are rounding, and no axis is scaled to them.
+pub(crate) fn noise(r: &SweepResult) -> f64 {
+    r.points
+        .iter()
+        .filter_map(|p| p.tolerance)
+        .filter(|t| t.is_finite())
+        .fold(0.0, f64::max)
+}
+
+/// The largest |λ| of the non-neutral branches: the scale of an axis whose data are all 0.
+pub(crate) fn eigen_scale(r: &SweepResult) -> f64 {
+    let drawn: Vec<usize> = (r.branches.iter())
+        .filter(|b| !b.neutral)
+        .map(|b| b.index)
+        .collect();
+    r.points
+        .iter()
+        .flat_map(|p| drawn.iter().filter_map(|&j| p.eigenvalues.get(j)))
+        .map(|z| z.norm())
+        .filter(|m| plottable(*m))
+        .fold(0.0, f64::max)
 }
 
 /// The legend rows: what the colours, shading and dashed lines mean, the boundaries and
@@ -223,9 +247,12 @@ pub fn sweep_plot(
     let x = axis_range(bounds(r.points.iter().map(|p| p.value)), 0.0);
     let re = bounds(curves.iter().flat_map(|b| b.re.iter().map(|p| p.1)));
     let hz = bounds(curves.iter().flat_map(|b| b.hz.iter().map(|p| p.1)));
-    // Re λ = 0 is always in view: stability is read off against it.
-    let y_re = axis_range(union(re, Some((0.0, 0.0))), 0.05);
-    let y_hz = axis_range(union(hz, Some((0.0, 0.0))), 0.05);
+    // Re λ = 0 is always in view: stability is read off against it. Real parts within their
+    // error estimate are 0 (an undamped model's axis is not scaled to rounding), and an
+    // axis of zeros takes a tenth of the eigenvalues' size.
+    let tenth = 0.1 * eigen_scale(r);
+    let y_re = axis_range_or(union(denoised(re, noise(r)), Some((0.0, 0.0))), 0.05, tenth);
+    let y_hz = axis_range_or(union(hz, Some((0.0, 0.0))), 0.05, tenth / TAU);
     // Frequencies are not negative: start the axis at 0.
     let y_hz = (y_hz.0.max(0.0), y_hz.1);
     let rows = legend_rows(r, curves.len(), &notes);

@@ -123,7 +123,7 @@ fn draw_cell(
         0.06,
     );
     let mut b = ChartBuilder::on(area);
-    b.margin(8).x_label_area_size(35).y_label_area_size(75);
+    b.margin(8).x_label_area_size(45).y_label_area_size(75);
     if heading {
         b.caption(&c.title, ("sans-serif", 17));
     }

@@ -248,8 +248,14 @@ pub fn io_view(p: &mut Page, cx: &Context<'_>) {
             let rows: Vec<Vec<String>> = gains
                 .iter()
                 .map(|e| {
-                    let value = match (&e.value, &e.integrating) {
-                        (Some(v), _) => g(*v, SIG),
+                    let value = match (e.shown(), &e.integrating) {
+                        (Some((v, None)), _) => g(v, SIG),
+                        (Some((v, Some(err))), _) => format!(
+                            "{} (computed {}, within its error estimate {})",
+                            g(v, SIG),
+                            g(e.value.unwrap_or(v), 3),
+                            g(err, 2)
+                        ),
                         (None, Some(i)) => format!(
                             "integrating (order {}, slope {})",
                             i.order,
@@ -413,7 +419,7 @@ pub fn sweep(
         .result
         .stable_intervals
         .iter()
-        .map(|i| format!("[{}, {}]", g(i.lo, SIG), g(i.hi, SIG)))
+        .map(|i| crate::sweep::interval_text(&s.result, i, |x| g(x, SIG)))
         .collect();
     p.text(&format!(
         "stable for {} in {}",
