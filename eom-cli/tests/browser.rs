@@ -190,7 +190,7 @@ fn report_text_stays_inside_its_figures_for_more_models() {
     let cases: [(&str, Vec<&str>, &str); 3] = [
         (
             "quarter_car",
-            vec!["quarter_car", "--sweep", "cs=0:4000:81"],
+            vec!["quarter_car", "--sweep", "cs=100:4000:79"],
             "quarter_car",
         ),
         ("double_pendulum", vec![pendulum_file], "double_pendulum"),

@@ -36,8 +36,12 @@ pub fn fitting_size(text: &str, px: f64, min: f64, width: f64) -> f64 {
 /// A box in pixels: `[left, top, right, bottom]`.
 pub type Box2 = [f64; 4];
 
+/// Space kept between two labels, in pixels (so that "10" and "5" side by side do not read
+/// as "105").
+const PAD: f64 = 4.0;
+
 fn overlap(a: &Box2, b: &Box2) -> bool {
-    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+    a[0] < b[2] + PAD && b[0] < a[2] + PAD && a[1] < b[3] + PAD && b[1] < a[3] + PAD
 }
 
 /// Places labels one after another: each at the first of eight positions around its point
