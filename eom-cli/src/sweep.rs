@@ -17,9 +17,7 @@ use crate::error::CliError;
 use crate::format::{eigenvalue, g, table, wrap_list};
 use crate::params::{ModelChoice, SweepSpec};
 use eom_model::{Linearizer, Method, Model, ModelError};
-use eom_num::sweep::{
-    Crossing, PointStability, StableInterval, Sweep, SweepPoint, SweepResult,
-};
+use eom_num::sweep::{Crossing, PointStability, StableInterval, Sweep, SweepPoint, SweepResult};
 use eom_sym::{Expr, SymError};
 use models::CatalogueError;
 use nalgebra::DMatrix;
@@ -568,11 +566,7 @@ impl SweepReport {
 /// A stable interval as written (`num` writes its ends): an end where stability is lost (a
 /// boundary or a marginal grid point) is not in the interval and is written open, an end at
 /// a stable grid point closed.
-pub fn interval_text(
-    r: &SweepResult,
-    i: &StableInterval,
-    num: impl Fn(f64) -> String,
-) -> String {
+pub fn interval_text(r: &SweepResult, i: &StableInterval, num: impl Fn(f64) -> String) -> String {
     let open_at = |x: f64| {
         r.boundaries.iter().any(|b| b.value == x)
             || r.points

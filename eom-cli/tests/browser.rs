@@ -126,9 +126,15 @@ fn check_page(browser: &str, dir: &Path, args: &[&str], name: &str) {
     assert_eq!(attribute(&dom, "empty-svgs"), Some("0"));
     // Text measured by the browser's layout: inside its figure, over no other text, and no
     // heading or LaTeX cut off.
-    let problems = attribute(&dom, "text-problems").unwrap_or("").replace("&quot;", "\"");
+    let problems = attribute(&dom, "text-problems")
+        .unwrap_or("")
+        .replace("&quot;", "\"");
     for what in ["text-outside", "text-overlaps", "text-clipped"] {
-        assert_eq!(attribute(&dom, what), Some("0"), "{name}: {what}: {problems}");
+        assert_eq!(
+            attribute(&dom, what),
+            Some("0"),
+            "{name}: {what}: {problems}"
+        );
     }
 
     let shot = dir.join(format!("{name}.png"));
@@ -186,7 +192,10 @@ fn report_text_stays_inside_its_figures_for_more_models() {
         println!("skipped: chromium is not installed (apt-get install chromium)");
         return;
     };
-    let pendulum_file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/double_pendulum.toml");
+    let pendulum_file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../models/double_pendulum.toml"
+    );
     let cases: [(&str, Vec<&str>, &str); 3] = [
         (
             "quarter_car",
@@ -194,7 +203,11 @@ fn report_text_stays_inside_its_figures_for_more_models() {
             "quarter_car",
         ),
         ("double_pendulum", vec![pendulum_file], "double_pendulum"),
-        ("pendulum", vec!["pendulum", "--sweep", "g=1:10:21"], "pendulum"),
+        (
+            "pendulum",
+            vec!["pendulum", "--sweep", "g=1:10:21"],
+            "pendulum",
+        ),
     ];
     for (dir, args, name) in cases {
         check_page(&browser, &scratch(dir), &args, name);

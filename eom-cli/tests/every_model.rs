@@ -92,9 +92,9 @@ fn one_verdict(m: &str, p: &str, sweep: &serde_json::Value) {
         let a = json(&["analyze", m, "--set", &set, "--format", "json"]);
         let modes = a["modes"].as_array().expect("modes");
         let judged = |kind_zero: bool, verdict: &str| {
-            modes.iter().any(|md| {
-                (md["kind"] == "zero") == kind_zero && md["stability"] == verdict
-            })
+            modes
+                .iter()
+                .any(|md| (md["kind"] == "zero") == kind_zero && md["stability"] == verdict)
         };
         let verdict = pt["stability"].as_str().expect("a verdict");
         let all_zero = modes.iter().all(|md| md["kind"] == "zero");
@@ -110,7 +110,11 @@ fn one_verdict(m: &str, p: &str, sweep: &serde_json::Value) {
             "{m} at {set}: the sweep says {verdict}, eom analyze's modes {:?}",
             modes
                 .iter()
-                .map(|md| (md["eigenvalue"].to_string(), md["kind"].to_string(), md["stability"].to_string()))
+                .map(|md| (
+                    md["eigenvalue"].to_string(),
+                    md["kind"].to_string(),
+                    md["stability"].to_string()
+                ))
                 .collect::<Vec<_>>()
         );
         // A marginal point states the tolerance its real part is within.

@@ -379,7 +379,11 @@ fn gain_at_tolerance(
         warnings,
         certificate: None,
         errors: DMatrix::from_fn(p, m, |i, j| {
-            if order[(i, j)] > 0 { 0.0 } else { fin_errors[(i, j)] }
+            if order[(i, j)] > 0 {
+                0.0
+            } else {
+                fin_errors[(i, j)]
+            }
         }),
     })
 }
@@ -538,7 +542,11 @@ fn finite_part(
         };
         let lu = a1.clone().lu();
         let x = lu.solve(b1).ok_or_else(singular)?;
-        let y = a1.transpose().lu().solve(&c1.transpose()).ok_or_else(singular)?;
+        let y = a1
+            .transpose()
+            .lu()
+            .solve(&c1.transpose())
+            .ok_or_else(singular)?;
         let errors = solve_errors(a1, c1, d, &x, &y);
         (d - c1 * x, errors)
     };
@@ -559,8 +567,7 @@ fn solve_errors(
     let solve = yabs.transpose() * mabs * &xabs;
     let product = cabs * &xabs;
     DMatrix::from_fn(d.nrows(), d.ncols(), |i, j| {
-        10.0 * k * f64::EPSILON * (solve[(i, j)] + product[(i, j)])
-            + f64::EPSILON * d[(i, j)].abs()
+        10.0 * k * f64::EPSILON * (solve[(i, j)] + product[(i, j)]) + f64::EPSILON * d[(i, j)].abs()
     })
 }
 

@@ -275,7 +275,8 @@ fn gains_that_are_exactly_zero_are_within_their_error_estimate() {
     let mut r = rng(26);
     let (mut nonzero, mut cases) = (0, 0);
     while cases < 200 {
-        let m: [[i64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| r.random_range(-9..=9)));
+        let m: [[i64; 3]; 3] =
+            std::array::from_fn(|_| std::array::from_fn(|_| r.random_range(-9..=9)));
         let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
             - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
             + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
@@ -310,7 +311,9 @@ fn gains_that_are_exactly_zero_are_within_their_error_estimate() {
         let (Gain::Finite(v), err) = (g.get(0, 0), g.errors[(0, 0)]) else {
             panic!("finite gain expected");
         };
-        let scale: f64 = (0..3).map(|i| f(c[i]).abs() * f(adj_b[i]).abs()).sum::<f64>()
+        let scale: f64 = (0..3)
+            .map(|i| f(c[i]).abs() * f(adj_b[i]).abs())
+            .sum::<f64>()
             / f(det).abs();
         assert!(v.abs() <= err, "case {cases}: gain {v:e}, estimate {err:e}");
         assert!(

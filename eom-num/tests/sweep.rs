@@ -460,8 +460,18 @@ fn non_normal(x: f64) -> Result<DMatrix<f64>, String> {
 fn estimates_only_where_a_verdict_could_change_with_the_same_verdicts() {
     let cases: [(&str, Box<dyn Fn(f64) -> DMatrix<f64> + Sync>, f64, f64); 3] = [
         ("shimmy", Box::new(|x| shimmy(x).unwrap()), 0.0, 1.0),
-        ("crossing pairs", Box::new(|x| crossing_pairs(x).unwrap()), 0.0, 2.0),
-        ("non-normal", Box::new(|x| non_normal(x).unwrap()), 1e-3, 200.0),
+        (
+            "crossing pairs",
+            Box::new(|x| crossing_pairs(x).unwrap()),
+            0.0,
+            2.0,
+        ),
+        (
+            "non-normal",
+            Box::new(|x| non_normal(x).unwrap()),
+            1e-3,
+            200.0,
+        ),
     ];
     for (name, f, lo, hi) in cases {
         let res = Sweep::linspace(lo, hi, 201)
@@ -470,14 +480,22 @@ fn estimates_only_where_a_verdict_could_change_with_the_same_verdicts() {
         let (mut with, mut without) = (0, 0);
         for p in &res.points {
             let a = f(p.value);
-            assert_eq!(p.stability, verdict_with_estimates(&a), "{name} at {}", p.value);
+            assert_eq!(
+                p.stability,
+                verdict_with_estimates(&a),
+                "{name} at {}",
+                p.value
+            );
             let bound = screen_bound(a.nrows(), a.norm());
             let near = p.eigenvalues.iter().any(|z| z.re.abs() <= bound);
             assert_eq!(p.tolerance.is_some(), near, "{name} at {}: {p:?}", p.value);
             if near { with += 1 } else { without += 1 }
         }
         // Each family has points of both kinds.
-        assert!(with > 0 && without > 0, "{name}: {with} with, {without} without");
+        assert!(
+            with > 0 && without > 0,
+            "{name}: {with} with, {without} without"
+        );
     }
     // The non-normal family is marginal where its estimates exceed its real parts.
     let res = Sweep::linspace(1e-3, 200.0, 201).run(non_normal).unwrap();

@@ -68,7 +68,13 @@ impl Placer {
 
     /// The top-left corner of a free box for `text` at `px` pixels beside the point
     /// `(x, y)` (`gap` pixels away), or `None` when every position is taken or outside.
-    pub fn place(&mut self, text: &str, px: f64, (x, y): (f64, f64), gap: f64) -> Option<(f64, f64)> {
+    pub fn place(
+        &mut self,
+        text: &str,
+        px: f64,
+        (x, y): (f64, f64),
+        gap: f64,
+    ) -> Option<(f64, f64)> {
         let (w, h) = (text_width(text, px), 1.2 * px);
         let candidates = [
             (x + gap, y - gap - h),

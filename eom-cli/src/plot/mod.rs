@@ -505,8 +505,20 @@ where
     // of the axis width of zero is 0.
     let (xr, yr) = (chart.x_range(), chart.y_range());
     let at_zero = |v: f64, r: &std::ops::Range<f64>| v.abs() <= 1e-9 * (r.end - r.start).abs();
-    let x_fmt = |v: &f64| if at_zero(*v, &xr) { "0".into() } else { g(*v, 4) };
-    let y_fmt = |v: &f64| if at_zero(*v, &yr) { "0".into() } else { g(*v, 4) };
+    let x_fmt = |v: &f64| {
+        if at_zero(*v, &xr) {
+            "0".into()
+        } else {
+            g(*v, 4)
+        }
+    };
+    let y_fmt = |v: &f64| {
+        if at_zero(*v, &yr) {
+            "0".into()
+        } else {
+            g(*v, 4)
+        }
+    };
     chart
         .configure_mesh()
         .x_desc(x_desc)

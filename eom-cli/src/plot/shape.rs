@@ -9,8 +9,8 @@
 //! weights point down the page (a model in the z-down axes of vehicle dynamics, like the
 //! bicycle, has +z down); without weights, upward unless the bodies lie below z = 0.
 
-use super::labels::{Placer, text_width};
 use super::geometry::{EdgeKind, Node, Sketch, displacement};
+use super::labels::{Placer, text_width};
 use nalgebra::Vector3;
 use num_complex::Complex64;
 use std::f64::consts::TAU;
@@ -285,7 +285,10 @@ fn view_svg(
         centres_of_rotation(out, s, m, &f);
     }
     // The view's caption is taken; body names go where they fit inside the panel.
-    let caption = format!("{} ({} →, {} {vdir})", view.name, AXES[view.h], AXES[view.v]);
+    let caption = format!(
+        "{} ({} →, {} {vdir})",
+        view.name, AXES[view.h], AXES[view.v]
+    );
     let mut placer = Placer::new([2.0, 2.0, panel.0 - 2.0, panel.1 - 2.0]);
     placer.take([12.0, 8.0, 12.0 + text_width(&caption, 14.0), 26.0]);
     body_dots(out, s, nodes, disp, &f, animated, &mut placer);

@@ -7,8 +7,9 @@
 
 use super::zoom::Zoom;
 use super::{
-    Area, Chart, Mark, Plot, STABLE_FILL, Series, axis_range, axis_range_or, bounds, color, draw_legend,
-    denoised, draw_mesh, draw_runs, drawing, plottable, render, runs, union, with_title, with_unit,
+    Area, Chart, Mark, Plot, STABLE_FILL, Series, axis_range, axis_range_or, bounds, color,
+    denoised, draw_legend, draw_mesh, draw_runs, drawing, plottable, render, runs, union,
+    with_title, with_unit,
 };
 use crate::error::CliError;
 use crate::format::g;

@@ -57,9 +57,8 @@ macro_rules! generated {
                 }
                 g::Error::NonFinite { matrix, row, col } => {
                     GenErr::NonFinite(format!("{matrix:?}"), row as usize, col as usize)
-                }
-                // No `SampleTime`: modules without `eval_discrete` have no such variant (the
-                // match is exhaustive without it, or this does not compile).
+                } // No `SampleTime`: modules without `eval_discrete` have no such variant (the
+                  // match is exhaustive without it, or this does not compile).
             }
         }
         // Nor the discrete matrices `Ad`, `Bd` (exhaustive without them).
