@@ -527,7 +527,18 @@ impl SweepReport {
         }
         t.push('\n');
         t.push_str(&format!("Stable intervals of {p}\n"));
-        if r.stable_intervals.is_empty() {
+        let marginal_count = r
+            .points
+            .iter()
+            .filter(|pt| pt.stability == PointStability::Marginal)
+            .count();
+        if r.stable_intervals.is_empty() && marginal_count == r.points.len() {
+            t.push_str(&format!(
+                "  none: all {} values are marginal (a real part within its error estimate of \
+                 0 at each, and none unstable)\n",
+                self.range.count
+            ));
+        } else if r.stable_intervals.is_empty() {
             t.push_str(&format!(
                 "  none at the grid points: all {} values are unstable or marginal (the model \
                  may be stable between them: refine the grid)\n",

@@ -453,12 +453,15 @@ fn non_normal(x: f64) -> Result<DMatrix<f64>, String> {
     Ok(r.transpose() * mat(&[&[-x, 1e6], &[0.0, -2.0 * x]]) * r)
 }
 
+/// A family `A(x)` of a test.
+type Family = Box<dyn Fn(f64) -> DMatrix<f64> + Sync>;
+
 /// The estimates are computed only where a verdict could depend on them (some |Re λ| within
 /// `screen_bound`); every point's verdict is still the rule's with all estimates, and the
 /// points that state no tolerance are those beyond the bound.
 #[test]
 fn estimates_only_where_a_verdict_could_change_with_the_same_verdicts() {
-    let cases: [(&str, Box<dyn Fn(f64) -> DMatrix<f64> + Sync>, f64, f64); 3] = [
+    let cases: [(&str, Family, f64, f64); 3] = [
         ("shimmy", Box::new(|x| shimmy(x).unwrap()), 0.0, 1.0),
         (
             "crossing pairs",
