@@ -70,7 +70,7 @@ pub enum CliError {
     #[error(transparent)]
     Codegen(#[from] eom_codegen::CodegenError),
     /// A feature this build does not include.
-    #[cfg(not(feature = "codegen"))]
+    #[cfg(any(not(feature = "codegen"), not(feature = "bench")))]
     #[error("{0}")]
     Unavailable(String),
     /// A picture that this model cannot give (no mode moves a body, no map to the bodies).

@@ -42,7 +42,7 @@ use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
     svd_full,
 };
-use crate::staircase::compress;
+use crate::minreal::staircase::compress;
 use crate::statespace::StateSpace;
 
 /// Options of [`transmission_zeros_with`].

@@ -60,7 +60,11 @@ pub enum SymError {
         problem: String,
     },
     /// A name that is not a known parameter.
-    #[error("unknown parameter `{name}`; known parameters: {}", known.join(", "))]
+    #[error(
+        "unknown parameter `{name}`{}; known parameters: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownParameter {
         /// The unknown name.
         name: String,

@@ -45,7 +45,11 @@ pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 #[derive(Debug, thiserror::Error)]
 pub enum CatalogueError {
     /// No model of this name.
-    #[error("unknown model `{name}`; models are: {}", known.join(", "))]
+    #[error(
+        "unknown model `{name}`{}; models are: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownModel {
         /// The name asked for.
         name: String,
@@ -65,7 +69,11 @@ pub enum CatalogueError {
         max: usize,
     },
     /// A parameter that the model does not have.
-    #[error("model `{model}` has no parameter `{name}`; its parameters are: {}", known.join(", "))]
+    #[error(
+        "model `{model}` has no parameter `{name}`{}; its parameters are: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownParameter {
         /// The model.
         model: String,
