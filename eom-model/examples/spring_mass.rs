@@ -29,7 +29,13 @@ fn main() -> Result<(), ModelError> {
     // Symbolic: A = [[0, 1], [−k/m, −c/m]] as expressions over the parameters.
     let sym = Linearizer::new(&m).symbolic()?;
     let a = &sym.state_space().a;
-    println!("A = [[{}, {}], [{}, {}]]", a[(0, 0)], a[(0, 1)], a[(1, 0)], a[(1, 1)]);
+    println!(
+        "A = [[{}, {}], [{}, {}]]",
+        a[(0, 0)],
+        a[(0, 1)],
+        a[(1, 0)],
+        a[(1, 1)]
+    );
 
     // Numeric, at k = 18 N/m, by the robust path: the eigenvalues −c/2m ± i·sqrt(k/m − (c/2m)²).
     let lin = Linearizer::new(&m)
@@ -38,7 +44,10 @@ fn main() -> Result<(), ModelError> {
         .run()?;
     let eig = eom_num::modes::eigenvalues(&lin.state_space.a)?;
     let expected = (18.0_f64 / 2.0 - 0.01).sqrt();
-    assert!(eig.iter().all(|z| (z.re + 0.1).abs() < 1e-12 && (z.im.abs() - expected).abs() < 1e-12));
+    assert!(
+        eig.iter()
+            .all(|z| (z.re + 0.1).abs() < 1e-12 && (z.im.abs() - expected).abs() < 1e-12)
+    );
     println!("eigenvalues at k = 18: {} and {}", eig[0], eig[1]);
     Ok(())
 }

@@ -3,6 +3,7 @@
 /// Everything that can go wrong in eom-sym. Messages name the parameter, item, field or
 /// position at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SymError {
     /// A parse error: where, what was expected, what was found.
     #[error(

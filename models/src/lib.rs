@@ -43,6 +43,7 @@ pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 
 /// Errors of the model library (the catalogue of built-in models).
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CatalogueError {
     /// No model of this name.
     #[error(
