@@ -333,8 +333,7 @@ impl<S: ModelScalar> Wing<S> {
         for (i, row) in self.scaled_derivatives().iter().enumerate() {
             for (j, d) in row.iter().enumerate() {
                 let value = q * d.nominal();
-                // Written so that NaN fails too.
-                if !(value.abs() <= eom_num::MAX_ENTRY) {
+                if value.is_nan() || value.abs() > eom_num::MAX_ENTRY {
                     return Err(field_error(
                         "wing",
                         &self.name,
