@@ -11,6 +11,7 @@
 mod aero;
 mod analyze;
 mod analyze_text;
+#[cfg(feature = "bench")]
 mod bench;
 mod check;
 mod codegen;
@@ -609,6 +610,7 @@ fn json<T: serde::Serialize>(v: &T) -> Result<String, CliError> {
 }
 
 /// `eom bench …`: the benchmarks' output (notes of written files on `stderr`).
+#[cfg(feature = "bench")]
 fn run_bench(b: BenchCommand, quiet: bool, stderr: &mut String) -> Result<String, CliError> {
     Ok(match b {
         BenchCommand::Accuracy(b) => {
@@ -630,6 +632,17 @@ fn run_bench(b: BenchCommand, quiet: bool, stderr: &mut String) -> Result<String
             bench::stress(&req, quiet, stderr)?
         }
     })
+}
+
+/// Without the `bench` feature: `eom bench` says that this build does not include it.
+#[cfg(not(feature = "bench"))]
+fn run_bench(_: BenchCommand, _: bool, _: &mut String) -> Result<String, CliError> {
+    Err(CliError::Unavailable(
+        "the benchmarks are not available in this build of eom (built without the cargo \
+         feature `bench`, which links the eom-bench crate). Rebuild with \
+         `cargo build -p eom-cli --features bench`."
+            .into(),
+    ))
 }
 
 fn run(cli: Cli) -> Result<Output, CliError> {

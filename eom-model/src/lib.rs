@@ -21,6 +21,51 @@
 //! deliberately differs from it is documented in the modules ([`assemble`](mod@assemble),
 //! [`reduce`](mod@reduce), [`robust`]).
 //!
+//! # Examples
+//!
+//! A model in a few lines, from `examples/spring_mass.rs` (run it with
+//! `cargo run --release -p eom-model --example spring_mass`):
+//!
+//! ```
+#![doc = include_str!("../examples/spring_mass.rs")]
+//! ```
+//!
+//! The shimmy, with its symbolic state matrix checked against the closed form:
+//!
+//! ```
+//! use eom_model::*;
+//!
+//! // A swivel wheel (Schwab & Meijaard's shimmy): a body pulled at speed u, a lateral spring
+//! // ahead of its mass centre, a tyre that cannot slip sideways behind it.
+//! let mut m = Model::new("shimmy");
+//! let mass = m.param("m", 5.0).unwrap();
+//! let iz = m.param("I", 1.05).unwrap();
+//! let k = m.param("k", 1.5).unwrap();
+//! let a = m.param("a", 0.5).unwrap();
+//! let b = m.param("b", 0.5).unwrap();
+//! let u = m.param("u", 10.0).unwrap();
+//! m.add(Body::new("chassis").mass(mass).moments(vec3(0, 0, iz)).velocity(vec3(u, 0, 0)));
+//! m.add(FlexPoint::new("spring").between("chassis", "ground").at(vec3(b, 0, 0)).forces(1).axis(y_axis()).stiffness(k, 0));
+//! m.add(NhPoint::new("tyre").between("chassis", "ground").at(vec3(-a, 0, 0)).forces(1).axis(y_axis()));
+//! m.add(RigidPoint::new("road").between("chassis", "ground").forces(1).moments(2).axis(z_axis()));
+//! m.add(RigidPoint::new("speed").between("chassis", "ground").forces(1).axis(x_axis()));
+//!
+//! // Symbolic: the state matrix as expressions (3 states: y, ψ and the yaw rate — the four
+//! // pinned coordinates were removed before any algebra).
+//! let sym = Linearizer::new(&m).symbolic().unwrap();
+//! let ss = sym.state_space();
+//! assert_eq!(ss.a.nrows(), 3);
+//! assert_eq!(ss.a[(2, 2)], -(mass * a * u) / (iz + mass * a * a));
+//!
+//! // Numeric: evaluated at other parameter values.
+//! let at = m.scope.values_with(&[("u", 1.0)]).unwrap();
+//! let num = sym.evaluate(&at).unwrap();
+//! let eig = eom_num::modes::eigenvalues(&num.a).unwrap();
+//! // The characteristic polynomial (I + m a²)s³ + m a u s² + k l² s + k l u has the root
+//! // −1.0548225773209977 at these values (Schwab & Meijaard 2003).
+//! assert!((eig[0].re + 1.0548225773209977).abs() < 1e-12);
+//! ```
+//!
 //! # The item layer
 //!
 //! A body or item is a struct with builder methods in its own module under `items/`, and
@@ -60,41 +105,6 @@
 //! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
 //!    the conversion agree; a closed-form model checks its terms.
 //!
-//! # Example
-//!
-//! ```
-//! use eom_model::*;
-//!
-//! // A swivel wheel (Schwab & Meijaard's shimmy): a body pulled at speed u, a lateral spring
-//! // ahead of its mass centre, a tyre that cannot slip sideways behind it.
-//! let mut m = Model::new("shimmy");
-//! let mass = m.param("m", 5.0).unwrap();
-//! let iz = m.param("I", 1.05).unwrap();
-//! let k = m.param("k", 1.5).unwrap();
-//! let a = m.param("a", 0.5).unwrap();
-//! let b = m.param("b", 0.5).unwrap();
-//! let u = m.param("u", 10.0).unwrap();
-//! m.add(Body::new("chassis").mass(mass).moments(vec3(0, 0, iz)).velocity(vec3(u, 0, 0)));
-//! m.add(FlexPoint::new("spring").between("chassis", "ground").at(vec3(b, 0, 0)).forces(1).axis(y_axis()).stiffness(k, 0));
-//! m.add(NhPoint::new("tyre").between("chassis", "ground").at(vec3(-a, 0, 0)).forces(1).axis(y_axis()));
-//! m.add(RigidPoint::new("road").between("chassis", "ground").forces(1).moments(2).axis(z_axis()));
-//! m.add(RigidPoint::new("speed").between("chassis", "ground").forces(1).axis(x_axis()));
-//!
-//! // Symbolic: the state matrix as expressions (3 states: y, ψ and the yaw rate — the four
-//! // pinned coordinates were removed before any algebra).
-//! let sym = Linearizer::new(&m).symbolic().unwrap();
-//! let ss = sym.state_space();
-//! assert_eq!(ss.a.nrows(), 3);
-//! assert_eq!(ss.a[(2, 2)], -(mass * a * u) / (iz + mass * a * a));
-//!
-//! // Numeric: evaluated at other parameter values.
-//! let at = m.scope.values_with(&[("u", 1.0)]).unwrap();
-//! let num = sym.evaluate(&at).unwrap();
-//! let eig = eom_num::modes::eigenvalues(&num.a).unwrap();
-//! // The characteristic polynomial (I + m a²)s³ + m a u s² + k l² s + k l u has the root
-//! // −1.0548225773209977 at these values (Schwab & Meijaard 2003).
-//! assert!((eig[0].re + 1.0548225773209977).abs() < 1e-12);
-//! ```
 
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
@@ -115,6 +125,17 @@ pub mod robust;
 pub mod sensitivity;
 pub mod tutorials;
 pub mod validate;
+
+/// The types a user needs to build and linearize a model: `use eom_model::prelude::*;`.
+pub mod prelude {
+    pub use crate::error::ModelError;
+    pub use crate::items::{
+        Actuator, Beam, Body, FlexPoint, Link, Load, NhPoint, RigidPoint, Sensor, SensorFrame,
+        SensorOrder, Spring, Wing, vec3, x_axis, y_axis, z_axis,
+    };
+    pub use crate::linearize::{Linearization, Linearizer, Method};
+    pub use crate::{Model, SymbolicStateSpace};
+}
 
 pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{

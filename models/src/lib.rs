@@ -43,9 +43,14 @@ pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 
 /// Errors of the model library (the catalogue of built-in models).
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CatalogueError {
     /// No model of this name.
-    #[error("unknown model `{name}`; models are: {}", known.join(", "))]
+    #[error(
+        "unknown model `{name}`{}; models are: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownModel {
         /// The name asked for.
         name: String,
@@ -65,7 +70,11 @@ pub enum CatalogueError {
         max: usize,
     },
     /// A parameter that the model does not have.
-    #[error("model `{model}` has no parameter `{name}`; its parameters are: {}", known.join(", "))]
+    #[error(
+        "model `{model}` has no parameter `{name}`{}; its parameters are: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownParameter {
         /// The model.
         model: String,

@@ -323,6 +323,36 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
 const AXES_TOLERANCE: f64 = 1e-9;
 
 impl<S: ModelScalar> Wing<S> {
+    /// The damping of each derivative at the nominal point, ρVS/2 times the scaled derivative,
+    /// must be a number the analysis can use: an overflow (or an entry beyond
+    /// `eom_num::MAX_ENTRY`) is named here, by wing and derivative, rather than found later as
+    /// a non-finite entry of A.
+    fn check_damping_magnitude(&self, cx: &Validation<'_, S>) -> Result<(), ModelError> {
+        let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
+        let q = (self.density * self.airspeed_with(&velocity) * self.area).nominal() * 0.5;
+        for (i, row) in self.scaled_derivatives().iter().enumerate() {
+            for (j, d) in row.iter().enumerate() {
+                let value = q * d.nominal();
+                if value.is_nan() || value.abs() > eom_num::MAX_ENTRY {
+                    return Err(field_error(
+                        "wing",
+                        &self.name,
+                        "derivatives",
+                        format!(
+                            "`{}` = {:e} gives a damping of {value:e} (ρVS/2 times the \
+                             derivative, with the reference lengths), beyond {:e}: the analysis \
+                             would overflow (check the derivative and its units)",
+                            WING_DERIVATIVES[i][j],
+                            self.derivatives[i][j].nominal(),
+                            eom_num::MAX_ENTRY
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// A positive reference quantity.
     fn check_positive(&self, field: &str, x: &S, what: &str) -> Result<(), ModelError> {
         let v = x.nominal();
@@ -451,6 +481,7 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
                 }
             }
         }
+        self.check_damping_magnitude(cx)?;
         if self.derivatives.iter().flatten().all(|d| d.is_zero()) {
             cx.warn(format!(
                 "{} has no derivatives: it adds nothing",
