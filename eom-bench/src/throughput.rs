@@ -507,6 +507,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn cpu_phases_are_the_differences_of_the_readings() {
+        let ms = |k| Some(Duration::from_millis(k));
+        assert_eq!(
+            cpu_phases::<3, 4>([ms(1), ms(3), ms(6), ms(10)]),
+            Some([2, 3, 4].map(Duration::from_millis))
+        );
+        assert_eq!(cpu_phases::<3, 4>([ms(1), None, ms(6), ms(10)]), None);
+        // On Linux the thread's CPU time is known and does not go back.
+        if cfg!(target_os = "linux") {
+            let a = thread_cpu_time().expect("schedstat");
+            let b = thread_cpu_time().expect("schedstat");
+            assert!(b >= a, "{a:?} then {b:?}");
+        }
+    }
+
+    #[test]
     fn points_are_within_the_spread_and_reproducible() {
         for k in [0u64, 1, 4095, 4096, 999_999] {
             let p = point(7, 0.2, k);

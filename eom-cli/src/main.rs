@@ -232,8 +232,12 @@ enum BenchCommand {
         nominal, the speed too, so both stable and unstable points occur; point k depends only \
         on the seed and k), on T threads with rayon. Prints the wall time, the points per \
         second in total and per thread, the thread time per point of drawing the point, of the \
-        generated code and of the eigenvalues, and what the sweep found: failures, the stable \
-        points and the range of the largest real part of the non-zero eigenvalues.")]
+        generated code and of the eigenvalues (by the wall clock, and on Linux by the threads' \
+        CPU time, with points per CPU second: what a core costs when the machine is shared), \
+        and what the sweep found: failures, the stable points and the range of the largest \
+        real part of the non-zero eigenvalues. A second pass times the generated stability \
+        verdict without eigenvalues at the same points and counts its undecided points and \
+        any disagreement with the eigenvalues.")]
     Throughput(BenchThroughputArgs),
     /// The failure map: sweeps into the regions where methods break (speed to 0 with
     /// nonholonomic contacts, extreme stiffness ratios, a nearly massless body, coalescing
