@@ -274,7 +274,11 @@ fn known_zeros() -> Option<KnownZeros> {
 
 /// The CPU time the calling thread has used (Linux: `/proc/thread-self/schedstat`, in ns);
 /// `None` elsewhere. Unlike the wall clock it does not count the time a thread waits for a
-/// core, which is most of the time on a machine shared with other jobs.
+/// core, which is most of the time on a machine shared with other jobs. The kernel brings the
+/// figure up to date only at its scheduler ticks and context switches, so over a phase of a
+/// chunk (a few ms) it is a sample: summed over many chunks it is unbiased, the total exact,
+/// but a short phase (drawing the points) carries tens of per cent of sampling noise at 10⁵
+/// points.
 pub fn thread_cpu_time() -> Option<Duration> {
     let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
     let ns: u64 = text.split_whitespace().next()?.parse().ok()?;
