@@ -97,7 +97,7 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
 }
 
 /// Fields whose builder default is not zero: written even when zero.
-const NONZERO_DEFAULT: [&str; 2] = ["gain", "density"];
+const NONZERO_DEFAULT: [&str; 4] = ["gain", "density", "semichord", "width"];
 
 /// The file's key for a field (the builders' `at` for a location).
 fn file_key(field: &str) -> &str {

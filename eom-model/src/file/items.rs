@@ -88,6 +88,7 @@ impl<'a> Builder<'a> {
             ("flex_point", Self::flex_point),
             ("nh_point", Self::nh_point),
             ("wing", Self::wing),
+            ("strip", Self::strip),
             ("actuator", Self::actuator),
             ("sensor", Self::sensor),
         ] {

@@ -46,6 +46,7 @@ mod items;
 mod mirror;
 mod params;
 mod source;
+mod strip;
 mod wing;
 
 pub use export::{to_toml, toml_string};
@@ -123,6 +124,7 @@ fn load_in(
         "flex_point",
         "nh_point",
         "wing",
+        "strip",
         "actuator",
         "sensor",
     ])?;

@@ -23,6 +23,8 @@ mod point;
 mod rigid_point;
 mod sensor;
 mod spring;
+mod strip;
+mod unsteady;
 mod wing;
 
 pub use actuator::Actuator;
@@ -37,6 +39,8 @@ pub use point::Point;
 pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
+pub use strip::Strip;
+pub use unsteady::{JONES, JONES_DIRECT, Unsteady, jones_c};
 pub use wing::{WING_DERIVATIVES, Wing, wing_derivative_index};
 
 use crate::Model;
@@ -62,6 +66,7 @@ pub const KINDS: &[&str] = &[
     "rigid point",
     "nh point",
     "wing",
+    "strip",
     "actuator",
     "sensor",
 ];
