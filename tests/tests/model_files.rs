@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 15] = [
+const BUILTINS: [&str; 17] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -25,6 +25,8 @@ const BUILTINS: [&str; 15] = [
     "ride_wings",
     "aircraft_ground",
     "truck_trailer",
+    "typical_section",
+    "goland_wing",
 ];
 
 fn path(name: &str) -> PathBuf {
