@@ -14,6 +14,9 @@
 //!    annihilates every constraint reaction), the kinematic equations are kept for the
 //!    independent coordinates only (exact, since `J ṗ = 0` by construction), and the reduced
 //!    mass matrix `R_wᵀ M R_w` is eliminated (Gauss–Jordan, nominal pivots).
+//!    Lag states of the items (`Assembled::lags`: `ẋ_a = A_a x_a + P_a p + W_a w`, force
+//!    `F_a x_a`) follow as states `x = [x_p; x_w; x_a]`: their force is projected with the
+//!    dynamics, their equations by `p = P x`, `w = W x`.
 //! 5. **Inputs with rates** (`G_u u̇`) are absorbed by the state change `x̃ = x − Γu`.
 //! 6. **Outputs.** Displacements and velocities directly; accelerations by differentiating the
 //!    velocity output through the reduced model (`C_acc = C_vel A`, `D_acc = C_vel B`), which

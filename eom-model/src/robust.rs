@@ -23,6 +23,10 @@
 //! 4. **Outputs**: accelerations derived from the reduced model (`C_acc = C_vel A`), so that
 //!    they include every constraint reaction, and the feedthrough added.
 //!
+//! **Lag states** of the items (`Assembled::lags`, unsteady aerodynamics) are appended to `z`
+//! as `z = [p; w; s; x_a]`, unconstrained: `R` and `L` get an identity block for them, `E` an
+//! identity, and their equations and force enter `A`.
+//!
 //! It shares nothing with the elimination path except the assembly, which makes it an
 //! independent check of the symbolic-numeric reduction.
 
