@@ -5,7 +5,9 @@
 //! docs/aero-references.md §1): within R. T. Jones' known error |ΔC| ≤ 0.015 at every
 //! tabulated reduced frequency, and equal to Jones' C(ik) of the same table to 1e-9.
 
-use eom_model::{Body, Model, RigidPoint, Strip, Unsteady, assemble, vec3, y_axis, z_axis};
+use eom_model::{
+    Body, Model, RigidPoint, Strip, Unsteady, Wing, assemble, vec3, y_axis, z_axis,
+};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -143,5 +145,54 @@ fn quasi_steady_strip_is_theodorsen_with_c_one() {
         let (want_l, want_m) = theodorsen(0.0, 1.0, omega, C64::new(1.0, 0.0));
         assert!((f[2] - want_l).norm() <= 1e-10 * want_l.norm(), "k = {k}");
         assert!((-f[4] - want_m).norm() <= 1e-10 * want_m.norm().max(1.0), "k = {k}");
+    }
+}
+
+/// A plunging and pitching body with a wing of thin-airfoil lift slope (CZw = −2π, chord 2b) in
+/// an air stream.
+fn wing_model(unsteady: Unsteady) -> Model<f64> {
+    let mut m = Model::<f64>::new("wing");
+    m.add(Body::new("s").mass(1.0).moments([1.0; 3]));
+    m.add(
+        RigidPoint::new("in plane")
+            .between("s", "ground")
+            .forces(2)
+            .axis(z_axis()),
+    );
+    m.add(
+        RigidPoint::new("pitch only")
+            .between("s", "ground")
+            .moments(2)
+            .axis(y_axis()),
+    );
+    m.add(
+        Wing::new("w")
+            .on("s")
+            .area(2.0 * B)
+            .chord(2.0 * B)
+            .span(1.0)
+            .density(RHO)
+            .airspeed(U)
+            .derivative("CZw", -2.0 * PI)
+            .unsteady(unsteady),
+    );
+    m
+}
+
+/// The wing item with Jones' states: its lift per plunge and per pitch, divided by the
+/// quasi-steady wing's, is Jones' C(ik) with k = ωc/2V (to 1e-9), within 0.015 of Theodorsen's.
+#[test]
+fn the_wings_lag_states_follow_theodorsen_within_the_known_error() {
+    let (qs, jones) = (wing_model(Unsteady::QuasiSteady), wing_model(Unsteady::Jones));
+    for (k, exact, cj) in table().into_iter().filter(|r| r.0 > 0.0) {
+        let omega = k * U / B;
+        for dof in [2, 4] {
+            let mut q = DVector::<C64>::zeros(6);
+            q[dof] = C64::new(1.0, 0.0);
+            let (fq, fj) = (force(&qs, omega, &q), force(&jones, omega, &q));
+            let c = fj[2] / fq[2];
+            assert!((c - cj).norm() < 1e-9, "k = {k}, dof {dof}: {c} vs Jones {cj}");
+            assert!((c - exact).norm() <= 0.015, "k = {k}, dof {dof}: {c} vs {exact}");
+        }
     }
 }

@@ -7,13 +7,13 @@ use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
 use crate::error::ModelError;
-use crate::items::{WING_DERIVATIVES, Wing, wing_derivative_index};
+use crate::items::{Unsteady, WING_DERIVATIVES, Wing, wing_derivative_index};
 use eom_aero::{AvlOutput, Derivatives, SolverOptions};
 use eom_sym::Expr;
 use std::path::Path;
 
 /// The keys of `[[wing]]` besides `name` and `mirror`.
-pub(crate) const WING_KEYS: [&str; 11] = [
+pub(crate) const WING_KEYS: [&str; 12] = [
     "body",
     "at",
     "forward",
@@ -25,6 +25,7 @@ pub(crate) const WING_KEYS: [&str; 11] = [
     "airspeed",
     "derivatives",
     "avl",
+    "unsteady",
 ];
 
 /// Signs of the rows and columns of a wing's derivatives under a mirror image: the wing's own
@@ -104,6 +105,17 @@ impl Builder<'_> {
             }
         }
         w = self.derivative_table(t, w)?;
+        if let Some(u) = t.string("unsteady")? {
+            let span = t.get("unsteady").map(|v| v.span()).unwrap_or(t.span.clone());
+            let u = Unsteady::parse(&u).map_err(|_| {
+                t.field_error(
+                    "unsteady",
+                    &span,
+                    format!("`{u}`: expected \"quasi-steady\" or \"jones\""),
+                )
+            })?;
+            w = w.unsteady(u);
+        }
         if m.is_some() {
             for (i, row) in w.derivatives.iter_mut().enumerate() {
                 for (j, d) in row.iter_mut().enumerate() {

@@ -30,15 +30,21 @@
 //! road sees the angle of attack of its pitch attitude. (When `v_air` is zero, as when the
 //! given airspeed is the body's own speed along the forward axis, nothing is added.)
 //!
+//! **Unsteady lift.** With [`Unsteady::Jones`] the response to the wing's normal velocity
+//! (the w column: angle of attack) passes through R. T. Jones' two-state approximation of
+//! Wagner's function with the semichord c/2 (docs/unsteady-aerodynamics.md): the block keeps
+//! ½ of that column, and two lag states carry the rest.
+//!
 //! The default orientation is forward = +x, down = −z: AVL's x forward, y right, z down are
 //! the model's x forward, y left, z up turned by π about x (entry `(i, j)` of the block
 //! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
 
 use super::point::Point;
+use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{label, visit3, zero3};
 use crate::Model;
-use crate::assemble::{Assembly, Term};
+use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::{cross, dot, skew};
 use crate::validate::Validation;
@@ -98,6 +104,9 @@ pub struct Wing<S> {
     pub airspeed: Option<S>,
     /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero.
     pub derivatives: [[S; 6]; 6],
+    /// Quasi-steady, or R. T. Jones' lag states on the response to the wing's normal velocity
+    /// (its w column; see [`Wing::unsteady`]).
+    pub unsteady: Unsteady,
     /// Names given to [`Wing::derivative`] that are not derivative names (reported by the
     /// validation, since a builder cannot fail).
     unknown: Vec<String>,
@@ -119,6 +128,7 @@ impl<S: Scalar> Wing<S> {
             density: S::from_f64(1.225),
             airspeed: None,
             derivatives: [[S::zero(); 6]; 6],
+            unsteady: Unsteady::QuasiSteady,
             unknown: Vec::new(),
         }
     }
@@ -178,6 +188,15 @@ impl<S: Scalar> Wing<S> {
     /// Airspeed V (default: the body's nominal velocity along the forward axis).
     pub fn airspeed(mut self, v: impl Into<S>) -> Self {
         self.airspeed = Some(v.into());
+        self
+    }
+    /// The circulatory lag: with [`Unsteady::Jones`] the forces and moments of the w column
+    /// (the response to the normal velocity of the reference point: the angle of attack, and
+    /// the angle that a rotation in a given air stream adds) pass through R. T. Jones'
+    /// approximation of Wagner's function with the semichord `c/2` (two lag states,
+    /// `<name>.lag1`, `<name>.lag2`); the other columns stay quasi-steady.
+    pub fn unsteady(mut self, u: Unsteady) -> Self {
+        self.unsteady = u;
         self
     }
     /// One derivative by its AVL name (`"CYv"`, `"Cnr"`, …); an unknown name is reported
@@ -279,6 +298,27 @@ impl<S: Scalar> Wing<S> {
     }
 }
 
+impl<S: Scalar> Wing<S> {
+    /// The w column of the damping block in model axes, `w_L = −(ρVS/2)·Tᵀ·M[:, w]`, and the
+    /// row that takes the wing's normal velocity from the point's, `(down, 0)`: the block's
+    /// part from the normal velocity is `w_L ⊗ (down, 0)`.
+    pub fn normal_column(&self, v: S) -> ([S; 6], [S; 6]) {
+        let m = self.scaled_derivatives();
+        let k = -(self.density * v * self.area * S::from_f64(0.5));
+        let q = self.rotation();
+        let col: [S; 6] = std::array::from_fn(|i| {
+            let terms: Vec<S> = (0..6)
+                .filter(|&a| a / 3 == i / 3 && !m[a][2].is_zero() && !q[a % 3][i % 3].is_zero())
+                .map(|a| times(q[a % 3][i % 3], m[a][2]))
+                .collect();
+            let s = S::sum(&terms);
+            if s.is_zero() { s } else { times(k, s) }
+        });
+        let d = self.down;
+        (col, [d[0], d[1], d[2], S::zero(), S::zero(), S::zero()])
+    }
+}
+
 /// `a·b` without building a product by one.
 fn times<S: Scalar>(a: S, b: S) -> S {
     if a.is_one() {
@@ -303,6 +343,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
         let derivatives =
             std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
         Box::new(Wing {
+            unsteady: self.unsteady,
             name: self.name.clone(),
             body: self.body.clone(),
             location,
@@ -376,7 +417,14 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
     }
 
     fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        vec![("body", super::Setting::Text(self.body.to_string()))]
+        let mut s = vec![("body", super::Setting::Text(self.body.to_string()))];
+        if self.unsteady != Unsteady::QuasiSteady {
+            s.push((
+                "unsteady",
+                super::Setting::Text(self.unsteady.as_str().to_string()),
+            ));
+        }
+        s
     }
 
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
@@ -465,7 +513,20 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
         let velocity = cx
             .body(&self.body)
             .map_or(zero3(), |k| cx.bodies[k].velocity);
-        let block = self.damping(self.airspeed_with(&velocity));
+        let airspeed = self.airspeed_with(&velocity);
+        let mut block = self.damping(airspeed);
+        let normal = (self.unsteady == Unsteady::Jones).then(|| self.normal_column(airspeed));
+        if let Some((col, row)) = &normal {
+            // The direct part ½ of Jones' C on the w column: the other ½ through the states.
+            let lagged = S::from_f64(1.0 - JONES_DIRECT);
+            for (i, c) in col.iter().enumerate() {
+                for (j, r) in row.iter().enumerate() {
+                    if !c.is_zero() && !r.is_zero() {
+                        block[i][j] = block[i][j] - lagged * *c * *r;
+                    }
+                }
+            }
+        }
         let point = Point {
             bodies: [self.body.clone(), name(GROUND)],
             location: self.location,
@@ -478,6 +539,9 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
         let props: Vec<Vec<S>> = block.iter().map(|r| r.to_vec()).collect();
         cx.add_rows_block(Term::Damping, &rows.rows, &props);
         let air = self.air_velocity(&velocity);
+        if let Some((col, row)) = &normal {
+            self.lag_states(cx, &rows.rows, airspeed, col, row, &air, geometry.bodies[0]);
+        }
         if let (Some(k), false) = (geometry.bodies[0], air.iter().all(|x| x.is_zero())) {
             // The stream turned by the body's rotation θ: Δ = θ × v_air = −[v_air]× θ at
             // every point; its force −L[:, u v w]·Δ is a stiffness on θ.
@@ -500,6 +564,49 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
             }
         }
         Ok(())
+    }
+}
+
+impl<S: ModelScalar> Wing<S> {
+    /// Jones' states on the wing's normal velocity `w_n = (down, 0)·v` (and, in a given air
+    /// stream, the normal velocity `θ·(v_air × down)` that a rotation θ adds):
+    /// `ẋᵢ = −βᵢ xᵢ + w_n`, `βᵢ = β̄ᵢ V/(c/2)`, force `−w_L·Aᵢβᵢ xᵢ` at the point.
+    #[allow(clippy::too_many_arguments)]
+    fn lag_states(
+        &self,
+        cx: &mut Assembly<'_, S>,
+        rows: &[ItemRow<S>],
+        v: S,
+        col: &[S; 6],
+        row: &[S; 6],
+        air: &Vec3<S>,
+        body: Option<usize>,
+    ) {
+        let rate = v / (self.chord * S::from_f64(0.5));
+        let turn = cross(air, &self.down);
+        for (n, (a, beta)) in JONES.iter().enumerate() {
+            let s = cx.lag_state(format!("{}.lag{}", self.name, n + 1));
+            let beta = S::from_f64(*beta) * rate;
+            cx.add_lag(LagTerm::Rate, s, s, -beta);
+            let gain = S::from_f64(*a) * beta;
+            for (i, r) in rows.iter().enumerate() {
+                for &(j, x) in r {
+                    if !row[i].is_zero() {
+                        cx.add_lag(LagTerm::Velocity, s, j, row[i] * x);
+                    }
+                    if !col[i].is_zero() {
+                        cx.add_lag(LagTerm::Force, j, s, -(x * col[i] * gain));
+                    }
+                }
+            }
+            if let Some(k) = body {
+                for (c, t) in turn.iter().enumerate() {
+                    if !t.is_zero() {
+                        cx.add_lag(LagTerm::Position, s, 6 * k + 3 + c, *t);
+                    }
+                }
+            }
+        }
     }
 }
 
