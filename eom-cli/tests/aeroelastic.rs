@@ -180,3 +180,64 @@ fn goland_wing_flutters_where_strip_theory_says() {
     assert!(rel(uf, ut).abs() < 0.015, "U_F {uf} vs converged {ut}");
     assert!(rel(wf, wt).abs() < 0.015, "ω_F {wf} vs converged {wt}");
 }
+
+/// A copy of a shipped model file with `from` replaced by `to`, in a directory of its own.
+fn edited(model: &str, from: &str, to: &str, tag: &str) -> (PathBuf, PathBuf) {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../models/{model}.toml"));
+    let text = std::fs::read_to_string(src).expect("model file");
+    assert!(text.contains(from), "{model}: no `{from}`");
+    let dir = std::env::temp_dir().join(format!("eom-aero-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a directory");
+    let file = dir.join(format!("{model}.toml"));
+    std::fs::write(&file, text.replacen(from, to, 1)).expect("written");
+    (dir, file)
+}
+
+/// `unsteady = "auto"`: the wing of the spring–mass–damper gets Jones' states where its mode's
+/// k = |Im λ|·b/V exceeds 0.05 (V = 10 m/s: k ≈ 0.15) and the output says so, with the same
+/// eigenvalues as `"jones"`; at V = 100 m/s (no oscillatory mode) it stays quasi-steady.
+#[test]
+fn auto_adds_lag_states_where_the_modes_need_them() {
+    let from = "density = \"rho\"\n";
+    let (d1, auto) = edited("smd_wing", from, "density = \"rho\"\nunsteady = \"auto\"\n", "auto");
+    let (d2, jones) = edited("smd_wing", from, "density = \"rho\"\nunsteady = \"jones\"\n", "jones");
+    let run = |f: &PathBuf, v: &str| {
+        eom_json(&[
+            "analyze",
+            f.to_str().expect("UTF-8"),
+            "--set",
+            v,
+            "--format",
+            "json",
+        ])
+    };
+    let (a, j) = (run(&auto, "V=10"), run(&jones, "V=10"));
+    assert_eq!(a["states"], 4);
+    let said = a["warnings"].to_string();
+    assert!(
+        said.contains("wing `wing`: unsteady = \\\"auto\\\": Jones' lag states added")
+            && said.contains("k = |Im λ|·b/V = 0.14"),
+        "{said}"
+    );
+    let (mut ea, mut ej) = (eigenvalues(&a), eigenvalues(&j));
+    ea.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    ej.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    assert_eq!(ea, ej);
+    let q = run(&auto, "V=100");
+    assert_eq!(q["states"], 2);
+    assert!(q["warnings"].to_string().contains("quasi-steady"), "{}", q["warnings"]);
+    // The typical section with `auto` flutters where the Jones model does (decided at the
+    // nominal V = 8 m/s, where its modes have k ≈ 0.3).
+    let (d3, ts) = edited(
+        "typical_section",
+        "unsteady = \"jones\"",
+        "unsteady = \"auto\"",
+        "auto-ts",
+    );
+    let (osc, _) = boundaries(ts.to_str().expect("UTF-8"), "V=1:20:39", &[]);
+    let r = reference("typical_section.json");
+    assert!(rel(osc[0].0 / 5.0, num(&r, &["jones_states", "U_F_over_b_omega_theta"])).abs() < 1e-7);
+    for d in [d1, d2, d3] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}

@@ -197,6 +197,11 @@ impl<S: ModelScalar> Model<S> {
         &self.items
     }
 
+    /// The items, mutable (for settings decided later, such as `unsteady = "auto"`).
+    pub(crate) fn items_mut(&mut self) -> &mut [Box<dyn Item<S>>] {
+        &mut self.items
+    }
+
     /// The items of one kind (e.g. `"spring"`), in the order they were added.
     pub fn items_of<'a>(&'a self, kind: &'a str) -> impl Iterator<Item = &'a dyn Item<S>> + 'a {
         self.items

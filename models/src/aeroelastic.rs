@@ -93,6 +93,7 @@ pub fn typical_section(
         match unsteady {
             Unsteady::Jones => |md, p, _| typical_section_into(md, p, Unsteady::Jones),
             Unsteady::QuasiSteady => |md, p, _| typical_section_into(md, p, Unsteady::QuasiSteady),
+            Unsteady::Auto => |md, p, _| typical_section_into(md, p, Unsteady::Auto),
         },
     );
     info.build(overrides, 0, "typical_section")
@@ -113,6 +114,7 @@ pub fn goland_wing(
             Unsteady::QuasiSteady => {
                 |md, p, n| goland_into(md, p, segments(n), Unsteady::QuasiSteady)
             }
+            Unsteady::Auto => |md, p, n| goland_into(md, p, segments(n), Unsteady::Auto),
         },
     );
     info.build(overrides, n, "goland_wing")

@@ -69,7 +69,7 @@ impl Builder<'_> {
                 t.field_error(
                     "unsteady",
                     &span,
-                    format!("`{u}`: expected \"quasi-steady\" or \"jones\""),
+                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
                 )
             })?;
             s = s.unsteady(u);

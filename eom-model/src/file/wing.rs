@@ -111,7 +111,7 @@ impl Builder<'_> {
                 t.field_error(
                     "unsteady",
                     &span,
-                    format!("`{u}`: expected \"quasi-steady\" or \"jones\""),
+                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
                 )
             })?;
             w = w.unsteady(u);

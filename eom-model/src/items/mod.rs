@@ -40,7 +40,9 @@ pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
 pub use strip::Strip;
-pub use unsteady::{JONES, JONES_DIRECT, Unsteady, jones_c};
+pub use unsteady::{
+    AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c, resolve_unsteady,
+};
 pub use wing::{WING_DERIVATIVES, Wing, wing_derivative_index};
 
 use crate::Model;

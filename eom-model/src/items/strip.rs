@@ -63,7 +63,7 @@ pub struct Strip<S> {
     pub density: S,
     /// Airspeed U; `None`: the body's nominal velocity along `forward`.
     pub airspeed: Option<S>,
-    /// Quasi-steady or Jones' lag states.
+    /// Quasi-steady, Jones' lag states, or decided by the linearization (`Auto`).
     pub unsteady: Unsteady,
 }
 
@@ -357,6 +357,10 @@ impl<S: ModelScalar> Item<S> for Strip<S> {
         let turn = cross(&up, &self.air_velocity(&velocity));
         let direct = match self.unsteady {
             Unsteady::QuasiSteady => S::one(),
+            Unsteady::Auto => {
+                cx.warn(super::unsteady::auto_assembled("strip", &self.name));
+                S::one()
+            }
             Unsteady::Jones => S::from_f64(JONES_DIRECT),
         };
         // The direct part of the circulatory force, f·direct·w, on the left-hand side.

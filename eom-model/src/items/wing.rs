@@ -515,6 +515,9 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
             .map_or(zero3(), |k| cx.bodies[k].velocity);
         let airspeed = self.airspeed_with(&velocity);
         let mut block = self.damping(airspeed);
+        if self.unsteady == Unsteady::Auto {
+            cx.warn(super::unsteady::auto_assembled("wing", &self.name));
+        }
         let normal = (self.unsteady == Unsteady::Jones).then(|| self.normal_column(airspeed));
         if let Some((col, row)) = &normal {
             // The direct part ½ of Jones' C on the w column: the other ½ through the states.
