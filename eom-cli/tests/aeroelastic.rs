@@ -26,7 +26,9 @@ fn num(v: &serde_json::Value, path: &[&str]) -> f64 {
 
 /// The sweep's oscillatory boundaries (value, |Im λ|) and its real ones (value).
 fn boundaries(model: &str, grid: &str, set: &[&str]) -> (Vec<(f64, f64)>, Vec<f64>) {
-    let mut args = vec!["sweep", model, "--param", grid, "--format", "json", "--quiet"];
+    let mut args = vec![
+        "sweep", model, "--param", grid, "--format", "json", "--quiet",
+    ];
     for s in set {
         args.extend(["--set", s]);
     }
@@ -64,19 +66,28 @@ fn typical_section_flutters_where_theodorsen_says() {
         num(&r, &["theodorsen_exact", "U_F_over_b_omega_theta"]),
         num(&r, &["theodorsen_exact", "omega_F_over_omega_theta"]),
     );
-    for (b, w, set) in [
-        (0.5, 10.0, vec![]),
-        (1.3, 7.0, vec!["b=1.3", "w_theta=7"]),
-    ] {
+    for (b, w, set) in [(0.5, 10.0, vec![]), (1.3, 7.0, vec!["b=1.3", "w_theta=7"])] {
         let bw = b * w;
         let grid = format!("V={}:{}:39", 0.2 * bw, 4.0 * bw);
         let (osc, real) = boundaries("typical_section", &grid, &set);
         assert_eq!(osc.len(), 1, "{osc:?}");
         let (uf, wf) = (osc[0].0 / bw, osc[0].1 / w);
-        assert!(rel(uf, jones.0).abs() < 1e-7, "U_F/(b ω) {uf} vs {}", jones.0);
+        assert!(
+            rel(uf, jones.0).abs() < 1e-7,
+            "U_F/(b ω) {uf} vs {}",
+            jones.0
+        );
         assert!(rel(wf, jones.1).abs() < 1e-7, "ω_F/ω_θ {wf} vs {}", jones.1);
-        assert!(rel(uf, exact.0).abs() < 0.01, "U_F {uf} vs exact {}", exact.0);
-        assert!(rel(wf, exact.1).abs() < 0.01, "ω_F {wf} vs exact {}", exact.1);
+        assert!(
+            rel(uf, exact.0).abs() < 0.01,
+            "U_F {uf} vs exact {}",
+            exact.0
+        );
+        assert!(
+            rel(wf, exact.1).abs() < 0.01,
+            "ω_F {wf} vs exact {}",
+            exact.1
+        );
         assert_eq!(real.len(), 1, "{real:?}");
         assert!(rel(real[0] / bw, 8f64.sqrt()).abs() < 1e-8, "{real:?}");
     }
@@ -110,7 +121,10 @@ fn quasi_steady_typical_section_is_far_off() {
     assert!(rel(uf, want.0).abs() < 1e-7, "{uf} vs {}", want.0);
     assert!(rel(wf, want.1).abs() < 1e-7, "{wf} vs {}", want.1);
     let exact = num(&r, &["theodorsen_exact", "U_F_over_b_omega_theta"]);
-    assert!(rel(uf, exact) < -0.5, "quasi-steady is far below: {uf} vs {exact}");
+    assert!(
+        rel(uf, exact) < -0.5,
+        "quasi-steady is far below: {uf} vs {exact}"
+    );
 }
 
 /// The lag states on every path: `eom analyze` by the symbolic, numeric and robust methods
@@ -199,8 +213,18 @@ fn edited(model: &str, from: &str, to: &str, tag: &str) -> (PathBuf, PathBuf) {
 #[test]
 fn auto_adds_lag_states_where_the_modes_need_them() {
     let from = "density = \"rho\"\n";
-    let (d1, auto) = edited("smd_wing", from, "density = \"rho\"\nunsteady = \"auto\"\n", "auto");
-    let (d2, jones) = edited("smd_wing", from, "density = \"rho\"\nunsteady = \"jones\"\n", "jones");
+    let (d1, auto) = edited(
+        "smd_wing",
+        from,
+        "density = \"rho\"\nunsteady = \"auto\"\n",
+        "auto",
+    );
+    let (d2, jones) = edited(
+        "smd_wing",
+        from,
+        "density = \"rho\"\nunsteady = \"jones\"\n",
+        "jones",
+    );
     let run = |f: &PathBuf, v: &str| {
         eom_json(&[
             "analyze",
@@ -225,7 +249,11 @@ fn auto_adds_lag_states_where_the_modes_need_them() {
     assert_eq!(ea, ej);
     let q = run(&auto, "V=100");
     assert_eq!(q["states"], 2);
-    assert!(q["warnings"].to_string().contains("quasi-steady"), "{}", q["warnings"]);
+    assert!(
+        q["warnings"].to_string().contains("quasi-steady"),
+        "{}",
+        q["warnings"]
+    );
     // The typical section with `auto` flutters where the Jones model does (decided at the
     // nominal V = 8 m/s, where its modes have k ≈ 0.3).
     let (d3, ts) = edited(
@@ -236,7 +264,14 @@ fn auto_adds_lag_states_where_the_modes_need_them() {
     );
     let (osc, _) = boundaries(ts.to_str().expect("UTF-8"), "V=1:20:39", &[]);
     let r = reference("typical_section.json");
-    assert!(rel(osc[0].0 / 5.0, num(&r, &["jones_states", "U_F_over_b_omega_theta"])).abs() < 1e-7);
+    assert!(
+        rel(
+            osc[0].0 / 5.0,
+            num(&r, &["jones_states", "U_F_over_b_omega_theta"])
+        )
+        .abs()
+            < 1e-7
+    );
     for d in [d1, d2, d3] {
         let _ = std::fs::remove_dir_all(d);
     }

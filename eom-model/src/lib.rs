@@ -118,8 +118,8 @@ pub mod validate;
 
 pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
-    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, PointGeometry, Preload, Reaction, RowLabel, Rows,
-    Statics, Term, assemble,
+    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, PointGeometry, Preload, Reaction,
+    RowLabel, Rows, Statics, Term, assemble,
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;

@@ -142,7 +142,11 @@ impl<'a> Linearizer<'a> {
         Ok(lin)
     }
 
-    fn run_method(&self, model: &Model<Expr>, values: Vec<f64>) -> Result<Linearization, ModelError> {
+    fn run_method(
+        &self,
+        model: &Model<Expr>,
+        values: Vec<f64>,
+    ) -> Result<Linearization, ModelError> {
         match self.method {
             Method::Symbolic => {
                 let sym = self.symbolic()?;

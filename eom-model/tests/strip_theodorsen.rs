@@ -5,9 +5,7 @@
 //! docs/aero-references.md §1): within R. T. Jones' known error |ΔC| ≤ 0.015 at every
 //! tabulated reduced frequency, and equal to Jones' C(ik) of the same table to 1e-9.
 
-use eom_model::{
-    Body, Model, RigidPoint, Strip, Unsteady, Wing, assemble, vec3, y_axis, z_axis,
-};
+use eom_model::{Body, Model, RigidPoint, Strip, Unsteady, Wing, assemble, vec3, y_axis, z_axis};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -125,12 +123,16 @@ fn jones_states_follow_theodorsen_within_the_known_error() {
             let scale = unit_lift.norm();
             assert!((lift - want_l).norm() <= 0.015 * scale, "k = {k}: lift");
             assert!(
-                (moment - want_m).norm() <= 0.015 * scale * B * (A + 0.5).abs() + 1e-9 * want_m.norm(),
+                (moment - want_m).norm()
+                    <= 0.015 * scale * B * (A + 0.5).abs() + 1e-9 * want_m.norm(),
                 "k = {k}: moment {moment} vs {want_m}"
             );
         }
     }
-    assert!(worst > 0.01, "the table reaches Jones' largest error: {worst}");
+    assert!(
+        worst > 0.01,
+        "the table reaches Jones' largest error: {worst}"
+    );
 }
 
 /// Quasi-steady (C = 1): the same transfer functions with C = 1 exactly, off by |1 − C(k)|.
@@ -144,7 +146,10 @@ fn quasi_steady_strip_is_theodorsen_with_c_one() {
         let f = force(&qs, omega, &q);
         let (want_l, want_m) = theodorsen(0.0, 1.0, omega, C64::new(1.0, 0.0));
         assert!((f[2] - want_l).norm() <= 1e-10 * want_l.norm(), "k = {k}");
-        assert!((-f[4] - want_m).norm() <= 1e-10 * want_m.norm().max(1.0), "k = {k}");
+        assert!(
+            (-f[4] - want_m).norm() <= 1e-10 * want_m.norm().max(1.0),
+            "k = {k}"
+        );
     }
 }
 
@@ -183,7 +188,10 @@ fn wing_model(unsteady: Unsteady) -> Model<f64> {
 /// quasi-steady wing's, is Jones' C(ik) with k = ωc/2V (to 1e-9), within 0.015 of Theodorsen's.
 #[test]
 fn the_wings_lag_states_follow_theodorsen_within_the_known_error() {
-    let (qs, jones) = (wing_model(Unsteady::QuasiSteady), wing_model(Unsteady::Jones));
+    let (qs, jones) = (
+        wing_model(Unsteady::QuasiSteady),
+        wing_model(Unsteady::Jones),
+    );
     for (k, exact, cj) in table().into_iter().filter(|r| r.0 > 0.0) {
         let omega = k * U / B;
         for dof in [2, 4] {
@@ -191,8 +199,14 @@ fn the_wings_lag_states_follow_theodorsen_within_the_known_error() {
             q[dof] = C64::new(1.0, 0.0);
             let (fq, fj) = (force(&qs, omega, &q), force(&jones, omega, &q));
             let c = fj[2] / fq[2];
-            assert!((c - cj).norm() < 1e-9, "k = {k}, dof {dof}: {c} vs Jones {cj}");
-            assert!((c - exact).norm() <= 0.015, "k = {k}, dof {dof}: {c} vs {exact}");
+            assert!(
+                (c - cj).norm() < 1e-9,
+                "k = {k}, dof {dof}: {c} vs Jones {cj}"
+            );
+            assert!(
+                (c - exact).norm() <= 0.015,
+                "k = {k}, dof {dof}: {c} vs {exact}"
+            );
         }
     }
 }

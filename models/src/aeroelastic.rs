@@ -43,8 +43,18 @@ fn goland_params() -> Vec<ParamSpec> {
         p("rho", 1.2256, "kg/m^3", "air density (sea level)"),
         p("L", 6.096, "m", "semispan"),
         p("c", 1.8288, "m", "chord"),
-        p("ea", 0.33, "", "elastic axis, fraction of the chord from the leading edge"),
-        p("cg", 0.43, "", "mass centre, fraction of the chord from the leading edge"),
+        p(
+            "ea",
+            0.33,
+            "",
+            "elastic axis, fraction of the chord from the leading edge",
+        ),
+        p(
+            "cg",
+            0.43,
+            "",
+            "mass centre, fraction of the chord from the leading edge",
+        ),
         p("m", 35.71, "kg/m", "mass per unit span"),
         p(
             "I_theta",
@@ -127,7 +137,8 @@ fn typical_section_into(
     p: &[Expr],
     unsteady: Unsteady,
 ) -> Result<(), CatalogueError> {
-    let [b, w, v, rho, mu, a, xt, r2, sigma] = [p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]];
+    let [b, w, v, rho, mu, a, xt, r2, sigma] =
+        [p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]];
     let pi = Expr::pi();
     let m = mu * pi * rho * b * b;
     let i_theta = m * b * b * r2;

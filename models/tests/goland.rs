@@ -91,10 +91,26 @@ fn segments_converge_like_the_reference() {
             .unwrap_or_else(|| panic!("no row for N = {n}"))
             .1;
         let (u, w) = flutter(n, Unsteady::Jones, 100.0, 180.0);
-        assert!((u / want[0] - 1.0).abs() < 1e-7, "N = {n}: U_F {u} vs {}", want[0]);
-        assert!((w / want[1] - 1.0).abs() < 1e-7, "N = {n}: ω_F {w} vs {}", want[1]);
+        assert!(
+            (u / want[0] - 1.0).abs() < 1e-7,
+            "N = {n}: U_F {u} vs {}",
+            want[0]
+        );
+        assert!(
+            (w / want[1] - 1.0).abs() < 1e-7,
+            "N = {n}: ω_F {w} vs {}",
+            want[1]
+        );
         let (u, w) = flutter(n, Unsteady::QuasiSteady, 40.0, 100.0);
-        assert!((u / want[2] - 1.0).abs() < 1e-7, "N = {n}: quasi-steady U_F {u} vs {}", want[2]);
-        assert!((w / want[3] - 1.0).abs() < 1e-7, "N = {n}: quasi-steady ω_F {w} vs {}", want[3]);
+        assert!(
+            (u / want[2] - 1.0).abs() < 1e-7,
+            "N = {n}: quasi-steady U_F {u} vs {}",
+            want[2]
+        );
+        assert!(
+            (w / want[3] - 1.0).abs() < 1e-7,
+            "N = {n}: quasi-steady ω_F {w} vs {}",
+            want[3]
+        );
     }
 }

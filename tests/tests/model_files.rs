@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 17] = [
+const BUILTINS: [&str; 18] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -27,6 +27,7 @@ const BUILTINS: [&str; 17] = [
     "truck_trailer",
     "typical_section",
     "goland_wing",
+    "navion",
 ];
 
 fn path(name: &str) -> PathBuf {

@@ -64,7 +64,10 @@ impl Builder<'_> {
             }
         }
         if let Some(u) = t.string("unsteady")? {
-            let span = t.get("unsteady").map(|v| v.span()).unwrap_or(t.span.clone());
+            let span = t
+                .get("unsteady")
+                .map(|v| v.span())
+                .unwrap_or(t.span.clone());
             let u = Unsteady::parse(&u).map_err(|_| {
                 t.field_error(
                     "unsteady",

@@ -43,7 +43,7 @@ pub use strip::Strip;
 pub use unsteady::{
     AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c, resolve_unsteady,
 };
-pub use wing::{WING_DERIVATIVES, Wing, wing_derivative_index};
+pub use wing::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 
 use crate::Model;
 use crate::assemble::Assembly;

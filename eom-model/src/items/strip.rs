@@ -470,7 +470,10 @@ mod tests {
                 s().semichord(0.0),
                 "strip `root`, field `semichord`: the semichord must be positive",
             ),
-            (s().width(-1.0), "field `width`: the span width must be positive"),
+            (
+                s().width(-1.0),
+                "field `width`: the span width must be positive",
+            ),
             (s().lift_slope(0.0), "field `lift_slope`"),
             (s().on("ground"), "field `body`: a strip must be on a body"),
             (
@@ -483,7 +486,10 @@ mod tests {
             ),
         ];
         for (strip, want) in cases {
-            let e = model_with(strip).validate().expect_err("invalid").to_string();
+            let e = model_with(strip)
+                .validate()
+                .expect_err("invalid")
+                .to_string();
             assert!(e.contains(want), "{e}\nshould contain: {want}");
         }
     }

@@ -69,6 +69,10 @@ pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
         .find_map(|(i, row)| row.iter().position(|n| *n == name).map(|j| (i, j)))
 }
 
+/// The acceleration derivatives' names: rows CX … Cn per `ẇ c/(2V²)` (α̇ c/2V with
+/// α̇ = ẇ/V), the aerodynamic mass of the w column.
+pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] = ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
+
 /// The list of the 36 names, for messages.
 pub(crate) fn derivative_list() -> String {
     WING_DERIVATIVES
@@ -104,6 +108,8 @@ pub struct Wing<S> {
     pub airspeed: Option<S>,
     /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero.
     pub derivatives: [[S; 6]; 6],
+    /// The acceleration derivatives by [`WING_ACCELERATION_DERIVATIVES`] (zero: none).
+    pub acceleration: [S; 6],
     /// Quasi-steady, or R. T. Jones' lag states on the response to the wing's normal velocity
     /// (its w column; see [`Wing::unsteady`]).
     pub unsteady: Unsteady,
@@ -128,6 +134,7 @@ impl<S: Scalar> Wing<S> {
             density: S::from_f64(1.225),
             airspeed: None,
             derivatives: [[S::zero(); 6]; 6],
+            acceleration: [S::zero(); 6],
             unsteady: Unsteady::QuasiSteady,
             unknown: Vec::new(),
         }
@@ -202,11 +209,43 @@ impl<S: Scalar> Wing<S> {
     /// One derivative by its AVL name (`"CYv"`, `"Cnr"`, …); an unknown name is reported
     /// by the validation.
     pub fn derivative(mut self, n: &str, value: impl Into<S>) -> Self {
-        match wing_derivative_index(n) {
-            Some((i, j)) => self.derivatives[i][j] = value.into(),
-            None => self.unknown.push(n.to_string()),
+        match (
+            wing_derivative_index(n),
+            WING_ACCELERATION_DERIVATIVES.iter().position(|x| *x == n),
+        ) {
+            (Some((i, j)), _) => self.derivatives[i][j] = value.into(),
+            (None, Some(i)) => self.acceleration[i] = value.into(),
+            (None, None) => self.unknown.push(n.to_string()),
         }
         self
+    }
+
+    /// The aerodynamic mass block in model axes at the point, `T_a = −(ρSc/4)·Tᵀ·A·T` with `A`
+    /// the acceleration derivatives in the w column, rows scaled by (1, 1, 1, b, c, b): the
+    /// force of the acceleration derivatives is `−T_a` times the point's acceleration.
+    pub fn added_mass(&self) -> [[S; 6]; 6] {
+        let (b, c) = (self.span, self.chord);
+        let row = [S::one(), S::one(), S::one(), b, c, b];
+        let k = -(self.density * self.area * self.chord * S::from_f64(0.25));
+        let q = self.rotation();
+        let t = |a: usize, i: usize| -> S {
+            if a / 3 == i / 3 {
+                q[a % 3][i % 3]
+            } else {
+                S::zero()
+            }
+        };
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| {
+                let terms: Vec<S> = (0..6)
+                    .filter(|&a| !self.acceleration[a].is_zero() && !t(a, i).is_zero())
+                    .map(|a| times(times(t(a, i), times(self.acceleration[a], row[a])), t(2, j)))
+                    .filter(|x| !x.is_zero())
+                    .collect();
+                let s = S::sum(&terms);
+                if s.is_zero() { s } else { times(k, s) }
+            })
+        })
     }
 
     /// The airspeed used: the given one, else the component of `velocity` (the body's
@@ -342,7 +381,9 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
         let airspeed = self.airspeed.as_ref().map(&mut *f);
         let derivatives =
             std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
+        let acceleration = std::array::from_fn(|i| f(&self.acceleration[i]));
         Box::new(Wing {
+            acceleration,
             unsteady: self.unsteady,
             name: self.name.clone(),
             body: self.body.clone(),
@@ -443,15 +484,20 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
                 f(Field::scalar(n), x);
             }
         }
+        for (n, x) in WING_ACCELERATION_DERIVATIVES.iter().zip(&self.acceleration) {
+            f(Field::scalar(n), x);
+        }
     }
 
     fn bodies(&self) -> &[Name] {
         std::slice::from_ref(&self.body)
     }
 
-    /// Aerodynamic forces do not hold a body up: a wing alone leaves it unsupported.
+    /// Aerodynamic forces hold a body up in free flight only: a wing without a given
+    /// airspeed (its body flies at its nominal velocity through still air) supports its body;
+    /// a wing in an air stream (a wind tunnel) leaves it to the structure.
     fn supports(&self) -> bool {
-        false
+        self.airspeed.is_none()
     }
 
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
@@ -499,7 +545,9 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
                 }
             }
         }
-        if self.derivatives.iter().flatten().all(|d| d.is_zero()) {
+        if self.derivatives.iter().flatten().all(|d| d.is_zero())
+            && self.acceleration.iter().all(|d| d.is_zero())
+        {
             cx.warn(format!(
                 "{} has no derivatives: it adds nothing",
                 label("wing", &self.name)
@@ -541,6 +589,10 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
         let (rows, geometry) = cx.point(&point, "wing", &self.name);
         let props: Vec<Vec<S>> = block.iter().map(|r| r.to_vec()).collect();
         cx.add_rows_block(Term::Damping, &rows.rows, &props);
+        if self.acceleration.iter().any(|d| !d.is_zero()) {
+            let mass: Vec<Vec<S>> = self.added_mass().iter().map(|r| r.to_vec()).collect();
+            cx.add_rows_block(Term::ItemMass, &rows.rows, &mass);
+        }
         let air = self.air_velocity(&velocity);
         if let Some((col, row)) = &normal {
             self.lag_states(cx, &rows.rows, airspeed, col, row, &air, geometry.bodies[0]);
@@ -650,6 +702,9 @@ mod tests {
             for n in row {
                 w = w.derivative(n, c.x());
             }
+        }
+        for n in WING_ACCELERATION_DERIVATIVES {
+            w = w.derivative(n, c.x());
         }
         check_fields_and_map(&w);
     }
