@@ -276,3 +276,42 @@ fn auto_adds_lag_states_where_the_modes_need_them() {
         let _ = std::fs::remove_dir_all(d);
     }
 }
+
+/// `[model] unsteady` is the default of the wings and strips that do not set their own; a bad
+/// value is an error naming the key and the values allowed.
+#[test]
+fn the_models_unsteady_is_the_default_of_its_surfaces() {
+    let (d1, f) = edited(
+        "smd_wing",
+        "name = \"smd_wing\"\n",
+        "name = \"smd_wing\"\nunsteady = \"auto\"\n",
+        "model-auto",
+    );
+    let j = eom_json(&[
+        "analyze",
+        f.to_str().expect("UTF-8"),
+        "--set",
+        "V=10",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(j["states"], 4, "{}", j["warnings"]);
+    let (d2, bad) = edited(
+        "typical_section",
+        "unsteady = \"jones\"",
+        "unsteady = \"jonse\"",
+        "bad",
+    );
+    let r = eom(&["analyze", bad.to_str().expect("UTF-8")]);
+    assert_ne!(r.code, 0);
+    assert!(
+        r.stderr.contains("strip `airfoil`")
+            && r.stderr
+                .contains("`jonse`: expected \"quasi-steady\", \"jones\" or \"auto\""),
+        "{}",
+        r.stderr
+    );
+    for d in [d1, d2] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}

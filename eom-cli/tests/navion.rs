@@ -23,7 +23,10 @@ fn roots(set: &[&str], method: &str) -> Vec<(f64, f64)> {
         args.extend(["--set", s]);
     }
     let j = eom_json(&args);
-    assert_eq!(j["states"], 12, "u v w p q r, φ θ ψ and the positions x y z");
+    assert_eq!(
+        j["states"], 12,
+        "u v w p q r, φ θ ψ and the positions x y z"
+    );
     eigenvalues(&j)
 }
 
@@ -43,7 +46,10 @@ fn navion_modes_are_the_flight_equations() {
         let got = roots(&[], method);
         for mode in ["short_period", "phugoid", "dutch_roll"] {
             let z = pair(&full[mode]);
-            assert!(has(&got, z) && has(&got, (z.0, -z.1)), "{method} {mode}: {z:?} in {got:?}");
+            assert!(
+                has(&got, z) && has(&got, (z.0, -z.1)),
+                "{method} {mode}: {z:?} in {got:?}"
+            );
         }
         for mode in ["roll", "spiral"] {
             let z = (full[mode].as_f64().expect("real"), 0.0);
@@ -80,7 +86,11 @@ fn nelsons_printed_roots_to_his_digits() {
             .expect("a root")
     };
     let round = |x: f64, places: i32| (x * 10f64.powi(places)).round() / 10f64.powi(places);
-    let cases: [(&str, i32, i32); 3] = [("short_period", 1, 2), ("phugoid", 4, 3), ("dutch_roll", 3, 3)];
+    let cases: [(&str, i32, i32); 3] = [
+        ("short_period", 1, 2),
+        ("phugoid", 4, 3),
+        ("dutch_roll", 3, 3),
+    ];
     for (mode, pr, pi) in cases {
         let p = printed[mode].as_array().expect("re, im");
         let (re, im) = (p[0].as_f64().expect("re"), p[1].as_f64().expect("im"));

@@ -39,7 +39,9 @@
 //!   blocks added to a [`Term`] (mass, item mass, stiffness, damping, momentum, velocity, load
 //!   stiffness), holonomic, elastic or nonholonomic rows with the [`Reaction`] their
 //!   multipliers carry (which gives the item's preload and its geometric stiffness), known
-//!   preloads, applied forces, inputs and outputs.
+//!   preloads, applied forces, inputs and outputs, and first-order lag states
+//!   ([`Assembly::lag_state`], [`Assembly::add_lag`]: a strip's or wing's unsteady lift),
+//!   which every reduction carries after the mechanical states.
 //!
 //! A [`Model`] keeps its bodies and, apart, its items in the order of the kind table
 //! [`KINDS`], which fixes the order of the constraint rows and of their multipliers.

@@ -64,7 +64,8 @@ pub(crate) fn entries() -> Vec<ModelInfo> {
 /// equal to drag and constant (neither appears); the wing at the mass centre carries the
 /// derivatives, Cm_α̇ as an aerodynamic mass.
 fn navion(md: &mut Model<Expr>, p: &[Expr], _: usize) -> Result<(), CatalogueError> {
-    let [v, rho, g, w, s, b, c, ix, iy, iz] = [p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9]];
+    let [v, rho, g, w, s, b, c, ix, iy, iz] =
+        [p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9]];
     md.add(
         Body::new("aircraft")
             .mass(w / g)

@@ -32,6 +32,9 @@ impl Builder<'_> {
         t.only(&super::items::with_common(&STRIP_KEYS))?;
         self.claim(t, "strip", name)?;
         let mut s = Strip::new(name);
+        if let Some(u) = self.unsteady {
+            s = s.unsteady(u);
+        }
         if let Some(b) = self.named_body(t, "body", m)? {
             s = s.on(&b);
         }

@@ -79,6 +79,9 @@ impl Builder<'_> {
             }
             None => Wing::new(name),
         };
+        if let Some(u) = self.unsteady {
+            w = w.unsteady(u);
+        }
         if let Some(b) = self.named_body(t, "body", m)? {
             w = w.on(&b);
         }

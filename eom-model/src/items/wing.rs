@@ -71,7 +71,8 @@ pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
 
 /// The acceleration derivatives' names: rows CX … Cn per `ẇ c/(2V²)` (α̇ c/2V with
 /// α̇ = ẇ/V), the aerodynamic mass of the w column.
-pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] = ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
+pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] =
+    ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
 
 /// The list of the 36 names, for messages.
 pub(crate) fn derivative_list() -> String {
