@@ -84,7 +84,9 @@
 //!   blocks added to a [`Term`] (mass, item mass, stiffness, damping, momentum, velocity, load
 //!   stiffness), holonomic, elastic or nonholonomic rows with the [`Reaction`] their
 //!   multipliers carry (which gives the item's preload and its geometric stiffness), known
-//!   preloads, applied forces, inputs and outputs.
+//!   preloads, applied forces, inputs and outputs, and first-order lag states
+//!   ([`Assembly::lag_state`], [`Assembly::add_lag`]: a strip's or wing's unsteady lift),
+//!   which every reduction carries after the mechanical states.
 //!
 //! A [`Model`] keeps its bodies and, apart, its items in the order of the kind table
 //! [`KINDS`], which fixes the order of the constraint rows and of their multipliers.
@@ -139,8 +141,8 @@ pub mod prelude {
 
 pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
-    Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Preload, Reaction, RowLabel, Rows,
-    Statics, Term, assemble,
+    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, PointGeometry, Preload, Reaction,
+    RowLabel, Rows, Statics, Term, assemble,
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
@@ -216,6 +218,11 @@ impl<S: ModelScalar> Model<S> {
     /// The items (bodies excluded), in the order of [`KINDS`].
     pub fn items(&self) -> &[Box<dyn Item<S>>] {
         &self.items
+    }
+
+    /// The items, mutable (for settings decided later, such as `unsteady = "auto"`).
+    pub(crate) fn items_mut(&mut self) -> &mut [Box<dyn Item<S>>] {
+        &mut self.items
     }
 
     /// The items of one kind (e.g. `"spring"`), in the order they were added.

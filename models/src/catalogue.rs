@@ -253,6 +253,8 @@ pub fn catalogue() -> Vec<ModelInfo> {
     ]
     .into_iter()
     .chain(crate::wings::entries())
+    .chain(crate::aeroelastic::entries())
+    .chain(crate::flight::entries())
     .chain(crate::applications::entries())
     .chain(crate::vehicles::entries())
     .collect()

@@ -26,15 +26,20 @@
 //! | `shimmy_fin` | the same fin, derivatives from eom-aero's vortex lattice | within 0.3 % of the paper's entries |
 //! | `ride_wings` | a car's bounce–pitch ride model with a front and a rear wing (illustrative) | a two-degree-of-freedom model derived by hand |
 //! | `truck_trailer` | truck with a one-axle trailer, linear single-track tyres (Minaker 2019) | closed-form steady-state yaw-rate gain; hand-written single-track equations |
+//! | `typical_section` | the pitch–plunge typical section (Hodges & Pierce) on a strip with Jones' lag states | exact Theodorsen flutter (k-method, determinant root) |
+//! | `goland_wing` | Goland's cantilever wing, 16 beam segments carrying strips | converged Theodorsen strip-theory flutter |
+//! | `navion` | the Navion in level free flight from Nelson's stability derivatives | the flight equations by hand; Nelson's printed roots |
 //! | `aircraft_ground` | a light taildragger on its landing gear with a wing and a tail (illustrative) | the three reduction paths |
 
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod aeroelastic;
 mod applications;
 mod bicycle;
 mod catalogue;
 mod chainp;
+pub mod flight;
 pub mod generate;
 mod vehicles;
 pub mod wings;

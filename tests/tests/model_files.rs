@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 15] = [
+const BUILTINS: [&str; 18] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -25,6 +25,9 @@ const BUILTINS: [&str; 15] = [
     "ride_wings",
     "aircraft_ground",
     "truck_trailer",
+    "typical_section",
+    "goland_wing",
+    "navion",
 ];
 
 fn path(name: &str) -> PathBuf {
