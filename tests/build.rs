@@ -27,7 +27,7 @@ const STABILITY: [&str; 10] = [
     "shimmy_wing",
 ];
 
-const MODELS: [&str; 12] = [
+const MODELS: [&str; 13] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -40,6 +40,7 @@ const MODELS: [&str; 12] = [
     "chain50",
     "smd_wing",
     "shimmy_wing",
+    "typical_section",
 ];
 
 fn main() {

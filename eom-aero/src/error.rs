@@ -5,6 +5,7 @@ use thiserror::Error;
 /// Everything that can go wrong in eom-aero. Every variant names what is at fault: the
 /// surface, section and field of a geometry, or the file, line and field of an input file.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum AeroError {
     /// A configuration-level field (reference quantities, Mach, symmetry) is invalid.
     #[error("configuration `{}`: {field} {reason}", eom_text::shown(config))]

@@ -319,6 +319,11 @@ fn mirrored_half_equals_two_explicit_halves() {
         .section(Section::new([0.0, -3.0, 0.0], 1.0))
         .section(Section::new([0.0; 3], 1.0));
     // the left half's cosine spacing runs from its tip: the same nodes as the mirror
+    // One component, as the mirror image is of its surface: AVL's vortex core acts only
+    // between components.
+    let (mut right, mut left) = (right, left);
+    right.component = Some(1);
+    left.component = Some(1);
     let explicit = Configuration::new("two", mirrored.reference)
         .surface(right)
         .surface(left);

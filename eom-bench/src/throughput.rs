@@ -17,7 +17,9 @@
 //! threads and a plain loop can reproduce it.
 //!
 //! Each thread takes chunks of points and times three phases per chunk: drawing the points,
-//! evaluating A, and the eigenvalues. The summary (how many points are stable, the extremes of
+//! evaluating A, and the eigenvalues — by the wall clock and by the thread's CPU time
+//! ([`thread_cpu_time`], Linux), so that on a shared machine, where a thread waits for a core,
+//! the per-point costs and the points per CPU second still say what the code costs. The summary (how many points are stable, the extremes of
 //! the largest real part) is what the work produces, so none of it can be optimised away.
 
 use crate::work_precision::generated::bicycle64 as model;
@@ -83,6 +85,9 @@ pub struct Throughput {
     pub eigen: Duration,
     /// Thread time spent in the generated stability verdict.
     pub verdict: Duration,
+    /// The same four phases by the threads' CPU time (drawing, generated code, eigenvalues,
+    /// verdict; summed over threads), where the platform tells it ([`thread_cpu_time`]).
+    pub cpu: Option<[Duration; 4]>,
     /// The summary of the results.
     pub summary: Summary,
 }
@@ -186,6 +191,19 @@ impl Throughput {
         self.points as f64 / self.verdict.as_secs_f64().max(1e-12)
     }
 
+    /// Points per second of one thread's CPU time (drawing, generated code and eigenvalues),
+    /// where the CPU time is known: what one core gets through when it is not shared.
+    pub fn points_per_cpu_second(&self) -> Option<f64> {
+        let [a, b, c, _] = self.cpu?;
+        Some(self.points as f64 / (a + b + c).as_secs_f64().max(1e-12))
+    }
+
+    /// Generated verdicts per second of one thread's CPU time, where it is known.
+    pub fn verdicts_per_cpu_second(&self) -> Option<f64> {
+        let [.., v] = self.cpu?;
+        Some(self.points as f64 / v.as_secs_f64().max(1e-12))
+    }
+
     /// Thread time per point of a phase, in ns.
     pub fn ns_per_point(&self, phase: Duration) -> f64 {
         phase.as_secs_f64() * 1e9 / self.points.max(1) as f64
@@ -254,18 +272,45 @@ fn known_zeros() -> Option<KnownZeros> {
         .and_then(|()| KnownZeros::of(&a, model::N_STATES).ok())
 }
 
-/// Times (drawing, generated code, eigenvalues), summary and the eigenvalues' verdict per
-/// point (`None`: no eigenvalues) of one chunk.
-type ChunkResult = ([Duration; 3], Summary, Vec<Option<bool>>);
+/// The CPU time the calling thread has used (Linux: `/proc/thread-self/schedstat`, in ns);
+/// `None` elsewhere. Unlike the wall clock it does not count the time a thread waits for a
+/// core, which is most of the time on a machine shared with other jobs. The kernel brings the
+/// figure up to date only at its scheduler ticks and context switches, so over a phase of a
+/// chunk (a few ms) it is a sample: summed over many chunks it is unbiased, the total exact,
+/// but a short phase (drawing the points) carries tens of per cent of sampling noise at 10⁵
+/// points.
+pub fn thread_cpu_time() -> Option<Duration> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: u64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(Duration::from_nanos(ns))
+}
+
+/// The differences of consecutive CPU time readings (`None` if one is missing).
+fn cpu_phases<const N: usize, const M: usize>(t: [Option<Duration>; M]) -> Option<[Duration; N]> {
+    let mut out = [Duration::ZERO; N];
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = t[k + 1]?.saturating_sub(t[k]?);
+    }
+    Some(out)
+}
+
+/// Times (drawing, generated code, eigenvalues) by the wall clock and by the thread's CPU
+/// time, summary and the eigenvalues' verdict per point (`None`: no eigenvalues) of one chunk.
+type ChunkResult = (
+    [Duration; 3],
+    Option<[Duration; 3]>,
+    Summary,
+    Vec<Option<bool>>,
+);
 
 fn chunk(s: &mut Scratch, known: Option<&KnownZeros>, opts: &Options, c: usize) -> ChunkResult {
     let (start, end) = (c * CHUNK, ((c + 1) * CHUNK).min(opts.points));
     let mut summary = Summary::empty();
-    let t0 = Instant::now();
+    let (t0, c0) = (Instant::now(), thread_cpu_time());
     s.params.clear();
     s.params
         .extend((start..end).map(|k| point(opts.seed, opts.spread, k as u64)));
-    let t1 = Instant::now();
+    let (t1, c1) = (Instant::now(), thread_cpu_time());
     s.mats.clear();
     s.ok.clear();
     let (mut b, mut w) = ([0.0; model::B_LEN], [0.0; model::WORK_LEN]);
@@ -276,7 +321,7 @@ fn chunk(s: &mut Scratch, known: Option<&KnownZeros>, opts: &Options, c: usize) 
         s.ok.push(ok);
     }
     std::hint::black_box(&b);
-    let t2 = Instant::now();
+    let (t2, c2) = (Instant::now(), thread_cpu_time());
     s.stable.clear();
     for (a, &ok) in s.mats.iter().zip(&s.ok) {
         if !ok {
@@ -296,24 +341,34 @@ fn chunk(s: &mut Scratch, known: Option<&KnownZeros>, opts: &Options, c: usize) 
             }
         }
     }
-    let t3 = Instant::now();
-    ([t1 - t0, t2 - t1, t3 - t2], summary, s.stable.clone())
+    let (t3, c3) = (Instant::now(), thread_cpu_time());
+    (
+        [t1 - t0, t2 - t1, t3 - t2],
+        cpu_phases([c0, c1, c2, c3]),
+        summary,
+        s.stable.clone(),
+    )
 }
 
-/// The generated verdicts of the points of chunk `c`, and the thread time they took.
-fn verdict_chunk(s: &mut Scratch, opts: &Options, c: usize) -> (Duration, Vec<Verdicted>) {
+/// The generated verdicts of the points of chunk `c`, and the thread time they took (wall
+/// clock, CPU).
+type VerdictChunk = (Duration, Option<Duration>, Vec<Verdicted>);
+
+fn verdict_chunk(s: &mut Scratch, opts: &Options, c: usize) -> VerdictChunk {
     let (start, end) = (c * CHUNK, ((c + 1) * CHUNK).min(opts.points));
     s.params.clear();
     s.params
         .extend((start..end).map(|k| point(opts.seed, opts.spread, k as u64)));
-    let t0 = Instant::now();
+    let (t0, c0) = (Instant::now(), thread_cpu_time());
     s.verdicts.clear();
     s.verdicts.extend(
         s.params
             .iter()
             .map(|p| model::stability(std::hint::black_box(p))),
     );
-    (t0.elapsed(), s.verdicts.clone())
+    let (wall, c1) = (t0.elapsed(), thread_cpu_time());
+    let cpu = cpu_phases::<1, 2>([c0, c1]).map(|[d]| d);
+    (wall, cpu, s.verdicts.clone())
 }
 
 /// A generated verdict.
@@ -338,7 +393,7 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
     let wall = start.elapsed();
     // The verdicts without eigenvalues: a second pass over the same points.
     let start = Instant::now();
-    let verdicts: Vec<(Duration, Vec<Verdicted>)> = pool.install(|| {
+    let verdicts: Vec<VerdictChunk> = pool.install(|| {
         (0..chunks)
             .into_par_iter()
             .map_init(Scratch::new, |s, c| verdict_chunk(s, opts, c))
@@ -347,11 +402,22 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
     let verdict_wall = start.elapsed();
     let (mut times, mut summary, mut verdict) =
         ([Duration::ZERO; 3], Summary::empty(), Duration::ZERO);
-    for ((t, sum, stable), (tv, v)) in chunked.into_iter().zip(verdicts) {
+    let mut cpu = Some([Duration::ZERO; 4]);
+    for ((t, tc, sum, stable), (tv, vc, v)) in chunked.into_iter().zip(verdicts) {
         for k in 0..3 {
             times[k] += t[k];
         }
         verdict += tv;
+        cpu = match (cpu, tc, vc) {
+            (Some(mut acc), Some(tc), Some(vc)) => {
+                for k in 0..3 {
+                    acc[k] += tc[k];
+                }
+                acc[3] += vc;
+                Some(acc)
+            }
+            _ => None,
+        };
         let mut sum = sum;
         for (v, st) in v.into_iter().zip(stable) {
             sum.add_verdict(v, st);
@@ -367,6 +433,7 @@ pub fn run(opts: &Options) -> Result<Throughput, ThroughputError> {
         eval: times[1],
         eigen: times[2],
         verdict,
+        cpu,
         summary,
     })
 }
@@ -376,6 +443,25 @@ pub fn to_text(t: &Throughput) -> String {
     let s = &t.summary;
     let evaluated = t.points - s.eval_failures - s.eigen_failures;
     let decided = t.points - s.verdict_undecided - s.verdict_failures;
+    let cpu = match (
+        t.cpu,
+        t.points_per_cpu_second(),
+        t.verdicts_per_cpu_second(),
+    ) {
+        (Some([a, b, c, v]), Some(pps), Some(vps)) => format!(
+            "thread CPU time per point: {:.1} ns drawing the point, {:.1} ns generated code, \
+             {:.1} ns eigenvalues ({:.1}× the generated code), {:.1} ns verdict; \
+             {:.0} points and {:.0} verdicts per CPU second\n",
+            t.ns_per_point(a),
+            t.ns_per_point(b),
+            t.ns_per_point(c),
+            c.as_secs_f64() / b.as_secs_f64().max(1e-12),
+            t.ns_per_point(v),
+            pps,
+            vps,
+        ),
+        _ => String::new(),
+    };
     format!(
         "Throughput: bicycle, generated f64 code (eval_ab) + eigenvalues, {} random points \
          (27 parameters within ±20 % of nominal), {} thread(s)\n\
@@ -383,6 +469,7 @@ pub fn to_text(t: &Throughput) -> String {
          points/s: {:.0} total, {:.0} per thread\n\
          thread time per point: {:.1} ns drawing the point, {:.1} ns generated code, \
          {:.1} ns eigenvalues ({:.1}× the generated code)\n\
+         {}\
          generated code failures: {}\n\
          eigenvalue failures: {}\n\
          stable points: {} of {} ({:.2} %)\n\
@@ -400,6 +487,7 @@ pub fn to_text(t: &Throughput) -> String {
         t.ns_per_point(t.eval),
         t.ns_per_point(t.eigen),
         t.eigen.as_secs_f64() / t.eval.as_secs_f64().max(1e-12),
+        cpu,
         s.eval_failures,
         s.eigen_failures,
         s.stable,
@@ -421,6 +509,22 @@ pub fn to_text(t: &Throughput) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cpu_phases_are_the_differences_of_the_readings() {
+        let ms = |k| Some(Duration::from_millis(k));
+        assert_eq!(
+            cpu_phases::<3, 4>([ms(1), ms(3), ms(6), ms(10)]),
+            Some([2, 3, 4].map(Duration::from_millis))
+        );
+        assert_eq!(cpu_phases::<3, 4>([ms(1), None, ms(6), ms(10)]), None);
+        // On Linux the thread's CPU time is known and does not go back.
+        if cfg!(target_os = "linux") {
+            let a = thread_cpu_time().expect("schedstat");
+            let b = thread_cpu_time().expect("schedstat");
+            assert!(b >= a, "{a:?} then {b:?}");
+        }
+    }
 
     #[test]
     fn points_are_within_the_spread_and_reproducible() {

@@ -57,7 +57,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     let states = match reduce_report(&assembled) {
         Ok(reduction) => {
             warnings.extend(reduction.warnings.iter().cloned());
-            reduction.position_states + reduction.velocity_states
+            reduction.position_states + reduction.velocity_states + reduction.lag_states
         }
         Err(numeric) => {
             // Its advice names the library's path, not a command: replaced by ours.

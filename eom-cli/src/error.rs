@@ -70,7 +70,7 @@ pub enum CliError {
     #[error(transparent)]
     Codegen(#[from] eom_codegen::CodegenError),
     /// A feature this build does not include.
-    #[cfg(not(feature = "codegen"))]
+    #[cfg(any(not(feature = "codegen"), not(feature = "bench")))]
     #[error("{0}")]
     Unavailable(String),
     /// A picture that this model cannot give (no mode moves a body, no map to the bodies).
@@ -99,6 +99,7 @@ pub enum CliError {
     },
     /// A benchmark of `eom bench` could not be run (its reference could not be formed, or
     /// its chart drawn).
+    #[cfg(feature = "bench")]
     #[error("bench: {0}")]
     Bench(String),
     /// Reading or writing a file or a stream.
@@ -130,6 +131,11 @@ impl CliError {
                 | eom_aero::AeroError::BadValue { .. }
                 | eom_aero::AeroError::MissingField { .. }
                 | eom_aero::AeroError::OutOfRange { .. }
+                // A geometry, reference or option given that the lattice cannot take (e.g.
+                // `--ref 1e308,0,0`): the input's fault.
+                | eom_aero::AeroError::Configuration { .. }
+                | eom_aero::AeroError::Geometry { .. }
+                | eom_aero::AeroError::Option { .. }
                 | eom_aero::AeroError::Io { .. },
             ) => EXIT_USAGE,
             // A model beyond the memory limit: the size of the input, not a failure.

@@ -11,6 +11,7 @@
 mod aero;
 mod analyze;
 mod analyze_text;
+#[cfg(feature = "bench")]
 mod bench;
 mod check;
 mod codegen;
@@ -231,8 +232,12 @@ enum BenchCommand {
         nominal, the speed too, so both stable and unstable points occur; point k depends only \
         on the seed and k), on T threads with rayon. Prints the wall time, the points per \
         second in total and per thread, the thread time per point of drawing the point, of the \
-        generated code and of the eigenvalues, and what the sweep found: failures, the stable \
-        points and the range of the largest real part of the non-zero eigenvalues.")]
+        generated code and of the eigenvalues (by the wall clock, and on Linux by the threads' \
+        CPU time, with points per CPU second: what a core costs when the machine is shared), \
+        and what the sweep found: failures, the stable points and the range of the largest \
+        real part of the non-zero eigenvalues. A second pass times the generated stability \
+        verdict without eigenvalues at the same points and counts its undecided points and \
+        any disagreement with the eigenvalues.")]
     Throughput(BenchThroughputArgs),
     /// The failure map: sweeps into the regions where methods break (speed to 0 with
     /// nonholonomic contacts, extreme stiffness ratios, a nearly massless body, coalescing
@@ -609,6 +614,7 @@ fn json<T: serde::Serialize>(v: &T) -> Result<String, CliError> {
 }
 
 /// `eom bench …`: the benchmarks' output (notes of written files on `stderr`).
+#[cfg(feature = "bench")]
 fn run_bench(b: BenchCommand, quiet: bool, stderr: &mut String) -> Result<String, CliError> {
     Ok(match b {
         BenchCommand::Accuracy(b) => {
@@ -630,6 +636,17 @@ fn run_bench(b: BenchCommand, quiet: bool, stderr: &mut String) -> Result<String
             bench::stress(&req, quiet, stderr)?
         }
     })
+}
+
+/// Without the `bench` feature: `eom bench` says that this build does not include it.
+#[cfg(not(feature = "bench"))]
+fn run_bench(_: BenchCommand, _: bool, _: &mut String) -> Result<String, CliError> {
+    Err(CliError::Unavailable(
+        "the benchmarks are not available in this build of eom (built without the cargo \
+         feature `bench`, which links the eom-bench crate). Rebuild with \
+         `cargo build -p eom-cli --features bench`."
+            .into(),
+    ))
 }
 
 fn run(cli: Cli) -> Result<Output, CliError> {

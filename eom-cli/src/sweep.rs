@@ -71,6 +71,7 @@ pub struct VerdictCheck {
 
 /// The verdict without eigenvalues at every grid value of `result` (`base`: the parameter
 /// values in the model's order, `k` the swept one), for a built-in model that has it.
+#[cfg(feature = "bench")]
 fn verdict_check(
     choice: &ModelChoice,
     names: &[String],
@@ -112,6 +113,18 @@ fn verdict_check(
         }
     }
     Some(out)
+}
+
+/// Without the `bench` feature no generated verdict is linked in: no check.
+#[cfg(not(feature = "bench"))]
+fn verdict_check(
+    _: &ModelChoice,
+    _: &[String],
+    _: &[f64],
+    _: usize,
+    _: &SweepResult,
+) -> Option<VerdictCheck> {
+    None
 }
 
 /// The sweep grid.

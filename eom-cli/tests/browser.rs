@@ -149,7 +149,7 @@ fn check_page(browser: &str, dir: &Path, args: &[&str], name: &str) {
     );
     assert!(shot.exists(), "no screenshot: {log}");
     assert!(not_blank(&shot, 0.02), "the screenshot is blank");
-    // Kept for the README's pictures when asked for.
+    // Kept for the pictures in docs/ when asked for.
     if let Ok(to) = std::env::var("EOM_SCREENSHOTS") {
         let _ = std::fs::copy(&shot, Path::new(&to).join(format!("report-{name}.png")));
     }

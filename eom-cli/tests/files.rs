@@ -114,3 +114,27 @@ fn bad_files_exit_2_and_name_the_line_and_item() {
     assert!(r.stderr.contains("outside its range"), "{}", r.stderr);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// One "did you mean" for every unknown name: a model, a parameter of a built-in model, a
+/// parameter in an expression, a key of a model file.
+#[test]
+fn unknown_names_get_the_likely_one() {
+    let r = eom(&["analyze", "bicyle"]);
+    assert_eq!(r.code, 2);
+    assert!(
+        r.stderr.contains("(did you mean `bicycle`?)"),
+        "{}",
+        r.stderr
+    );
+    let r = eom(&["analyze", "bicycle", "--set", "vv=5"]);
+    assert_eq!(r.code, 2);
+    assert!(
+        r.stderr.contains("no parameter `vv` (did you mean `v`?)"),
+        "{}",
+        r.stderr
+    );
+    // Nothing close: no suggestion.
+    let r = eom(&["analyze", "bicycle", "--set", "zzzzzz=5"]);
+    assert_eq!(r.code, 2);
+    assert!(!r.stderr.contains("did you mean"), "{}", r.stderr);
+}

@@ -670,9 +670,10 @@ fn overflowing_aerodynamics_is_an_error_not_nan() {
         assert_eq!(r.code, 2, "{name}: {}", r.stderr);
         assert!(r.stderr.contains(expect), "{name}: {}", r.stderr);
     }
-    // A reference point so far that the rotations overflow: said so, not "singular".
+    // A reference point so far that the rotations overflow: said so, not "singular", and a
+    // usage error (the input's fault, exit 2).
     let r = eom(&["aero", &fin, "--ref", "1e308,0,0"]);
-    assert_eq!(r.code, 1, "{}", r.stderr);
+    assert_eq!(r.code, 2, "{}", r.stderr);
     assert!(
         r.stderr.contains("Xref/Yref/Zref") && !r.stderr.contains("singular"),
         "{}",
@@ -776,6 +777,35 @@ fn messages_name_what_is_wrong() {
         assert!(
             r.stderr.contains("`--sweep ") && !r.stderr.contains("--param"),
             "{}",
+            r.stderr
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A wing derivative whose damping would overflow is refused naming the wing and the
+/// derivative (not found later as a non-finite entry of A).
+#[test]
+fn an_overflowing_wing_derivative_is_named() {
+    let dir = scratch("wing_overflow");
+    let exported = eom(&["export", "smd_wing"]);
+    assert_eq!(exported.code, 0, "{}", exported.stderr);
+    assert!(exported.stdout.contains("CZw = \"-CLa - CD\""));
+    for value in ["-1e308", "-1e300"] {
+        let file = dir.join("w.toml");
+        std::fs::write(
+            &file,
+            exported
+                .stdout
+                .replace("CZw = \"-CLa - CD\"", &format!("CZw = \"{value}\"")),
+        )
+        .unwrap();
+        let r = eom(&["analyze", s(&file)]);
+        assert_eq!(r.code, 2, "{value}: {}", r.stderr);
+        assert!(
+            r.stderr.contains("wing `wing`, field `derivatives`: `CZw`")
+                && r.stderr.contains("would overflow"),
+            "{value}: {}",
             r.stderr
         );
     }

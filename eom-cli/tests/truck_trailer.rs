@@ -97,7 +97,8 @@ fn the_robust_path_gives_the_closed_form_gain_at_the_split_pair() {
     // The structural zero is either kept exact by the descriptor reduction, or the rank
     // decision that splits it is overridden, with the reason printed.
     assert!(
-        run.stdout.contains("1 zero eigenvalue(s) proved by the structure")
+        run.stdout
+            .contains("1 zero eigenvalue(s) proved by the structure")
             && (run.stdout.contains("fewer than the 1 its structure proves")
                 || run.stdout.contains("rank of A (5) decided within")),
         "{}",

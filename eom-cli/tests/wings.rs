@@ -231,7 +231,12 @@ fn two_models_in_one_sweep_plot() {
         "x=0:1:5",
     ]);
     assert_eq!(r.code, 2);
-    assert!(r.stderr.contains("unknown model `shimy`"), "{}", r.stderr);
+    assert!(
+        r.stderr
+            .contains("unknown model `shimy` (did you mean `shimmy`?)"),
+        "{}",
+        r.stderr
+    );
 }
 
 #[test]

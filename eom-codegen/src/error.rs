@@ -4,6 +4,7 @@ use eom_sym::SymError;
 
 /// Everything that can go wrong while generating code.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CodegenError {
     /// The symbolic side failed (building, reducing or simplifying the model), or an
     /// expression cannot be evaluated (an invalid node, a parameter missing from the list).

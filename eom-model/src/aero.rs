@@ -33,7 +33,7 @@ pub struct ReducedFrequency {
     pub eigenvalue: Complex64,
     /// β = |Im λ|·c/V.
     pub beta: f64,
-    /// Whether β exceeds the limit 0.1.
+    /// Whether β exceeds the limit 0.1 on a quasi-steady wing.
     pub too_high: bool,
 }
 
@@ -69,7 +69,10 @@ pub fn reduced_frequencies(model: &Model<f64>, eigenvalues: &[Complex64]) -> Vec
                 wing: w.name.to_string(),
                 eigenvalue: *z,
                 beta,
-                too_high: eom_aero::validity::reduced_frequency_too_high(beta),
+                // A wing with Jones' lag states carries the lag (an `auto` one is decided by
+                // the linearization, and says so).
+                too_high: w.unsteady == crate::items::Unsteady::QuasiSteady
+                    && eom_aero::validity::reduced_frequency_too_high(beta),
             });
         }
     }

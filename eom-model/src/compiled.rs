@@ -106,8 +106,8 @@ impl SymbolicStateSpace {
         })
     }
 
-    /// The descriptor pencil `(E, F)` with `A = E⁻¹F`: `E = diag(I, M)` with the reduced mass
-    /// matrix `M`, `F` the kinematic and dynamic rows (see
+    /// The descriptor pencil `(E, F)` with `A = E⁻¹F`: `E = diag(I, M, I)` with the reduced
+    /// mass matrix `M` (the last identity for the lag states, if any), `F` the kinematic and dynamic rows (see
     /// [`Reduction::descriptor`](crate::Reduction::descriptor)). Closed forms computed from
     /// it carry no nested divisions by `M`.
     pub fn pencil(&self) -> (DMatrix<Expr>, DMatrix<Expr>) {
@@ -128,7 +128,13 @@ impl SymbolicStateSpace {
         for (i, j, v) in d.dynamics.iter() {
             f[(np + i, j)] = v;
         }
-        debug_assert_eq!(np + nw, n);
+        for i in np + nw..n {
+            e[(i, i)] = Expr::one();
+        }
+        for (i, j, v) in d.lags.iter() {
+            f[(np + nw + i, j)] = v;
+        }
+        debug_assert_eq!(np + nw + d.lags.nrows(), n);
         (e, f)
     }
 

@@ -6,6 +6,7 @@ use eom_sym::SymError;
 /// Everything that can go wrong while building, assembling or reducing a model. Messages name
 /// the item, field or parameter at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ModelError {
     /// A model item or field is invalid.
     #[error("{item}{}: {problem}", if field.is_empty() { String::new() } else { format!(", field `{field}`") })]

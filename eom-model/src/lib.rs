@@ -21,46 +21,16 @@
 //! deliberately differs from it is documented in the modules ([`assemble`](mod@assemble),
 //! [`reduce`](mod@reduce), [`robust`]).
 //!
-//! # The item layer
+//! # Examples
 //!
-//! A body or item is a struct with builder methods in its own module under `items/`, and
-//! implements the trait [`Item`], which is all the rest of the crate knows of it:
+//! A model in a few lines, from `examples/spring_mass.rs` (run it with
+//! `cargo run --release -p eom-model --example spring_mass`):
 //!
-//! * [`Item::kind`], [`Item::name`]: how messages name it (``flex point `tyre` ``);
-//! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and
-//!   [`MapItem::map_item`]: the item converted to another scalar type, field by field in the
-//!   same order (this is how [`Model::evaluate`] turns expressions into numbers);
-//! * [`Item::bodies`] and [`Item::supports`]: the bodies it connects (checked to exist and to
-//!   differ) and whether it holds them; [`Item::validate`]: its own checks, whose errors name
-//!   the item and field ([`Validation`] gives the known bodies and items, and takes warnings);
-//! * [`Item::assemble`]: its terms of the linearized equations, through the assembly context
-//!   [`Assembly`]: the bodies' indices and mass centres, the Jacobian rows of a line or point
-//!   geometry ([`Assembly::line`], [`Assembly::point`]), 3×3 blocks and `Rᵀ P R` property
-//!   blocks added to a [`Term`] (mass, item mass, stiffness, damping, momentum, velocity, load
-//!   stiffness), holonomic, elastic or nonholonomic rows with the [`Reaction`] their
-//!   multipliers carry (which gives the item's preload and its geometric stiffness), known
-//!   preloads, applied forces, inputs and outputs.
+//! ```
+#![doc = include_str!("../examples/spring_mass.rs")]
+//! ```
 //!
-//! A [`Model`] keeps its bodies and, apart, its items in the order of the kind table
-//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers.
-//!
-//! ## Adding an item kind
-//!
-//! 1. Write `items/<kind>.rs`: the struct (public fields, `name: Name`, scalars `S`), its
-//!    builders (a point geometry reuses [`Point`] and `point_builders!`, a two-point one
-//!    [`Line`] and `line_builders!`), and `impl Item<S>` and `impl MapItem<S, T>`.
-//!    `assemble` is usually a few lines: e.g. a velocity-dependent damping block at a point of
-//!    one body takes the rows of its point,
-//!    `let (rows, _) = cx.point(&self.point, "wing", &self.name)`, and adds
-//!    `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square, not
-//!    necessarily symmetric, block with one row and column per direction: forces first, then
-//!    moments).
-//! 2. Register it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and its kind in
-//!    [`KINDS`] (where it stands there decides where its rows go).
-//! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
-//!    the conversion agree; a closed-form model checks its terms.
-//!
-//! # Example
+//! The shimmy, with its symbolic state matrix checked against the closed form:
 //!
 //! ```
 //! use eom_model::*;
@@ -95,6 +65,48 @@
 //! // −1.0548225773209977 at these values (Schwab & Meijaard 2003).
 //! assert!((eig[0].re + 1.0548225773209977).abs() < 1e-12);
 //! ```
+//!
+//! # The item layer
+//!
+//! A body or item is a struct with builder methods in its own module under `items/`, and
+//! implements the trait [`Item`], which is all the rest of the crate knows of it:
+//!
+//! * [`Item::kind`], [`Item::name`]: how messages name it (``flex point `tyre` ``);
+//! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and
+//!   [`MapItem::map_item`]: the item converted to another scalar type, field by field in the
+//!   same order (this is how [`Model::evaluate`] turns expressions into numbers);
+//! * [`Item::bodies`] and [`Item::supports`]: the bodies it connects (checked to exist and to
+//!   differ) and whether it holds them; [`Item::validate`]: its own checks, whose errors name
+//!   the item and field ([`Validation`] gives the known bodies and items, and takes warnings);
+//! * [`Item::assemble`]: its terms of the linearized equations, through the assembly context
+//!   [`Assembly`]: the bodies' indices and mass centres, the Jacobian rows of a line or point
+//!   geometry ([`Assembly::line`], [`Assembly::point`]), 3×3 blocks and `Rᵀ P R` property
+//!   blocks added to a [`Term`] (mass, item mass, stiffness, damping, momentum, velocity, load
+//!   stiffness), holonomic, elastic or nonholonomic rows with the [`Reaction`] their
+//!   multipliers carry (which gives the item's preload and its geometric stiffness), known
+//!   preloads, applied forces, inputs and outputs, and first-order lag states
+//!   ([`Assembly::lag_state`], [`Assembly::add_lag`]: a strip's or wing's unsteady lift),
+//!   which every reduction carries after the mechanical states.
+//!
+//! A [`Model`] keeps its bodies and, apart, its items in the order of the kind table
+//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers.
+//!
+//! ## Adding an item kind
+//!
+//! 1. Write `items/<kind>.rs`: the struct (public fields, `name: Name`, scalars `S`), its
+//!    builders (a point geometry reuses [`Point`] and `point_builders!`, a two-point one
+//!    [`Line`] and `line_builders!`), and `impl Item<S>` and `impl MapItem<S, T>`.
+//!    `assemble` is usually a few lines: e.g. a velocity-dependent damping block at a point of
+//!    one body takes the rows of its point,
+//!    `let (rows, _) = cx.point(&self.point, "wing", &self.name)`, and adds
+//!    `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square, not
+//!    necessarily symmetric, block with one row and column per direction: forces first, then
+//!    moments).
+//! 2. Register it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and its kind in
+//!    [`KINDS`] (where it stands there decides where its rows go).
+//! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
+//!    the conversion agree; a closed-form model checks its terms.
+//!
 
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
@@ -116,10 +128,21 @@ pub mod sensitivity;
 pub mod tutorials;
 pub mod validate;
 
+/// The types a user needs to build and linearize a model: `use eom_model::prelude::*;`.
+pub mod prelude {
+    pub use crate::error::ModelError;
+    pub use crate::items::{
+        Actuator, Beam, Body, FlexPoint, Link, Load, NhPoint, RigidPoint, Sensor, SensorFrame,
+        SensorOrder, Spring, Wing, vec3, x_axis, y_axis, z_axis,
+    };
+    pub use crate::linearize::{Linearization, Linearizer, Method};
+    pub use crate::{Model, SymbolicStateSpace};
+}
+
 pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
 pub use assemble::{
-    Assembled, Assembly, ItemRow, LineGeometry, PointGeometry, Preload, Reaction, RowLabel, Rows,
-    Statics, Term, assemble,
+    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, PointGeometry, Preload, Reaction,
+    RowLabel, Rows, Statics, Term, assemble,
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
@@ -195,6 +218,11 @@ impl<S: ModelScalar> Model<S> {
     /// The items (bodies excluded), in the order of [`KINDS`].
     pub fn items(&self) -> &[Box<dyn Item<S>>] {
         &self.items
+    }
+
+    /// The items, mutable (for settings decided later, such as `unsteady = "auto"`).
+    pub(crate) fn items_mut(&mut self) -> &mut [Box<dyn Item<S>>] {
+        &mut self.items
     }
 
     /// The items of one kind (e.g. `"spring"`), in the order they were added.

@@ -26,7 +26,7 @@ use super::compiled::SymbolicStateSpace;
 use super::reduce::{ReductionReport, reduce};
 use super::robust::{RobustReport, reduce_robust};
 use crate::error::ModelError;
-use crate::items::ModelScalar;
+use crate::items::{ModelScalar, resolve_unsteady};
 use eom_num::StateSpace;
 use eom_num::deflate::structural_zero_states;
 use eom_sym::SymError;
@@ -111,10 +111,15 @@ impl<'a> Linearizer<'a> {
 
     /// The symbolic state-space model (independent of [`Linearizer::at`]): assembled and
     /// reduced with expressions, compiled for evaluation.
+    ///
+    /// `unsteady = "auto"` surfaces are decided at the nominal point ([`resolve_unsteady`]);
+    /// what they got is among the reduction report's warnings.
     pub fn symbolic(&self) -> Result<SymbolicStateSpace, ModelError> {
         self.model.in_pool(|| {
-            let a = assemble(self.model)?;
-            let r = reduce(&a, None)?;
+            let (model, notes) = resolve_unsteady(self.model, &self.model.scope.nominal_values())?;
+            let a = assemble(&model)?;
+            let mut r = reduce(&a, None)?;
+            r.report.warnings.extend(notes);
             SymbolicStateSpace::new(r, &self.model.scope.params())
         })
     }
@@ -126,6 +131,22 @@ impl<'a> Linearizer<'a> {
 
     fn run_in_pool(&self) -> Result<Linearization, ModelError> {
         let values = self.values()?;
+        if self.method == Method::Symbolic {
+            // `auto` decided at the nominal point, by `symbolic`.
+            return self.run_method(self.model, values);
+        }
+        // `auto` decided at this point.
+        let (resolved, notes) = resolve_unsteady(self.model, &values)?;
+        let mut lin = self.run_method(&resolved, values)?;
+        lin.warnings.extend(notes);
+        Ok(lin)
+    }
+
+    fn run_method(
+        &self,
+        model: &Model<Expr>,
+        values: Vec<f64>,
+    ) -> Result<Linearization, ModelError> {
         match self.method {
             Method::Symbolic => {
                 let sym = self.symbolic()?;
@@ -141,7 +162,7 @@ impl<'a> Linearizer<'a> {
                 })
             }
             Method::Numeric => {
-                let m = self.model.evaluate(&values)?;
+                let m = model.evaluate(&values)?;
                 let a = assemble(&m)?;
                 let r = reduce(&a, None)?;
                 Ok(Linearization {
@@ -157,7 +178,7 @@ impl<'a> Linearizer<'a> {
                 })
             }
             Method::Robust => {
-                let m = self.model.evaluate(&values)?;
+                let m = model.evaluate(&values)?;
                 let a = assemble(&m)?;
                 let (ss, rep) = reduce_robust(&a)?;
                 // Counted on the elimination path's matrix at the same point (when it can

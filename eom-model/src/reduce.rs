@@ -14,6 +14,9 @@
 //!    annihilates every constraint reaction), the kinematic equations are kept for the
 //!    independent coordinates only (exact, since `J ṗ = 0` by construction), and the reduced
 //!    mass matrix `R_wᵀ M R_w` is eliminated (Gauss–Jordan, nominal pivots).
+//!    Lag states of the items (`Assembled::lags`: `ẋ_a = A_a x_a + P_a p + W_a w`, force
+//!    `F_a x_a`) follow as states `x = [x_p; x_w; x_a]`: their force is projected with the
+//!    dynamics, their equations by `p = P x`, `w = W x`.
 //! 5. **Inputs with rates** (`G_u u̇`) are absorbed by the state change `x̃ = x − Γu`.
 //! 6. **Outputs.** Displacements and velocities directly; accelerations by differentiating the
 //!    velocity output through the reduced model (`C_acc = C_vel A`, `D_acc = C_vel B`), which
@@ -232,6 +235,8 @@ pub struct ReductionReport {
     pub position_states: usize,
     /// Independent velocities.
     pub velocity_states: usize,
+    /// Lag states of the items (unsteady aerodynamics), after the mechanical states.
+    pub lag_states: usize,
     /// Constraint rows found redundant at the nominal point.
     pub redundant: Vec<String>,
     /// Warnings.
@@ -266,6 +271,9 @@ pub struct ReducedDescriptor<S> {
     pub kinematics: SparseMatrix<S>,
     /// `F`: the dynamic rows.
     pub dynamics: SparseMatrix<S>,
+    /// The rows of the lag states (`ẋ_a = L x`, after the dynamic rows; empty without lag
+    /// states): their rows of `E` are the identity.
+    pub lags: SparseMatrix<S>,
 }
 
 const COORD: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
@@ -363,7 +371,8 @@ pub fn reduce<S: Scalar>(
 /// of the nominal point, and the report (`position_states + velocity_states` states), but no
 /// dense `A` and map to the physical coordinates, whose `(2n)² + 6 b · 2n` entries (n
 /// freedoms, b bodies) are what a model of many bodies cannot hold: 10 000 bodies on sliders
-/// needed 15.7 GB for them (issue 27, item 7). For validating a model (`eom check`).
+/// needed 15.7 GB for them (issue 27, item 7). For validating a model (`eom check`); the
+/// states are `position_states + velocity_states + lag_states`.
 ///
 /// Errors: as [`reduce`].
 pub fn reduce_report(a: &Assembled<f64>) -> Result<ReductionReport, ModelError> {
@@ -404,6 +413,11 @@ struct Selection<S> {
     f_u: SparseMatrix<S>,
     g_u: SparseMatrix<S>,
     c_s: SparseMatrix<S>,
+    /// The lag states' blocks on the active coordinates: `P_a`, `W_a` (columns) and `F_a`
+    /// (rows).
+    lag_p: SparseMatrix<S>,
+    lag_w: SparseMatrix<S>,
+    lag_f: SparseMatrix<S>,
 }
 
 impl<S: Scalar> Selection<S> {
@@ -445,6 +459,8 @@ struct Dynamics<S> {
     rhs_a: SparseMatrix<S>,
     /// The solved dynamic rows: state, input and input-rate columns.
     xa: SparseMatrix<S>,
+    /// The lag states' rows `ẋ_a = L x` (empty without lag states).
+    lag: SparseMatrix<S>,
     xb: SparseMatrix<S>,
     xg: SparseMatrix<S>,
 }
@@ -513,6 +529,9 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             f_u: a.input_force.select_rows(&active),
             g_u: a.input_rate_force.select_rows(&active),
             c_s: a.sensor_rows.columns_of(&active),
+            lag_p: a.lags.position.columns_of(&active),
+            lag_w: a.lags.velocity.columns_of(&active),
+            lag_f: a.lags.force.select_rows(&active),
             active,
             j_keep,
         }
@@ -668,6 +687,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         }
         self.report.position_states = np;
         self.report.velocity_states = nw;
+        self.report.lag_states = self.a.lags.len();
         Ok(Velocities {
             rg,
             indep_w,
@@ -685,21 +705,29 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         velo: &Velocities<S>,
     ) -> Result<Dynamics<S>, ModelError> {
         let (np, nw) = (pos.indep_p.len(), velo.indep_w.len());
-        let nx = np + nw;
+        let na = self.a.lags.len();
+        let nx = np + nw + na;
         let (rw, wp) = (&velo.rw, &velo.wp);
         let rwt = rw.transpose();
         let rwt_m = rwt.mul(&sel.mass)?;
         let m_r = rwt_m.mul(rw)?;
         let e21 = rwt_m.mul(wp)?;
-        let wfull = hstack(wp, rw)?; // w = Wfull x
-        let pfull = pos.rp.clone().widen(np + nw); // p = Pfull x = [R_p 0] x
+        let wfull = hstack(wp, rw)?.widen(nx); // w = Wfull x
+        let pfull = pos.rp.clone().widen(nx); // p = Pfull x = [R_p 0 0] x
         let kin = wfull.sub(&sel.vel.mul(&pfull)?)?; // ṗ = (W − V P) x
         let a1 = kin.select_rows(&pos.indep_p);
         let a2 = rwt
             .mul(&sel.stiff)?
             .mul(&pfull)?
             .add(&rwt.mul(&sel.damp)?.mul(&wfull)?)?
-            .neg();
+            .neg()
+            .add(&lag_columns(&rwt.mul(&sel.lag_f)?, np + nw, nx))?;
+        // ẋ_a = A_a x_a + P_a p + W_a w on the states.
+        let lag = sel
+            .lag_p
+            .mul(&pfull)?
+            .add(&sel.lag_w.mul(&wfull)?)?
+            .add(&lag_columns(&self.a.lags.rate, np + nw, nx))?;
         let rhs_a = a2.sub(&e21.mul(&a1)?)?;
         let b2 = rwt.mul(&sel.f_u)?;
         let g2 = rwt.mul(&sel.g_u)?;
@@ -732,6 +760,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             xa: mi.columns(nw..nw + nx),
             xb: mi.columns(nw + nx..nw + nx + m_in),
             xg: mi.columns(nw + nx + m_in..nw + nx + 2 * m_in),
+            lag,
             rm,
             wfull,
             pfull,
@@ -769,7 +798,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         gamma: &SparseMatrix<S>,
     ) -> Result<Reduction<S>, ModelError> {
         let a = self.a;
-        let nx = pos.indep_p.len() + velo.indep_w.len();
+        let nx = pos.indep_p.len() + velo.indep_w.len() + a.lags.len();
         let mut phys = Triplets::with_capacity(a.dim(), nx, dyn_.pfull.nnz());
         for (i, j, v) in dyn_.pfull.iter() {
             phys.push(sel.active[i], j, v);
@@ -779,6 +808,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             .map(|&k| self.coord_name(sel.active[k], false))
             .collect();
         states.extend((velo.indep_w.iter()).map(|&k| self.coord_name(sel.active[k], true)));
+        states.extend(a.lags.names.iter().cloned());
         // With rate inputs the states are x̃ = x − Γu: named for what they are.
         for (i, name) in states.iter_mut().enumerate() {
             name.push_str(&shifted_by(gamma.row(i), &a.inputs));
@@ -816,9 +846,19 @@ impl<'a, S: Scalar> Reducer<'a, S> {
                 mass: dyn_.m_r,
                 kinematics: dyn_.a1,
                 dynamics: dyn_.rhs_a,
+                lags: dyn_.lag,
             },
         })
     }
+}
+
+/// `m` (rows × k) placed at columns `at … at + k` of a matrix of `ncols` columns.
+fn lag_columns<S: Scalar>(m: &SparseMatrix<S>, at: usize, ncols: usize) -> SparseMatrix<S> {
+    let mut t = Triplets::with_capacity(m.nrows(), ncols, m.nnz());
+    for (i, j, v) in m.iter() {
+        t.push(i, at + j, v);
+    }
+    t.build()
 }
 
 /// ` − c₁·u₁ + c₂·u₂ …`: the shift `Γu` of a state `x̃ = x − Γu` (step 5), from its row of `Γ`
@@ -906,9 +946,17 @@ fn absorb_input_rates<S: Scalar>(
     dyn_: &Dynamics<S>,
 ) -> Result<[SparseMatrix<S>; 3], ModelError> {
     let np = pos.indep_p.len();
-    let a_ss = vstack(&dyn_.a1, &dyn_.xa)?;
-    let gamma = dyn_.xg.clone().below_zero_rows(np);
-    let b_raw = dyn_.xb.clone().below_zero_rows(np);
+    let a_ss = vstack(&vstack(&dyn_.a1, &dyn_.xa)?, &dyn_.lag)?;
+    // The lag states are not shifted by the inputs (Γ's and B's rows are zero there).
+    let na = dyn_.lag.nrows();
+    let below = |m: &SparseMatrix<S>| -> Result<SparseMatrix<S>, ModelError> {
+        vstack(
+            &m.clone().below_zero_rows(np),
+            &SparseMatrix::zeros(na, m.ncols()),
+        )
+    };
+    let gamma = below(&dyn_.xg)?;
+    let b_raw = below(&dyn_.xb)?;
     let b_ss = b_raw.add(&a_ss.mul(&gamma)?)?;
     Ok([a_ss, b_ss, gamma])
 }

@@ -23,6 +23,10 @@
 //! 4. **Outputs**: accelerations derived from the reduced model (`C_acc = C_vel A`), so that
 //!    they include every constraint reaction, and the feedthrough added.
 //!
+//! **Lag states** of the items (`Assembled::lags`, unsteady aerodynamics) are appended to `z`
+//! as `z = [p; w; s; x_a]`, unconstrained: `R` and `L` get an identity block for them, `E` an
+//! identity, and their equations and force enter `A`.
+//!
 //! It shares nothing with the elimination path except the assembly, which makes it an
 //! independent check of the symbolic-numeric reduction.
 
@@ -83,7 +87,8 @@ pub struct ConstrainedDescriptor {
 pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescriptor, ModelError> {
     let d = a.dim();
     let m = a.inputs.len();
-    let nz = 2 * d + m;
+    let na = a.lags.len();
+    let nz = 2 * d + m + na;
     // Dense N × N matrices, N = 2·coordinates + inputs: the pencil (E, A) before and after
     // the projection, the complements R and L, the products' temporaries, and the
     // coordinate-sized mass, stiffness, damping and kinematic matrices: about nine at once.
@@ -118,16 +123,25 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
     put(&mut kc, d, d, &c, 1.0);
     put(&mut kc, d, 2 * d, &fu, -1.0);
     put(&mut kc, 2 * d, 2 * d, &DMatrix::identity(m, m), 1.0);
+    // The lag states z_a (unconstrained): ż_a = A_a z_a + P_a p + W_a w, and their force
+    // F_a z_a on the dynamic rows.
+    let za = 2 * d + m;
+    put(&mut mz, za, za, &DMatrix::identity(na, na), 1.0);
+    put(&mut kc, za, za, &dense(&a.lags.rate), -1.0);
+    put(&mut kc, za, 0, &dense(&a.lags.position), -1.0);
+    put(&mut kc, za, d, &dense(&a.lags.velocity), -1.0);
+    put(&mut kc, d, za, &dense(&a.lags.force), -1.0);
     let mut bz = DMatrix::<f64>::zeros(nz, m);
     put(&mut bz, 2 * d, 0, &DMatrix::identity(m, m), 1.0);
 
     let sc = 2 * q + t;
     let mut warnings = a.warnings.clone();
     let (r, lc, rank, gap) = if sc > 0 {
-        match complements(&j, &nmat, &v, m, &mut warnings)? {
+        let (r, l, rank, gap) = match complements(&j, &nmat, &v, m, &mut warnings)? {
             Some(c) => c,
             None => joint_complements(&j, &nmat, &v, m, &mut warnings)?,
-        }
+        };
+        (with_lags(&r, na), with_lags(&l, na), rank, gap)
     } else {
         (
             DMatrix::identity(nz, nz),
@@ -145,6 +159,24 @@ pub fn constrained_descriptor(a: &Assembled<f64>) -> Result<ConstrainedDescripto
         gap,
         warnings,
     })
+}
+
+/// `diag(c, I_na)`: a complement of the mechanical states extended by the (unconstrained) lag
+/// states.
+fn with_lags(c: &DMatrix<f64>, na: usize) -> DMatrix<f64> {
+    if na == 0 {
+        return c.clone();
+    }
+    let mut out = DMatrix::<f64>::zeros(c.nrows() + na, c.ncols() + na);
+    put(&mut out, 0, 0, c, 1.0);
+    put(
+        &mut out,
+        c.nrows(),
+        c.ncols(),
+        &DMatrix::identity(na, na),
+        1.0,
+    );
+    out
 }
 
 /// How an output is read from the rows on `z` of the descriptor's outputs.
@@ -325,7 +357,7 @@ fn joint_complements(
 /// Step 2: the output rows on `z` and how each output is read from them.
 fn output_rows(a: &Assembled<f64>) -> (DMatrix<f64>, Vec<Post>) {
     let d = a.dim();
-    let nz = 2 * d + a.inputs.len();
+    let nz = 2 * d + a.inputs.len() + a.lags.len();
     let v = dense(&a.velocity);
     let cs = dense(&a.sensor_rows);
     let mut rows: Vec<DMatrix<f64>> = Vec::new();

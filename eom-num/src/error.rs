@@ -3,6 +3,7 @@
 /// Everything that can go wrong in a numeric analysis. Messages name the matrix, signal or
 /// parameter at fault.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum NumError {
     /// Matrix dimensions do not fit together.
     #[error("dimension mismatch: {0}")]

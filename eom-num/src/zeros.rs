@@ -38,11 +38,11 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::NumError;
+use crate::minreal::staircase::compress;
 use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
     svd_full,
 };
-use crate::staircase::compress;
 use crate::statespace::StateSpace;
 
 /// Options of [`transmission_zeros_with`].

@@ -3,6 +3,7 @@
 /// Everything that can go wrong in eom-sym. Messages name the parameter, item, field or
 /// position at fault.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SymError {
     /// A parse error: where, what was expected, what was found.
     #[error(
@@ -60,7 +61,11 @@ pub enum SymError {
         problem: String,
     },
     /// A name that is not a known parameter.
-    #[error("unknown parameter `{name}`; known parameters: {}", known.join(", "))]
+    #[error(
+        "unknown parameter `{name}`{}; known parameters: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownParameter {
         /// The unknown name.
         name: String,

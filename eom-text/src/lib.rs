@@ -11,7 +11,8 @@
 //!   line feeds and tabs kept;
 //! * [`name_problem`]: why a name (of a model, body, item, unit, …) cannot be used, if it
 //!   contains a character that [`is_unsafe`] — names reach terminals, generated code and
-//!   exported files, where such a character would break or forge a line.
+//!   exported files, where such a character would break or forge a line;
+//! * [`closest`]: the known name a misspelt one most likely meant, for "did you mean".
 //!
 //! ```
 //! use eom_text::{name_problem, shown};
@@ -212,6 +213,47 @@ pub fn read_limited(path: &std::path::Path, max_bytes: u64) -> std::io::Result<S
     })
 }
 
+/// The known name closest to `name` in edit distance, if it is close enough to be a likely
+/// typo: at most a third of its characters (at least 1, at most 3) edited. Ties go to the
+/// first candidate. The one rule behind every "did you mean" (model files, expressions, the
+/// command line).
+pub fn closest<'k>(name: &str, known: impl IntoIterator<Item = &'k str>) -> Option<&'k str> {
+    let n = name.chars().count();
+    let limit = (n / 3).clamp(1, 3);
+    known
+        .into_iter()
+        // The distance is at least the difference of the lengths: a long candidate costs
+        // nothing.
+        .filter(|k| n.abs_diff(k.chars().count()) <= limit)
+        .map(|k| (edit_distance(name, k), k))
+        .filter(|&(d, _)| d <= limit)
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, k)| k)
+}
+
+/// ` (did you mean `x`?)` when one of `known` is a likely typo of `name` ([`closest`]), else
+/// nothing: the suffix every "unknown name" message appends.
+pub fn did_you_mean<S: AsRef<str>>(name: &str, known: &[S]) -> String {
+    closest(name, known.iter().map(AsRef::as_ref))
+        .map_or_else(String::new, |k| format!(" (did you mean `{}`?)", shown(k)))
+}
+
+/// Levenshtein distance over characters.
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diag = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let up = row[j + 1];
+            row[j + 1] = (up + 1).min(row[j] + 1).min(diag + usize::from(ca != cb));
+            diag = up;
+        }
+    }
+    row[b.len()]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -254,5 +296,19 @@ mod tests {
             prop_assert!(!for_terminal(&s).chars().any(|c| c != '\n' && c != '\t' && is_unsafe(c)));
             prop_assert_eq!(name_problem(&s).is_none(), !s.chars().any(is_unsafe));
         }
+    }
+
+    #[test]
+    fn closest_names_a_likely_typo_only() {
+        use super::{closest, edit_distance};
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        let keys = ["stiffness", "span", "sqrt", "sin", "at", "axis"];
+        assert_eq!(closest("stifness", keys), Some("stiffness"));
+        assert_eq!(closest("spn", keys), Some("span"));
+        assert_eq!(closest("sinn", keys), Some("sin"));
+        assert_eq!(closest("zzzzzz", keys), None);
+        // Two characters: one edit at most (`ax` is not `at`'s typo and `axis`'s both).
+        assert_eq!(closest("ax", ["axis"]), None);
     }
 }

@@ -253,13 +253,15 @@ pub fn catalogue() -> Vec<ModelInfo> {
     ]
     .into_iter()
     .chain(crate::wings::entries())
+    .chain(crate::aeroelastic::entries())
+    .chain(crate::flight::entries())
     .chain(crate::applications::entries())
     .chain(crate::vehicles::entries())
     .collect()
 }
 
 /// Largest chain size accepted by name: the size whose `eom analyze` meets the time and
-/// memory targets of the README's performance section (every step grows as the cube of the
+/// memory targets of the performance page (docs/performance.md) (every step grows as the cube of the
 /// size). Longer chains can be written as model files.
 pub const MAX_CHAIN: usize = 1000;
 

@@ -26,15 +26,20 @@
 //! | `shimmy_fin` | the same fin, derivatives from eom-aero's vortex lattice | within 0.3 % of the paper's entries |
 //! | `ride_wings` | a car's bounce–pitch ride model with a front and a rear wing (illustrative) | a two-degree-of-freedom model derived by hand |
 //! | `truck_trailer` | truck with a one-axle trailer, linear single-track tyres (Minaker 2019) | closed-form steady-state yaw-rate gain; hand-written single-track equations |
+//! | `typical_section` | the pitch–plunge typical section (Hodges & Pierce) on a strip with Jones' lag states | exact Theodorsen flutter (k-method, determinant root) |
+//! | `goland_wing` | Goland's cantilever wing, 16 beam segments carrying strips | converged Theodorsen strip-theory flutter |
+//! | `navion` | the Navion in level free flight from Nelson's stability derivatives | the flight equations by hand; Nelson's printed roots |
 //! | `aircraft_ground` | a light taildragger on its landing gear with a wing and a tail (illustrative) | the three reduction paths |
 
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod aeroelastic;
 mod applications;
 mod bicycle;
 mod catalogue;
 mod chainp;
+pub mod flight;
 pub mod generate;
 mod vehicles;
 pub mod wings;
@@ -43,9 +48,14 @@ pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
 
 /// Errors of the model library (the catalogue of built-in models).
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum CatalogueError {
     /// No model of this name.
-    #[error("unknown model `{name}`; models are: {}", known.join(", "))]
+    #[error(
+        "unknown model `{name}`{}; models are: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownModel {
         /// The name asked for.
         name: String,
@@ -65,7 +75,11 @@ pub enum CatalogueError {
         max: usize,
     },
     /// A parameter that the model does not have.
-    #[error("model `{model}` has no parameter `{name}`; its parameters are: {}", known.join(", "))]
+    #[error(
+        "model `{model}` has no parameter `{name}`{}; its parameters are: {}",
+        eom_text::did_you_mean(name, known),
+        known.join(", ")
+    )]
     UnknownParameter {
         /// The model.
         model: String,

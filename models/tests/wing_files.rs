@@ -13,6 +13,13 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// The AVL fixtures live once, with eom-aero's tests (its data README says how they were made).
+fn aero_data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../eom-aero/tests/data")
+        .join(name)
+}
+
 fn eigenvalues(model: &Model, at: &[(&str, f64)]) -> Vec<Complex64> {
     let ss = Linearizer::new(model)
         .at(at)
@@ -114,7 +121,10 @@ fn a_stability_axis_file_gives_the_same_fin_and_says_what_it_cannot() {
 fn with_avl_file(file: &str) -> (PathBuf, String) {
     let text = std::fs::read_to_string(data("shimmy_fin_avl.toml"))
         .unwrap()
-        .replace("\"seed_fin_a0_avl332.sb\"", &format!("{:?}", data(file)));
+        .replace(
+            "\"../../../eom-aero/tests/data/seed_fin_a0_avl332.sb\"",
+            &format!("{:?}", aero_data(file)),
+        );
     let path = std::env::temp_dir().join(format!("eom-wing-{file}-{}.toml", std::process::id()));
     (path, text)
 }
@@ -259,7 +269,7 @@ fn bad_wings_are_errors_naming_file_line_item_and_field() {
     }
     let avl_and_area = format!(
         "[[wing]]\nname = \"w\"\nbody = \"plane\"\narea = 2\navl = {:?}\n",
-        data("seed_fin_a0_avl332.sb")
+        aero_data("seed_fin_a0_avl332.sb")
     );
     let e = load_wing(&avl_and_area).expect_err("both");
     assert!(

@@ -1,6 +1,6 @@
 //! Closed forms of the bicycle with all 27 parameters symbolic: the characteristic polynomial
 //! (from the descriptor pencil) and the Liénard–Chipart conditions. The sizes are printed, for
-//! the comparison with sympy in the README.
+//! the comparison with sympy (docs/method.md, "Closed forms").
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use eom_model::Linearizer;

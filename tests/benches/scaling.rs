@@ -14,7 +14,7 @@
 //! SCALING_SIZES=10,30,100 cargo bench -p tests --bench scaling -- minreal   # a subset
 //! ```
 //!
-//! The table printed at the end is the one in the README's performance section.
+//! The table printed at the end is the one in the performance page (docs/performance.md).
 
 use std::collections::BTreeMap;
 use std::hint::black_box;

@@ -1,6 +1,6 @@
 //! Writes a model file of N identical bodies, each on its own slider and spring, the first
 //! `driven` of them with a force and a sensor (`models::generate::identical_bodies`), to
-//! standard output: the models of the "many identical bodies" figures in the README.
+//! standard output: the models of the "many identical bodies" figures in docs/performance.md.
 //!
 //! ```text
 //! cargo run --release -p tests --example identical_bodies -- N [DRIVEN] [--derived]

@@ -9,7 +9,7 @@ use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::path::PathBuf;
 
-const BUILTINS: [&str; 15] = [
+const BUILTINS: [&str; 18] = [
     "smd",
     "pendulum",
     "shimmy",
@@ -25,6 +25,9 @@ const BUILTINS: [&str; 15] = [
     "ride_wings",
     "aircraft_ground",
     "truck_trailer",
+    "typical_section",
+    "goland_wing",
+    "navion",
 ];
 
 fn path(name: &str) -> PathBuf {
@@ -210,7 +213,7 @@ fn mutated_files_never_panic_and_never_load_something_else() {
 #[test]
 fn the_readmes_model_file_is_the_smd() {
     let readme = include_str!("../../README.md");
-    let section = &readme[readme.find("## Model files").expect("section")..];
+    let section = &readme[readme.find("## A model file").expect("section")..];
     let start = section.find("```toml\n").expect("a toml block") + 8;
     let text = &section[start..start + section[start..].find("```").expect("closed")];
     let m = file::from_str(text, "README.md", &[]).unwrap_or_else(|e| panic!("{e}"));

@@ -210,6 +210,43 @@ pub(crate) struct Signals<S> {
     pub(crate) feedthrough: Vec<(usize, usize, S)>,
 }
 
+/// Which block of the lag-state equations an entry goes to (see
+/// [`Lags`](super::Lags)): `ẋ_a = A_a x_a + P_a p + W_a w` and the force `F_a x_a` on the
+/// bodies' equations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LagTerm {
+    /// `A_a` (lag state × lag state).
+    Rate,
+    /// `P_a` (lag state × coordinate): the lag driven by displacements.
+    Position,
+    /// `W_a` (lag state × coordinate): the lag driven by velocities.
+    Velocity,
+    /// `F_a` (coordinate × lag state): the generalized force of the lag states.
+    Force,
+}
+
+/// The lag states' names and entries, as triplets whose sizes are known at the end.
+#[derive(Clone, Debug)]
+pub(crate) struct LagTerms<S> {
+    pub(crate) names: Vec<String>,
+    pub(crate) rate: Vec<(usize, usize, S)>,
+    pub(crate) position: Vec<(usize, usize, S)>,
+    pub(crate) velocity: Vec<(usize, usize, S)>,
+    pub(crate) force: Vec<(usize, usize, S)>,
+}
+
+impl<S> Default for LagTerms<S> {
+    fn default() -> Self {
+        LagTerms {
+            names: Vec::new(),
+            rate: Vec::new(),
+            position: Vec::new(),
+            velocity: Vec::new(),
+            force: Vec::new(),
+        }
+    }
+}
+
 /// Bodies above which [`Assembly::body`] looks names up in a hash map rather than by a scan.
 const BODY_MAP_AFTER: usize = 8;
 
@@ -233,6 +270,7 @@ pub struct Assembly<'m, S> {
     pub(crate) stiffness_blocks: Vec<(usize, Vec<Vec<S>>)>,
     pub(crate) known: Vec<KnownPreload<S>>,
     pub(crate) signals: Signals<S>,
+    pub(crate) lags: LagTerms<S>,
     pub(crate) warnings: Vec<String>,
 }
 
@@ -277,6 +315,7 @@ impl<'m, S: Scalar> Assembly<'m, S> {
                 sensor_kinds: Vec::new(),
                 feedthrough: Vec::new(),
             },
+            lags: LagTerms::default(),
             warnings,
         }
     }
@@ -509,6 +548,26 @@ impl<'m, S: Scalar> Assembly<'m, S> {
     /// Add `v` to the feedthrough `D_s` at output `output`, input `input`.
     pub fn add_feedthrough(&mut self, output: usize, input: usize, v: S) {
         self.signals.feedthrough.push((output, input, v));
+    }
+
+    /// A new first-order lag state (an unsteady-aerodynamics state, say) called `name`;
+    /// returns its index among the lag states. Its equation and its force on the bodies are
+    /// added by [`Assembly::add_lag`].
+    pub fn lag_state(&mut self, name: String) -> usize {
+        self.lags.names.push(name);
+        self.lags.names.len() - 1
+    }
+
+    /// Add `v` at `(i, j)` of the lag-state block `term` (indices: lag states from
+    /// [`Assembly::lag_state`], coordinates `6·body + dof`).
+    pub fn add_lag(&mut self, term: LagTerm, i: usize, j: usize, v: S) {
+        let t = match term {
+            LagTerm::Rate => &mut self.lags.rate,
+            LagTerm::Position => &mut self.lags.position,
+            LagTerm::Velocity => &mut self.lags.velocity,
+            LagTerm::Force => &mut self.lags.force,
+        };
+        t.push((i, j, v));
     }
 
     /// Report a warning.

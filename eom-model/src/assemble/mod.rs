@@ -48,7 +48,9 @@ pub mod rank;
 pub mod statics;
 pub mod tangent;
 
-pub use context::{Assembly, ITEM_ROW, ItemRow, LineGeometry, PointGeometry, Reaction, Rows, Term};
+pub use context::{
+    Assembly, ITEM_ROW, ItemRow, LagTerm, LineGeometry, PointGeometry, Reaction, Rows, Term,
+};
 
 use crate::Model;
 use crate::error::ModelError;
@@ -112,6 +114,35 @@ pub enum Statics {
     Indeterminate,
 }
 
+/// First-order lag states that items add to the mechanical equations (the unsteady
+/// aerodynamics of a strip or wing: R. T. Jones' two states per surface):
+/// `ẋ_a = A_a x_a + P_a p + W_a w`, and the force `F_a x_a` on the right-hand side of
+/// `M ẇ + C w + K p = …`. Every reduction carries them as states after the mechanical ones.
+#[derive(Clone, Debug)]
+pub struct Lags<S> {
+    /// One name per lag state (`strip.lag1`, …).
+    pub names: Vec<String>,
+    /// `A_a` (a × a).
+    pub rate: SparseMatrix<S>,
+    /// `P_a` (a × d).
+    pub position: SparseMatrix<S>,
+    /// `W_a` (a × d).
+    pub velocity: SparseMatrix<S>,
+    /// `F_a` (d × a).
+    pub force: SparseMatrix<S>,
+}
+
+impl<S> Lags<S> {
+    /// The number of lag states.
+    pub fn len(&self) -> usize {
+        self.names.len()
+    }
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.names.is_empty()
+    }
+}
+
 /// The assembled (unreduced) linearized model.
 #[derive(Clone, Debug)]
 pub struct Assembled<S> {
@@ -157,6 +188,8 @@ pub struct Assembled<S> {
     pub preloads: Vec<Preload<S>>,
     /// Which branch of the statics was used.
     pub statics: Statics,
+    /// Lag states added by items (none for a purely mechanical model).
+    pub lags: Lags<S>,
     /// Warnings from validation and assembly.
     pub warnings: Vec<String>,
 }
@@ -253,6 +286,14 @@ fn result<S: Scalar>(
         }
         t.build()
     };
+    let na = cx.lags.names.len();
+    let lags = Lags {
+        rate: matrix(na, na, cx.lags.rate),
+        position: matrix(na, d, cx.lags.position),
+        velocity: matrix(na, d, cx.lags.velocity),
+        force: matrix(d, na, cx.lags.force),
+        names: cx.lags.names,
+    };
     Ok(Assembled {
         name: model.name.clone(),
         bodies: model.bodies.iter().map(|b| b.name.to_string()).collect(),
@@ -275,6 +316,7 @@ fn result<S: Scalar>(
         applied: cx.applied,
         preloads,
         statics,
+        lags,
         warnings: cx.warnings,
     })
 }

@@ -69,7 +69,9 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
     // A wing's derivatives go into one inline table, by their AVL names.
     let mut derivatives: Vec<String> = Vec::new();
     for (name, values) in groups {
-        if crate::items::wing_derivative_index(name).is_some() {
+        if crate::items::wing_derivative_index(name).is_some()
+            || crate::items::WING_ACCELERATION_DERIVATIVES.contains(&name)
+        {
             if !values[0].1.is_zero() {
                 derivatives.push(format!("{name} = {}", value(&values[0].1)));
             }
@@ -97,7 +99,7 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
 }
 
 /// Fields whose builder default is not zero: written even when zero.
-const NONZERO_DEFAULT: [&str; 2] = ["gain", "density"];
+const NONZERO_DEFAULT: [&str; 4] = ["gain", "density", "semichord", "width"];
 
 /// The file's key for a field (the builders' `at` for a location).
 fn file_key(field: &str) -> &str {

@@ -56,6 +56,8 @@ pub(crate) struct Builder<'a> {
     pub spans: Vec<(String, std::ops::Range<usize>)>,
     /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
     pub(super) warnings: Vec<String>,
+    /// `[model] unsteady`: the default of the wings and strips that do not set their own.
+    pub(super) unsteady: Option<crate::items::Unsteady>,
 }
 
 impl<'a> Builder<'a> {
@@ -73,6 +75,7 @@ impl<'a> Builder<'a> {
             bodies: HashSet::new(),
             spans: Vec::new(),
             warnings: Vec::new(),
+            unsteady: None,
         }
     }
 
@@ -88,6 +91,7 @@ impl<'a> Builder<'a> {
             ("flex_point", Self::flex_point),
             ("nh_point", Self::nh_point),
             ("wing", Self::wing),
+            ("strip", Self::strip),
             ("actuator", Self::actuator),
             ("sensor", Self::sensor),
         ] {

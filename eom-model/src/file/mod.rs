@@ -46,6 +46,7 @@ mod items;
 mod mirror;
 mod params;
 mod source;
+mod strip;
 mod wing;
 
 pub use export::{to_toml, toml_string};
@@ -123,14 +124,16 @@ fn load_in(
         "flex_point",
         "nh_point",
         "wing",
+        "strip",
         "actuator",
         "sensor",
     ])?;
-    let (name, description, gravity) = model_section(&root)?;
+    let (name, description, gravity, unsteady) = model_section(&root)?;
     let mut model = Model::new(&name);
     let decl = params::declare(&root, &mut model, overrides)?;
     let scope = decl.scope(&mut model)?;
     let mut cx = items::Builder::new(&ctx, &scope, &decl, &mut model);
+    cx.unsteady = unsteady;
     cx.all(&root)?;
     let spans = std::mem::take(&mut cx.spans);
     let warnings = std::mem::take(&mut cx.warnings);
@@ -149,16 +152,36 @@ fn load_in(
 }
 
 /// `[model]`: name, description, gravity.
-fn model_section<'a>(
-    root: &Table<'a>,
-) -> Result<(String, String, Option<&'a source::Value<'a>>), ModelError> {
+/// `[model]`: name, description, gravity, and the default `unsteady` of wings and strips.
+type ModelSection<'a> = (
+    String,
+    String,
+    Option<&'a source::Value<'a>>,
+    Option<crate::items::Unsteady>,
+);
+
+fn model_section<'a>(root: &Table<'a>) -> Result<ModelSection<'a>, ModelError> {
     let Some(m) = root.table("model")? else {
-        return Ok(("model".into(), String::new(), None));
+        return Ok(("model".into(), String::new(), None, None));
     };
-    m.only(&["name", "description", "gravity"])?;
+    m.only(&["name", "description", "gravity", "unsteady"])?;
     let name = m.string("name")?.unwrap_or_else(|| "model".into());
     let description = m.string("description")?.unwrap_or_default();
-    Ok((name, description, m.get("gravity")))
+    let unsteady = match m.string("unsteady")? {
+        None => None,
+        Some(u) => Some(crate::items::Unsteady::parse(&u).map_err(|_| {
+            let span = m
+                .get("unsteady")
+                .map(|v| v.span())
+                .unwrap_or(m.span.clone());
+            m.field_error(
+                "unsteady",
+                &span,
+                format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
+            )
+        })?),
+    };
+    Ok((name, description, m.get("gravity"), unsteady))
 }
 
 /// A weight (dead load `m·g` at the mass centre) on every body with mass.

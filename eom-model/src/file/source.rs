@@ -292,30 +292,7 @@ pub(crate) fn parse_integer(text: &str, radix: u32) -> Option<i64> {
     i64::from_str_radix(t, radix).ok()
 }
 
-/// The known name closest to `s` (at most two edits away), for "did you mean".
+/// The known name closest to `s`, for "did you mean" (the one rule: [`eom_text::closest`]).
 pub(crate) fn closest<'k>(s: &str, known: &[&'k str]) -> Option<&'k str> {
-    // The distance is at least the difference of the lengths: a long key costs nothing.
-    let n = s.chars().count();
-    known
-        .iter()
-        .filter(|k| n.abs_diff(k.chars().count()) <= 2)
-        .map(|k| (edit_distance(s, k), *k))
-        .filter(|(d, _)| *d <= 2)
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, k)| k)
-}
-
-fn edit_distance(a: &str, b: &str) -> usize {
-    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != cb))
-                .min(prev[j + 1] + 1)
-                .min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
+    eom_text::closest(s, known.iter().copied())
 }

@@ -7,13 +7,15 @@ use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
 use crate::error::ModelError;
-use crate::items::{WING_DERIVATIVES, Wing, wing_derivative_index};
+use crate::items::{
+    Unsteady, WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index,
+};
 use eom_aero::{AvlOutput, Derivatives, SolverOptions};
 use eom_sym::Expr;
 use std::path::Path;
 
 /// The keys of `[[wing]]` besides `name` and `mirror`.
-pub(crate) const WING_KEYS: [&str; 11] = [
+pub(crate) const WING_KEYS: [&str; 12] = [
     "body",
     "at",
     "forward",
@@ -25,6 +27,7 @@ pub(crate) const WING_KEYS: [&str; 11] = [
     "airspeed",
     "derivatives",
     "avl",
+    "unsteady",
 ];
 
 /// Signs of the rows and columns of a wing's derivatives under a mirror image: the wing's own
@@ -76,6 +79,9 @@ impl Builder<'_> {
             }
             None => Wing::new(name),
         };
+        if let Some(u) = self.unsteady {
+            w = w.unsteady(u);
+        }
         if let Some(b) = self.named_body(t, "body", m)? {
             w = w.on(&b);
         }
@@ -104,7 +110,26 @@ impl Builder<'_> {
             }
         }
         w = self.derivative_table(t, w)?;
+        if let Some(u) = t.string("unsteady")? {
+            let span = t
+                .get("unsteady")
+                .map(|v| v.span())
+                .unwrap_or(t.span.clone());
+            let u = Unsteady::parse(&u).map_err(|_| {
+                t.field_error(
+                    "unsteady",
+                    &span,
+                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
+                )
+            })?;
+            w = w.unsteady(u);
+        }
         if m.is_some() {
+            for (i, d) in w.acceleration.iter_mut().enumerate() {
+                if MIRROR_SIGNS[i] * MIRROR_SIGNS[2] < 0.0 && !d.is_zero() {
+                    *d = -*d;
+                }
+            }
             for (i, row) in w.derivatives.iter_mut().enumerate() {
                 for (j, d) in row.iter_mut().enumerate() {
                     if MIRROR_SIGNS[i] * MIRROR_SIGNS[j] < 0.0 && !d.is_zero() {
@@ -124,6 +149,11 @@ impl Builder<'_> {
         };
         let d = Table::sub(self.ctx, v, t.field_context("derivatives"))?;
         for (key, span, value) in d.entries() {
+            if let Some(i) = WING_ACCELERATION_DERIVATIVES.iter().position(|n| *n == key) {
+                let x = value_expr(self.ctx, self.decl, value, &t.field_context("derivatives"))?;
+                w.acceleration[i] = x;
+                continue;
+            }
             let Some((i, j)) = wing_derivative_index(key) else {
                 let names: Vec<&str> = WING_DERIVATIVES.iter().flatten().copied().collect();
                 let hint = stability_axis_hint(key)

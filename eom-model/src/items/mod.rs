@@ -23,6 +23,8 @@ mod point;
 mod rigid_point;
 mod sensor;
 mod spring;
+mod strip;
+mod unsteady;
 mod wing;
 
 pub use actuator::Actuator;
@@ -37,7 +39,11 @@ pub use point::Point;
 pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
-pub use wing::{WING_DERIVATIVES, Wing, wing_derivative_index};
+pub use strip::Strip;
+pub use unsteady::{
+    AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c, resolve_unsteady,
+};
+pub use wing::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 
 use crate::Model;
 use crate::assemble::Assembly;
@@ -62,6 +68,7 @@ pub const KINDS: &[&str] = &[
     "rigid point",
     "nh point",
     "wing",
+    "strip",
     "actuator",
     "sensor",
 ];

@@ -30,15 +30,21 @@
 //! road sees the angle of attack of its pitch attitude. (When `v_air` is zero, as when the
 //! given airspeed is the body's own speed along the forward axis, nothing is added.)
 //!
+//! **Unsteady lift.** With [`Unsteady::Jones`] the response to the wing's normal velocity
+//! (the w column: angle of attack) passes through R. T. Jones' two-state approximation of
+//! Wagner's function with the semichord c/2 (docs/unsteady-aerodynamics.md): the block keeps
+//! ½ of that column, and two lag states carry the rest.
+//!
 //! The default orientation is forward = +x, down = −z: AVL's x forward, y right, z down are
 //! the model's x forward, y left, z up turned by π about x (entry `(i, j)` of the block
 //! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
 
 use super::point::Point;
+use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{label, visit3, zero3};
 use crate::Model;
-use crate::assemble::{Assembly, Term};
+use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::{cross, dot, skew};
 use crate::validate::Validation;
@@ -62,6 +68,11 @@ pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
         .enumerate()
         .find_map(|(i, row)| row.iter().position(|n| *n == name).map(|j| (i, j)))
 }
+
+/// The acceleration derivatives' names: rows CX … Cn per `ẇ c/(2V²)` (α̇ c/2V with
+/// α̇ = ẇ/V), the aerodynamic mass of the w column.
+pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] =
+    ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
 
 /// The list of the 36 names, for messages.
 pub(crate) fn derivative_list() -> String {
@@ -98,6 +109,11 @@ pub struct Wing<S> {
     pub airspeed: Option<S>,
     /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero.
     pub derivatives: [[S; 6]; 6],
+    /// The acceleration derivatives by [`WING_ACCELERATION_DERIVATIVES`] (zero: none).
+    pub acceleration: [S; 6],
+    /// Quasi-steady, or R. T. Jones' lag states on the response to the wing's normal velocity
+    /// (its w column; see [`Wing::unsteady`]).
+    pub unsteady: Unsteady,
     /// Names given to [`Wing::derivative`] that are not derivative names (reported by the
     /// validation, since a builder cannot fail).
     unknown: Vec<String>,
@@ -119,6 +135,8 @@ impl<S: Scalar> Wing<S> {
             density: S::from_f64(1.225),
             airspeed: None,
             derivatives: [[S::zero(); 6]; 6],
+            acceleration: [S::zero(); 6],
+            unsteady: Unsteady::QuasiSteady,
             unknown: Vec::new(),
         }
     }
@@ -180,14 +198,55 @@ impl<S: Scalar> Wing<S> {
         self.airspeed = Some(v.into());
         self
     }
+    /// The circulatory lag: with [`Unsteady::Jones`] the forces and moments of the w column
+    /// (the response to the normal velocity of the reference point: the angle of attack, and
+    /// the angle that a rotation in a given air stream adds) pass through R. T. Jones'
+    /// approximation of Wagner's function with the semichord `c/2` (two lag states,
+    /// `<name>.lag1`, `<name>.lag2`); the other columns stay quasi-steady.
+    pub fn unsteady(mut self, u: Unsteady) -> Self {
+        self.unsteady = u;
+        self
+    }
     /// One derivative by its AVL name (`"CYv"`, `"Cnr"`, …); an unknown name is reported
     /// by the validation.
     pub fn derivative(mut self, n: &str, value: impl Into<S>) -> Self {
-        match wing_derivative_index(n) {
-            Some((i, j)) => self.derivatives[i][j] = value.into(),
-            None => self.unknown.push(n.to_string()),
+        match (
+            wing_derivative_index(n),
+            WING_ACCELERATION_DERIVATIVES.iter().position(|x| *x == n),
+        ) {
+            (Some((i, j)), _) => self.derivatives[i][j] = value.into(),
+            (None, Some(i)) => self.acceleration[i] = value.into(),
+            (None, None) => self.unknown.push(n.to_string()),
         }
         self
+    }
+
+    /// The aerodynamic mass block in model axes at the point, `T_a = −(ρSc/4)·Tᵀ·A·T` with `A`
+    /// the acceleration derivatives in the w column, rows scaled by (1, 1, 1, b, c, b): the
+    /// force of the acceleration derivatives is `−T_a` times the point's acceleration.
+    pub fn added_mass(&self) -> [[S; 6]; 6] {
+        let (b, c) = (self.span, self.chord);
+        let row = [S::one(), S::one(), S::one(), b, c, b];
+        let k = -(self.density * self.area * self.chord * S::from_f64(0.25));
+        let q = self.rotation();
+        let t = |a: usize, i: usize| -> S {
+            if a / 3 == i / 3 {
+                q[a % 3][i % 3]
+            } else {
+                S::zero()
+            }
+        };
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| {
+                let terms: Vec<S> = (0..6)
+                    .filter(|&a| !self.acceleration[a].is_zero() && !t(a, i).is_zero())
+                    .map(|a| times(times(t(a, i), times(self.acceleration[a], row[a])), t(2, j)))
+                    .filter(|x| !x.is_zero())
+                    .collect();
+                let s = S::sum(&terms);
+                if s.is_zero() { s } else { times(k, s) }
+            })
+        })
     }
 
     /// The airspeed used: the given one, else the component of `velocity` (the body's
@@ -279,6 +338,27 @@ impl<S: Scalar> Wing<S> {
     }
 }
 
+impl<S: Scalar> Wing<S> {
+    /// The w column of the damping block in model axes, `w_L = −(ρVS/2)·Tᵀ·M[:, w]`, and the
+    /// row that takes the wing's normal velocity from the point's, `(down, 0)`: the block's
+    /// part from the normal velocity is `w_L ⊗ (down, 0)`.
+    pub fn normal_column(&self, v: S) -> ([S; 6], [S; 6]) {
+        let m = self.scaled_derivatives();
+        let k = -(self.density * v * self.area * S::from_f64(0.5));
+        let q = self.rotation();
+        let col: [S; 6] = std::array::from_fn(|i| {
+            let terms: Vec<S> = (0..6)
+                .filter(|&a| a / 3 == i / 3 && !m[a][2].is_zero() && !q[a % 3][i % 3].is_zero())
+                .map(|a| times(q[a % 3][i % 3], m[a][2]))
+                .collect();
+            let s = S::sum(&terms);
+            if s.is_zero() { s } else { times(k, s) }
+        });
+        let d = self.down;
+        (col, [d[0], d[1], d[2], S::zero(), S::zero(), S::zero()])
+    }
+}
+
 /// `a·b` without building a product by one.
 fn times<S: Scalar>(a: S, b: S) -> S {
     if a.is_one() {
@@ -302,7 +382,10 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
         let airspeed = self.airspeed.as_ref().map(&mut *f);
         let derivatives =
             std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
+        let acceleration = std::array::from_fn(|i| f(&self.acceleration[i]));
         Box::new(Wing {
+            acceleration,
+            unsteady: self.unsteady,
             name: self.name.clone(),
             body: self.body.clone(),
             location,
@@ -323,6 +406,36 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
 const AXES_TOLERANCE: f64 = 1e-9;
 
 impl<S: ModelScalar> Wing<S> {
+    /// The damping of each derivative at the nominal point, ρVS/2 times the scaled derivative,
+    /// must be a number the analysis can use: an overflow (or an entry beyond
+    /// `eom_num::MAX_ENTRY`) is named here, by wing and derivative, rather than found later as
+    /// a non-finite entry of A.
+    fn check_damping_magnitude(&self, cx: &Validation<'_, S>) -> Result<(), ModelError> {
+        let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
+        let q = (self.density * self.airspeed_with(&velocity) * self.area).nominal() * 0.5;
+        for (i, row) in self.scaled_derivatives().iter().enumerate() {
+            for (j, d) in row.iter().enumerate() {
+                let value = q * d.nominal();
+                if value.is_nan() || value.abs() > eom_num::MAX_ENTRY {
+                    return Err(field_error(
+                        "wing",
+                        &self.name,
+                        "derivatives",
+                        format!(
+                            "`{}` = {:e} gives a damping of {value:e} (ρVS/2 times the \
+                             derivative, with the reference lengths), beyond {:e}: the analysis \
+                             would overflow (check the derivative and its units)",
+                            WING_DERIVATIVES[i][j],
+                            self.derivatives[i][j].nominal(),
+                            eom_num::MAX_ENTRY
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// A positive reference quantity.
     fn check_positive(&self, field: &str, x: &S, what: &str) -> Result<(), ModelError> {
         let v = x.nominal();
@@ -376,7 +489,14 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
     }
 
     fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        vec![("body", super::Setting::Text(self.body.to_string()))]
+        let mut s = vec![("body", super::Setting::Text(self.body.to_string()))];
+        if self.unsteady != Unsteady::QuasiSteady {
+            s.push((
+                "unsteady",
+                super::Setting::Text(self.unsteady.as_str().to_string()),
+            ));
+        }
+        s
     }
 
     fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
@@ -395,15 +515,20 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
                 f(Field::scalar(n), x);
             }
         }
+        for (n, x) in WING_ACCELERATION_DERIVATIVES.iter().zip(&self.acceleration) {
+            f(Field::scalar(n), x);
+        }
     }
 
     fn bodies(&self) -> &[Name] {
         std::slice::from_ref(&self.body)
     }
 
-    /// Aerodynamic forces do not hold a body up: a wing alone leaves it unsupported.
+    /// Aerodynamic forces hold a body up in free flight only: a wing without a given
+    /// airspeed (its body flies at its nominal velocity through still air) supports its body;
+    /// a wing in an air stream (a wind tunnel) leaves it to the structure.
     fn supports(&self) -> bool {
-        false
+        self.airspeed.is_none()
     }
 
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
@@ -451,7 +576,10 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
                 }
             }
         }
-        if self.derivatives.iter().flatten().all(|d| d.is_zero()) {
+        self.check_damping_magnitude(cx)?;
+        if self.derivatives.iter().flatten().all(|d| d.is_zero())
+            && self.acceleration.iter().all(|d| d.is_zero())
+        {
             cx.warn(format!(
                 "{} has no derivatives: it adds nothing",
                 label("wing", &self.name)
@@ -465,7 +593,23 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
         let velocity = cx
             .body(&self.body)
             .map_or(zero3(), |k| cx.bodies[k].velocity);
-        let block = self.damping(self.airspeed_with(&velocity));
+        let airspeed = self.airspeed_with(&velocity);
+        let mut block = self.damping(airspeed);
+        if self.unsteady == Unsteady::Auto {
+            cx.warn(super::unsteady::auto_assembled("wing", &self.name));
+        }
+        let normal = (self.unsteady == Unsteady::Jones).then(|| self.normal_column(airspeed));
+        if let Some((col, row)) = &normal {
+            // The direct part ½ of Jones' C on the w column: the other ½ through the states.
+            let lagged = S::from_f64(1.0 - JONES_DIRECT);
+            for (i, c) in col.iter().enumerate() {
+                for (j, r) in row.iter().enumerate() {
+                    if !c.is_zero() && !r.is_zero() {
+                        block[i][j] = block[i][j] - lagged * *c * *r;
+                    }
+                }
+            }
+        }
         let point = Point {
             bodies: [self.body.clone(), name(GROUND)],
             location: self.location,
@@ -477,7 +621,14 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
         let (rows, geometry) = cx.point(&point, "wing", &self.name);
         let props: Vec<Vec<S>> = block.iter().map(|r| r.to_vec()).collect();
         cx.add_rows_block(Term::Damping, &rows.rows, &props);
+        if self.acceleration.iter().any(|d| !d.is_zero()) {
+            let mass: Vec<Vec<S>> = self.added_mass().iter().map(|r| r.to_vec()).collect();
+            cx.add_rows_block(Term::ItemMass, &rows.rows, &mass);
+        }
         let air = self.air_velocity(&velocity);
+        if let Some((col, row)) = &normal {
+            self.lag_states(cx, &rows.rows, airspeed, col, row, &air, geometry.bodies[0]);
+        }
         if let (Some(k), false) = (geometry.bodies[0], air.iter().all(|x| x.is_zero())) {
             // The stream turned by the body's rotation θ: Δ = θ × v_air = −[v_air]× θ at
             // every point; its force −L[:, u v w]·Δ is a stiffness on θ.
@@ -500,6 +651,49 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
             }
         }
         Ok(())
+    }
+}
+
+impl<S: ModelScalar> Wing<S> {
+    /// Jones' states on the wing's normal velocity `w_n = (down, 0)·v` (and, in a given air
+    /// stream, the normal velocity `θ·(v_air × down)` that a rotation θ adds):
+    /// `ẋᵢ = −βᵢ xᵢ + w_n`, `βᵢ = β̄ᵢ V/(c/2)`, force `−w_L·Aᵢβᵢ xᵢ` at the point.
+    #[allow(clippy::too_many_arguments)]
+    fn lag_states(
+        &self,
+        cx: &mut Assembly<'_, S>,
+        rows: &[ItemRow<S>],
+        v: S,
+        col: &[S; 6],
+        row: &[S; 6],
+        air: &Vec3<S>,
+        body: Option<usize>,
+    ) {
+        let rate = v / (self.chord * S::from_f64(0.5));
+        let turn = cross(air, &self.down);
+        for (n, (a, beta)) in JONES.iter().enumerate() {
+            let s = cx.lag_state(format!("{}.lag{}", self.name, n + 1));
+            let beta = S::from_f64(*beta) * rate;
+            cx.add_lag(LagTerm::Rate, s, s, -beta);
+            let gain = S::from_f64(*a) * beta;
+            for (i, r) in rows.iter().enumerate() {
+                for &(j, x) in r {
+                    if !row[i].is_zero() {
+                        cx.add_lag(LagTerm::Velocity, s, j, row[i] * x);
+                    }
+                    if !col[i].is_zero() {
+                        cx.add_lag(LagTerm::Force, j, s, -(x * col[i] * gain));
+                    }
+                }
+            }
+            if let Some(k) = body {
+                for (c, t) in turn.iter().enumerate() {
+                    if !t.is_zero() {
+                        cx.add_lag(LagTerm::Position, s, 6 * k + 3 + c, *t);
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -540,6 +734,9 @@ mod tests {
             for n in row {
                 w = w.derivative(n, c.x());
             }
+        }
+        for n in WING_ACCELERATION_DERIVATIVES {
+            w = w.derivative(n, c.x());
         }
         check_fields_and_map(&w);
     }

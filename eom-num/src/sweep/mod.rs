@@ -12,7 +12,7 @@
 //!    prediction from points `k−1` and `k−2`, so branches that cross in real part keep their
 //!    identity (sorting would swap them). Conjugate pairs stay pairs: when the assignment
 //!    separates the two halves of a pair that is still complex, they are re-paired.
-//! 3. **Neutral branches**: a branch with `|λ| ≤ neutral_rtol · ‖A(x)‖_F` at every point is
+//! 3. **Neutral branches**: a branch with `|λ| ≤ neutral_rtol · ‖A(x)‖_F` (A balanced) at every point is
 //!    an identically-zero eigenvalue (a rigid-body or integrator mode, e.g. a vehicle's
 //!    lateral position and heading). It is reported but excluded from stability judgements.
 //!    Zero rows and columns of `A` are split off first (exact zeros), and the eigenvalues
@@ -117,7 +117,10 @@ pub struct SweepPoint {
     pub max_real: Option<f64>,
     /// Stability class.
     pub stability: PointStability,
-    /// `‖A(x)‖_F`, the scale of the thresholds at this point.
+    /// `‖D⁻¹A(x)D‖_F` with `D` the balancing of `A(x)` (Parlett & Reinsch), the scale of the
+    /// thresholds at this point: the eigenvalues do not change under the similarity, and a
+    /// stiff model's unbalanced norm (a beam's bending slopes of small inertia put 10¹⁰ in A)
+    /// would call its every low-frequency eigenvalue zero.
     pub norm: f64,
     /// The tolerance of [`SweepPoint::max_real`]'s verdict: the error estimate of the branch
     /// of largest real part (with the neutral branches'), in 1/s. `None` if all are neutral,
@@ -821,7 +824,7 @@ where
         let (reduced, zeros) = deflate_zero_lines(&a);
         let core = reduced.as_ref().unwrap_or(&a);
         let m = core.nrows();
-        let norm = a.norm();
+        let norm = balanced_norm(&a);
         let mut eig = vec![Complex64::new(0.0, 0.0); n];
         if m > 0 {
             if ws.as_ref().is_none_or(|w| w.dim() != m) {
@@ -887,6 +890,16 @@ pub fn screen_bound(m: usize, norm: f64) -> f64 {
         * f64::EPSILON
         * norm
         * SCREEN_CONDITION
+}
+
+/// The Frobenius norm of `a` balanced by a diagonal similarity (see [`SweepPoint::norm`]).
+fn balanced_norm(a: &DMatrix<f64>) -> f64 {
+    let n = a.nrows();
+    let mut b: Vec<f64> = a.as_slice().to_vec();
+    let mut scale = vec![1.0; n];
+    crate::linalg::balance_in_place(&mut b, n, &mut scale);
+    let norm = crate::linalg::frobenius_norm(&b);
+    if norm.is_finite() { norm } else { a.norm() }
 }
 
 /// Real part of branch `j` plus those of the neutral branches (see step 4 of `run`).

@@ -700,30 +700,9 @@ impl<'a> Parser<'a> {
     }
 }
 
-/// The candidate closest to `name` in edit distance, if it is close enough to be a likely typo.
+/// The candidate closest to `name`, for "did you mean" (the one rule: [`eom_text::closest`]).
 fn closest<'n>(name: &str, candidates: impl Iterator<Item = &'n str>) -> Option<&'n str> {
-    let limit = (name.chars().count() / 3).clamp(1, 3);
-    candidates
-        .map(|c| (edit_distance(name, c), c))
-        .filter(|&(d, _)| d <= limit)
-        .min_by_key(|&(d, _)| d)
-        .map(|(_, c)| c)
-}
-
-/// Levenshtein distance over characters.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diag = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let up = row[j + 1];
-            row[j + 1] = (up + 1).min(row[j] + 1).min(diag + usize::from(ca != cb));
-            diag = up;
-        }
-    }
-    row[b.len()]
+    eom_text::closest(name, candidates)
 }
 
 #[cfg(test)]

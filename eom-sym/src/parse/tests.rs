@@ -57,9 +57,6 @@ fn parse_err(input: &str, scope: &Scope) -> (usize, String, String, String) {
 
 #[test]
 fn edit_distance_and_suggestions() {
-    assert_eq!(edit_distance("sinn", "sin"), 1);
-    assert_eq!(edit_distance("", "abc"), 3);
-    assert_eq!(edit_distance("kitten", "sitting"), 3);
     assert_eq!(closest("sinn", FUNCTIONS.iter().copied()), Some("sin"));
     assert_eq!(closest("sqr", FUNCTIONS.iter().copied()), Some("sqrt"));
     assert_eq!(closest("zzzzzz", FUNCTIONS.iter().copied()), None);

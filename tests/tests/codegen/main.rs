@@ -198,6 +198,7 @@ fn all_f64() -> Vec<Gen> {
         generated!("chain50", gen64::chain50, f64),
         generated!("smd_wing", gen64::smd_wing, f64),
         generated!("shimmy_wing", gen64::shimmy_wing, f64),
+        generated!("typical_section", gen64::typical_section, f64),
     ]
 }
 
@@ -215,6 +216,7 @@ fn all_f32() -> Vec<Gen> {
         generated!("chain50", gen32::chain50, f32),
         generated!("smd_wing", gen32::smd_wing, f32),
         generated!("shimmy_wing", gen32::shimmy_wing, f32),
+        generated!("typical_section", gen32::typical_section, f32),
     ]
 }
 

@@ -19,10 +19,10 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use crate::error::NumError;
+use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
+use crate::minreal::staircase::{StaircaseForm, staircase};
 use crate::minreal::{RankDecision, RankStage, eigenvalues_sorted, sort_complex, svd_full};
-use crate::pbh_subspace::{cluster_pbh, lower_bandwidth};
 use crate::reach::{block_triangular_eigenvalues, reachable};
-use crate::staircase::{StaircaseForm, staircase};
 
 /// Eigenvalues of a square matrix, sorted by (re, im).
 fn eigenvalues_of(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {

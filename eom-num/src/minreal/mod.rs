@@ -123,10 +123,14 @@ use serde::Serialize;
 
 use crate::deflate::{combine_columns, structural_coordinates};
 use crate::error::NumError;
-use crate::minreal_pbh::{Reduction, kept_eigenvalues};
-use crate::pbh_subspace::{cluster_pbh, lower_bandwidth};
-use crate::staircase::{hessenberg, staircase};
+use crate::minreal::pbh::{Reduction, kept_eigenvalues};
+use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
+use crate::minreal::staircase::{hessenberg, staircase};
 use crate::statespace::StateSpace;
+
+mod pbh;
+mod pbh_subspace;
+pub(crate) mod staircase;
 
 /// Options of [`minimal_realization`].
 #[derive(Clone, Debug, PartialEq)]

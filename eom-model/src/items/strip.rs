@@ -1,0 +1,496 @@
+//! [`Strip`]: a two-dimensional thin-airfoil section of a given span width on a body — the
+//! aerodynamics of the typical section and of strip theory on a flexible wing.
+//!
+//! The section has semichord `b`, its elastic axis (the item's point) `a` semichords aft of
+//! mid-chord, width `Δ`, lift slope `c_l` (2π by default) in air of density ρ at airspeed U.
+//! With the plunge h of the point positive down, the pitch θ positive nose up, the lift L
+//! positive up and the moment M about the point positive nose up (Theodorsen, NACA Report 496;
+//! Hodges & Pierce, *Introduction to Structural Dynamics and Aeroelasticity*, ch. 5):
+//!
+//! ```text
+//! L = Δ·[ πρb² (ḧ + U θ̇ − b a θ̈)                        + c_l ρ U b · C[w] ]
+//! M = Δ·[ πρb² (b a ḧ − U b (½ − a) θ̇ − b² (⅛ + a²) θ̈)  + c_l ρ U b² (a + ½) · C[w] ]
+//! w = ḣ + U θ + b (½ − a) θ̇                               (the downwash at ¾ chord)
+//! ```
+//!
+//! The apparent-mass (non-circulatory) terms are an added mass `πρb²Δ[[1, −ba], [−ba,
+//! b²(⅛ + a²)]]` and an added damping on (h, θ); the circulatory lift passes through
+//! `C[w] = w` (quasi-steady) or R. T. Jones' two lag states ([`Unsteady`]). The equations and
+//! the reference flutter speeds they reproduce are in docs/aero-references.md.
+//!
+//! **Axes.** `forward` points from the trailing edge to the leading edge, `down` is the
+//! section's down (the lift acts along `−down`), and the pitch axis is `down × forward` (nose
+//! up turns `forward` towards `−down`). The defaults are those of the wing: forward +x, down −z.
+//!
+//! **Airspeed and air stream** as for the wing: without a given airspeed the air is still and
+//! the body flies at its nominal velocity (U its component along `forward`; the body-axis
+//! velocities of the point are the air-relative ones, and include `U θ`); with a given
+//! airspeed the air moves at `v_air = v_body − U·forward`, and the stream turned by the body's
+//! rotation adds the `U θ` part of the downwash as a stiffness on the rotations.
+
+use super::point::Point;
+use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
+use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
+use super::{visit3, zero3};
+use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
+use crate::error::ModelError;
+use crate::geometry::{cross, dot};
+use crate::validate::Validation;
+use eom_sym::scalar::Scalar;
+
+/// A thin-airfoil strip at a point of a body (see the module documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Strip<S> {
+    /// Unique name.
+    pub name: Name,
+    /// The body the strip is fixed to.
+    pub body: Name,
+    /// The elastic-axis point of the section (the reference of h, θ and the moment).
+    pub location: Vec3<S>,
+    /// The chordwise axis towards the leading edge, a unit vector.
+    pub forward: Vec3<S>,
+    /// The section's down axis (perpendicular to `forward`), a unit vector.
+    pub down: Vec3<S>,
+    /// Semichord b.
+    pub semichord: S,
+    /// Elastic-axis position a, in semichords aft of mid-chord (−1 the leading edge).
+    pub elastic_axis: S,
+    /// Span width Δ of the strip.
+    pub width: S,
+    /// Lift slope c_l per radian (2π: thin-airfoil theory).
+    pub lift_slope: S,
+    /// Air density ρ.
+    pub density: S,
+    /// Airspeed U; `None`: the body's nominal velocity along `forward`.
+    pub airspeed: Option<S>,
+    /// Quasi-steady, Jones' lag states, or decided by the linearization (`Auto`).
+    pub unsteady: Unsteady,
+}
+
+impl<S: Scalar> Strip<S> {
+    /// A strip on the ground with unit semichord and width, the elastic axis at mid-chord,
+    /// lift slope 2π, ρ = 1.225, the wing's default axes, quasi-steady.
+    pub fn new(n: &str) -> Self {
+        Strip {
+            name: name(n),
+            body: name(GROUND),
+            location: zero3(),
+            forward: [S::one(), S::zero(), S::zero()],
+            down: [S::zero(), S::zero(), -S::one()],
+            semichord: S::one(),
+            elastic_axis: S::zero(),
+            width: S::one(),
+            lift_slope: S::from_f64(2.0 * std::f64::consts::PI),
+            density: S::from_f64(1.225),
+            airspeed: None,
+            unsteady: Unsteady::QuasiSteady,
+        }
+    }
+    /// The body the strip is fixed to.
+    pub fn on(mut self, body: &str) -> Self {
+        self.body = name(body);
+        self
+    }
+    /// The elastic-axis point.
+    pub fn at(mut self, location: Vec3<S>) -> Self {
+        self.location = location;
+        self
+    }
+    /// The forward (towards the leading edge) and down axes in model axes.
+    pub fn axes(mut self, forward: Vec3<S>, down: Vec3<S>) -> Self {
+        self.forward = forward;
+        self.down = down;
+        self
+    }
+    /// Semichord b.
+    pub fn semichord(mut self, b: impl Into<S>) -> Self {
+        self.semichord = b.into();
+        self
+    }
+    /// Elastic-axis position a (semichords aft of mid-chord).
+    pub fn elastic_axis(mut self, a: impl Into<S>) -> Self {
+        self.elastic_axis = a.into();
+        self
+    }
+    /// Span width Δ.
+    pub fn width(mut self, w: impl Into<S>) -> Self {
+        self.width = w.into();
+        self
+    }
+    /// Lift slope per radian.
+    pub fn lift_slope(mut self, c: impl Into<S>) -> Self {
+        self.lift_slope = c.into();
+        self
+    }
+    /// Air density ρ.
+    pub fn density(mut self, rho: impl Into<S>) -> Self {
+        self.density = rho.into();
+        self
+    }
+    /// Airspeed U (default: the body's nominal velocity along `forward`).
+    pub fn airspeed(mut self, v: impl Into<S>) -> Self {
+        self.airspeed = Some(v.into());
+        self
+    }
+    /// Quasi-steady or Jones' lag states.
+    pub fn unsteady(mut self, u: Unsteady) -> Self {
+        self.unsteady = u;
+        self
+    }
+
+    /// The airspeed used: the given one, else `velocity` along `forward`.
+    pub fn airspeed_with(&self, velocity: &Vec3<S>) -> S {
+        self.airspeed
+            .unwrap_or_else(|| dot(&self.forward, velocity))
+    }
+
+    /// The nominal velocity of the air (zero without a given airspeed).
+    fn air_velocity(&self, velocity: &Vec3<S>) -> Vec3<S> {
+        match self.airspeed {
+            None => zero3(),
+            Some(v) => std::array::from_fn(|k| velocity[k] - v * self.forward[k]),
+        }
+    }
+
+    /// The lift direction `−down` and the pitch axis `down × forward`.
+    fn lift_and_pitch_axes(&self) -> (Vec3<S>, Vec3<S>) {
+        let up = self.down.map(|x| -x);
+        (up, cross(&self.down, &self.forward))
+    }
+
+    /// The section's coefficients at airspeed `u`, per unit of the rows (z along the lift
+    /// direction, φ about the pitch axis: h = −z, θ = φ), width included:
+    /// `(added mass, added damping, circulatory force f, downwash gradient g)`, so that the
+    /// circulatory force on (z, φ) is `f · C[w]` with `w = g · (ż, φ̇) + U θ`.
+    #[allow(clippy::type_complexity)]
+    pub fn coefficients(&self, u: S) -> ([[S; 2]; 2], [[S; 2]; 2], [S; 2], [S; 2]) {
+        let (b, a, half) = (self.semichord, self.elastic_axis, S::from_f64(0.5));
+        let pi = S::from_f64(std::f64::consts::PI);
+        let q = pi * self.density * b * b * self.width;
+        let ba = b * a;
+        let inertia = b * b * (S::from_f64(0.125) + a * a);
+        // T·M_a·T, T·C_a·T with T = diag(−1, 1) (h = −z).
+        let mass = [[q, q * ba], [q * ba, q * inertia]];
+        let back = b * (half - a);
+        let damping = [[S::zero(), -(q * u)], [S::zero(), q * u * back]];
+        let c = self.lift_slope * self.density * u * b * self.width;
+        let force = [c, c * b * (a + half)];
+        let gradient = [-S::one(), back];
+        (mass, damping, force, gradient)
+    }
+}
+
+impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
+    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+        let location = map3(&self.location, f);
+        let forward = map3(&self.forward, f);
+        let down = map3(&self.down, f);
+        let semichord = f(&self.semichord);
+        let elastic_axis = f(&self.elastic_axis);
+        let width = f(&self.width);
+        let lift_slope = f(&self.lift_slope);
+        let density = f(&self.density);
+        let airspeed = self.airspeed.as_ref().map(&mut *f);
+        Box::new(Strip {
+            name: self.name.clone(),
+            body: self.body.clone(),
+            location,
+            forward,
+            down,
+            semichord,
+            elastic_axis,
+            width,
+            lift_slope,
+            density,
+            airspeed,
+            unsteady: self.unsteady,
+        })
+    }
+}
+
+/// Relative tolerance of the orthonormality of the axes at the nominal point.
+const AXES_TOLERANCE: f64 = 1e-9;
+
+impl<S: ModelScalar> Strip<S> {
+    fn error(&self, field: &str, problem: String) -> ModelError {
+        field_error("strip", &self.name, field, problem)
+    }
+
+    fn check_positive(&self, field: &str, x: &S, what: &str) -> Result<(), ModelError> {
+        let v = x.nominal();
+        if v > 0.0 {
+            return Ok(());
+        }
+        Err(self.error(
+            field,
+            format!("the {what} must be positive (nominal value {v})"),
+        ))
+    }
+
+    fn check_axes(&self) -> Result<(), ModelError> {
+        let n = |v: &Vec3<S>| -> [f64; 3] { [v[0].nominal(), v[1].nominal(), v[2].nominal()] };
+        let (f, d) = (n(&self.forward), n(&self.down));
+        let dotf = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        for (field, v) in [("forward", f), ("down", d)] {
+            let len = dotf(v, v).sqrt();
+            if (len - 1.0).abs() > AXES_TOLERANCE {
+                return Err(self.error(
+                    field,
+                    format!("must be a unit vector; its length is {len} at the nominal point"),
+                ));
+            }
+        }
+        let c = dotf(f, d);
+        if c.abs() > AXES_TOLERANCE {
+            return Err(self.error(
+                "down",
+                format!("must be perpendicular to `forward`; their dot product is {c}"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The rows of the point's lift-direction displacement z and pitch rotation φ.
+    fn rows(&self, cx: &Assembly<'_, S>) -> [ItemRow<S>; 2] {
+        let (up, pitch) = self.lift_and_pitch_axes();
+        let mut p = Point::new();
+        p.bodies = [self.body.clone(), name(GROUND)];
+        p.location = self.location;
+        p.forces = 1;
+        p.axis = up;
+        let (z, _) = cx.point(&p, "strip", &self.name);
+        p.forces = 0;
+        p.moments = 1;
+        p.axis = pitch;
+        let (phi, _) = cx.point(&p, "strip", &self.name);
+        [z.rows[0], phi.rows[0]]
+    }
+}
+
+impl<S: ModelScalar> Item<S> for Strip<S> {
+    fn kind(&self) -> &'static str {
+        "strip"
+    }
+
+    fn name(&self) -> &Name {
+        &self.name
+    }
+
+    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+        vec![
+            ("body", super::Setting::Text(self.body.to_string())),
+            (
+                "unsteady",
+                super::Setting::Text(self.unsteady.as_str().to_string()),
+            ),
+        ]
+    }
+
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        visit3(f, "location", &self.location);
+        visit3(f, "forward", &self.forward);
+        visit3(f, "down", &self.down);
+        f(Field::scalar("semichord"), &self.semichord);
+        f(Field::scalar("elastic_axis"), &self.elastic_axis);
+        f(Field::scalar("width"), &self.width);
+        f(Field::scalar("lift_slope"), &self.lift_slope);
+        f(Field::scalar("density"), &self.density);
+        if let Some(v) = &self.airspeed {
+            f(Field::scalar("airspeed"), v);
+        }
+    }
+
+    fn bodies(&self) -> &[Name] {
+        std::slice::from_ref(&self.body)
+    }
+
+    /// Aerodynamic forces do not hold a body up.
+    fn supports(&self) -> bool {
+        false
+    }
+
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        if &*self.body == GROUND {
+            return Err(self.error(
+                "body",
+                "a strip must be on a body, not on the ground".into(),
+            ));
+        }
+        self.check_positive("semichord", &self.semichord, "semichord")?;
+        self.check_positive("width", &self.width, "span width")?;
+        self.check_positive("lift_slope", &self.lift_slope, "lift slope")?;
+        self.check_positive("density", &self.density, "air density")?;
+        self.check_axes()?;
+        match &self.airspeed {
+            Some(v) => self.check_positive("airspeed", v, "airspeed")?,
+            None => {
+                let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
+                let v = self.airspeed_with(&velocity).nominal();
+                if v <= 0.0 {
+                    return Err(self.error(
+                        "airspeed",
+                        format!(
+                            "not given, and the nominal velocity of body `{}` along the strip's \
+                             forward axis is {v}: give the airspeed (positive)",
+                            self.body
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The added mass and damping on the point's (z, φ), and the circulatory force: directly
+    /// (quasi-steady) or through Jones' two lag states.
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        let body = cx.body(&self.body);
+        let velocity = body.map_or(zero3(), |k| cx.bodies[k].velocity);
+        let u = self.airspeed_with(&velocity);
+        let (mass, damping, force, gradient) = self.coefficients(u);
+        let rows = self.rows(cx);
+        let block = |m: [[S; 2]; 2]| -> Vec<Vec<S>> { m.iter().map(|r| r.to_vec()).collect() };
+        cx.add_rows_block(Term::ItemMass, &rows, &block(mass));
+        cx.add_rows_block(Term::Damping, &rows, &block(damping));
+        // The downwash from the body's rotation θ in a moving stream: (up × v_air)·θ.
+        let (up, _) = self.lift_and_pitch_axes();
+        let turn = cross(&up, &self.air_velocity(&velocity));
+        let direct = match self.unsteady {
+            Unsteady::QuasiSteady => S::one(),
+            Unsteady::Auto => {
+                cx.warn(super::unsteady::auto_assembled("strip", &self.name));
+                S::one()
+            }
+            Unsteady::Jones => S::from_f64(JONES_DIRECT),
+        };
+        // The direct part of the circulatory force, f·direct·w, on the left-hand side.
+        let circulation: Vec<Vec<S>> = (0..2)
+            .map(|i| (0..2).map(|j| -(force[i] * direct * gradient[j])).collect())
+            .collect();
+        cx.add_rows_block(Term::Damping, &rows, &circulation);
+        if let Some(k) = body {
+            for (i, row) in rows.iter().enumerate() {
+                for (c, t) in turn.iter().enumerate() {
+                    if t.is_zero() {
+                        continue;
+                    }
+                    let g = -(force[i] * direct * *t);
+                    for &(j, x) in row {
+                        cx.add(Term::LoadStiffness, j, 6 * k + 3 + c, x * g);
+                    }
+                }
+            }
+        }
+        if self.unsteady == Unsteady::Jones {
+            self.lag_states(cx, &rows, u, force, gradient, &turn, body);
+        }
+        Ok(())
+    }
+}
+
+impl<S: ModelScalar> Strip<S> {
+    /// Jones' states `ẋᵢ = −βᵢ xᵢ + w`, `βᵢ = β̄ᵢ U/b`, and their force `f·Aᵢβᵢ·xᵢ`.
+    #[allow(clippy::too_many_arguments)]
+    fn lag_states(
+        &self,
+        cx: &mut Assembly<'_, S>,
+        rows: &[ItemRow<S>; 2],
+        u: S,
+        force: [S; 2],
+        gradient: [S; 2],
+        turn: &Vec3<S>,
+        body: Option<usize>,
+    ) {
+        let rate = u / self.semichord;
+        for (n, (a, beta)) in JONES.iter().enumerate() {
+            let s = cx.lag_state(format!("{}.lag{}", self.name, n + 1));
+            let beta = S::from_f64(*beta) * rate;
+            cx.add_lag(LagTerm::Rate, s, s, -beta);
+            let gain = S::from_f64(*a) * beta;
+            for (i, row) in rows.iter().enumerate() {
+                for &(j, x) in row {
+                    cx.add_lag(LagTerm::Velocity, s, j, gradient[i] * x);
+                    cx.add_lag(LagTerm::Force, j, s, x * force[i] * gain);
+                }
+            }
+            if let Some(k) = body {
+                for (c, t) in turn.iter().enumerate() {
+                    if !t.is_zero() {
+                        cx.add_lag(LagTerm::Position, s, 6 * k + 3 + c, *t);
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl<S: ModelScalar> crate::Model<S> {
+    /// The strips of the model, in the order they were added.
+    pub fn strips(&self) -> impl Iterator<Item = &Strip<S>> {
+        self.items_of("strip").filter_map(|x| {
+            let any: &dyn std::any::Any = x;
+            any.downcast_ref::<Strip<S>>()
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::items::tests::{Counter, check_fields_and_map};
+
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        let s = Strip::new("s")
+            .on("a")
+            .at(c.v())
+            .axes(c.v(), c.v())
+            .semichord(c.x())
+            .elastic_axis(c.x())
+            .width(c.x())
+            .lift_slope(c.x())
+            .density(c.x())
+            .airspeed(c.x());
+        check_fields_and_map(&s);
+    }
+
+    fn model_with(strip: Strip<f64>) -> crate::Model<f64> {
+        let mut m = crate::Model::new("m");
+        m.add(crate::Body::new("b").mass(1.0).moments([1.0; 3]));
+        m.add(strip);
+        m
+    }
+
+    #[test]
+    fn bad_input_is_an_error_naming_the_strip_and_field() {
+        let s = || Strip::new("root").on("b").airspeed(10.0);
+        let cases: [(Strip<f64>, &str); 6] = [
+            (
+                s().semichord(0.0),
+                "strip `root`, field `semichord`: the semichord must be positive",
+            ),
+            (
+                s().width(-1.0),
+                "field `width`: the span width must be positive",
+            ),
+            (s().lift_slope(0.0), "field `lift_slope`"),
+            (s().on("ground"), "field `body`: a strip must be on a body"),
+            (
+                Strip::new("root").on("b"),
+                "field `airspeed`: not given, and the nominal velocity of body `b`",
+            ),
+            (
+                s().axes([1.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+                "field `down`: must be perpendicular to `forward`",
+            ),
+        ];
+        for (strip, want) in cases {
+            let e = model_with(strip)
+                .validate()
+                .expect_err("invalid")
+                .to_string();
+            assert!(e.contains(want), "{e}\nshould contain: {want}");
+        }
+    }
+}
