@@ -154,7 +154,7 @@ class Model:
                         f"points: {arr.shape[1]} columns without names; the model has "
                         f"{len(pnames)} parameters: {', '.join(pnames)}"
                     )
-                return np.ascontiguousarray(arr)
+                return np.require(arr, np.float64, ["C_CONTIGUOUS", "ALIGNED"])
             if len(names) != arr.shape[1]:
                 raise _eom_error(f"points: {arr.shape[1]} columns, {len(names)} names")
             cols = {n: arr[:, j] for j, n in enumerate(names)}
@@ -172,6 +172,12 @@ class Model:
         for j, (name, default) in enumerate(zip(pnames, defaults)):
             out[:, j] = cols.get(name, default)
         return out
+
+    def signals(self) -> Dict[str, List[str]]:
+        """The state, input and output names of the matrices ``evaluate`` returns (those of
+        the symbolic reduction, pivots chosen at the defaults)."""
+        states, inputs, outputs = self._native.signal_names()
+        return {"states": states, "inputs": inputs, "outputs": outputs}
 
     def evaluate(self, points: Points, names: Optional[Sequence[str]] = None) -> Evaluation:
         """A, B, C, D at every point, from the compiled symbolic reduction, on all cores
