@@ -304,9 +304,8 @@ impl NativeModel {
                 )));
             }
         }
-        let out = py.detach(|| {
-            crate::symbolic::closed_forms(&self.source, &self.param_names, &keep)
-        })?;
+        let out =
+            py.detach(|| crate::symbolic::closed_forms(&self.source, &self.param_names, &keep))?;
         out.into_dict(py)
     }
 
@@ -314,6 +313,10 @@ impl NativeModel {
         format!("<eom model `{}`>", self.name)
     }
 }
+
+/// One mode as returned to Python: Re λ, Im λ, frequency (Hz), damping ratio, time
+/// constant, kind, stability.
+type ModeRow = (f64, f64, f64, Option<f64>, f64, &'static str, &'static str);
 
 /// The modes of a state matrix (row-major, n × n): per mode (eigenvalue real part,
 /// imaginary part, natural frequency in Hz, damping ratio or None, time constant, kind,
@@ -324,7 +327,7 @@ pub fn modes(
     a: Vec<f64>,
     n: usize,
     structural_zeros: usize,
-) -> PyResult<Vec<(f64, f64, f64, Option<f64>, f64, &'static str, &'static str)>> {
+) -> PyResult<Vec<ModeRow>> {
     if a.len() != n * n {
         return Err(eom_error(format!(
             "modes: {} entries for a {n} × {n} matrix",

@@ -170,7 +170,12 @@ pub fn stability(
     let results: Vec<Result<(f64, i8, u8), String>> = points
         .par_chunks(np)
         .map_init(
-            || (EvalWorkspace::default(), vec![Complex64::new(0.0, 0.0); MAX_N]),
+            || {
+                (
+                    EvalWorkspace::default(),
+                    vec![Complex64::new(0.0, 0.0); MAX_N],
+                )
+            },
             |(ws, eig), p| point_stability(c, source, names, p, ws, eig),
         )
         .collect();
@@ -203,7 +208,8 @@ fn point_stability(
 ) -> Result<(f64, i8, u8), String> {
     let (a, fallback) = match c.css.evaluate_a(p, ws) {
         Ok(a) => (a, false),
-        Err(ModelError::PivotBreakdown(_)) | Err(ModelError::Sym(SymError::EvalNonFinite { .. })) => {
+        Err(ModelError::PivotBreakdown(_))
+        | Err(ModelError::Sym(SymError::EvalNonFinite { .. })) => {
             (robust_a(source, names, p)?, true)
         }
         Err(e) => return Err(e.to_string()),
@@ -242,7 +248,11 @@ fn point_stability(
 
 /// A at a point by the robust (SVD) path.
 fn robust_a(source: &Source, names: &[String], p: &[f64]) -> Result<DMatrix<f64>, String> {
-    let ov: Vec<(&str, f64)> = names.iter().map(|n| n.as_str()).zip(p.iter().copied()).collect();
+    let ov: Vec<(&str, f64)> = names
+        .iter()
+        .map(|n| n.as_str())
+        .zip(p.iter().copied())
+        .collect();
     let m = source.build(&ov).map_err(|e| e.to_string())?;
     let lin = Linearizer::new(&m)
         .method(Method::Robust)

@@ -54,8 +54,8 @@ impl Source {
                 // The file itself where it still holds the same text (its AVL files are then
                 // found relative to it); else the text, as on a worker without the file.
                 let p = PathBuf::from(path);
-                let same = eom_text::read_limited(&p, eom_text::MAX_FILE_BYTES)
-                    .is_ok_and(|t| t == *text);
+                let same =
+                    eom_text::read_limited(&p, eom_text::MAX_FILE_BYTES).is_ok_and(|t| t == *text);
                 let loaded = if same {
                     eom_model::file::load(&p, overrides)
                 } else {
