@@ -37,7 +37,9 @@ def stability(
     if chunk < 1:
         raise ValueError(f"chunk: at least 1 point, got {chunk}")
     # The model once to every worker (it compiles on first use and stays there).
-    remote_model = client.scatter(model, broadcast=True)
+    # A fresh key per call (hash=False): a content-hashed key would be shared with an
+    # earlier call whose release can race with this one ("lost dependencies").
+    remote_model = client.scatter(model, broadcast=True, hash=False)
     parts = [p[i : i + chunk] for i in range(0, p.shape[0], chunk)]
     futures = client.map(_chunk_stability, [remote_model] * len(parts), parts, pure=False)
     results = client.gather(futures)
