@@ -1,0 +1,379 @@
+//! `NativeModel`: a model by name or file, linearized at a point or evaluated from its
+//! compiled tape at many points; and `modes` of a state matrix.
+
+use crate::errors::{eom_error, model_error};
+use crate::points::{self, Compiled};
+use crate::source::Source;
+use eom_model::{Linearizer, Method};
+use eom_num::StateSpace;
+use eom_num::modes::{ModeKind, ModeOptions, Modes, Stability};
+use nalgebra::DMatrix;
+use pyo3::buffer::PyBuffer;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use std::sync::{Arc, OnceLock};
+
+/// A model: where it comes from, its parameters, and (built on first use) its compiled
+/// symbolic state space.
+#[pyclass(module = "eom._eom", frozen)]
+pub struct NativeModel {
+    source: Source,
+    name: String,
+    param_names: Vec<String>,
+    defaults: Vec<f64>,
+    compiled: OnceLock<Result<Arc<Compiled>, String>>,
+}
+
+impl NativeModel {
+    fn new(source: Source) -> PyResult<Self> {
+        let model = source.build(&[])?;
+        Ok(NativeModel {
+            name: model.name.clone(),
+            param_names: model.scope.names(),
+            defaults: model.scope.nominal_values(),
+            source,
+            compiled: OnceLock::new(),
+        })
+    }
+
+    /// The compiled symbolic state space, reduced once (pivots chosen at the defaults).
+    pub fn compiled(&self) -> PyResult<Arc<Compiled>> {
+        self.compiled
+            .get_or_init(|| {
+                let model = self.source.build(&[]).map_err(|e| e.to_string())?;
+                Compiled::of(&model).map(Arc::new)
+            })
+            .clone()
+            .map_err(eom_error)
+    }
+
+    /// Overrides by name, each checked against the parameter list.
+    fn overrides<'a>(&self, values: &'a [(String, f64)]) -> Vec<(&'a str, f64)> {
+        values.iter().map(|(k, v)| (k.as_str(), *v)).collect()
+    }
+}
+
+/// The bytes of a matrix in row-major order (NumPy's default).
+fn row_major(m: &DMatrix<f64>) -> Vec<u8> {
+    let mut out = Vec::with_capacity(m.len() * 8);
+    for i in 0..m.nrows() {
+        for j in 0..m.ncols() {
+            out.extend_from_slice(&m[(i, j)].to_ne_bytes());
+        }
+    }
+    out
+}
+
+fn method_of(name: &str) -> PyResult<Method> {
+    match name {
+        "numeric" => Ok(Method::Numeric),
+        "robust" => Ok(Method::Robust),
+        "symbolic" => Ok(Method::Symbolic),
+        m => Err(eom_error(format!(
+            "unknown method `{m}`; methods are: numeric, robust, symbolic"
+        ))),
+    }
+}
+
+#[pymethods]
+impl NativeModel {
+    /// A built-in model by name or a model file by path.
+    #[staticmethod]
+    fn load(name_or_path: &str) -> PyResult<Self> {
+        NativeModel::new(Source::resolve(name_or_path)?)
+    }
+
+    /// The model back from the state of `__reduce__`.
+    #[staticmethod]
+    fn _from_state(kind: &str, name: String, text: String) -> PyResult<Self> {
+        NativeModel::new(Source::from_state(kind, name, text)?)
+    }
+
+    fn __reduce__(slf: &Bound<'_, Self>) -> PyResult<(Py<PyAny>, (String, String, String))> {
+        let ctor = slf.get_type().getattr("_from_state")?.unbind();
+        Ok((ctor, slf.get().source.state()))
+    }
+
+    /// The model's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+
+    /// Parameter names in the model's order.
+    #[getter]
+    fn parameter_names(&self) -> Vec<String> {
+        self.param_names.clone()
+    }
+
+    /// Default values in the order of `parameter_names`.
+    #[getter]
+    fn defaults(&self) -> Vec<f64> {
+        self.defaults.clone()
+    }
+
+    /// Where the model comes from: `("builtin", name, "")` or `("file", path, text)`.
+    #[getter]
+    fn source(&self) -> (String, String, String) {
+        self.source.state()
+    }
+
+    /// Warnings of loading the model file (none for a built-in).
+    #[getter]
+    fn load_warnings(&self) -> Vec<String> {
+        self.source.load_warnings()
+    }
+
+    /// The model as a model file (with the values given).
+    fn to_toml(&self, py: Python<'_>, values: Vec<(String, f64)>) -> PyResult<String> {
+        let ov = self.overrides(&values);
+        py.detach(|| {
+            let m = self.source.build(&ov)?;
+            Ok(eom_model::file::to_toml(&m))
+        })
+    }
+
+    /// Linearizes at the point: a dict of the matrices (row-major bytes), their shapes, the
+    /// names and units, the warnings and the structural zeros.
+    fn linearize<'py>(
+        &self,
+        py: Python<'py>,
+        method: &str,
+        values: Vec<(String, f64)>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let m = method_of(method)?;
+        let ov = self.overrides(&values);
+        let lin = py.detach(|| -> PyResult<eom_model::Linearization> {
+            let at_point = self.source.build(&ov)?;
+            if m == Method::Symbolic {
+                // The cached reduction (pivots chosen at the defaults), as `eom analyze
+                // --method symbolic` reduces at the defaults and evaluates at the point.
+                let c = self.compiled()?;
+                let v = at_point
+                    .scope
+                    .values_with(&ov)
+                    .map_err(|e| model_error(e.into()))?;
+                return c.linearize(&v).map_err(model_error);
+            }
+            Linearizer::new(&at_point)
+                .method(m)
+                .run()
+                .map_err(model_error)
+        })?;
+        let ss = &lin.state_space;
+        let d = PyDict::new(py);
+        for (key, mat) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d)] {
+            d.set_item(key, PyBytes::new(py, &row_major(mat)))?;
+            d.set_item(format!("{key}_shape"), (mat.nrows(), mat.ncols()))?;
+        }
+        let names = &ss.names;
+        d.set_item("states", &names.states)?;
+        d.set_item("inputs", &names.inputs)?;
+        d.set_item("outputs", &names.outputs)?;
+        d.set_item("input_units", &names.input_units)?;
+        d.set_item("output_units", &names.output_units)?;
+        d.set_item("warnings", &lin.warnings)?;
+        d.set_item("structural_zeros", &lin.structural_zeros)?;
+        d.set_item(
+            "method",
+            match lin.method {
+                Method::Numeric => "numeric",
+                Method::Robust => "robust",
+                Method::Symbolic => "symbolic",
+            },
+        )?;
+        Ok(d)
+    }
+
+    /// Shapes of A, B, C, D of the compiled model (compiling it on first use).
+    fn shapes(&self, py: Python<'_>) -> PyResult<Vec<(usize, usize)>> {
+        let c = py.detach(|| self.compiled())?;
+        Ok(c.shapes().to_vec())
+    }
+
+    /// State, input and output names of the compiled model.
+    fn signal_names(&self, py: Python<'_>) -> PyResult<(Vec<String>, Vec<String>, Vec<String>)> {
+        let c = py.detach(|| self.compiled())?;
+        let n = c.names();
+        Ok((n.states.clone(), n.inputs.clone(), n.outputs.clone()))
+    }
+
+    /// Warnings of the symbolic reduction.
+    fn compiled_warnings(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        let c = py.detach(|| self.compiled())?;
+        Ok(c.warnings().to_vec())
+    }
+
+    /// Evaluates A, B, C, D (row-major, one after the other per point) at the points (rows of
+    /// `points`, all parameters in model order) into `out`, on all cores without the GIL.
+    fn evaluate_into(
+        &self,
+        py: Python<'_>,
+        points: PyBuffer<f64>,
+        out: PyBuffer<f64>,
+    ) -> PyResult<()> {
+        let pts = points.to_vec(py)?;
+        let values = py.detach(|| -> PyResult<Vec<f64>> {
+            let c = self.compiled()?;
+            points::evaluate(&c, &pts, self.param_names.len())
+        })?;
+        out.copy_from_slice(py, &values)
+    }
+
+    /// The largest real part (structural zeros excluded), the verdict (1 stable, -1
+    /// unstable, 0 neither) and whether the robust path was used, per point.
+    fn stability_into(
+        &self,
+        py: Python<'_>,
+        points: PyBuffer<f64>,
+        max_real: PyBuffer<f64>,
+        verdict: PyBuffer<i8>,
+        fallback: PyBuffer<u8>,
+    ) -> PyResult<()> {
+        let pts = points.to_vec(py)?;
+        let r = py.detach(|| -> PyResult<points::StabilityOut> {
+            let c = self.compiled()?;
+            points::stability(&c, &self.source, &self.param_names, &pts)
+        })?;
+        max_real.copy_from_slice(py, &r.max_real)?;
+        verdict.copy_from_slice(py, &r.verdict)?;
+        fallback.copy_from_slice(py, &r.fallback)
+    }
+
+    /// The Rust-only time of `evaluate_into` (no copies to or from Python), in seconds: the
+    /// baseline of the Python benchmark.
+    fn _evaluate_seconds(&self, py: Python<'_>, points: PyBuffer<f64>) -> PyResult<f64> {
+        let pts = points.to_vec(py)?;
+        py.detach(|| -> PyResult<f64> {
+            let c = self.compiled()?;
+            let t = std::time::Instant::now();
+            let v = points::evaluate(&c, &pts, self.param_names.len())?;
+            std::hint::black_box(&v);
+            Ok(t.elapsed().as_secs_f64())
+        })
+    }
+
+    /// The generated Rust module (`eom codegen`).
+    #[pyo3(signature = (values, f32=false, no_std=false, simplify=false, stability=false, module=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn codegen(
+        &self,
+        py: Python<'_>,
+        values: Vec<(String, f64)>,
+        f32: bool,
+        no_std: bool,
+        simplify: bool,
+        stability: bool,
+        module: Option<String>,
+    ) -> PyResult<String> {
+        let ov = self.overrides(&values);
+        py.detach(|| {
+            let m = self.source.build(&ov)?;
+            let mut opts = eom_codegen::EmitOptions::default()
+                .simplify(simplify)
+                .stability(stability);
+            if f32 {
+                opts = opts.f32();
+            }
+            if !no_std {
+                opts = opts.std_math();
+            }
+            if let Some(name) = &module {
+                opts = opts.module(name);
+            }
+            eom_codegen::emit_model(&m, &opts)
+                .map(|e| e.source)
+                .map_err(eom_error)
+        })
+    }
+
+    /// The matrices in closed form (`eom symbolic`): see `crate::symbolic`.
+    #[pyo3(signature = (keep=None))]
+    fn symbolic<'py>(
+        &self,
+        py: Python<'py>,
+        keep: Option<Vec<String>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let keep = keep.unwrap_or_else(|| self.param_names.clone());
+        for k in &keep {
+            if !self.param_names.contains(k) {
+                return Err(eom_error(format!(
+                    "model `{}` has no parameter `{k}`; its parameters are: {}",
+                    self.name,
+                    self.param_names.join(", ")
+                )));
+            }
+        }
+        let out =
+            py.detach(|| crate::symbolic::closed_forms(&self.source, &self.param_names, &keep))?;
+        out.into_dict(py)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<eom model `{}`>", self.name)
+    }
+}
+
+/// One mode as returned to Python: Re λ, Im λ, frequency (Hz), damping ratio, time
+/// constant, kind, stability.
+type ModeRow = (f64, f64, f64, Option<f64>, f64, &'static str, &'static str);
+
+/// The modes of a state matrix (row-major, n × n): per mode (eigenvalue real part,
+/// imaginary part, natural frequency in Hz, damping ratio or None, time constant, kind,
+/// stability). `structural_zeros`: the zero eigenvalues the model's structure proves.
+#[pyfunction]
+pub fn modes(
+    py: Python<'_>,
+    a: Vec<f64>,
+    n: usize,
+    structural_zeros: usize,
+) -> PyResult<Vec<ModeRow>> {
+    if a.len() != n * n {
+        return Err(eom_error(format!(
+            "modes: {} entries for a {n} × {n} matrix",
+            a.len()
+        )));
+    }
+    py.detach(|| {
+        let a = DMatrix::from_row_slice(n, n, &a);
+        let ss = StateSpace {
+            a,
+            b: DMatrix::zeros(n, 0),
+            c: DMatrix::zeros(0, n),
+            d: DMatrix::zeros(0, 0),
+            phys: DMatrix::zeros(0, n),
+            names: eom_num::SignalNames {
+                states: (1..=n).map(|k| format!("x{k}")).collect(),
+                ..Default::default()
+            },
+        };
+        let opts = ModeOptions {
+            shapes: false,
+            structural_zeros,
+            ..ModeOptions::default()
+        };
+        let m = Modes::compute_with(&ss, &opts).map_err(eom_error)?;
+        Ok(m.modes
+            .iter()
+            .map(|m| {
+                (
+                    m.eigenvalue.re,
+                    m.eigenvalue.im,
+                    m.natural_frequency_hz,
+                    m.damping_ratio,
+                    m.time_constant,
+                    match m.kind {
+                        ModeKind::Zero => "zero",
+                        ModeKind::Real => "real",
+                        ModeKind::Oscillatory => "oscillatory",
+                    },
+                    match m.stability {
+                        Stability::Stable => "stable",
+                        Stability::Marginal => "marginal",
+                        Stability::Unstable => "unstable",
+                    },
+                )
+            })
+            .collect())
+    })
+}

@@ -1,0 +1,124 @@
+//! Where a model comes from — a built-in by name, or a model file kept as its text — and
+//! building it at parameter values. The text travels with a pickled model, so a worker that
+//! has no copy of the file rebuilds the same model.
+
+use crate::errors::{catalogue_error, eom_error, model_error};
+use eom_model::{Model, ModelError};
+use pyo3::{PyErr, PyResult};
+use std::path::{Path, PathBuf};
+
+/// The origin of a model.
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A built-in model of the catalogue (`chain50` included).
+    Builtin(String),
+    /// A model file: its path as given and its text.
+    File {
+        /// The path as given (named in messages; AVL files it names are relative to it).
+        path: String,
+        /// The file's text when it was loaded.
+        text: String,
+    },
+}
+
+impl Source {
+    /// A built-in model's name or a file path: a name ending in `.toml`, holding a `/`, or
+    /// naming an existing file that is not a built-in model (as `eom` decides).
+    pub fn resolve(name_or_path: &str) -> PyResult<Source> {
+        let is_file = name_or_path.ends_with(".toml")
+            || name_or_path.contains('/')
+            || (Path::new(name_or_path).is_file() && models::find(name_or_path).is_err());
+        if !is_file {
+            models::find(name_or_path).map_err(catalogue_error)?;
+            return Ok(Source::Builtin(name_or_path.to_string()));
+        }
+        let text = eom_text::read_limited(Path::new(name_or_path), eom_text::MAX_FILE_BYTES)
+            .map_err(|e| {
+                model_error(eom_model::ModelError::File {
+                    position: eom_model::file::FilePosition::whole(name_or_path),
+                    context: String::new(),
+                    problem: format!("cannot be read: {e}"),
+                })
+            })?;
+        Ok(Source::File {
+            path: name_or_path.to_string(),
+            text,
+        })
+    }
+
+    /// The model at the defaults with `overrides` by name.
+    pub fn build(&self, overrides: &[(&str, f64)]) -> Result<Model, BuildError> {
+        match self {
+            Source::Builtin(name) => models::build(name, overrides).map_err(BuildError::Catalogue),
+            Source::File { path, text } => {
+                // The file itself where it still holds the same text (its AVL files are then
+                // found relative to it); else the text, as on a worker without the file.
+                let p = PathBuf::from(path);
+                let same =
+                    eom_text::read_limited(&p, eom_text::MAX_FILE_BYTES).is_ok_and(|t| t == *text);
+                let loaded = if same {
+                    eom_model::file::load(&p, overrides)
+                } else {
+                    eom_model::file::load_str(text, path, overrides)
+                };
+                Ok(loaded.map_err(BuildError::Model)?.model)
+            }
+        }
+    }
+
+    /// The loading warnings of a model file (none for a built-in).
+    pub fn load_warnings(&self) -> Vec<String> {
+        match self {
+            Source::Builtin(_) => Vec::new(),
+            Source::File { path, text } => eom_model::file::load_str(text, path, &[])
+                .map(|l| l.warnings)
+                .unwrap_or_default(),
+        }
+    }
+
+    /// The state a pickled model carries: `("builtin", name, "")` or `("file", path, text)`.
+    pub fn state(&self) -> (String, String, String) {
+        match self {
+            Source::Builtin(n) => ("builtin".into(), n.clone(), String::new()),
+            Source::File { path, text } => ("file".into(), path.clone(), text.clone()),
+        }
+    }
+
+    /// The source back from [`Source::state`].
+    pub fn from_state(kind: &str, name: String, text: String) -> PyResult<Source> {
+        match kind {
+            "builtin" => Ok(Source::Builtin(name)),
+            "file" => Ok(Source::File { path: name, text }),
+            k => Err(eom_error(format!(
+                "unknown model source `{k}` in a pickled model"
+            ))),
+        }
+    }
+}
+
+/// Why a model could not be built (no Python objects: raised on any thread).
+#[derive(Debug)]
+pub enum BuildError {
+    /// Of the catalogue (unknown parameter, bad value).
+    Catalogue(models::CatalogueError),
+    /// Of the model (a model file).
+    Model(ModelError),
+}
+
+impl std::fmt::Display for BuildError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            BuildError::Catalogue(e) => e.fmt(f),
+            BuildError::Model(e) => e.fmt(f),
+        }
+    }
+}
+
+impl From<BuildError> for PyErr {
+    fn from(e: BuildError) -> PyErr {
+        match e {
+            BuildError::Catalogue(e) => catalogue_error(e),
+            BuildError::Model(e) => model_error(e),
+        }
+    }
+}

@@ -1,0 +1,56 @@
+"""eom.distributed: the Dask sweep equals the local one bit for bit, whatever the chunking."""
+
+import numpy as np
+import pytest
+
+import eom
+import eom.distributed
+
+distributed = pytest.importorskip("distributed")
+
+
+def bicycle_points(n, seed=7):
+    bike = eom.load("bicycle")
+    rng = np.random.default_rng(seed)
+    nominal = np.array(list(bike.parameters.values()))
+    pts = nominal * (1.0 + 0.2 * (2.0 * rng.random((n, nominal.size)) - 1.0))
+    return bike, pts
+
+
+def assert_identical(a, b):
+    # Bit for bit: the same bytes (NaN-free, so array_equal is bitwise).
+    assert a.max_real.tobytes() == b.max_real.tobytes()
+    assert np.array_equal(a.verdict, b.verdict)
+    assert np.array_equal(a.fallback, b.fallback)
+
+
+def test_without_a_client_it_is_local():
+    bike, pts = bicycle_points(500)
+    assert_identical(eom.distributed.stability(bike, pts), bike.stability(pts))
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as c:
+        yield c
+
+
+@pytest.mark.parametrize("chunk", [1_000, 2_345, 20_000])
+def test_dask_equals_local_bit_for_bit(client, chunk):
+    bike, pts = bicycle_points(6_000)
+    local = bike.stability(pts)
+    remote = eom.distributed.stability(bike, pts, client=client, chunk=chunk)
+    assert_identical(remote, local)
+    # Both verdicts occur: the points straddle the weave and capsize speeds.
+    assert (local.verdict == 1).any() and (local.verdict == -1).any()
+
+
+def test_dask_takes_a_dict_of_points(client):
+    bike = eom.load("bicycle")
+    v = np.linspace(0.5, 10.0, 3_001)
+    assert_identical(
+        eom.distributed.stability(bike, {"v": v}, client=client, chunk=500),
+        bike.stability({"v": v}),
+    )
