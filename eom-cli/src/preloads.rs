@@ -45,6 +45,16 @@ pub struct PreloadReport {
     pub computed: bool,
 }
 
+/// The columns of the preload table (text and report), in the order of `rows()`' cells.
+pub const COLUMNS: [&str; 6] = [
+    "item",
+    "on body",
+    "force [N]",
+    "moment [N m]",
+    "tension",
+    "note",
+];
+
 impl Preloads {
     /// The preloads of the assembled `model`, rounding noise set to 0 (see [`ROUNDING`]).
     pub fn of(model: &eom_model::Model<f64>, a: &Assembled<f64>) -> Preloads {
@@ -109,18 +119,7 @@ impl Preloads {
         if rows.is_empty() {
             t.push_str("  every item carries no preload\n");
         } else {
-            t.push_str(&crate::format::table(
-                &[
-                    "item",
-                    "on body",
-                    "force [N]",
-                    "moment [N m]",
-                    "tension",
-                    "note",
-                ],
-                &rows,
-                2,
-            ));
+            t.push_str(&crate::format::table(&COLUMNS, &rows, 2));
         }
         if quiet > 0 {
             t.push_str(&format!("  {quiet} other item(s) carry no preload\n"));

@@ -110,18 +110,7 @@ pub fn preloads(p: &mut Page, cx: &Context<'_>) {
     ));
     let (rows, quiet) = pre.rows();
     if !rows.is_empty() {
-        p.table(
-            &[
-                "item",
-                "on body",
-                "force [N]",
-                "moment [N m]",
-                "tension",
-                "note",
-            ],
-            &rows,
-            2,
-        );
+        p.table(&crate::preloads::COLUMNS, &rows, 2);
     }
     if quiet > 0 {
         p.text(&format!("{quiet} other item(s) carry no preload."));
