@@ -504,3 +504,35 @@ fn estimates_only_where_a_verdict_could_change_with_the_same_verdicts() {
     let res = Sweep::linspace(1e-3, 200.0, 201).run(non_normal).unwrap();
     assert_eq!(res.points[0].stability, PointStability::Marginal);
 }
+
+/// A divergence (real root +0.2, whatever x) beside a defective double zero (a heading ψ and
+/// a lateral position y with y' = u ψ, as an aircraft pair's free heading): the zero pair's
+/// error estimates are large (√ε-sensitive, its eigenvectors nearly parallel), the root's own
+/// is tiny. Each point must be unstable with the root's own tolerance, as `eom analyze`
+/// judges the eigenvalue, not marginal by the neutral branches' estimates.
+#[test]
+fn a_divergence_beside_a_defective_zero_is_unstable() {
+    let f = |x: f64| -> Result<DMatrix<f64>, String> {
+        let a = mat(&[
+            &[0.0, 40.0, 1.0, 0.3, 0.0],
+            &[0.0, 0.0, 0.5, 1.0, 0.0],
+            &[0.0, 0.0, 0.2, 0.0, 0.7],
+            &[0.0, 0.0, 0.0, -1.0 - x, 2.0],
+            &[0.0, 0.0, 0.0, -2.0, -1.0],
+        ]);
+        let q = rand_orth(&mut rng(21), 5);
+        Ok(q.transpose() * a * q)
+    };
+    let res = Sweep::linspace(0.0, 1.0, 5).run(f).unwrap();
+    assert_eq!(res.branches.iter().filter(|b| b.neutral).count(), 2);
+    for p in &res.points {
+        let a = f(p.value).unwrap();
+        let ve = eigenvalues_with_errors(&a).unwrap();
+        let &(root, err) = ve.iter().max_by(|x, y| x.0.re.total_cmp(&y.0.re)).unwrap();
+        assert!((root.re - 0.2).abs() < 1e-12, "{ve:?}");
+        assert_eq!(stability_of(root.re, err), Stability::Unstable);
+        assert_eq!(p.stability, PointStability::Unstable, "{p:?}");
+        assert!((p.max_real.unwrap() - 0.2).abs() < 1e-9, "{p:?}");
+        assert!(p.tolerance.unwrap_or(0.0) < 1e-6, "{p:?}");
+    }
+}

@@ -24,9 +24,9 @@
 //!    only known to √ε, while their sum stays accurate to ε.
 //! 4. **Stability per point**: each branch's verdict is [`crate::modes::stability_of`] with
 //!    its eigenvalue's error estimate at that point ([`crate::modes::eigenvalues_with_errors`],
-//!    the tolerance `eom analyze` judges the same eigenvalue by), plus those of the neutral
-//!    branches its real part is taken with: a real part within it is rounding noise and
-//!    carries no sign. A point is stable when every non-neutral branch is, unstable when one
+//!    the tolerance `eom analyze` judges the same eigenvalue by); only where that leaves the
+//!    sign open is the real part taken with the neutral branches' and judged by the sum of
+//!    their estimates: a real part within its tolerance is rounding noise and carries no sign. A point is stable when every non-neutral branch is, unstable when one
 //!    is, marginal otherwise. The estimates need eigenvectors, about ten times the cost of the
 //!    eigenvalues, so they are computed only at points where one could change a verdict:
 //!    where some real part is within [`screen_bound`] (`tol_factor · n · ε · ‖A‖_F ·`
@@ -646,17 +646,39 @@ impl Branches {
     /// trace): where a real root crosses zero next to a neutral zero the two form a defective
     /// double eigenvalue, each known only to √ε, but their sum stays accurate.
     fn sign(&self, k: usize, j: usize) -> i8 {
-        let band = match &self.band {
-            Band::Errors(e) => e[k].as_ref().map_or(0.0, |e| self.tolerance(e, j)),
-            Band::Relative(rtol) => rtol * self.norms[k],
+        let (re, band) = match &self.band {
+            Band::Errors(e) => match e[k].as_ref() {
+                Some(e) => self.judged(&self.tracked[k], e, j),
+                None => (effective_re(&self.tracked[k], j, &self.neutral_idx), 0.0),
+            },
+            Band::Relative(rtol) => (
+                effective_re(&self.tracked[k], j, &self.neutral_idx),
+                rtol * self.norms[k],
+            ),
         };
-        let re = effective_re(&self.tracked[k], j, &self.neutral_idx);
         if re > band {
             1
         } else if re < -band {
             -1
         } else {
             0
+        }
+    }
+
+    /// Branch `j`'s real part and its tolerance from the estimates `e` of every branch at one
+    /// point: its own, as `eom analyze` judges the eigenvalue, where that decides the sign;
+    /// otherwise taken with the neutral branches' (sum and summed estimates). Summing first
+    /// would let a neutral branch's large estimate (a defective zero: a free heading) blur a
+    /// root far from zero whose own estimate is tiny.
+    fn judged(&self, eig: &[Complex64], e: &[f64], j: usize) -> (f64, f64) {
+        let own = eig[j].re;
+        if own.abs() > e[j] {
+            (own, e[j])
+        } else {
+            (
+                effective_re(eig, j, &self.neutral_idx),
+                self.tolerance(e, j),
+            )
         }
     }
 
@@ -685,12 +707,19 @@ impl Branches {
         let mut max_re: Option<(f64, Option<f64>)> = None;
         let (mut unstable, mut marginal) = (false, false);
         for j in (0..eig.len()).filter(|&j| !self.neutral[j]) {
-            let re = effective_re(eig, j, &self.neutral_idx);
-            let tol = match (errors, &self.band) {
-                (Some(e), _) => Some(self.tolerance(e, j)),
-                (None, Band::Relative(rtol)) => Some(rtol * norm),
+            let (re, tol) = match (errors, &self.band) {
+                (Some(e), _) => {
+                    let (re, tol) = self.judged(eig, e, j);
+                    (re, Some(tol))
+                }
+                (None, Band::Relative(rtol)) => {
+                    (effective_re(eig, j, &self.neutral_idx), Some(rtol * norm))
+                }
                 // Not computed: beyond the screen, or an exact zero (estimate 0).
-                (None, Band::Errors(_)) => (re == 0.0).then_some(0.0),
+                (None, Band::Errors(_)) => {
+                    let re = effective_re(eig, j, &self.neutral_idx);
+                    (re, (re == 0.0).then_some(0.0))
+                }
             };
             match crate::modes::stability_of(re, tol.unwrap_or(0.0)) {
                 Stability::Unstable => unstable = true,
