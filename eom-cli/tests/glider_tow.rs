@@ -183,3 +183,28 @@ fn a_very_stiff_rope_is_the_rigidly_joined_pair() {
         );
     }
 }
+
+/// A steady extra thrust ΔF puts the pair into a climb at the trim speed (lift and pitching
+/// moment fix each aircraft's speed and angle of attack, so its drag is unchanged): the
+/// thrust lifts both weights, and the rope carries the glider's share, ΔT = ΔF·m_g/(m_t + m_g),
+/// stretching it by ΔT·L/EA. `eom analyze`'s steady-state gain must be that.
+#[test]
+fn the_rope_carries_the_gliders_share_of_a_thrust_change() {
+    for (ea, set) in [(50000.0, "EA=50000"), (5000.0, "EA=5000")] {
+        let j = eom_json(&["analyze", &model(), "--set", set, "--format", "json"]);
+        let gain = j["steady_state_gain"]
+            .as_array()
+            .expect("gains")
+            .iter()
+            .find(|g| g["output"] == "rope stretch" && g["input"] == "thrust")
+            .expect("rope stretch / thrust")["value"]
+            .as_f64()
+            .expect("a number");
+        let (mt, mg, l): (f64, f64, f64) = (1000.0, 500.0, 50.0);
+        let want = mg / (mt + mg) * l / ea;
+        assert!(
+            (gain - want).abs() <= 1e-9 * want,
+            "{set}: {gain} m/N, closed form {want}"
+        );
+    }
+}
