@@ -208,3 +208,44 @@ fn the_rope_carries_the_gliders_share_of_a_thrust_change() {
         );
     }
 }
+
+/// The sweep's point verdict is `eom analyze`'s at every grid point: the divergence
+/// (+0.2038 1/s, own error estimate ~1e-11) is unstable with its own tolerance, not
+/// "marginal" by the large estimates of the pair's free heading (a defective zero).
+#[test]
+fn the_sweep_judges_the_divergence_as_analyze_does() {
+    let file = model();
+    let sweep = eom_json(&[
+        "sweep",
+        &file,
+        "--param",
+        "EA=45000:55000:5",
+        "--format",
+        "json",
+    ]);
+    let points = sweep["points"].as_array().expect("points");
+    assert_eq!(points.len(), 5);
+    for p in points {
+        let ea = p["value"].as_f64().expect("value");
+        let set = format!("EA={ea}");
+        let a = eom_json(&["analyze", &file, "--set", &set, "--format", "json"]);
+        assert_eq!(p["stability"], a["stability"], "EA = {ea}: {p}");
+        let worst = a["modes"]
+            .as_array()
+            .expect("modes")
+            .iter()
+            .max_by(|x, y| {
+                let re = |m: &serde_json::Value| m["eigenvalue"]["re"].as_f64().unwrap();
+                re(x).total_cmp(&re(y))
+            })
+            .expect("a mode");
+        let re = worst["eigenvalue"]["re"].as_f64().unwrap();
+        let max = p["max_real"].as_f64().expect("max_real");
+        assert!(
+            (max - re).abs() <= 1e-9 * re.abs(),
+            "EA = {ea}: {max} vs {re}"
+        );
+        let tol = p["tolerance"].as_f64().unwrap_or(0.0);
+        assert!(tol < 1e-6, "EA = {ea}: tolerance {tol}");
+    }
+}
