@@ -3,8 +3,8 @@
 //! the equilibrium the model's geometry describes, in model axes, with the statics' rounding
 //! noise set to 0, and whether the statics determines it.
 
-use crate::assemble::{Assembled, Preload, Statics};
 use crate::Model;
+use crate::assemble::{Assembled, Preload, Statics};
 use serde::Serialize;
 
 /// Values smaller than this fraction of the largest of their kind (force or moment) are
