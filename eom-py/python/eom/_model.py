@@ -493,11 +493,11 @@ class LinearModel:
         native = self._native
         if name in _MATRICES:
             buf, shapes = native.matrices()
-            flat = np.frombuffer(buf, dtype=np.float64)  # read-only: bytes are immutable
-            start = 0
+            # Views of one immutable buffer: read-only, no copies.
+            offset = 0
             for key, (r, c) in zip(_MATRICES, shapes):
-                d[key] = flat[start : start + r * c].reshape(r, c)
-                start += r * c
+                d[key] = np.ndarray((r, c), np.float64, buf, offset)
+                offset += 8 * r * c
         elif name in _NAMES:
             d.update(zip(_NAMES, native.names()))
         elif name == "warnings":
