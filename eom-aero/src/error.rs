@@ -112,6 +112,12 @@ pub enum AeroError {
         /// A hint on the likely cause (truncated file, another AVL version, …).
         hint: String,
     },
+    /// A file that is neither an AVL geometry nor an AVL derivative file (by its extension).
+    #[error("{file}: expected an AVL geometry (.avl) or an AVL derivative file (.sb, .st)")]
+    FileKind {
+        /// The file.
+        file: String,
+    },
     /// The file cannot be read.
     #[error("cannot read {file}: {source}")]
     Io {

@@ -6,7 +6,7 @@
 use crate::analyze::SIG;
 use crate::error::CliError;
 use crate::format::{g, table};
-use eom_aero::{AvlOutput, Derivatives, SolverOptions};
+use eom_aero::{Derivatives, WingFileKind};
 use serde::{Serialize, Serializer};
 use std::path::Path;
 
@@ -69,69 +69,35 @@ pub fn aero(file: &str, req: &AeroRequest) -> Result<AeroReport, CliError> {
             return Err(bad(format!("{name} {v}"), "must be a positive number"));
         }
     }
-    let ext = Path::new(file)
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_lowercase);
-    let (source, d, alpha, unknown, warnings) = match ext.as_deref() {
-        Some("avl") => {
-            let mut config = eom_aero::read_avl(file)?;
-            if let Some(p) = req.reference {
-                config.reference.point = p;
+    // The CLI's own wording for the options that do not apply (named as the user typed them).
+    let kind = WingFileKind::of_path(Path::new(file)).ok_or_else(|| {
+        bad(
+            file.into(),
+            "expected an AVL geometry (.avl) or an AVL derivative file (.sb, .st)",
+        )
+    })?;
+    if kind != WingFileKind::Geometry {
+        for (given, opt) in [
+            (req.alpha_deg.is_some(), "--alpha"),
+            (req.reference.is_some(), "--ref"),
+        ] {
+            if given {
+                return Err(bad(
+                    opt.into(),
+                    "applies to an AVL geometry (.avl) only: an AVL output file holds the \
+                     derivatives of one run case about one point",
+                ));
             }
-            let opts = SolverOptions {
-                alpha_deg: req.alpha_deg.unwrap_or(0.0),
-                ..SolverOptions::default()
-            };
-            let sol = eom_aero::solve(&config, &opts)?;
-            let what = "geometry (vortex lattice)";
-            (what, sol.derivatives, sol.alpha_deg, Vec::new(), Vec::new())
         }
-        Some("sb") | Some("st") => {
-            for (given, opt) in [
-                (req.alpha_deg.is_some(), "--alpha"),
-                (req.reference.is_some(), "--ref"),
-            ] {
-                if given {
-                    return Err(bad(
-                        opt.into(),
-                        "applies to an AVL geometry (.avl) only: an AVL output file holds the \
-                         derivatives of one run case about one point",
-                    ));
-                }
-            }
-            let out = AvlOutput::read(file)?;
-            let body = out.derivatives()?;
-            let names = Derivatives::names();
-            let unknown = (0..36)
-                .filter(|k| !body.known[k / 6][k % 6])
-                .map(|k| names[k / 6][k % 6].to_string())
-                .collect();
-            let what = match out.kind {
-                eom_aero::AvlOutputKind::Body => "body-axis derivatives (SB)",
-                eom_aero::AvlOutputKind::Stability => "stability-axis derivatives (ST)",
-            };
-            (
-                what,
-                body.derivatives,
-                out.alpha_deg,
-                unknown,
-                body.warnings,
-            )
-        }
-        _ => {
-            return Err(bad(
-                file.into(),
-                "expected an AVL geometry (.avl) or an AVL derivative file (.sb, .st)",
-            ));
-        }
-    };
+    }
+    let w = eom_aero::read_wing_file(file, req.alpha_deg, req.reference)?;
+    let d = w.derivatives;
     let names = Derivatives::names();
     Ok(AeroReport {
         file: file.to_string(),
-        source,
+        source: w.kind.description(),
         reference: d.reference,
-        alpha_deg: alpha,
+        alpha_deg: w.alpha_deg,
         derivatives: (0..36)
             .map(|k| {
                 (
@@ -140,11 +106,11 @@ pub fn aero(file: &str, req: &AeroRequest) -> Result<AeroReport, CliError> {
                 )
             })
             .collect(),
-        unknown,
+        unknown: w.unknown.iter().map(|n| n.to_string()).collect(),
         density: req.density,
         speed: req.speed,
         dimensional: d.dimensional(req.density, req.speed)?,
-        warnings,
+        warnings: w.warnings,
     })
 }
 

@@ -579,7 +579,7 @@ pub fn analyze_linearized(
         .collect();
     let numeric = at_point.nominal()?;
     r.preloads = match eom_model::assemble(&numeric) {
-        Ok(a) => Some(crate::preloads::Preloads::of(&numeric, &a)),
+        Ok(a) => Some(eom_model::preloads::Preloads::of(&numeric, &a)),
         Err(e) => {
             r.warnings
                 .push(format!("static preloads not computed: {e}"));

@@ -100,7 +100,7 @@ impl Analysis {
             t.push_str(&sensitivity_text(sens));
         }
         if let Some(p) = &self.preloads {
-            t.push_str(&p.to_text());
+            t.push_str(&crate::preloads::to_text(p));
         }
 
         t.push_str("Warnings\n");

@@ -136,6 +136,7 @@ impl CliError {
                 | eom_aero::AeroError::Configuration { .. }
                 | eom_aero::AeroError::Geometry { .. }
                 | eom_aero::AeroError::Option { .. }
+                | eom_aero::AeroError::FileKind { .. }
                 | eom_aero::AeroError::Io { .. },
             ) => EXIT_USAGE,
             // A model beyond the memory limit: the size of the input, not a failure.

@@ -10,10 +10,10 @@ use crate::params::ModelChoice;
 use crate::report::mathml;
 use eom_model::Linearizer;
 use eom_sym::closed::{
-    Boundary, CharacteristicPolynomial, ClosedForms, ConditionSource, SecondOrder,
-    StabilityCondition, TransferFunction,
+    Boundary, CharacteristicPolynomial, ClosedForms, SecondOrder, StabilityCondition,
+    SummaryRequest, TransferFunction, latex_boundary, latex_polynomial,
 };
-use eom_sym::{Expr, Latex, Scope, Simplifier};
+use eom_sym::{Expr, Latex, Scope};
 use nalgebra::DMatrix;
 use serde::Serialize;
 
@@ -262,25 +262,7 @@ fn matrix_out(
     m: &DMatrix<Expr>,
     map: &[(Expr, Expr)],
 ) -> Result<MatrixOut, CliError> {
-    let entries: Vec<Expr> = m.iter().copied().collect();
-    let substituted = if map.is_empty() {
-        entries
-    } else {
-        eom_sym::subs_many(&entries, map)?
-    };
-    let simplified = if substituted.iter().all(|e| e.is_number() || e.is_zero()) {
-        substituted
-    } else {
-        let egg = Simplifier::default().run(&substituted)?.roots;
-        // Per entry, the rational normal form where it is shorter still.
-        egg.into_iter()
-            .map(|e| match eom_sym::normalize_rational(e) {
-                Ok(r) if Expr::op_count(&[r]).total() < Expr::op_count(&[e]).total() => r,
-                _ => e,
-            })
-            .collect()
-    };
-    let matrix = DMatrix::from_column_slice(m.nrows(), m.ncols(), &simplified);
+    let matrix = eom_sym::closed::shown_matrix(m, map)?;
     let mut list = Vec::new();
     for j in 0..m.ncols() {
         for i in 0..m.nrows() {
@@ -311,9 +293,21 @@ fn closed_forms(
     notes: &mut Vec<String>,
 ) -> Result<(), CliError> {
     let cf = ClosedForms::default().with_max_states(limit.max(1));
-    let a = report.matrices[0].matrix.clone();
-    // From the descriptor pencil: no nested divisions by the reduced mass matrix.
-    let p = cf.pencil_polynomial(Some(e), f)?;
+    let solve_for = match &req.solve_for {
+        Some(name) => Some(model.scope.lookup(name)?),
+        None => None,
+    };
+    let m = &report.matrices;
+    let summary = cf.summary(
+        (e, f),
+        [&m[0].matrix, &m[1].matrix, &m[2].matrix, &m[3].matrix],
+        &SummaryRequest {
+            stability: req.stability,
+            solve_for,
+            transfer: req.transfer,
+        },
+    )?;
+    let p = &summary.polynomial;
     if !p.normalized {
         notes.push(
             "the characteristic polynomial's coefficients are exact but not in normal form (a \
@@ -322,13 +316,12 @@ fn closed_forms(
                 .into(),
         );
     }
-    // Shown factored where they factor (`kf*kr*(a + b)^2`, not the expansion).
-    let shown = factored_all(&cf, &p.polynomial.coefficients);
-    report.latex.polynomial = Some(polynomial_latex(&shown));
-    report.mathml.polynomial = Some(mathml::polynomial(&shown, "s"));
-    report.characteristic_polynomial = Some(polynomial_out(&p, &shown));
-    if let Some(so) = cf.second_order(&p)? {
-        report.second_order = Some(second_order_out(&so));
+    let shown = &summary.shown;
+    report.latex.polynomial = Some(latex_polynomial(shown));
+    report.mathml.polynomial = Some(mathml::polynomial(shown, "s"));
+    report.characteristic_polynomial = Some(polynomial_out(p, shown));
+    if let Some(so) = &summary.second_order {
+        report.second_order = Some(second_order_out(so));
         report.latex.second_order = Some((
             Latex(so.natural_frequency).to_string(),
             Latex(so.damping_ratio).to_string(),
@@ -338,39 +331,29 @@ fn closed_forms(
             mathml::mathml(so.damping_ratio),
         ));
     }
-    if req.stability || req.solve_for.is_some() {
-        let x = match &req.solve_for {
-            Some(name) => Some(model.scope.lookup(name)?),
-            None => None,
-        };
-        let conds = cf.stability_conditions(&p)?;
-        let coefficients = &p.polynomial.coefficients;
+    if let Some(conds) = &summary.conditions {
         let mut out = Vec::new();
-        for c in &conds {
-            if !c.satisfiable {
-                let never = never_reason(c, coefficients);
+        for cs in conds {
+            let c = &cs.condition;
+            if let Some(never) = &cs.never {
                 report
                     .latex
                     .conditions
                     .push(format!("\\text{{never: {never}}}"));
                 report.mathml.conditions.push(format!(
                     "<mtext>never: {}</mtext>",
-                    crate::plot::shape::escape(&never)
+                    crate::plot::shape::escape(never)
                 ));
                 out.push(ConditionOut {
                     expression: c.expression.to_string(),
                     satisfiable: false,
-                    never: Some(never),
-                    source: source_name(c.source),
+                    never: Some(never.clone()),
+                    source: c.source.to_string(),
                     divided_out: c.divided_out.iter().map(|x| x.to_string()).collect(),
                     boundary: None,
                 });
                 continue;
             }
-            let boundary = match x {
-                Some(x) => cf.solve_boundary(c.expression, x)?,
-                None => None,
-            };
             report
                 .latex
                 .conditions
@@ -379,134 +362,45 @@ fn closed_forms(
                 "<mrow>{}<mo>&gt;</mo><mn>0</mn></mrow>",
                 mathml::mathml(c.expression)
             ));
-            if let Some(b) = &boundary {
-                report.latex.boundaries.push(boundary_latex(b));
+            if let Some(b) = &cs.boundary {
+                report.latex.boundaries.push(latex_boundary(b));
             }
-            out.push(condition_out(c, boundary.as_ref()));
+            out.push(condition_out(c, cs.boundary.as_ref()));
         }
-        report.stability_verdict = Some(match out.iter().find(|c| !c.satisfiable) {
-            Some(c) => format!("never: {}", c.never.as_deref().unwrap_or_default()),
-            None if out.is_empty() => "always".into(),
-            None => "when all conditions hold".into(),
-        });
+        report.stability_verdict = summary.verdict();
         report.stability = Some(out);
     }
-    if req.transfer {
-        let m = &report.matrices;
-        let (b, c, d) = (&m[1].matrix, &m[2].matrix, &m[3].matrix);
-        let name = |v: &[String], k: usize, what: &str| {
-            v.get(k)
-                .cloned()
-                .unwrap_or_else(|| format!("{what}{}", k + 1))
-        };
-        for out in 0..c.nrows() {
-            for inp in 0..b.ncols() {
-                let mut tf = cf.transfer_function([&a, b, c, d], out, inp)?;
-                tf.numerator.coefficients = factored_all(&cf, &tf.numerator.coefficients);
-                tf.denominator.coefficients = factored_all(&cf, &tf.denominator.coefficients);
-                let (o, i) = (
-                    name(&names.outputs, out, "y"),
-                    name(&names.inputs, inp, "u"),
-                );
-                report.latex.transfer.push((
-                    o.clone(),
-                    i.clone(),
-                    format!(
-                        "\\frac{{{}}}{{{}}}",
-                        polynomial_latex(&tf.numerator.coefficients),
-                        polynomial_latex(&tf.denominator.coefficients)
-                    ),
-                ));
-                report.mathml.transfer.push((
-                    o.clone(),
-                    i.clone(),
-                    format!(
-                        "<mfrac>{}{}</mfrac>",
-                        mathml::polynomial(&tf.numerator.coefficients, "s"),
-                        mathml::polynomial(&tf.denominator.coefficients, "s")
-                    ),
-                ));
-                report.transfer_functions.push(transfer_out(&tf, o, i));
-            }
-        }
+    let name = |v: &[String], k: usize, what: &str| {
+        v.get(k)
+            .cloned()
+            .unwrap_or_else(|| format!("{what}{}", k + 1))
+    };
+    for tf in &summary.transfer_functions {
+        let (o, i) = (
+            name(&names.outputs, tf.output, "y"),
+            name(&names.inputs, tf.input, "u"),
+        );
+        report.latex.transfer.push((
+            o.clone(),
+            i.clone(),
+            format!(
+                "\\frac{{{}}}{{{}}}",
+                latex_polynomial(&tf.numerator.coefficients),
+                latex_polynomial(&tf.denominator.coefficients)
+            ),
+        ));
+        report.mathml.transfer.push((
+            o.clone(),
+            i.clone(),
+            format!(
+                "<mfrac>{}{}</mfrac>",
+                mathml::polynomial(&tf.numerator.coefficients, "s"),
+                mathml::polynomial(&tf.denominator.coefficients, "s")
+            ),
+        ));
+        report.transfer_functions.push(transfer_out(tf, o, i));
     }
     Ok(())
-}
-
-/// `cₙ sⁿ + … + c₀` in LaTeX, highest power first.
-fn polynomial_latex(c: &[Expr]) -> String {
-    let mut t = String::new();
-    for (k, &x) in c.iter().enumerate().rev() {
-        if x.is_zero() {
-            continue;
-        }
-        let (neg, x) = if x.sign().is_nonpos() && x.as_f64().is_some() {
-            (true, -x)
-        } else {
-            (false, x)
-        };
-        let coef = Latex(x).to_string();
-        let coef = if k > 0 && x.is_one() {
-            String::new()
-        } else if k > 0 && matches!(x.view(), eom_sym::ExprView::Sum { .. }) {
-            format!("\\left({coef}\\right)")
-        } else {
-            coef
-        };
-        let power = match k {
-            0 => String::new(),
-            1 => "s".to_string(),
-            _ => format!("s^{{{k}}}"),
-        };
-        let sep = if coef.is_empty() || power.is_empty() {
-            ""
-        } else {
-            " "
-        };
-        let sign = match (t.is_empty(), neg) {
-            (true, true) => "-",
-            (true, false) => "",
-            (false, true) => " - ",
-            (false, false) => " + ",
-        };
-        t.push_str(&format!("{sign}{coef}{sep}{power}"));
-    }
-    if t.is_empty() { "0".into() } else { t }
-}
-
-/// Each expression factored where it factors.
-fn factored_all(cf: &ClosedForms, c: &[Expr]) -> Vec<Expr> {
-    c.iter().map(|&x| cf.factored(x).unwrap_or(x)).collect()
-}
-
-/// Why a condition that can never hold fails, in words.
-fn never_reason(c: &StabilityCondition, coefficients: &[Expr]) -> String {
-    match c.source {
-        ConditionSource::Coefficient(k) if c.expression.is_zero() => {
-            // A mechanical system without damping has only even powers of s.
-            let undamped = coefficients
-                .iter()
-                .enumerate()
-                .all(|(j, x)| j % 2 == 0 || x.is_zero());
-            format!(
-                "the s^{k} coefficient vanishes{}",
-                if undamped { " (no damping)" } else { "" }
-            )
-        }
-        ConditionSource::Coefficient(k) => {
-            format!("the s^{k} coefficient is negative for all parameter values")
-        }
-        ConditionSource::HurwitzMinor(k) => {
-            format!("the Hurwitz determinant Δ{k} is negative for all parameter values")
-        }
-    }
-}
-
-fn source_name(s: ConditionSource) -> String {
-    match s {
-        ConditionSource::Coefficient(k) => format!("coefficient {k}"),
-        ConditionSource::HurwitzMinor(k) => format!("hurwitz {k}"),
-    }
 }
 
 fn polynomial_out(p: &CharacteristicPolynomial, shown: &[Expr]) -> PolynomialOut {
@@ -530,15 +424,10 @@ fn condition_out(c: &StabilityCondition, b: Option<&Boundary>) -> ConditionOut {
         expression: c.expression.to_string(),
         satisfiable: true,
         never: None,
-        source: source_name(c.source),
+        source: c.source.to_string(),
         divided_out: c.divided_out.iter().map(|x| x.to_string()).collect(),
         boundary: b.map(|b| b.roots.iter().map(|r| r.to_string()).collect()),
     }
-}
-
-fn boundary_latex(b: &Boundary) -> String {
-    let roots: Vec<String> = b.roots.iter().map(|r| Latex(*r).to_string()).collect();
-    format!("{} \\in \\{{{}\\}}", Latex(b.parameter), roots.join(", "))
 }
 
 fn transfer_out(tf: &TransferFunction, output: String, input: String) -> TransferOut {

@@ -122,6 +122,7 @@ pub mod file;
 pub mod geometry;
 pub mod items;
 pub mod linearize;
+pub mod preloads;
 pub mod reduce;
 pub mod robust;
 pub mod sensitivity;

@@ -9,6 +9,7 @@
 
 #![forbid(unsafe_code)]
 
+mod aero;
 mod errors;
 mod model;
 mod points;
@@ -31,7 +32,9 @@ fn model_names() -> Vec<String> {
 fn _eom(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model_names, m)?)?;
     m.add_function(wrap_pyfunction!(model::modes, m)?)?;
+    m.add_function(wrap_pyfunction!(aero::aero, m)?)?;
     m.add_class::<model::NativeModel>()?;
+    m.add_class::<model::NativeLinear>()?;
     m.add("MAX_SMALL_STATES", eom_num::small_eigen::MAX_N)?;
     Ok(())
 }

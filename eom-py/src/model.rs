@@ -47,21 +47,50 @@ impl NativeModel {
             .map_err(eom_error)
     }
 
+    /// The linearization at the point: the cached reduction for the symbolic method (pivots
+    /// chosen at the defaults, as `eom analyze --method symbolic` reduces at the defaults and
+    /// evaluates at the point), else the method at the point.
+    fn linearization(
+        &self,
+        method: Method,
+        values: &[(String, f64)],
+    ) -> PyResult<eom_model::Linearization> {
+        let ov = self.overrides(values);
+        let at_point = self.source.build(&ov)?;
+        if method == Method::Symbolic {
+            let c = self.compiled()?;
+            let v = at_point
+                .scope
+                .values_with(&ov)
+                .map_err(|e| model_error(e.into()))?;
+            return c.linearize(&v).map_err(model_error);
+        }
+        Linearizer::new(&at_point)
+            .method(method)
+            .run()
+            .map_err(model_error)
+    }
+
     /// Overrides by name, each checked against the parameter list.
     fn overrides<'a>(&self, values: &'a [(String, f64)]) -> Vec<(&'a str, f64)> {
         values.iter().map(|(k, v)| (k.as_str(), *v)).collect()
     }
 }
 
-/// The bytes of a matrix in row-major order (NumPy's default).
-fn row_major(m: &DMatrix<f64>) -> Vec<u8> {
-    let mut out = Vec::with_capacity(m.len() * 8);
+/// The parameter values of a dict name → number (the keyword arguments of `linearize`).
+fn values_of(d: &Bound<'_, PyDict>) -> PyResult<Vec<(String, f64)>> {
+    d.iter()
+        .map(|(k, v)| Ok((k.extract::<String>()?, v.extract::<f64>()?)))
+        .collect()
+}
+
+/// Appends the bytes of a matrix in row-major order (NumPy's default).
+fn row_major_into(m: &DMatrix<f64>, out: &mut Vec<u8>) {
     for i in 0..m.nrows() {
         for j in 0..m.ncols() {
             out.extend_from_slice(&m[(i, j)].to_ne_bytes());
         }
     }
-    out
 }
 
 fn method_of(name: &str) -> PyResult<Method> {
@@ -133,56 +162,61 @@ impl NativeModel {
         })
     }
 
-    /// Linearizes at the point: a dict of the matrices (row-major bytes), their shapes, the
-    /// names and units, the warnings and the structural zeros.
-    fn linearize<'py>(
+    /// Linearizes at the point (see [`NativeModel::linearization`]): the result stays in
+    /// Rust until Python asks for a part of it.
+    fn linearize(
         &self,
-        py: Python<'py>,
+        py: Python<'_>,
+        method: &str,
+        values: &Bound<'_, PyDict>,
+    ) -> PyResult<NativeLinear> {
+        let m = method_of(method)?;
+        let values = values_of(values)?;
+        let lin = py.detach(|| self.linearization(m, &values))?;
+        Ok(NativeLinear { lin })
+    }
+
+    /// The Rust-only time of `linearize` (no conversions to or from Python), in seconds per
+    /// call over `repeat` calls: the baseline of the Python benchmark.
+    fn _linearize_seconds(
+        &self,
+        py: Python<'_>,
         method: &str,
         values: Vec<(String, f64)>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+        repeat: usize,
+    ) -> PyResult<f64> {
         let m = method_of(method)?;
-        let ov = self.overrides(&values);
-        let lin = py.detach(|| -> PyResult<eom_model::Linearization> {
-            let at_point = self.source.build(&ov)?;
-            if m == Method::Symbolic {
-                // The cached reduction (pivots chosen at the defaults), as `eom analyze
-                // --method symbolic` reduces at the defaults and evaluates at the point.
-                let c = self.compiled()?;
-                let v = at_point
-                    .scope
-                    .values_with(&ov)
-                    .map_err(|e| model_error(e.into()))?;
-                return c.linearize(&v).map_err(model_error);
+        py.detach(|| {
+            let t = std::time::Instant::now();
+            for _ in 0..repeat.max(1) {
+                std::hint::black_box(self.linearization(m, &values)?);
             }
-            Linearizer::new(&at_point)
-                .method(m)
-                .run()
-                .map_err(model_error)
-        })?;
-        let ss = &lin.state_space;
-        let d = PyDict::new(py);
-        for (key, mat) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d)] {
-            d.set_item(key, PyBytes::new(py, &row_major(mat)))?;
-            d.set_item(format!("{key}_shape"), (mat.nrows(), mat.ncols()))?;
-        }
-        let names = &ss.names;
-        d.set_item("states", &names.states)?;
-        d.set_item("inputs", &names.inputs)?;
-        d.set_item("outputs", &names.outputs)?;
-        d.set_item("input_units", &names.input_units)?;
-        d.set_item("output_units", &names.output_units)?;
-        d.set_item("warnings", &lin.warnings)?;
-        d.set_item("structural_zeros", &lin.structural_zeros)?;
-        d.set_item(
-            "method",
-            match lin.method {
-                Method::Numeric => "numeric",
-                Method::Robust => "robust",
-                Method::Symbolic => "symbolic",
-            },
-        )?;
-        Ok(d)
+            Ok(t.elapsed().as_secs_f64() / repeat.max(1) as f64)
+        })
+    }
+
+    /// The static preloads at the point (as `eom analyze` reports them): `(statics, items)`
+    /// with per item `(item, body, force, moment, tension, unique, computed)`.
+    fn preloads(&self, py: Python<'_>, values: Vec<(String, f64)>) -> PyResult<PreloadsOut> {
+        let ov = self.overrides(&values);
+        py.detach(|| {
+            let at_point = self.source.build(&ov)?;
+            let numeric = at_point.nominal().map_err(model_error)?;
+            let a = eom_model::assemble(&numeric)
+                .map_err(|e| eom_error(format!("static preloads not computed: {e}")))?;
+            let p = eom_model::preloads::Preloads::of(&numeric, &a);
+            Ok((
+                p.statics,
+                p.items
+                    .into_iter()
+                    .map(|r| {
+                        (
+                            r.item, r.body, r.force, r.moment, r.tension, r.unique, r.computed,
+                        )
+                    })
+                    .collect(),
+            ))
+        })
     }
 
     /// Shapes of A, B, C, D of the compiled model (compiling it on first use).
@@ -287,15 +321,19 @@ impl NativeModel {
         })
     }
 
-    /// The matrices in closed form (`eom symbolic`): see `crate::symbolic`.
-    #[pyo3(signature = (keep=None))]
+    /// The closed forms (`eom symbolic`): see `crate::symbolic`.
+    #[pyo3(signature = (keep=None, stability=true, transfer=true, solve_for=None, max_states=8))]
     fn symbolic<'py>(
         &self,
         py: Python<'py>,
         keep: Option<Vec<String>>,
+        stability: bool,
+        transfer: bool,
+        solve_for: Option<String>,
+        max_states: usize,
     ) -> PyResult<Bound<'py, PyDict>> {
         let keep = keep.unwrap_or_else(|| self.param_names.clone());
-        for k in &keep {
+        for k in keep.iter().chain(&solve_for) {
             if !self.param_names.contains(k) {
                 return Err(eom_error(format!(
                     "model `{}` has no parameter `{k}`; its parameters are: {}",
@@ -304,8 +342,20 @@ impl NativeModel {
                 )));
             }
         }
+        if let Some(x) = solve_for.as_ref().filter(|x| !keep.contains(x)) {
+            return Err(eom_error(format!(
+                "solve_for: `{x}` is substituted by its default; keep it symbolic (keep=[…, \"{x}\"])"
+            )));
+        }
+        let req = crate::symbolic::Request {
+            keep,
+            stability,
+            transfer,
+            solve_for,
+            max_states,
+        };
         let out =
-            py.detach(|| crate::symbolic::closed_forms(&self.source, &self.param_names, &keep))?;
+            py.detach(|| crate::symbolic::closed_forms(&self.source, &self.param_names, &req))?;
         out.into_dict(py)
     }
 
@@ -313,6 +363,84 @@ impl NativeModel {
         format!("<eom model `{}`>", self.name)
     }
 }
+
+/// The preloads as returned to Python: the statics and per item (item, body, force, moment,
+/// tension, unique, computed).
+type PreloadsOut = (
+    &'static str,
+    Vec<(String, String, [f64; 3], [f64; 3], Option<f64>, bool, bool)>,
+);
+
+/// A linearization held in Rust: Python converts the parts it reads (`LinearModel` asks
+/// lazily), so that creating one costs little beyond the linearization itself.
+#[pyclass(module = "eom._eom", frozen)]
+pub struct NativeLinear {
+    lin: eom_model::Linearization,
+}
+
+#[pymethods]
+impl NativeLinear {
+    /// A, B, C, D one after the other, each row-major, as one `bytes`, and their shapes.
+    fn matrices<'py>(&self, py: Python<'py>) -> (Bound<'py, PyBytes>, [(usize, usize); 4]) {
+        let ss = &self.lin.state_space;
+        let mats = [&ss.a, &ss.b, &ss.c, &ss.d];
+        let size: usize = mats.iter().map(|m| m.len()).sum();
+        let mut out = Vec::with_capacity(size * 8);
+        for m in mats {
+            row_major_into(m, &mut out);
+        }
+        (PyBytes::new(py, &out), mats.map(|m| (m.nrows(), m.ncols())))
+    }
+
+    /// State, input and output names; input and output units.
+    fn names(&self) -> NamesOut {
+        let n = &self.lin.state_space.names;
+        (
+            n.states.clone(),
+            n.inputs.clone(),
+            n.outputs.clone(),
+            n.input_units.clone(),
+            n.output_units.clone(),
+        )
+    }
+
+    /// The warnings of the reduction (or the robust path).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.lin.warnings.clone()
+    }
+
+    /// The zero eigenvalues the model's structure proves, one description each.
+    #[getter]
+    fn structural_zeros(&self) -> Vec<String> {
+        self.lin.structural_zeros.clone()
+    }
+
+    /// `numeric`, `robust` or `symbolic`.
+    #[getter]
+    fn method(&self) -> &'static str {
+        match self.lin.method {
+            Method::Numeric => "numeric",
+            Method::Robust => "robust",
+            Method::Symbolic => "symbolic",
+        }
+    }
+
+    /// The modes of A (see [`modes`]), without a round trip of A through Python.
+    fn modes(&self, py: Python<'_>) -> PyResult<Vec<ModeRow>> {
+        let a = &self.lin.state_space.a;
+        py.detach(|| modes_of(a.clone(), self.lin.structural_zeros.len()))
+    }
+}
+
+/// State, input and output names; input and output units.
+type NamesOut = (
+    Vec<String>,
+    Vec<String>,
+    Vec<String>,
+    Vec<String>,
+    Vec<String>,
+);
 
 /// One mode as returned to Python: Re λ, Im λ, frequency (Hz), damping ratio, time
 /// constant, kind, stability.
@@ -334,46 +462,49 @@ pub fn modes(
             a.len()
         )));
     }
-    py.detach(|| {
-        let a = DMatrix::from_row_slice(n, n, &a);
-        let ss = StateSpace {
-            a,
-            b: DMatrix::zeros(n, 0),
-            c: DMatrix::zeros(0, n),
-            d: DMatrix::zeros(0, 0),
-            phys: DMatrix::zeros(0, n),
-            names: eom_num::SignalNames {
-                states: (1..=n).map(|k| format!("x{k}")).collect(),
-                ..Default::default()
-            },
-        };
-        let opts = ModeOptions {
-            shapes: false,
-            structural_zeros,
-            ..ModeOptions::default()
-        };
-        let m = Modes::compute_with(&ss, &opts).map_err(eom_error)?;
-        Ok(m.modes
-            .iter()
-            .map(|m| {
-                (
-                    m.eigenvalue.re,
-                    m.eigenvalue.im,
-                    m.natural_frequency_hz,
-                    m.damping_ratio,
-                    m.time_constant,
-                    match m.kind {
-                        ModeKind::Zero => "zero",
-                        ModeKind::Real => "real",
-                        ModeKind::Oscillatory => "oscillatory",
-                    },
-                    match m.stability {
-                        Stability::Stable => "stable",
-                        Stability::Marginal => "marginal",
-                        Stability::Unstable => "unstable",
-                    },
-                )
-            })
-            .collect())
-    })
+    py.detach(|| modes_of(DMatrix::from_row_slice(n, n, &a), structural_zeros))
+}
+
+/// The modes of the state matrix `a` (see [`modes`]).
+fn modes_of(a: DMatrix<f64>, structural_zeros: usize) -> PyResult<Vec<ModeRow>> {
+    let n = a.nrows();
+    let ss = StateSpace {
+        a,
+        b: DMatrix::zeros(n, 0),
+        c: DMatrix::zeros(0, n),
+        d: DMatrix::zeros(0, 0),
+        phys: DMatrix::zeros(0, n),
+        names: eom_num::SignalNames {
+            states: (1..=n).map(|k| format!("x{k}")).collect(),
+            ..Default::default()
+        },
+    };
+    let opts = ModeOptions {
+        shapes: false,
+        structural_zeros,
+        ..ModeOptions::default()
+    };
+    let m = Modes::compute_with(&ss, &opts).map_err(eom_error)?;
+    Ok(m.modes
+        .iter()
+        .map(|m| {
+            (
+                m.eigenvalue.re,
+                m.eigenvalue.im,
+                m.natural_frequency_hz,
+                m.damping_ratio,
+                m.time_constant,
+                match m.kind {
+                    ModeKind::Zero => "zero",
+                    ModeKind::Real => "real",
+                    ModeKind::Oscillatory => "oscillatory",
+                },
+                match m.stability {
+                    Stability::Stable => "stable",
+                    Stability::Marginal => "marginal",
+                    Stability::Unstable => "unstable",
+                },
+            )
+        })
+        .collect())
 }

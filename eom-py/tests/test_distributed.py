@@ -54,3 +54,19 @@ def test_dask_takes_a_dict_of_points(client):
         eom.distributed.stability(bike, {"v": v}, client=client, chunk=500),
         bike.stability({"v": v}),
     )
+
+
+def test_points_do_not_travel_in_the_task_graph(client):
+    # Dask warns when a task graph is large ("Sending large graph"): the chunks are scattered
+    # as data instead. With the threshold lowered to 200 kB, 6 000 points (1.2 MB) embedded
+    # in the graph would warn; scattered, the graph holds keys only.
+    import warnings
+
+    import dask
+
+    bike, pts = bicycle_points(6_000, seed=11)
+    with dask.config.set({"distributed.admin.large-graph-warning-threshold": "200kB"}):
+        with warnings.catch_warnings():
+            warnings.filterwarnings("error", message=".*large graph.*")
+            remote = eom.distributed.stability(bike, pts, client=client, chunk=1_500)
+    assert_identical(remote, bike.stability(pts))

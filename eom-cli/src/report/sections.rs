@@ -108,7 +108,7 @@ pub fn preloads(p: &mut Page, cx: &Context<'_>) {
          point; a spring's tension positive when it pulls). The statics is {}.",
         pre.statics
     ));
-    let (rows, quiet) = pre.rows();
+    let (rows, quiet) = crate::preloads::rows(pre);
     if !rows.is_empty() {
         p.table(&crate::preloads::COLUMNS, &rows, 2);
     }

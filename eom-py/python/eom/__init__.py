@@ -11,17 +11,41 @@ stability sweeps on a Dask cluster. See docs/python.md of the eom repository.
 
 from __future__ import annotations
 
+from ._aero import Reference, WingDerivatives, aero
 from ._errors import EomError, ModelFileError
-from ._model import LinearModel, Mode, Model, Stability, Warning, load, models
+from ._model import (
+    Condition,
+    LinearModel,
+    Mode,
+    Model,
+    Polynomial,
+    Preload,
+    Preloads,
+    Stability,
+    Symbolic,
+    TransferFunction,
+    Warning,
+    load,
+    models,
+)
 
 __all__ = [
+    "Condition",
     "EomError",
     "LinearModel",
     "Mode",
     "Model",
     "ModelFileError",
+    "Polynomial",
+    "Preload",
+    "Preloads",
+    "Reference",
     "Stability",
+    "Symbolic",
+    "TransferFunction",
     "Warning",
+    "WingDerivatives",
+    "aero",
     "load",
     "models",
 ]

@@ -40,7 +40,9 @@ def stability(
     # A fresh key per call (hash=False): a content-hashed key would be shared with an
     # earlier call whose release can race with this one ("lost dependencies").
     remote_model = client.scatter(model, broadcast=True, hash=False)
-    parts = [p[i : i + chunk] for i in range(0, p.shape[0], chunk)]
+    # The chunks go to the workers as data (scatter), not inside the task graph: arrays
+    # embedded in the graph pass through the scheduler (Dask warns of a "large graph").
+    parts = client.scatter([p[i : i + chunk] for i in range(0, p.shape[0], chunk)], hash=False)
     futures = client.map(_chunk_stability, [remote_model] * len(parts), parts, pure=False)
     results = client.gather(futures)
     if not results:

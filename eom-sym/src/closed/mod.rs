@@ -32,10 +32,14 @@
 mod det;
 mod hurwitz;
 mod modal;
+mod summary;
 mod transfer;
 
 pub use hurwitz::{Boundary, ConditionSource, StabilityCondition, hurwitz_minor};
 pub use modal::SecondOrder;
+pub use summary::{
+    ConditionSummary, Summary, SummaryRequest, latex_boundary, latex_polynomial, shown_matrix,
+};
 pub use transfer::TransferFunction;
 
 use crate::error::SymError;
