@@ -10,8 +10,9 @@ use crate::simplify::rational_fn::{Fail, RationalField, Rf};
 /// Where a stability condition comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ConditionSource {
-    /// The coefficient of `sᵏ` must be positive (the leading coefficient's sign is not fixed
-    /// by the parameters' declared signs when `k` is the degree).
+    /// The coefficient of `sᵏ` must be positive; where the declared signs leave the leading
+    /// coefficient's sign open, it must have the leading coefficient's sign (the condition is
+    /// the product of the two).
     Coefficient(usize),
     /// The Hurwitz determinant `Δₖ` must be positive.
     HurwitzMinor(usize),
@@ -88,6 +89,7 @@ impl ClosedForms {
                     (source, f)
                 })
                 .collect();
+            scale_by_leading(&mut factored, n);
             // Simplest first, so that a condition such as `u > 0` is established before the
             // longer ones that carry the factor `u`.
             factored.sort_by_key(|(_, f)| {
@@ -160,6 +162,41 @@ impl ClosedForms {
                 roots,
             }))
         })
+    }
+}
+
+/// Where the declared signs leave the leading coefficient `aₙ`'s sign open, the conditions
+/// are those of the polynomial divided by `aₙ`: `aₖ/aₙ > 0` becomes `aₖ·aₙ > 0`, and
+/// `Δₖ(a/aₙ) = Δₖ(a)/aₙᵏ > 0` becomes `Δₖ·aₙ > 0` for odd `k` (even `k` keep `Δₖ > 0`);
+/// `aₙ > 0` itself is no condition (`m s² + c s + k` is as stable with `m, c, k < 0`). A factor
+/// of `aₙ` already in a condition cancels (`x·x > 0` only excludes `x = 0`, where the degree
+/// drops). Where `aₙ`'s sign is known nothing changes.
+fn scale_by_leading(factored: &mut Vec<(ConditionSource, Vec<Factor>)>, n: usize) {
+    let Some(at) = factored
+        .iter()
+        .position(|(s, _)| *s == ConditionSource::Coefficient(n))
+    else {
+        return;
+    };
+    if n == 0 || factored[at].1.iter().all(|f| f.sign.is_some()) {
+        return;
+    }
+    let (_, lead) = factored.remove(at);
+    for (source, factors) in factored.iter_mut() {
+        if matches!(source, ConditionSource::HurwitzMinor(k) if *k % 2 == 0) {
+            continue;
+        }
+        for f in &lead {
+            match factors.iter().position(|x| x.expr == f.expr) {
+                Some(i) => {
+                    factors.remove(i);
+                }
+                None => factors.push(*f),
+            }
+        }
+        if factors.is_empty() {
+            factors.push(Factor::of(Expr::one()));
+        }
     }
 }
 
