@@ -3,6 +3,11 @@
 //! and 16 states the stack kernel `eigenvalues_small` (which `eigenvalues_in` takes up to 16
 //! states) against faer's QR algorithm on the same matrix (`eigenvalues_faer_in`).
 //!
+//! `estimates`: the eigenvalues with their error estimates (`eigenvalues_with_errors`, what a
+//! sweep computes where a verdict could depend on them) on the stack path (vectors by inverse
+//! iteration) against faer's eigenvectors (`eigenvalues_with_errors_faer`, the path before),
+//! with the eigenvalues alone (`eigenvalues_small`) as the baseline, for 3, 6 and 16 states.
+//!
 //! Run: `cargo bench -p eom-num --bench eigen`.
 
 use std::hint::black_box;
@@ -11,6 +16,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use eom_num::StateSpace;
 use eom_num::modes::{
     EigenvaluesWorkspace, Modes, eigenvalues, eigenvalues_faer_in, eigenvalues_in,
+    eigenvalues_with_errors, eigenvalues_with_errors_faer,
 };
 use eom_num::small_eigen::eigenvalues_small;
 use nalgebra::DMatrix;
@@ -74,5 +80,26 @@ fn bench(cr: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+fn bench_estimates(cr: &mut Criterion) {
+    let mut group = cr.benchmark_group("estimates");
+    for n in [3usize, 6, 16] {
+        let a = matrix(n);
+        let mut out = vec![Complex64::new(0.0, 0.0); n];
+        group.bench_with_input(BenchmarkId::new("eigenvalues_only", n), &a, |b, a| {
+            b.iter(|| {
+                eigenvalues_small(black_box(a.as_slice()), n, &mut out).unwrap();
+                black_box(&out);
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("stack", n), &a, |b, a| {
+            b.iter(|| black_box(eigenvalues_with_errors(black_box(a)).unwrap()))
+        });
+        group.bench_with_input(BenchmarkId::new("faer", n), &a, |b, a| {
+            b.iter(|| black_box(eigenvalues_with_errors_faer(black_box(a)).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_estimates);
 criterion_main!(benches);

@@ -98,13 +98,32 @@ pub(crate) fn eigenvalues_with_errors_small(
 
 /// The condition number `κ` (capped at 1/ε) and the componentwise number of the eigenvalue
 /// `lambda` of the balanced n × n matrix `h` of Frobenius norm `norm`; `None` when a vector
-/// is not finite.
+/// is not finite. One instance per size, so that nothing beyond the n × n is initialised.
 fn condition_numbers(h: &[f64], n: usize, norm: f64, lambda: Complex64) -> Option<(f64, f64)> {
-    let x = right_vector(h, n, norm, lambda, false)?;
+    macro_rules! sizes {
+        ($($k:literal)*) => {
+            match n {
+                $($k => condition_numbers_fixed::<$k>(h, norm, lambda),)*
+                _ => None,
+            }
+        };
+    }
+    sizes!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16)
+}
+
+/// A complex M × M matrix by columns: `m[j][i]` is row i of column j.
+type Fixed<const M: usize> = [[Complex64; M]; M];
+
+fn condition_numbers_fixed<const M: usize>(
+    h: &[f64],
+    norm: f64,
+    lambda: Complex64,
+) -> Option<(f64, f64)> {
+    let x = right_vector::<M>(h, norm, lambda, false)?;
     // yᴴ Ã = λ yᴴ  ⇔  Ãᵀ ȳ = λ ȳ: the right vector of Ãᵀ is ȳ, and yᴴx = Σ ȳ_i x_i.
-    let yc = right_vector(h, n, norm, lambda, true)?;
+    let yc = right_vector::<M>(h, norm, lambda, true)?;
     let (mut xx, mut yy, mut d) = (0.0, 0.0, Complex64::new(0.0, 0.0));
-    for i in 0..n {
+    for i in 0..M {
         xx += x[i].norm_sqr();
         yy += yc[i].norm_sqr();
         d += yc[i] * x[i];
@@ -116,15 +135,12 @@ fn condition_numbers(h: &[f64], n: usize, norm: f64, lambda: Complex64) -> Optio
     } else {
         1.0 / f64::EPSILON
     };
-    // |y|ᵀ |Ã| |x| over the nonzero entries of Ã.
+    // |y|ᵀ |Ã| |x|.
+    let ax: [f64; M] = core::array::from_fn(|j| x[j].norm());
     let mut num = 0.0;
-    for i in 0..n {
-        let yi = yc[i].norm();
-        if yi == 0.0 {
-            continue;
-        }
-        let row: f64 = (0..n).map(|j| h[j * n + i].abs() * x[j].norm()).sum();
-        num += yi * row;
+    for i in 0..M {
+        let row: f64 = (0..M).map(|j| h[j * M + i].abs() * ax[j]).sum();
+        num += yc[i].norm() * row;
     }
     let componentwise = if den > 0.0 { num / den } else { f64::INFINITY };
     Some((kappa, componentwise))
@@ -132,49 +148,46 @@ fn condition_numbers(h: &[f64], n: usize, norm: f64, lambda: Complex64) -> Optio
 
 /// A right eigenvector of `Ã − λI` (of `Ãᵀ − λI` when `transpose`) by inverse iteration
 /// (module documentation), scaled to largest entry 1; `None` when not finite.
-fn right_vector(
+fn right_vector<const M: usize>(
     h: &[f64],
-    n: usize,
     norm: f64,
     lambda: Complex64,
     transpose: bool,
-) -> Option<[Complex64; MAX_N]> {
-    let zero = Complex64::new(0.0, 0.0);
-    // M = Ã − λI (or its transpose), column-major.
-    let mut m = [zero; MAX_N * MAX_N];
-    for j in 0..n {
-        for i in 0..n {
-            let v = if transpose { h[i * n + j] } else { h[j * n + i] };
-            m[j * n + i] = Complex64::new(v, 0.0);
+) -> Option<[Complex64; M]> {
+    // M = Ã − λI (or its transpose), by columns.
+    let mut m: Fixed<M> = [[Complex64::new(0.0, 0.0); M]; M];
+    for (j, col) in m.iter_mut().enumerate() {
+        for (i, v) in col.iter_mut().enumerate() {
+            let hij = if transpose { h[i * M + j] } else { h[j * M + i] };
+            *v = Complex64::new(hij, 0.0);
         }
-        m[j * n + j] -= lambda;
+        col[j] -= lambda;
     }
     // The floor of the pivots: a perturbation of the size of λ's own backward error.
     let floor = (f64::EPSILON * norm).max(f64::MIN_POSITIVE / f64::EPSILON);
-    let mut piv = [0usize; MAX_N];
-    lu(&mut m, n, floor, &mut piv);
+    let piv = lu(&mut m, floor);
     // First step: U x = e. Accepted when its residual is at the level of λ's backward
     // error; otherwise full steps `(Ã − λI) x' = x`, keeping the vector of least residual (a
     // full step from a badly placed start can lose what the first gained).
-    let mut x = [Complex64::new(1.0, 0.0); MAX_N];
-    back_substitute(&m, n, &mut x);
-    normalize(&mut x, n)?;
-    let good = ACCEPT * n as f64 * f64::EPSILON * norm;
-    let mut best = (residual(h, n, lambda, transpose, &x), x);
+    let mut x = [Complex64::new(1.0, 0.0); M];
+    back_substitute(&m, &mut x);
+    normalize(&mut x)?;
+    let good = ACCEPT * M as f64 * f64::EPSILON * norm;
+    let mut best = (residual(h, lambda, transpose, &x), x);
     for _ in 0..FULL_STEPS {
         if best.0 <= good {
             break;
         }
-        for (k, &p) in piv[..n].iter().enumerate() {
+        for (k, &p) in piv.iter().enumerate() {
             x.swap(k, p);
             let xk = x[k];
-            for i in k + 1..n {
-                x[i] -= m[k * n + i] * xk;
+            for i in k + 1..M {
+                x[i] -= m[k][i] * xk;
             }
         }
-        back_substitute(&m, n, &mut x);
-        normalize(&mut x, n)?;
-        let r = residual(h, n, lambda, transpose, &x);
+        back_substitute(&m, &mut x);
+        normalize(&mut x)?;
+        let r = residual(h, lambda, transpose, &x);
         if r < best.0 {
             best = (r, x);
         }
@@ -190,12 +203,17 @@ const ACCEPT: f64 = 10.0;
 const FULL_STEPS: usize = 3;
 
 /// `‖(Ã − λI) x‖_∞` (of `Ãᵀ` when `transpose`).
-fn residual(h: &[f64], n: usize, lambda: Complex64, transpose: bool, x: &[Complex64; MAX_N]) -> f64 {
+fn residual<const M: usize>(
+    h: &[f64],
+    lambda: Complex64,
+    transpose: bool,
+    x: &[Complex64; M],
+) -> f64 {
     let mut worst = 0.0f64;
-    for i in 0..n {
+    for i in 0..M {
         let mut r = -lambda * x[i];
-        for (j, xj) in x[..n].iter().enumerate() {
-            let v = if transpose { h[i * n + j] } else { h[j * n + i] };
+        for (j, xj) in x.iter().enumerate() {
+            let v = if transpose { h[i * M + j] } else { h[j * M + i] };
             r += xj * v;
         }
         worst = worst.max(r.re.abs() + r.im.abs());
@@ -204,59 +222,62 @@ fn residual(h: &[f64], n: usize, lambda: Complex64, transpose: bool, x: &[Comple
 }
 
 /// LU factorization with partial pivoting in place (`L` unit lower, below the diagonal; `U`
-/// on and above), row `k` swapped with row `piv[k]` at step k; pivots smaller than `floor`
-/// in modulus are replaced by `floor` (the matrix is singular to working precision by
-/// construction: λ is an eigenvalue).
-fn lu(m: &mut [Complex64; MAX_N * MAX_N], n: usize, floor: f64, piv: &mut [usize; MAX_N]) {
+/// on and above); returns the pivots (row `k` swapped with row `piv[k]` at step k). Pivots
+/// smaller than `floor` in modulus are replaced by `floor` (the matrix is singular to
+/// working precision by construction: λ is an eigenvalue).
+fn lu<const M: usize>(m: &mut Fixed<M>, floor: f64) -> [usize; M] {
     let size = |z: Complex64| z.re.abs() + z.im.abs();
-    for k in 0..n {
-        let p = (k..n)
-            .max_by(|&i, &j| size(m[k * n + i]).total_cmp(&size(m[k * n + j])))
+    let mut piv = [0usize; M];
+    for k in 0..M {
+        let p = (k..M)
+            .max_by(|&i, &j| size(m[k][i]).total_cmp(&size(m[k][j])))
             .unwrap_or(k);
         piv[k] = p;
         if p != k {
-            for j in 0..n {
-                m.swap(j * n + k, j * n + p);
+            for col in m.iter_mut() {
+                col.swap(k, p);
             }
         }
-        if m[k * n + k].norm() < floor {
-            m[k * n + k] = Complex64::new(floor, 0.0);
+        if m[k][k].norm() < floor {
+            m[k][k] = Complex64::new(floor, 0.0);
         }
-        let r = 1.0 / m[k * n + k];
-        for i in k + 1..n {
-            m[k * n + i] *= r;
+        let r = 1.0 / m[k][k];
+        let (left, right) = m.split_at_mut(k + 1);
+        let lcol = &mut left[k];
+        for v in &mut lcol[k + 1..] {
+            *v *= r;
         }
-        for j in k + 1..n {
-            let ukj = m[j * n + k];
+        for col in right.iter_mut() {
+            let ukj = col[k];
             if ukj == Complex64::new(0.0, 0.0) {
                 continue;
             }
-            for i in k + 1..n {
-                let lik = m[k * n + i];
-                m[j * n + i] -= lik * ukj;
+            for (v, l) in col[k + 1..].iter_mut().zip(&lcol[k + 1..]) {
+                *v -= l * ukj;
             }
         }
     }
+    piv
 }
 
 /// Solves `U x = b` in place (`U` the upper triangle of `m`).
-fn back_substitute(m: &[Complex64; MAX_N * MAX_N], n: usize, x: &mut [Complex64; MAX_N]) {
-    for k in (0..n).rev() {
-        let xk = x[k] / m[k * n + k];
+fn back_substitute<const M: usize>(m: &Fixed<M>, x: &mut [Complex64; M]) {
+    for k in (0..M).rev() {
+        let xk = x[k] / m[k][k];
         x[k] = xk;
-        for i in 0..k {
-            x[i] -= m[k * n + i] * xk;
+        for (xi, u) in x[..k].iter_mut().zip(&m[k][..k]) {
+            *xi -= u * xk;
         }
     }
 }
 
 /// Scales `x` to largest entry (by `|re| + |im|`) 1; `None` when it is zero or not finite.
-fn normalize(x: &mut [Complex64; MAX_N], n: usize) -> Option<()> {
-    let big = x[..n].iter().fold(0.0f64, |b, z| b.max(z.re.abs() + z.im.abs()));
+fn normalize<const M: usize>(x: &mut [Complex64; M]) -> Option<()> {
+    let big = x.iter().fold(0.0f64, |b, z| b.max(z.re.abs() + z.im.abs()));
     if !(big.is_finite() && big > 0.0) {
         return None;
     }
     let r = 1.0 / big;
-    x[..n].iter_mut().for_each(|z| *z *= r);
+    x.iter_mut().for_each(|z| *z *= r);
     Some(())
 }
