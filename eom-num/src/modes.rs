@@ -572,9 +572,7 @@ pub fn eigenvalues_with_errors(a: &DMatrix<f64>) -> Result<Vec<(Complex64, f64)>
 /// compared with it.
 ///
 /// Errors: as [`eigenvalues_with_errors`].
-pub fn eigenvalues_with_errors_faer(
-    a: &DMatrix<f64>,
-) -> Result<Vec<(Complex64, f64)>, NumError> {
+pub fn eigenvalues_with_errors_faer(a: &DMatrix<f64>) -> Result<Vec<(Complex64, f64)>, NumError> {
     check_square(a, "A")?;
     let n = a.nrows();
     let eig = eigen_full(a, true, true)?;

@@ -212,7 +212,12 @@ fn pack_kept(w: &mut [f64; MAX_N * MAX_N], n: usize, removed: &[bool]) -> usize 
 /// The eigenvalues of the packed m × m matrix `w` (already deflated and balanced), in
 /// `re`, `im` (unsorted): the Hessenberg reduction and the QR iteration on a fixed-size copy,
 /// one instance per size, so that loop bounds and indices are known to the compiler.
-pub(crate) fn qr(w: &[f64], m: usize, re: &mut [f64; MAX_N], im: &mut [f64; MAX_N]) -> Result<(), ()> {
+pub(crate) fn qr(
+    w: &[f64],
+    m: usize,
+    re: &mut [f64; MAX_N],
+    im: &mut [f64; MAX_N],
+) -> Result<(), ()> {
     macro_rules! sizes {
         ($($k:literal)*) => {
             match m {

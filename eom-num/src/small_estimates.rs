@@ -158,7 +158,11 @@ fn right_vector<const M: usize>(
     let mut m: Fixed<M> = [[Complex64::new(0.0, 0.0); M]; M];
     for (j, col) in m.iter_mut().enumerate() {
         for (i, v) in col.iter_mut().enumerate() {
-            let hij = if transpose { h[i * M + j] } else { h[j * M + i] };
+            let hij = if transpose {
+                h[i * M + j]
+            } else {
+                h[j * M + i]
+            };
             *v = Complex64::new(hij, 0.0);
         }
         col[j] -= lambda;
@@ -213,7 +217,11 @@ fn residual<const M: usize>(
     for i in 0..M {
         let mut r = -lambda * x[i];
         for (j, xj) in x.iter().enumerate() {
-            let v = if transpose { h[i * M + j] } else { h[j * M + i] };
+            let v = if transpose {
+                h[i * M + j]
+            } else {
+                h[j * M + i]
+            };
             r += xj * v;
         }
         worst = worst.max(r.re.abs() + r.im.abs());

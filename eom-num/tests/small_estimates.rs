@@ -79,7 +79,9 @@ fn graded_matrices_agree_with_faer() {
     for n in [3, 4, 6, 9] {
         for _ in 0..20 {
             let a = random(&mut rng, n);
-            let d: Vec<f64> = (0..n).map(|_| 10f64.powf(rng.random_range(-6.0..6.0))).collect();
+            let d: Vec<f64> = (0..n)
+                .map(|_| 10f64.powf(rng.random_range(-6.0..6.0)))
+                .collect();
             let g = DMatrix::from_fn(n, n, |i, j| d[i] * a[(i, j)] / d[j]);
             let r = worst_ratio(&g);
             worst = worst.max(r);
@@ -131,7 +133,10 @@ fn complex_pairs_agree_with_faer() {
                 a[(i, n - 1)] = rng.random_range(-3.0..3.0);
             }
             let r = worst_ratio(&a);
-            assert!(r < 1e-6, "companion n = {n}: estimates differ by {r:e}\n{a}");
+            assert!(
+                r < 1e-6,
+                "companion n = {n}: estimates differ by {r:e}\n{a}"
+            );
             let got = eigenvalues_with_errors(&a).unwrap();
             for w in got.windows(2) {
                 if w[0].0.im != 0.0 && w[0].0.re == w[1].0.re {
@@ -201,7 +206,6 @@ fn defective_agree_with_faer() {
                 eg > 1e-3 * capped && ew > 1e-3 * capped,
                 "{zg}: {eg:e}, faer {ew:e}, cap {capped:e}"
             );
-
         }
     }
     let mut rng = StdRng::seed_from_u64(11);
@@ -209,9 +213,8 @@ fn defective_agree_with_faer() {
         let x = DMatrix::from_fn(4, 4, |i, k| {
             f64::from(u8::from(i == k)) + 0.3 * rng.random_range(-1.0..1.0)
         });
-        let mut j = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![
-            0.5, 0.5, -2.0, -3.0,
-        ]));
+        let mut j =
+            DMatrix::from_diagonal(&nalgebra::DVector::from_vec(vec![0.5, 0.5, -2.0, -3.0]));
         j[(0, 1)] = 1.0;
         let a = &x * j * x.clone().try_inverse().unwrap();
         let got = eigenvalues_with_errors(&a).unwrap();
@@ -221,7 +224,10 @@ fn defective_agree_with_faer() {
                 // κ ≥ 1e6 on both (about 1/√ε), and within a factor 10 of each other.
                 let floor = f * 4.0 * f64::EPSILON * a.norm() * 1e6;
                 assert!(eg > floor && ew > floor, "{zg}: {eg:e}, faer {ew:e}");
-                assert!(eg / ew < 10.0 && ew / eg < 10.0, "{zg}: {eg:e}, faer {ew:e}");
+                assert!(
+                    eg / ew < 10.0 && ew / eg < 10.0,
+                    "{zg}: {eg:e}, faer {ew:e}"
+                );
             }
         }
     }
@@ -230,11 +236,7 @@ fn defective_agree_with_faer() {
 /// A matrix with structural zeros takes faer's path: the same numbers.
 #[test]
 fn structural_zeros_take_faers_path() {
-    let a = DMatrix::from_row_slice(
-        3,
-        3,
-        &[0.0, 1.0, 0.3, 0.0, -2.0, 1.0, 0.0, -1.0, -0.5],
-    );
+    let a = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.3, 0.0, -2.0, 1.0, 0.0, -1.0, -0.5]);
     assert_eq!(
         eigenvalues_with_errors(&a).unwrap(),
         eigenvalues_with_errors_faer(&a).unwrap()
