@@ -215,12 +215,16 @@ fn bench_minreal_zeros(cr: &mut Criterion) {
 
 /// The verdicts' error estimates (eigenvectors) where a verdict could depend on them, against
 /// the same sweep judged by a relative band without any eigenvectors (the cost of a sweep
-/// before the estimates): the target is a ratio within 1.1. The shimmy crosses twice (the
-/// grid values next to its boundaries get estimates), the random family mostly stays away
-/// from Re λ = 0. Measured 2026-11-28 on the shared 2-core machine (load 6–8): shimmy3
-/// 4.32 ms against 3.64 ms (1.19: the estimates at the values next to the boundaries cost
-/// about forty eigenvalue computations each, faer's eigenvectors of a 3×3), random6 10.9 ms
-/// against 10.2 ms (1.07).
+/// before the estimates): the target is a ratio within 1.1. The shimmy crosses twice (30 of
+/// its 2000 grid values, those next to its boundaries, get estimates), the random family
+/// mostly stays away from Re λ = 0. Up to 16 states the estimates come from the stack path
+/// (inverse iteration, about three eigenvalue computations each; faer's eigenvectors cost
+/// eight). Measured 2026-11-28 on the shared 2-core machine (load 7–8, `RAYON_NUM_THREADS=1`,
+/// three alternating rounds, criterion's estimates): shimmy3 4.13, 4.41, 4.98 ms against
+/// 3.84, 3.85, 3.92 ms (1.08, 1.14, 1.27; the last with an interval of 3.8–6.1 ms); with
+/// faer's eigenvectors in the same rounds 4.58, 5.15, 5.56 ms against 3.78, 3.93, 5.47 ms.
+/// The commit before the estimates (b2ecc0e: faer's eigenvalues at every point, a relative
+/// band) took 7.69, 7.59, 7.24 ms in the same rounds.
 fn bench_verdicts(cr: &mut Criterion) {
     let mut group = cr.benchmark_group("sweep_verdicts");
     group.sample_size(15);

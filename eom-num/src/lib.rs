@@ -144,6 +144,7 @@ pub mod modes;
 pub mod reach;
 pub mod sensitivity;
 pub mod small_eigen;
+mod small_estimates;
 pub mod statespace;
 pub mod sweep;
 pub mod time;

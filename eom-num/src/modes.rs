@@ -549,9 +549,30 @@ pub fn stability_of(re: f64, tolerance: f64) -> Stability {
 /// ([`error_estimate`] with the default `tol_factor`): what [`Modes::compute`] decides its
 /// verdicts by, for callers that need the verdicts without the modes (a sweep).
 ///
+/// Matrices of up to [`small_eigen::MAX_N`] states without structural zeros take the stack
+/// path (the kernel's eigenvalues, the vectors by inverse iteration: `small_estimates`),
+/// the others faer's eigenvectors ([`eigenvalues_with_errors_faer`]).
+///
 /// Errors: those of [`eigenvalues`], and [`NumError::TooLarge`] beyond the memory limit for
 /// the eigenvectors.
 pub fn eigenvalues_with_errors(a: &DMatrix<f64>) -> Result<Vec<(Complex64, f64)>, NumError> {
+    check_square(a, "A")?;
+    let n = a.nrows();
+    if n <= small_eigen::MAX_N {
+        let mut out = vec![(Complex64::new(0.0, 0.0), 0.0); n];
+        if crate::small_estimates::eigenvalues_with_errors_small(a.as_slice(), n, &mut out)? {
+            return Ok(out);
+        }
+    }
+    eigenvalues_with_errors_faer(a)
+}
+
+/// [`eigenvalues_with_errors`] through faer's eigenvectors for every size: the path of
+/// larger matrices and of those with structural zeros, public so that the stack path can be
+/// compared with it.
+///
+/// Errors: as [`eigenvalues_with_errors`].
+pub fn eigenvalues_with_errors_faer(a: &DMatrix<f64>) -> Result<Vec<(Complex64, f64)>, NumError> {
     check_square(a, "A")?;
     let n = a.nrows();
     let eig = eigen_full(a, true, true)?;

@@ -115,7 +115,7 @@ pub fn eigenvalues_small_known(
 }
 
 /// Checks the size and entries of the input.
-fn check(a: &[f64], n: usize, out: usize) -> Result<(), NumError> {
+pub(crate) fn check(a: &[f64], n: usize, out: usize) -> Result<(), NumError> {
     if n > MAX_N || a.len() != n * n || out != n {
         return Err(NumError::Dimension(format!(
             "eigenvalues_small: a {n}×{n} matrix (at most {MAX_N}×{MAX_N}) given {} entries \
@@ -186,7 +186,7 @@ fn solve(
     Ok(zeros)
 }
 
-fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
+pub(crate) fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
 }
 
@@ -212,7 +212,12 @@ fn pack_kept(w: &mut [f64; MAX_N * MAX_N], n: usize, removed: &[bool]) -> usize 
 /// The eigenvalues of the packed m × m matrix `w` (already deflated and balanced), in
 /// `re`, `im` (unsorted): the Hessenberg reduction and the QR iteration on a fixed-size copy,
 /// one instance per size, so that loop bounds and indices are known to the compiler.
-fn qr(w: &[f64], m: usize, re: &mut [f64; MAX_N], im: &mut [f64; MAX_N]) -> Result<(), ()> {
+pub(crate) fn qr(
+    w: &[f64],
+    m: usize,
+    re: &mut [f64; MAX_N],
+    im: &mut [f64; MAX_N],
+) -> Result<(), ()> {
     macro_rules! sizes {
         ($($k:literal)*) => {
             match m {

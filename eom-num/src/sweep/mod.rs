@@ -26,9 +26,11 @@
 //!    its eigenvalue's error estimate at that point ([`crate::modes::eigenvalues_with_errors`],
 //!    the tolerance `eom analyze` judges the same eigenvalue by); only where that leaves the
 //!    sign open is the real part taken with the neutral branches' and judged by the sum of
-//!    their estimates: a real part within its tolerance is rounding noise and carries no sign. A point is stable when every non-neutral branch is, unstable when one
-//!    is, marginal otherwise. The estimates need eigenvectors, about ten times the cost of the
-//!    eigenvalues, so they are computed only at points where one could change a verdict:
+//!    their estimates: a real part within its tolerance is rounding noise and carries no
+//!    sign. A point is stable when every non-neutral branch is, unstable when one is,
+//!    marginal otherwise. The estimates need eigenvectors (up to 16 states by inverse
+//!    iteration on the stack, about three times the cost of the eigenvalues; faer's beyond),
+//!    so they are computed only at points where one could change a verdict:
 //!    where some real part is within [`screen_bound`] (`tol_factor · n · ε · ‖A‖_F ·`
 //!    [`SCREEN_CONDITION`]), which no estimate of an eigenvalue with condition number below
 //!    [`SCREEN_CONDITION`] = 1e9 exceeds, or some nonzero eigenvalue is small enough to be
