@@ -62,10 +62,12 @@ const FILES: [(&str, &str); 16] = shipped!(
 /// Where the families stand in the catalogue: after the first seven files.
 const FAMILIES_AT: usize = 7;
 
+/// A shipped file's description and parameters, or why it does not load.
+type Declared = Result<(String, Vec<ParamSpec>), String>;
+
 /// The entry of the shipped file `k` (its parameters read once per process).
 fn file_entry(k: usize) -> Result<ModelInfo, CatalogueError> {
-    static LOADED: [OnceLock<Result<(String, Vec<ParamSpec>), String>>; FILES.len()] =
-        [const { OnceLock::new() }; FILES.len()];
+    static LOADED: [OnceLock<Declared>; FILES.len()] = [const { OnceLock::new() }; FILES.len()];
     let (name, text) = FILES[k];
     let loaded = LOADED[k].get_or_init(|| {
         file::load_str(text, name, &[])

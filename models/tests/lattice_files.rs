@@ -79,9 +79,12 @@ fn lattice(config: Configuration) -> Derivatives {
         .derivatives
 }
 
+/// A shipped model, one of its wings and the geometry the wing's derivatives come from.
+type Case = (&'static str, &'static str, fn() -> Configuration);
+
 #[test]
 fn lattice_wings_in_the_shipped_files_are_the_lattices() {
-    let cases: [(&str, &str, fn() -> Configuration); 5] = [
+    let cases: [Case; 5] = [
         ("shimmy_fin", "fin", seed_fin),
         ("ride_wings", "front wing", || {
             plate("front wing", 1.6, 0.35)
