@@ -119,7 +119,7 @@ fn main() {
     let mut speed_only = builtin("bicycle").module("bicycle_speed");
     for p in models::find("bicycle").expect("bicycle").0.params {
         if p.name != "v" {
-            speed_only = speed_only.fix(p.name, p.default);
+            speed_only = speed_only.fix(&p.name, p.default);
         }
     }
     add("bicycle_speed.rs", "f64 v only", speed_only, &mut index);

@@ -140,9 +140,9 @@ impl CliError {
                 | eom_aero::AeroError::Io { .. },
             ) => EXIT_USAGE,
             // A model beyond the memory limit: the size of the input, not a failure.
-            CliError::Num(NumError::TooLarge(_))
-            | CliError::Model(ModelError::Num(NumError::TooLarge(_))) => EXIT_USAGE,
-            CliError::Sweep(e) if matches!(**e, SweepError::Setup(NumError::TooLarge(_))) => {
+            CliError::Num(NumError::TooLarge { .. })
+            | CliError::Model(ModelError::Num(NumError::TooLarge { .. })) => EXIT_USAGE,
+            CliError::Sweep(e) if matches!(**e, SweepError::Setup(NumError::TooLarge { .. })) => {
                 EXIT_USAGE
             }
             _ => EXIT_FAILURE,

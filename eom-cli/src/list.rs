@@ -1,7 +1,6 @@
 //! `eom list`: the built-in models and their parameters.
 
 use crate::format::{g, table};
-use eom_sym::Assumption;
 use serde::Serialize;
 
 /// One model of the catalogue.
@@ -26,19 +25,11 @@ pub struct ParamEntry {
     pub default: f64,
     /// Unit.
     pub unit: String,
-    /// Allowed values: `> 0`, `>= 0`, `!= 0` or `any`.
-    pub allowed: &'static str,
+    /// Allowed values as a model file writes them: `> 0`, `>= 0`, `!= 0`, `any` or an
+    /// interval.
+    pub allowed: String,
     /// Description.
     pub description: String,
-}
-
-fn allowed(a: Assumption) -> &'static str {
-    match a {
-        Assumption::Positive => "> 0",
-        Assumption::Nonnegative => ">= 0",
-        Assumption::Nonzero => "!= 0",
-        Assumption::Real => "any",
-    }
 }
 
 /// The catalogue.
@@ -49,16 +40,16 @@ pub fn entries() -> Vec<ModelEntry> {
             name: m.name.to_string(),
             // A catalogue name that cannot be looked up as such is a pattern (`chainN`).
             pattern: models::find(m.name).is_err(),
-            description: m.description.to_string(),
+            description: m.description,
             parameters: m
                 .params
                 .iter()
                 .map(|p| ParamEntry {
-                    name: p.name.to_string(),
+                    name: p.name.clone(),
                     default: p.default,
-                    unit: p.unit.to_string(),
-                    allowed: allowed(p.assume),
-                    description: p.description.to_string(),
+                    unit: p.unit.clone(),
+                    allowed: p.range.text(),
+                    description: p.description.clone(),
                 })
                 .collect(),
         })
@@ -87,7 +78,7 @@ pub fn to_text(entries: &[ModelEntry]) -> String {
                     p.name.clone(),
                     g(p.default, 6),
                     p.unit.clone(),
-                    p.allowed.to_string(),
+                    p.allowed.clone(),
                     p.description.clone(),
                 ]
             })

@@ -3,7 +3,7 @@
 
 use crate::error::CliError;
 use eom_model::Model;
-use eom_model::file::ParamRange;
+use eom_model::file::ParamSpec;
 use models::CatalogueError;
 use std::path::{Path, PathBuf};
 
@@ -16,7 +16,7 @@ pub struct ModelChoice {
     /// Where the model comes from.
     pub source: Source,
     /// The parameters with defaults, units, descriptions and ranges, in declaration order.
-    pub params: Vec<Param>,
+    pub params: Vec<ParamSpec>,
 }
 
 /// Where a model comes from.
@@ -26,21 +26,6 @@ pub enum Source {
     Builtin,
     /// A model file.
     File(PathBuf),
-}
-
-/// A parameter of the chosen model.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Param {
-    /// Its name.
-    pub name: String,
-    /// Its default value.
-    pub default: f64,
-    /// Unit (may be empty).
-    pub unit: String,
-    /// Description (may be empty).
-    pub description: String,
-    /// Allowed values.
-    pub range: ParamRange,
 }
 
 /// Whether a model argument names a file rather than a built-in model: a path ending in
@@ -59,21 +44,10 @@ impl ModelChoice {
     pub fn resolve(name: &str) -> Result<ModelChoice, CliError> {
         if is_file_argument(name) {
             let loaded = eom_model::file::load(Path::new(name), &[])?;
-            let params = loaded
-                .params
-                .iter()
-                .map(|p| Param {
-                    name: p.name.clone(),
-                    default: p.default,
-                    unit: p.unit.clone(),
-                    description: p.description.clone(),
-                    range: p.range,
-                })
-                .collect();
             return Ok(ModelChoice {
                 name: name.to_string(),
                 source: Source::File(PathBuf::from(name)),
-                params,
+                params: loaded.params,
             });
         }
         let (info, _) = models::find(name)?;
@@ -86,21 +60,10 @@ impl ModelChoice {
                 eom_text::shown(name)
             );
         }
-        let params = info
-            .params
-            .iter()
-            .map(|p| Param {
-                name: p.name.to_string(),
-                default: p.default,
-                unit: p.unit.to_string(),
-                description: p.description.to_string(),
-                range: ParamRange::of(p.assume),
-            })
-            .collect();
         Ok(ModelChoice {
             name: name.to_string(),
             source: Source::Builtin,
-            params,
+            params: info.params,
         })
     }
 
@@ -120,7 +83,7 @@ impl ModelChoice {
     }
 
     /// A parameter, or [`CatalogueError::UnknownParameter`] listing them.
-    pub fn param(&self, name: &str) -> Result<&Param, CliError> {
+    pub fn param(&self, name: &str) -> Result<&ParamSpec, CliError> {
         self.params.iter().find(|p| p.name == name).ok_or_else(|| {
             CliError::Catalogue(CatalogueError::UnknownParameter {
                 model: self.name.clone(),

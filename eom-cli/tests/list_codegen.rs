@@ -11,7 +11,7 @@ fn list_shows_every_model_and_parameter() {
         assert!(r.stdout.contains(m.name), "{} missing", m.name);
         for p in &m.params {
             assert!(
-                r.stdout.contains(p.description),
+                r.stdout.contains(&p.description),
                 "{}.{} missing",
                 m.name,
                 p.name

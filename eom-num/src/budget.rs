@@ -48,12 +48,11 @@ pub fn check(what: &str, bytes: usize) -> Result<(), NumError> {
     if bytes <= limit {
         return Ok(());
     }
-    Err(NumError::TooLarge(format!(
-        "{what} would need about {} of memory, more than the limit of {} (raise it with the \
-         environment variable EOM_MEMORY_LIMIT, e.g. EOM_MEMORY_LIMIT=32G)",
-        format_bytes(bytes),
-        format_bytes(limit)
-    )))
+    Err(NumError::TooLarge {
+        step: what.to_string(),
+        bytes,
+        limit,
+    })
 }
 
 /// `a · b · c` in bytes, saturating (a size that overflows is certainly too large).
@@ -70,5 +69,18 @@ mod tests {
         assert_eq!(format_bytes(512), "512 B");
         assert_eq!(format_bytes(3 << 29), "1.5 GiB");
         assert_eq!(product(&[usize::MAX, 2]), usize::MAX);
+    }
+
+    #[test]
+    fn a_step_over_the_limit_is_refused_with_its_numbers() {
+        let e = check("eigenvectors", usize::MAX).unwrap_err();
+        match &e {
+            NumError::TooLarge { step, bytes, limit } => {
+                assert_eq!((step.as_str(), *bytes), ("eigenvectors", usize::MAX));
+                assert_eq!(*limit, super::limit());
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(check("eigenvectors", 1).is_ok());
     }
 }

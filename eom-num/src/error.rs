@@ -11,10 +11,18 @@ pub enum NumError {
     /// A matrix contains NaN or infinite entries.
     #[error("non-finite entry in {0}")]
     NonFinite(String),
-    /// A matrix entry so large ([`crate::MAX_ENTRY`]) that the products inside the
-    /// factorisations would overflow: the message names the entry and its value.
-    #[error("entry too large: {0}")]
-    OutOfRange(String),
+    /// A matrix entry so large (beyond `max`, [`crate::MAX_ENTRY`]) that the products inside
+    /// the factorisations would overflow.
+    #[error(
+        "entry too large: {entry}: larger in magnitude than {max:e}, beyond which the products \
+         inside the factorisations overflow (express the model in other units)"
+    )]
+    OutOfRange {
+        /// The entry.
+        entry: MatrixEntry,
+        /// The largest magnitude accepted.
+        max: f64,
+    },
     /// An option or argument is out of its valid range (names the parameter).
     #[error("invalid option: {0}")]
     InvalidOption(String),
@@ -40,6 +48,45 @@ pub enum NumError {
     AmbiguousRank(String),
     /// The analysis would need more memory than the limit ([`crate::budget`]); the message
     /// names the step, the predicted size, the limit and how to raise it.
-    #[error("too large: {0}")]
-    TooLarge(String),
+    #[error(
+        "too large: {step} would need about {} of memory, more than the limit of {} (raise it \
+         with the environment variable EOM_MEMORY_LIMIT, e.g. EOM_MEMORY_LIMIT=32G)",
+        crate::budget::format_bytes(*bytes),
+        crate::budget::format_bytes(*limit)
+    )]
+    TooLarge {
+        /// The step that would allocate (`eigenvectors of a 40000×40000 matrix`).
+        step: String,
+        /// The predicted size in bytes.
+        bytes: usize,
+        /// The limit in bytes.
+        limit: usize,
+    },
+}
+
+/// An entry of a matrix, as an error names it: `A[1, 0] = 1e300 (3×3 matrix)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MatrixEntry {
+    /// The matrix's name.
+    pub matrix: String,
+    /// Row index (from 0).
+    pub row: usize,
+    /// Column index (from 0).
+    pub col: usize,
+    /// The value found there.
+    pub value: f64,
+    /// Rows of the matrix.
+    pub nrows: usize,
+    /// Columns of the matrix.
+    pub ncols: usize,
+}
+
+impl std::fmt::Display for MatrixEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}[{}, {}] = {:?} ({}×{} matrix)",
+            self.matrix, self.row, self.col, self.value, self.nrows, self.ncols
+        )
+    }
 }

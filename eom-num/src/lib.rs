@@ -150,5 +150,5 @@ pub mod sweep;
 pub mod time;
 pub mod zeros;
 
-pub use error::NumError;
+pub use error::{MatrixEntry, NumError};
 pub use statespace::{Descriptor, SignalNames, StateSpace};

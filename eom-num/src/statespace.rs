@@ -99,15 +99,21 @@ pub(crate) fn check_finite_slice(
 ) -> Result<(), NumError> {
     if let Some(k) = m.iter().position(|x| !in_range(*x)) {
         let (i, j) = (k % nrows.max(1), k / nrows.max(1));
-        let at = format!("{name}[{i}, {j}] = {:?} ({nrows}×{ncols} matrix)", m[k]);
+        let entry = crate::MatrixEntry {
+            matrix: name.to_string(),
+            row: i,
+            col: j,
+            value: m[k],
+            nrows,
+            ncols,
+        };
         if m[k].is_finite() {
-            return Err(NumError::OutOfRange(format!(
-                "{at}: larger in magnitude than {:e}, beyond which the products inside the \
-                 factorisations overflow (express the model in other units)",
-                crate::MAX_ENTRY
-            )));
+            return Err(NumError::OutOfRange {
+                entry,
+                max: crate::MAX_ENTRY,
+            });
         }
-        return Err(NumError::NonFinite(at));
+        return Err(NumError::NonFinite(entry.to_string()));
     }
     Ok(())
 }

@@ -21,10 +21,7 @@ use pyo3::prelude::*;
 /// The names of the built-in models, in catalogue order.
 #[pyfunction(name = "models")]
 fn model_names() -> Vec<String> {
-    ::models::catalogue()
-        .iter()
-        .map(|m| m.name.to_string())
-        .collect()
+    ::models::names().into_iter().map(String::from).collect()
 }
 
 /// The native module.

@@ -1,11 +1,13 @@
-//! Aeroelastic models built from strips (thin-airfoil sections with Theodorsen's apparent mass
-//! and R. T. Jones' lag states): the typical section and the Goland wing. Their references —
-//! exact Theodorsen flutter by the k-method confirmed by a determinant root, and the same
-//! models with Jones' states and quasi-steady — are in `docs/aero-references.md` and
-//! `tests/data/aero/`.
+//! The Goland wing as a family: Goland's cantilever wing in `n` beam segments carrying strips
+//! (thin-airfoil sections with Theodorsen's apparent mass and R. T. Jones' lag states, or
+//! quasi-steady), for the convergence study in the number of segments. The catalogue's
+//! `goland_wing` is the shipped file `models/goland_wing.toml` (16 segments, Jones' states);
+//! the references — the converged strip-theory flutter of the N-segment lumped model — are in
+//! `docs/aero-references.md` and `tests/data/aero/`.
 
 use crate::CatalogueError;
-use crate::catalogue::{ModelInfo, ParamSpec, p, real};
+use crate::catalogue::ModelInfo;
+use eom_model::file::{ParamRange, ParamSpec};
 use eom_model::*;
 use eom_sym::Expr;
 
@@ -13,100 +15,49 @@ use eom_sym::Expr;
 /// and 1.2 % in frequency of the converged strip-theory reference (docs/unsteady-aerodynamics.md).
 pub const GOLAND_SEGMENTS: usize = 16;
 
-fn typical_section_params() -> Vec<ParamSpec> {
-    vec![
-        p("b", 0.5, "m", "semichord"),
-        p("w_theta", 10.0, "rad/s", "uncoupled pitch frequency"),
-        p("V", 8.0, "m/s", "airspeed"),
-        p("rho", 1.225, "kg/m^3", "air density"),
-        p("mu", 20.0, "", "mass ratio m/(pi rho b^2) per unit span"),
-        real("a", -0.2, "", "elastic axis, semichords aft of mid-chord"),
-        real(
-            "x_theta",
-            0.1,
-            "",
-            "mass centre, semichords aft of the elastic axis",
-        ),
-        p(
-            "r2",
-            0.24,
-            "",
-            "squared radius of gyration about the elastic axis, per b^2",
-        ),
-        p("sigma", 0.4, "", "plunge-to-pitch frequency ratio"),
-    ]
-}
-
 fn goland_params() -> Vec<ParamSpec> {
-    vec![
-        p("V", 100.0, "m/s", "airspeed"),
-        p("rho", 1.2256, "kg/m^3", "air density (sea level)"),
-        p("L", 6.096, "m", "semispan"),
-        p("c", 1.8288, "m", "chord"),
-        p(
+    [
+        ("V", 100.0, "m/s", "airspeed"),
+        ("rho", 1.2256, "kg/m^3", "air density (sea level)"),
+        ("L", 6.096, "m", "semispan"),
+        ("c", 1.8288, "m", "chord"),
+        (
             "ea",
             0.33,
             "",
             "elastic axis, fraction of the chord from the leading edge",
         ),
-        p(
+        (
             "cg",
             0.43,
             "",
             "mass centre, fraction of the chord from the leading edge",
         ),
-        p("m", 35.71, "kg/m", "mass per unit span"),
-        p(
+        ("m", 35.71, "kg/m", "mass per unit span"),
+        (
             "I_theta",
             8.64,
             "kg m^2/m",
             "pitch inertia per unit span about the elastic axis",
         ),
-        p("EI", 9.77e6, "N m^2", "bending stiffness"),
-        p("GJ", 0.987e6, "N m^2", "torsional stiffness"),
+        ("EI", 9.77e6, "N m^2", "bending stiffness"),
+        ("GJ", 0.987e6, "N m^2", "torsional stiffness"),
     ]
+    .into_iter()
+    .map(|(name, default, unit, description)| ParamSpec {
+        name: name.into(),
+        value: default,
+        default,
+        unit: unit.into(),
+        description: description.into(),
+        range: ParamRange::Positive,
+    })
+    .collect()
 }
 
-/// The catalogue entries of this module.
-pub(crate) fn entries() -> Vec<ModelInfo> {
-    vec![
-        ModelInfo::new(
-            "typical_section",
-            "pitch-plunge typical section (Hodges & Pierce) on a strip with Jones' unsteady lift",
-            typical_section_params(),
-            |md, p, _| typical_section_into(md, p, Unsteady::Jones),
-        ),
-        ModelInfo::new(
-            "goland_wing",
-            "Goland's cantilever wing: 16 beam segments carrying strips with Jones' unsteady lift",
-            goland_params(),
-            |md, p, n| goland_into(md, p, segments(n), Unsteady::Jones),
-        ),
-    ]
-}
-
-/// The catalogue's size argument as a number of segments (0: the default).
+/// The size argument as a number of segments (0: the default).
 fn segments(n: usize) -> usize {
     if n == 0 { GOLAND_SEGMENTS } else { n }
-}
-
-/// The typical section with the given unsteady aerodynamics, parameters at their defaults
-/// (overridden by `overrides`).
-pub fn typical_section(
-    unsteady: Unsteady,
-    overrides: &[(&str, f64)],
-) -> Result<Model<Expr>, CatalogueError> {
-    let info = ModelInfo::new(
-        "typical_section",
-        "",
-        typical_section_params(),
-        match unsteady {
-            Unsteady::Jones => |md, p, _| typical_section_into(md, p, Unsteady::Jones),
-            Unsteady::QuasiSteady => |md, p, _| typical_section_into(md, p, Unsteady::QuasiSteady),
-            Unsteady::Auto => |md, p, _| typical_section_into(md, p, Unsteady::Auto),
-        },
-    );
-    info.build(overrides, 0, "typical_section")
 }
 
 /// The Goland wing with `n` segments and the given unsteady aerodynamics.
@@ -115,7 +66,7 @@ pub fn goland_wing(
     unsteady: Unsteady,
     overrides: &[(&str, f64)],
 ) -> Result<Model<Expr>, CatalogueError> {
-    let info = ModelInfo::new(
+    let info = ModelInfo::family(
         "goland_wing",
         "",
         goland_params(),
@@ -128,64 +79,6 @@ pub fn goland_wing(
         },
     );
     info.build(overrides, n, "goland_wing")
-}
-
-/// The section: a body pitching about its elastic axis at the origin and plunging along z,
-/// springs k_h = m σ² ω_θ² and k_θ = I_θ ω_θ², a strip of width 1 m; flow from +x.
-fn typical_section_into(
-    md: &mut Model<Expr>,
-    p: &[Expr],
-    unsteady: Unsteady,
-) -> Result<(), CatalogueError> {
-    let [b, w, v, rho, mu, a, xt, r2, sigma] =
-        [p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]];
-    let pi = Expr::pi();
-    let m = mu * pi * rho * b * b;
-    let i_theta = m * b * b * r2;
-    let xcg = xt * b;
-    md.add(
-        Body::new("section")
-            .at(vec3(-xcg, 0, 0))
-            .mass(m)
-            .moments(vec3(1, i_theta - m * xcg * xcg, 1)),
-    );
-    md.add(
-        RigidPoint::new("in plane")
-            .between("section", "ground")
-            .forces(2)
-            .axis(z_axis()),
-    );
-    md.add(
-        RigidPoint::new("pitch only")
-            .between("section", "ground")
-            .moments(2)
-            .axis(y_axis()),
-    );
-    md.add(
-        FlexPoint::new("plunge spring")
-            .between("section", "ground")
-            .forces(1)
-            .axis(z_axis())
-            .stiffness(m * sigma * sigma * w * w, 0),
-    );
-    md.add(
-        FlexPoint::new("pitch spring")
-            .between("section", "ground")
-            .moments(1)
-            .axis(y_axis())
-            .stiffness(0, i_theta * w * w),
-    );
-    md.add(
-        Strip::new("airfoil")
-            .on("section")
-            .semichord(b)
-            .elastic_axis(a)
-            .width(1)
-            .density(rho)
-            .airspeed(v)
-            .unsteady(unsteady),
-    );
-    Ok(())
 }
 
 /// The wing along +y from the clamped root, elastic axis on the y axis, flow from +x: node i

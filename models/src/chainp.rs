@@ -4,74 +4,54 @@
 //! 0.1 N s/m) it is `chainN` at its defaults.
 
 use crate::CatalogueError;
-use crate::catalogue::{MAX_CHAIN, ModelInfo, ParamSpec, p};
+use crate::catalogue::ModelInfo;
 use eom_model::Model;
+use eom_model::file::{ParamRange, ParamSpec};
 use eom_sym::Expr;
-use std::sync::OnceLock;
+
+/// The stems of the parameters, in order: stem, default, unit, what each is.
+const STEMS: [(&str, f64, &str, &str); 3] = [
+    ("m", 1.0, "kg", "mass of body"),
+    ("k", 1.0, "N/m", "stiffness of link"),
+    ("c", 0.1, "N s/m", "damping of link"),
+];
+
+/// A parameter of the family: `name` with the stem's default, unit and range.
+fn spec(stem: usize, name: String, description: String) -> ParamSpec {
+    let (_, default, unit, _) = STEMS[stem];
+    ParamSpec {
+        name,
+        value: default,
+        default,
+        unit: unit.into(),
+        description,
+        range: ParamRange::Positive,
+    }
+}
 
 /// The catalogue entry: the pattern, with its parameters shown as `mI`, `kI`, `cI` (`find`
 /// numbers them for a size).
 pub(crate) fn entry() -> ModelInfo {
-    ModelInfo::new(
+    let shown = [
+        "mass of body I (m1 … mN)",
+        "stiffness of link I (k1 … kN; link 1 to ground)",
+        "damping of link I (c1 … cN)",
+    ];
+    ModelInfo::family(
         "chainpN",
         "chainN with its own mass, stiffness and damping per element: 3N parameters (chainp50 has 150)",
-        vec![
-            p("mI", 1.0, "kg", "mass of body I (m1 … mN)"),
-            p(
-                "kI",
-                1.0,
-                "N/m",
-                "stiffness of link I (k1 … kN; link 1 to ground)",
-            ),
-            p("cI", 0.1, "N s/m", "damping of link I (c1 … cN)"),
-        ],
+        (0..3)
+            .map(|s| spec(s, format!("{}I", STEMS[s].0), shown[s].into()))
+            .collect(),
         build,
     )
 }
 
-/// The numbered names and descriptions (`m7`, "mass of body 7"), made once for the largest
-/// chain: the catalogue's parameter specifications hold `&'static str`.
-struct Numbered {
-    names: Vec<String>,
-    descriptions: Vec<String>,
-}
-
-/// The stems of the parameters, in order, with what each is.
-const STEMS: [(&str, &str); 3] = [
-    ("m", "mass of body"),
-    ("k", "stiffness of link"),
-    ("c", "damping of link"),
-];
-
-fn numbered() -> &'static Numbered {
-    static TABLE: OnceLock<Numbered> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        let (mut names, mut descriptions) = (Vec::new(), Vec::new());
-        for (stem, what) in STEMS {
-            for i in 1..=MAX_CHAIN {
-                names.push(format!("{stem}{i}"));
-                descriptions.push(format!("{what} {i}"));
-            }
-        }
-        Numbered {
-            names,
-            descriptions,
-        }
-    })
-}
-
-/// The parameters of the chain of `n` elements (at most [`MAX_CHAIN`]): `m1 … mn`, then
-/// `k1 … kn`, then `c1 … cn`.
+/// The parameters of the chain of `n` elements: `m1 … mn`, then `k1 … kn`, then `c1 … cn`.
 pub(crate) fn params(n: usize) -> Vec<ParamSpec> {
-    let table = numbered();
-    let pattern = entry().params;
     let mut out = Vec::with_capacity(3 * n);
-    for (s, spec) in pattern.iter().enumerate() {
-        out.extend((0..n.min(MAX_CHAIN)).map(|i| ParamSpec {
-            name: &table.names[s * MAX_CHAIN + i],
-            description: &table.descriptions[s * MAX_CHAIN + i],
-            ..spec.clone()
-        }));
+    for (s, (stem, _, _, what)) in STEMS.iter().enumerate() {
+        out.extend((1..=n).map(|i| spec(s, format!("{stem}{i}"), format!("{what} {i}"))));
     }
     out
 }

@@ -1,13 +1,19 @@
 //! # models — the eom model library
 //!
-//! Built-in models with named parameters, defaults and known answers (the tests crate checks
-//! each against an independent reference). Every model is a function from parameter values to
-//! a symbolic [`Model`]; parameters not given take their defaults.
+//! Built-in models with named parameters, defaults and known answers. Each named model is a
+//! model file shipped in `models/` (`models/smd.toml`, …), embedded in the library and read
+//! by eom-model's file reader, so that the file is the model's one home; the families with a
+//! size (`chainN`, `chainpN`) are built in Rust. Every model is a function from parameter
+//! values to a symbolic [`Model`]; parameters not given take their defaults.
 //!
 //! ```
+//! let shimmy = models::build("shimy", &[]).unwrap_err();
+//! assert!(shimmy.to_string().contains("shimmy"));
 //! let shimmy = models::build("shimmy", &[("u", 1.0)]).unwrap();
 //! assert_eq!(shimmy.scope.get("u").unwrap().nominal(), 1.0);
-//! assert!(models::build("shimy", &[]).unwrap_err().to_string().contains("shimmy"));
+//! // The catalogue is what tests and tools iterate; a named model's file text is at hand.
+//! assert!(models::names().contains(&"bicycle"));
+//! assert!(models::file_text("bicycle").unwrap().contains("[[body]]"));
 //! ```
 //!
 //! | model | what it is | reference |
@@ -35,16 +41,12 @@
 #![forbid(unsafe_code)]
 
 pub mod aeroelastic;
-mod applications;
-mod bicycle;
 mod catalogue;
 mod chainp;
-pub mod flight;
 pub mod generate;
-mod vehicles;
-pub mod wings;
 
-pub use catalogue::{ModelInfo, ParamSpec, build, catalogue, find};
+pub use catalogue::{MAX_CHAIN, ModelInfo, build, catalogue, file_text, find, names};
+pub use eom_model::file::{ParamRange, ParamSpec};
 
 /// Errors of the model library (the catalogue of built-in models).
 #[derive(Debug, thiserror::Error)]
@@ -103,9 +105,10 @@ pub enum CatalogueError {
     /// An error of an expression while building the model.
     #[error(transparent)]
     Sym(#[from] eom_sym::SymError),
-    /// The vortex lattice of a model's wing failed (its message).
-    #[error("wing aerodynamics: {0}")]
-    Aero(String),
+    /// A shipped model file that does not load (a defect of the library, which its tests
+    /// catch).
+    #[error("the built-in model's file does not load: {0}")]
+    Shipped(String),
     /// An error of the model layer while building the model.
     #[error(transparent)]
     Model(#[from] eom_model::ModelError),

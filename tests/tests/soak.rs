@@ -94,7 +94,7 @@ fn value(rng: &mut StdRng, d: f64) -> f64 {
 }
 
 /// One random model name and parameter point.
-fn pick(rng: &mut StdRng, names: &[&'static str]) -> (String, Vec<(&'static str, f64)>) {
+fn pick(rng: &mut StdRng, names: &[&'static str]) -> (String, Vec<(String, f64)>) {
     let name = names[rng.random_range(0..names.len())];
     // A pattern (`chainN`, `chainpN`) at a random size.
     let name = match name.strip_suffix('N') {
@@ -105,7 +105,7 @@ fn pick(rng: &mut StdRng, names: &[&'static str]) -> (String, Vec<(&'static str,
     let mut at = Vec::new();
     for p in &info.params {
         if rng.random_bool(0.4) {
-            at.push((p.name, value(rng, p.default)));
+            at.push((p.name.clone(), value(rng, p.default)));
         }
     }
     (name, at)
@@ -165,13 +165,13 @@ fn sweep(
 enum Job {
     Analyze {
         name: String,
-        at: Vec<(&'static str, f64)>,
+        at: Vec<(String, f64)>,
         method: Method,
     },
     Sweep {
         name: String,
-        at: Vec<(&'static str, f64)>,
-        param: &'static str,
+        at: Vec<(String, f64)>,
+        param: String,
         bounds: (f64, f64, usize),
     },
 }
@@ -200,20 +200,25 @@ fn job(rng: &mut StdRng, names: &[&'static str]) -> Job {
     Job::Sweep {
         name,
         at,
-        param: p.name,
+        param: p.name.clone(),
         bounds,
     }
 }
 
+/// A parameter point as the library takes it.
+fn borrowed(at: &[(String, f64)]) -> Vec<(&str, f64)> {
+    at.iter().map(|(k, v)| (k.as_str(), *v)).collect()
+}
+
 fn run_job(job: &Job) -> Result<usize, String> {
     match job {
-        Job::Analyze { name, at, method } => analyze(name, at, *method),
+        Job::Analyze { name, at, method } => analyze(name, &borrowed(at), *method),
         Job::Sweep {
             name,
             at,
             param,
             bounds,
-        } => sweep(name, at, param, *bounds),
+        } => sweep(name, &borrowed(at), param, *bounds),
     }
 }
 

@@ -66,6 +66,7 @@ use assign::assign_pinned;
 /// Errors of [`Sweep::run`]: the caller's model error passed through with the parameter
 /// value at which it happened, or a numeric error at a parameter value.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SweepError<E> {
     /// The model function failed.
     #[error("the model failed at {param} = {value:?}: {source}")]
