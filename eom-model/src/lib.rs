@@ -122,6 +122,7 @@ pub mod file;
 pub mod geometry;
 pub mod items;
 pub mod linearize;
+mod model;
 pub mod reduce;
 pub mod robust;
 pub mod sensitivity;
@@ -139,15 +140,19 @@ pub mod prelude {
     pub use crate::{Model, SymbolicStateSpace};
 }
 
-pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
+pub use aero::{
+    ReducedFrequency, WingRates, reduced_frequencies, resolve_unsteady, response_rates,
+    simulated_rates,
+};
 pub use assemble::{
-    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, PointGeometry, Preload, Reaction,
-    RowLabel, Rows, Statics, Term, assemble,
+    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, OutputFrame, OutputKind,
+    OutputOrder, PointGeometry, Preload, Reaction, RowLabel, Rows, Statics, Term,
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
+pub use model::{Model, assemble};
 pub use reduce::{
     CheckLabel, Coord, ReducedDescriptor, Reduction, ReductionPlan, ReductionReport, ValidityCheck,
     reduce, reduce_report,
@@ -155,139 +160,3 @@ pub use reduce::{
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};
 pub use validate::Validation;
-
-use eom_sym::ExprPool;
-use eom_sym::expr::Expr;
-use eom_sym::pool::ParamInfo;
-use eom_sym::scope::Scope;
-use eom_sym::tape::Tape;
-
-/// A multibody model: parameters, bodies and items.
-#[derive(Clone, Debug)]
-pub struct Model<S = Expr> {
-    /// Name of the model.
-    pub name: String,
-    /// Parameters (symbolic models).
-    pub scope: Scope,
-    /// Bodies (the ground is implicit).
-    pub bodies: Vec<Body<S>>,
-    /// The items, in the order of [`KINDS`] (items of one kind in the order they were added).
-    items: Vec<Box<dyn Item<S>>>,
-}
-
-impl<S: 'static> Model<S> {
-    /// Insert an item after the items of its kind and of the kinds before it in [`KINDS`].
-    pub(crate) fn insert_item(&mut self, item: Box<dyn Item<S>>) {
-        let rank = kind_rank(item.kind());
-        debug_assert!(
-            rank < KINDS.len(),
-            "item kind `{}` is not registered in KINDS",
-            item.kind()
-        );
-        let at = self.items.partition_point(|x| kind_rank(x.kind()) <= rank);
-        self.items.insert(at, item);
-    }
-}
-
-impl<S: ModelScalar> Model<S> {
-    /// An empty model. A symbolic model gets a new expression pool of its own, made current on
-    /// this thread (so that the expressions built for it land there), and freed when the model
-    /// and everything built from it are dropped.
-    pub fn new(name: &str) -> Self {
-        let scope = if S::SYMBOLIC {
-            let pool = ExprPool::new();
-            pool.make_current();
-            Scope::in_pool(pool)
-        } else {
-            Scope::new()
-        };
-        Model {
-            name: name.to_string(),
-            scope,
-            bodies: Vec::new(),
-            items: Vec::new(),
-        }
-    }
-
-    /// Add a body or an item (validated later, by [`Model::validate`] or the assembly).
-    pub fn add(&mut self, item: impl Item<S>) -> &mut Self {
-        item.add_to(self);
-        self
-    }
-
-    /// The items (bodies excluded), in the order of [`KINDS`].
-    pub fn items(&self) -> &[Box<dyn Item<S>>] {
-        &self.items
-    }
-
-    /// The items, mutable (for settings decided later, such as `unsteady = "auto"`).
-    pub(crate) fn items_mut(&mut self) -> &mut [Box<dyn Item<S>>] {
-        &mut self.items
-    }
-
-    /// The items of one kind (e.g. `"spring"`), in the order they were added.
-    pub fn items_of<'a>(&'a self, kind: &'a str) -> impl Iterator<Item = &'a dyn Item<S>> + 'a {
-        self.items
-            .iter()
-            .filter(move |x| x.kind() == kind)
-            .map(|x| &**x)
-    }
-
-    /// The body called `name`.
-    pub fn body(&self, name: &str) -> Option<&Body<S>> {
-        self.bodies.iter().find(|b| &*b.name == name)
-    }
-}
-
-impl Model<Expr> {
-    /// The model's expression pool.
-    pub fn pool(&self) -> ExprPool {
-        self.scope.pool().cloned().unwrap_or_else(ExprPool::current)
-    }
-
-    /// Runs `f` with the model's pool current (new constants and parameters go there).
-    pub fn in_pool<R>(&self, f: impl FnOnce() -> R) -> R {
-        match self.scope.pool() {
-            Some(p) => p.enter(f),
-            None => f(),
-        }
-    }
-
-    /// Declare a parameter of the model.
-    pub fn param(&mut self, name: &str, nominal: f64) -> Result<Expr, ModelError> {
-        Ok(self.scope.declare(name, nominal)?)
-    }
-
-    /// Declare a parameter with full metadata.
-    pub fn param_info(&mut self, info: ParamInfo) -> Result<Expr, ModelError> {
-        Ok(self.scope.declare_info(info)?)
-    }
-
-    /// The numeric model at the given parameter values (in the order of `scope.params()`).
-    pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, ModelError> {
-        let fields = self.field_values();
-        for (k, e) in fields.iter().enumerate() {
-            e.check().map_err(|x| self.field_error(k, x.to_string()))?;
-        }
-        let tape = Tape::new(&fields, &self.scope.params())?;
-        let mut vals = vec![0.0; fields.len()];
-        let mut work = vec![0.0; tape.work_len()];
-        tape.eval_into(values, &mut vals, &mut work)?;
-        if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
-            return Err(self.field_error(
-                k,
-                format!("evaluates to {} at the given parameter values", vals[k]),
-            ));
-        }
-        let mut k = 0;
-        Ok(self.map(&mut |_| {
-            k += 1;
-            vals[k - 1]
-        }))
-    }
-
-    /// The numeric model at the nominal parameter values.
-    pub fn nominal(&self) -> Result<Model<f64>, ModelError> {
-        self.evaluate(&self.scope.nominal_values())
-    }
-}

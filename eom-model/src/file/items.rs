@@ -1,14 +1,15 @@
 //! One array of tables per item kind: fields read with positions, converted through the
 //! builders (so every default is the builder's), mirrored copies added where asked.
 
+use super::error::FileError;
 use super::mirror::{Mirror, mirror_name};
 use super::params::{Declarations, value_expr};
 use super::source::{Ctx, Table, Value, array_of};
-use crate::Model;
-use crate::error::ModelError;
 use crate::items::*;
+use crate::model::{Model, Place};
 use eom_sym::{Expr, Scope};
 use std::collections::HashSet;
+use std::ops::Range;
 use toml::de::DeValue;
 
 /// The fields every kind accepts besides its own.
@@ -51,9 +52,9 @@ pub(crate) struct Builder<'a> {
     items: HashSet<String>,
     /// The bodies declared so far.
     bodies: HashSet<String>,
-    /// Where each body and item was defined, by its label in the model's messages
-    /// (``flex point `spring` ``), for errors found after loading.
-    pub spans: Vec<(String, std::ops::Range<usize>)>,
+    /// Where each body and item was defined, by its place in the model, for errors found
+    /// after loading.
+    pub spans: Spans,
     /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
     pub(super) warnings: Vec<String>,
     /// `[model] unsteady`: the default of the wings and strips that do not set their own.
@@ -73,14 +74,14 @@ impl<'a> Builder<'a> {
             model,
             items: HashSet::new(),
             bodies: HashSet::new(),
-            spans: Vec::new(),
+            spans: Spans::default(),
             warnings: Vec::new(),
             unsteady: None,
         }
     }
 
     /// Every kind, bodies first (items refer to them).
-    pub fn all(&mut self, root: &Table<'a>) -> Result<(), ModelError> {
+    pub fn all(&mut self, root: &Table<'a>) -> Result<(), FileError> {
         self.each(root, "body", Self::body)?;
         for (kind, f) in [
             ("load", Self::load as Reader<'a>),
@@ -101,7 +102,7 @@ impl<'a> Builder<'a> {
     }
 
     /// Reads every `[[kind]]` table, and its mirror image where asked.
-    fn each(&mut self, root: &Table<'a>, kind: &str, f: Reader<'a>) -> Result<(), ModelError> {
+    fn each(&mut self, root: &Table<'a>, kind: &str, f: Reader<'a>) -> Result<(), FileError> {
         let Some(v) = root.get(kind) else {
             return Ok(());
         };
@@ -142,14 +143,7 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
-    pub(super) fn claim(
-        &mut self,
-        t: &Table<'_>,
-        kind: &str,
-        name: &str,
-    ) -> Result<(), ModelError> {
-        self.spans
-            .push((crate::items::label(kind, name), t.span.clone()));
+    pub(super) fn claim(&mut self, t: &Table<'_>, kind: &str, name: &str) -> Result<(), FileError> {
         let taken = if kind == "body" {
             self.bodies.contains(name) || name == GROUND
         } else {
@@ -172,9 +166,15 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
+    /// Adds a body or item read from table `t` to the model, and where `t` is.
+    pub(super) fn add(&mut self, t: &Table<'_>, item: impl Item<Expr>) {
+        let place = self.model.add_placed(item);
+        self.spans.record(place, Some(t.span.clone()));
+    }
+
     // ---------------------------------------------------------------- field readers
 
-    pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
+    pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, FileError> {
         t.get(key)
             .map(|v| value_expr(self.ctx, self.decl, v, &t.field_context(key)))
             .transpose()
@@ -184,7 +184,7 @@ impl<'a> Builder<'a> {
         &self,
         t: &Table<'_>,
         key: &str,
-    ) -> Result<Option<[Expr; N]>, ModelError> {
+    ) -> Result<Option<[Expr; N]>, FileError> {
         let Some(v) = t.get(key) else {
             return Ok(None);
         };
@@ -202,14 +202,14 @@ impl<'a> Builder<'a> {
         key: &str,
         m: Option<Mirror>,
         kind: VecKind,
-    ) -> Result<Option<Vec3<Expr>>, ModelError> {
+    ) -> Result<Option<Vec3<Expr>>, FileError> {
         Ok(self.scalars::<3>(t, key)?.map(|v| match m {
             Some(m) => m.apply(v, kind),
             None => v,
         }))
     }
 
-    fn matrix(&self, t: &Table<'_>, key: &str) -> Result<Option<Vec<Vec<Expr>>>, ModelError> {
+    fn matrix(&self, t: &Table<'_>, key: &str) -> Result<Option<Vec<Vec<Expr>>>, FileError> {
         let Some(v) = t.get(key) else {
             return Ok(None);
         };
@@ -231,7 +231,7 @@ impl<'a> Builder<'a> {
 
     /// `between = [body 1, body 2]` (mirrored names where mirrored); the default is the
     /// builder's.
-    fn between(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Option<[String; 2]>, ModelError> {
+    fn between(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Option<[String; 2]>, FileError> {
         let Some(v) = t.get("between") else {
             return Ok(None);
         };
@@ -254,7 +254,7 @@ impl<'a> Builder<'a> {
         v: &Value<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<String, ModelError> {
+    ) -> Result<String, FileError> {
         let name = match m {
             Some(_) => mirror_name(name)
                 .filter(|n| self.bodies.contains(n))
@@ -280,7 +280,7 @@ impl<'a> Builder<'a> {
 
     // ---------------------------------------------------------------- kinds
 
-    fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&[
             "at",
             "mass",
@@ -312,11 +312,11 @@ impl<'a> Builder<'a> {
         if let Some(v) = self.vector(t, "angular_velocity", m, VecKind::Axial)? {
             b = b.angular_velocity(v);
         }
-        self.model.add(b);
+        self.add(t, b);
         Ok(())
     }
 
-    fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&["body", "at", "force", "moment", "frame"]))?;
         self.claim(t, "load", name)?;
         let body = self
@@ -335,7 +335,7 @@ impl<'a> Builder<'a> {
         if let Some(f) = self.named_body(t, "frame", m)? {
             l = l.frame(&f);
         }
-        self.model.add(l);
+        self.add(t, l);
         Ok(())
     }
 
@@ -344,7 +344,7 @@ impl<'a> Builder<'a> {
         t: &Table<'_>,
         key: &str,
         m: Option<Mirror>,
-    ) -> Result<Option<String>, ModelError> {
+    ) -> Result<Option<String>, FileError> {
         let Some(v) = t.get(key) else {
             return Ok(None);
         };
@@ -355,7 +355,7 @@ impl<'a> Builder<'a> {
     }
 
     /// `between`, `ends`, `twist` of a line item.
-    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<LineFields, ModelError> {
+    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<LineFields, FileError> {
         let ends = match t.get("ends") {
             None => None,
             Some(v) => {
@@ -388,7 +388,7 @@ impl<'a> Builder<'a> {
         })
     }
 
-    fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&[
             LINE[0],
             LINE[1],
@@ -418,11 +418,11 @@ impl<'a> Builder<'a> {
         if let Some(x) = self.scalar(t, "preload")? {
             s = s.preload(x);
         }
-        self.model.add(s);
+        self.add(t, s);
         Ok(())
     }
 
-    fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&LINE))?;
         self.claim(t, "link", name)?;
         let l = self.line(t, m)?;
@@ -432,11 +432,11 @@ impl<'a> Builder<'a> {
             |x, e| x.ends(e[0], e[1]),
             Link::twist,
         );
-        self.model.add(link);
+        self.add(t, link);
         Ok(())
     }
 
-    fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&[
             LINE[0],
             LINE[1],
@@ -462,11 +462,11 @@ impl<'a> Builder<'a> {
         if let Some(u) = t.string("units")? {
             a = a.units(&u);
         }
-        self.model.add(a);
+        self.add(t, a);
         Ok(())
     }
 
-    fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&[
             LINE[0],
             LINE[1],
@@ -529,11 +529,11 @@ impl<'a> Builder<'a> {
         if let Some(u) = t.string("units")? {
             s = s.units(&u);
         }
-        self.model.add(s);
+        self.add(t, s);
         Ok(())
     }
 
-    fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&[
             "between",
             "ends",
@@ -559,12 +559,12 @@ impl<'a> Builder<'a> {
         if let Some(v) = self.vector(t, "perp", m, VecKind::Polar)? {
             b = b.perp(v);
         }
-        self.model.add(b);
+        self.add(t, b);
         Ok(())
     }
 
     /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item.
-    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<PointFields, ModelError> {
+    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<PointFields, FileError> {
         Ok(PointFields {
             between: self.between(t, m)?,
             at: self.vector(t, "at", m, VecKind::Polar)?,
@@ -580,21 +580,21 @@ impl<'a> Builder<'a> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
+    ) -> Result<(), FileError> {
         t.only(&with_common(&POINT))?;
         self.claim(t, "rigid point", name)?;
         let p = self.point(t, m)?;
         let r = point_apply!(p, RigidPoint::new(name));
-        self.model.add(r);
+        self.add(t, r);
         Ok(())
     }
 
-    fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
+    fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         t.only(&with_common(&POINT))?;
         self.claim(t, "nh point", name)?;
         let p = self.point(t, m)?;
         let r = point_apply!(p, NhPoint::new(name));
-        self.model.add(r);
+        self.add(t, r);
         Ok(())
     }
 
@@ -603,7 +603,7 @@ impl<'a> Builder<'a> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
+    ) -> Result<(), FileError> {
         let mut keys = POINT.to_vec();
         keys.extend(["stiffness", "damping", "stiffness_matrix", "damping_matrix"]);
         t.only(&with_common(&keys))?;
@@ -622,12 +622,43 @@ impl<'a> Builder<'a> {
         if let Some(c) = self.matrix(t, "damping_matrix")? {
             f = f.damping_matrix(c);
         }
-        self.model.add(f);
+        self.add(t, f);
         Ok(())
     }
 }
 
-type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), ModelError>;
+/// The table that defined each body and item of a model, by its place in the model.
+#[derive(Debug, Default)]
+pub(crate) struct Spans {
+    bodies: Vec<Range<usize>>,
+    items: Vec<Option<Range<usize>>>,
+}
+
+impl Spans {
+    /// Records the span of the body or item added at `place` (`None`: added by the loader,
+    /// not defined by a table), shifting the items after it as the model did.
+    pub fn record(&mut self, place: Place, span: Option<Range<usize>>) {
+        match place {
+            Place::Body(k) => {
+                debug_assert_eq!(k, self.bodies.len(), "bodies are appended");
+                self.bodies.extend(span);
+            }
+            Place::Item(k) => self.items.insert(k, span),
+            Place::Model => {}
+        }
+    }
+
+    /// The span of the table that defined the body or item at `place`.
+    pub fn of(&self, place: Place) -> Option<&Range<usize>> {
+        match place {
+            Place::Body(k) => self.bodies.get(k),
+            Place::Item(k) => self.items.get(k).and_then(Option::as_ref),
+            Place::Model => None,
+        }
+    }
+}
+
+type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), FileError>;
 
 /// How a vector transforms under a mirror: a position or direction (polar), or a rotation or
 /// moment (axial, a pseudo-vector).

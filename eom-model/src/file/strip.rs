@@ -1,9 +1,9 @@
 //! `[[strip]]`: a thin-airfoil strip's fields through the builder, and its `unsteady` setting.
 
+use super::error::FileError;
 use super::items::{Builder, VecKind};
 use super::mirror::Mirror;
 use super::source::Table;
-use crate::error::ModelError;
 use crate::items::{Strip, Unsteady};
 use eom_sym::Expr;
 
@@ -28,7 +28,7 @@ impl Builder<'_> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
+    ) -> Result<(), FileError> {
         t.only(&super::items::with_common(&STRIP_KEYS))?;
         self.claim(t, "strip", name)?;
         let mut s = Strip::new(name);
@@ -80,7 +80,7 @@ impl Builder<'_> {
             })?;
             s = s.unsteady(u);
         }
-        self.model.add(s);
+        self.add(t, s);
         Ok(())
     }
 }

@@ -2,11 +2,11 @@
 //! or from an AVL file (`.sb`, `.st` read; `.avl` solved by eom-aero's vortex lattice),
 //! relative to the model file.
 
+use super::error::FileError;
 use super::items::{Builder, VecKind};
 use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
-use crate::error::ModelError;
 use crate::items::{
     Unsteady, WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index,
 };
@@ -61,7 +61,7 @@ impl Builder<'_> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
+    ) -> Result<(), FileError> {
         t.only(&super::items::with_common(&WING_KEYS))?;
         self.claim(t, "wing", name)?;
         let mut w = match self.avl_file(t, name)? {
@@ -138,12 +138,12 @@ impl Builder<'_> {
                 }
             }
         }
-        self.model.add(w);
+        self.add(t, w);
         Ok(())
     }
 
     /// `derivatives = { CYv = …, … }`: each by its AVL name (replacing the AVL file's).
-    fn derivative_table(&self, t: &Table<'_>, mut w: Wing<Expr>) -> Result<Wing<Expr>, ModelError> {
+    fn derivative_table(&self, t: &Table<'_>, mut w: Wing<Expr>) -> Result<Wing<Expr>, FileError> {
         let Some(v) = t.get("derivatives") else {
             return Ok(w);
         };
@@ -177,7 +177,7 @@ impl Builder<'_> {
 
     /// `avl = "file"`: the derivatives (and S, c, b) of an AVL `.sb` or `.st` file, or of a
     /// `.avl` geometry by the vortex lattice at α = 0; the path is relative to the model file.
-    fn avl_file(&mut self, t: &Table<'_>, name: &str) -> Result<Option<Derivatives>, ModelError> {
+    fn avl_file(&mut self, t: &Table<'_>, name: &str) -> Result<Option<Derivatives>, FileError> {
         let Some(path) = t.string("avl")? else {
             return Ok(None);
         };

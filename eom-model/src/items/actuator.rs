@@ -1,10 +1,10 @@
 //! [`Actuator`]: an input acting along (or about) a line.
 
-use super::line::{Line, line_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Line, line_builders};
 use eom_sym::scalar::Scalar;
 
 /// An actuator: generalized force `gain·u + rate_gain·u̇` that extends the line (or twists about

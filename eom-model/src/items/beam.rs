@@ -1,5 +1,6 @@
 //! [`Beam`]: an Euler–Bernoulli beam between two bodies, bending in two planes.
 
+use super::Validation;
 use super::{
     Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name, visit3, zero3,
 };
@@ -7,7 +8,6 @@ use crate::assemble::RowLabel;
 use crate::assemble::{Assembly, ItemRow, Reaction, Rows, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, cross, scale, sub, unit};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// An Euler–Bernoulli beam between two bodies (bending in two planes, no torsion or axial

@@ -1,13 +1,12 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
+use super::Validation;
 use super::{
     Field, Item, MapItem, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3,
 };
-use crate::Model;
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// A rigid body: mass, inertia about its mass centre (global axes), and the nominal motion
@@ -164,8 +163,8 @@ impl<S: ModelScalar> Item<S> for Body<S> {
         Ok(())
     }
 
-    fn add_to(self, model: &mut Model<S>) {
-        model.bodies.push(self);
+    fn into_body(self: Box<Self>) -> Result<Body<S>, Box<dyn Item<S>>> {
+        Ok(*self)
     }
 }
 

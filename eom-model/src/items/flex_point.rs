@@ -1,10 +1,10 @@
 //! [`FlexPoint`]: an elastic, viscous bushing on the directions of a joint.
 
-use super::point::{Point, point_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
 use crate::assemble::{Assembly, Reaction, Term};
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Point, point_builders};
 use eom_sym::scalar::Scalar;
 
 /// An elastic, viscous bushing on the same directions as a joint.
@@ -112,7 +112,8 @@ impl<S: ModelScalar> Item<S> for FlexPoint<S> {
     }
 
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.point.validate("flex point", &self.name, cx)?;
+        self.point
+            .validate("flex point", &self.name, &mut |w| cx.warn(w))?;
         let n = (self.point.forces + self.point.moments) as usize;
         for (m, field) in [
             (&self.stiffness_matrix, "stiffness_matrix"),

@@ -1,10 +1,10 @@
 //! [`Link`]: an inextensible rigid link between two bodies.
 
-use super::line::{Line, line_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Line, line_builders};
 use eom_sym::scalar::Scalar;
 
 /// An inextensible rigid link.

@@ -1,12 +1,12 @@
 //! [`Load`]: a constant applied force and moment, dead or following a body.
 
+use super::Validation;
 use super::{
     Body, Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, label, map3, name, visit3, zero3,
 };
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, cross, mat_add, mat_mul, scale, skew, sub};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// A constant applied force and moment. `frame` names the body whose axes the direction is

@@ -25,33 +25,32 @@ mod sensor;
 mod spring;
 mod strip;
 mod unsteady;
+mod validation;
 mod wing;
 
 pub use actuator::Actuator;
 pub use beam::Beam;
 pub use body::Body;
 pub use flex_point::FlexPoint;
-pub use line::Line;
 pub use link::Link;
 pub use load::Load;
 pub use nh_point::NhPoint;
-pub use point::Point;
 pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
 pub use strip::Strip;
-pub use unsteady::{
-    AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c, resolve_unsteady,
-};
+pub use unsteady::{AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c};
+pub use validation::Validation;
 pub use wing::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 
-use crate::Model;
+pub use crate::geometry::{GROUND, Line, Name, Point, Vec3, vec3, x_axis, y_axis, z_axis, zero3};
+
 use crate::assemble::Assembly;
 use crate::error::ModelError;
-use crate::validate::Validation;
+pub(crate) use crate::error::{field_error, label};
+pub(crate) use crate::geometry::{map3, name};
 use eom_sym::scalar::Scalar;
 use eom_sym::{Dd, Expr};
-use std::sync::Arc;
 
 /// The item kinds in the order in which a model stores, validates and assembles them (bodies
 /// are kept apart and come first). The order fixes the order of the constraint rows and of
@@ -76,42 +75,6 @@ pub const KINDS: &[&str] = &[
 /// The position of `kind` in [`KINDS`] (an unregistered kind sorts last).
 pub(crate) fn kind_rank(kind: &str) -> usize {
     KINDS.iter().position(|k| *k == kind).unwrap_or(KINDS.len())
-}
-
-/// The name of the ground (the fixed frame). Reserved: no body may be called this.
-pub const GROUND: &str = "ground";
-
-/// A shared item or body name.
-pub type Name = Arc<str>;
-
-/// A 3-vector.
-pub type Vec3<S> = [S; 3];
-
-/// A 3-vector from three components of any convertible type.
-pub fn vec3<S>(x: impl Into<S>, y: impl Into<S>, z: impl Into<S>) -> Vec3<S> {
-    [x.into(), y.into(), z.into()]
-}
-
-/// The zero vector.
-pub fn zero3<S: Scalar>() -> Vec3<S> {
-    [S::zero(), S::zero(), S::zero()]
-}
-
-/// The global x axis.
-pub fn x_axis<S: Scalar>() -> Vec3<S> {
-    [S::one(), S::zero(), S::zero()]
-}
-/// The global y axis.
-pub fn y_axis<S: Scalar>() -> Vec3<S> {
-    [S::zero(), S::one(), S::zero()]
-}
-/// The global z axis.
-pub fn z_axis<S: Scalar>() -> Vec3<S> {
-    [S::zero(), S::zero(), S::one()]
-}
-
-pub(crate) fn name(s: &str) -> Name {
-    Arc::from(s)
 }
 
 /// The scalar types a model can hold and be converted between: eom-sym's [`Expr`], `f64` and
@@ -225,14 +188,15 @@ pub trait Item<S>:
     /// Add the item's terms to the linearized equations.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError>;
 
-    /// Put the item into `model`; called by [`Model::add`]. Items are kept in the order of
-    /// [`KINDS`]; a body overrides this to go to [`Model::bodies`].
-    fn add_to(self, model: &mut Model<S>)
+    /// The item as a body (a body overrides this), or else itself: [`Model::add`] keeps
+    /// bodies apart from the items.
+    ///
+    /// [`Model::add`]: crate::Model::add
+    fn into_body(self: Box<Self>) -> Result<Body<S>, Box<dyn Item<S>>>
     where
         Self: Sized,
-        S: 'static,
     {
-        model.insert_item(Box::new(self));
+        Err(self)
     }
 }
 
@@ -327,32 +291,6 @@ impl std::fmt::Display for Field {
 pub(crate) fn visit3<S>(f: &mut dyn FnMut(Field, &S), name: &'static str, v: &Vec3<S>) {
     for (k, x) in v.iter().enumerate() {
         f(Field::axis(name, k), x);
-    }
-}
-
-/// Vector `v` converted with `f`.
-pub(crate) fn map3<S, T>(v: &Vec3<S>, f: &mut dyn FnMut(&S) -> T) -> Vec3<T> {
-    [f(&v[0]), f(&v[1]), f(&v[2])]
-}
-
-/// The label of an item in messages: ``spring `front` ``. Built directly rather than by
-/// `format!`: every reacting item's preload is labelled on every assembly.
-pub(crate) fn label(kind: &str, name: &str) -> String {
-    let name = eom_text::shown(name);
-    let mut s = String::with_capacity(kind.len() + name.len() + 3);
-    s.push_str(kind);
-    s.push_str(" `");
-    s.push_str(&name);
-    s.push('`');
-    s
-}
-
-/// The error of a bad field of an item.
-pub(crate) fn field_error(kind: &str, name: &str, field: &str, problem: String) -> ModelError {
-    ModelError::Model {
-        item: label(kind, name),
-        field: field.to_string(),
-        problem,
     }
 }
 

@@ -1,10 +1,10 @@
 //! [`NhPoint`]: a nonholonomic constraint on the relative velocity at a point (e.g. a tyre that cannot slip).
 
-use super::point::{Point, point_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Point, point_builders};
 use eom_sym::scalar::Scalar;
 
 /// A nonholonomic constraint on relative velocity (e.g. a no-slip tyre).
@@ -61,7 +61,8 @@ impl<S: ModelScalar> Item<S> for NhPoint<S> {
     }
 
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.point.validate("nh point", &self.name, cx)
+        self.point
+            .validate("nh point", &self.name, &mut |w| cx.warn(w))
     }
 
     /// One nonholonomic row per constrained direction.

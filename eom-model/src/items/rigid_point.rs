@@ -1,10 +1,10 @@
 //! [`RigidPoint`]: a holonomic joint at a point: some relative translations and rotations of two bodies are zero.
 
-use super::point::{Point, point_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Point, point_builders};
 use eom_sym::scalar::Scalar;
 
 /// A holonomic joint.
@@ -61,7 +61,8 @@ impl<S: ModelScalar> Item<S> for RigidPoint<S> {
     }
 
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.point.validate("rigid point", &self.name, cx)
+        self.point
+            .validate("rigid point", &self.name, &mut |w| cx.warn(w))
     }
 
     /// One holonomic row per constrained direction; the multipliers are the joint's force and

@@ -1,10 +1,10 @@
 //! [`Sensor`]: an output measuring the elongation (or twist) of a line, or its rates.
 
-use super::line::{Line, line_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
-use crate::assemble::Assembly;
+use crate::assemble::{Assembly, OutputFrame, OutputKind, OutputOrder};
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Line, line_builders};
 use eom_sym::scalar::Scalar;
 
 /// What a sensor measures: the elongation (or twist) of its line, or its first or second
@@ -97,6 +97,23 @@ impl<S: Scalar> Sensor<S> {
 }
 line_builders!(Sensor);
 
+impl<S> Sensor<S> {
+    /// What the sensor's output row measures, in the assembly's terms.
+    fn output_kind(&self) -> OutputKind {
+        OutputKind {
+            order: match self.order {
+                SensorOrder::Displacement => OutputOrder::Displacement,
+                SensorOrder::Velocity => OutputOrder::Velocity,
+                SensorOrder::Acceleration => OutputOrder::Acceleration,
+            },
+            frame: match self.frame {
+                SensorFrame::Global => OutputFrame::Global,
+                SensorFrame::Local => OutputFrame::Local,
+            },
+        }
+    }
+}
+
 impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Sensor<S> {
     fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
         Box::new(Sensor {
@@ -167,7 +184,7 @@ impl<S: ModelScalar> Item<S> for Sensor<S> {
     /// A row of the output matrices, and the feedthrough of its actuator.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         let (rows, _) = cx.line(&self.line, "sensor", &self.name);
-        let output = cx.output(&self.name, &self.units, (self.order, self.frame));
+        let output = cx.output(&self.name, &self.units, self.output_kind());
         for &(j, v) in &rows.rows[0] {
             cx.add_output(output, j, -(self.gain * v));
         }

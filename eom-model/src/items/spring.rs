@@ -1,10 +1,10 @@
 //! [`Spring`]: a spring–damper–inerter along (or, twisted, about) a line.
 
-use super::line::{Line, line_builders};
+use super::Validation;
 use super::{Field, Item, MapItem, ModelScalar, Name, name};
 use crate::assemble::{Assembly, Reaction, Term};
 use crate::error::ModelError;
-use crate::validate::Validation;
+use crate::geometry::{Line, line_builders};
 use eom_sym::scalar::Scalar;
 
 /// A spring–damper–inerter along (or, twisted, about) a line.

@@ -28,14 +28,14 @@
 //! airspeed the air moves at `v_air = v_body − U·forward`, and the stream turned by the body's
 //! rotation adds the `U θ` part of the downwash as a stiffness on the rotations.
 
-use super::point::Point;
+use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{visit3, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
+use crate::geometry::Point;
 use crate::geometry::{cross, dot};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// A thin-airfoil strip at a point of a body (see the module documentation).
@@ -421,16 +421,6 @@ impl<S: ModelScalar> Strip<S> {
                 }
             }
         }
-    }
-}
-
-impl<S: ModelScalar> crate::Model<S> {
-    /// The strips of the model, in the order they were added.
-    pub fn strips(&self) -> impl Iterator<Item = &Strip<S>> {
-        self.items_of("strip").filter_map(|x| {
-            let any: &dyn std::any::Any = x;
-            any.downcast_ref::<Strip<S>>()
-        })
     }
 }
 

@@ -39,15 +39,14 @@
 //! the model's x forward, y left, z up turned by π about x (entry `(i, j)` of the block
 //! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
 
-use super::point::Point;
+use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{label, visit3, zero3};
-use crate::Model;
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
+use crate::geometry::Point;
 use crate::geometry::{cross, dot, skew};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// The 36 derivative names in AVL's body-axis layout: `WING_DERIVATIVES[i][j]` is row i
@@ -697,25 +696,10 @@ impl<S: ModelScalar> Wing<S> {
     }
 }
 
-impl<S: ModelScalar> Model<S> {
-    /// The wings of the model, in the order they were added.
-    pub fn wings(&self) -> impl Iterator<Item = &Wing<S>> {
-        self.items_of("wing").filter_map(|x| {
-            let any: &dyn std::any::Any = x;
-            any.downcast_ref::<Wing<S>>()
-        })
-    }
-
-    /// The airspeed of `wing` in this model (given, or from its body's nominal velocity).
-    pub fn airspeed_of(&self, wing: &Wing<S>) -> S {
-        let velocity = self.body(&wing.body).map_or(zero3(), |b| b.velocity);
-        wing.airspeed_with(&velocity)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Model;
     use crate::items::tests::{Counter, check_fields_and_map};
 
     #[test]
