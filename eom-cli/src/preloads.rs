@@ -4,7 +4,7 @@
 //! the statics determines it.
 
 use crate::format::g;
-use eom_model::{Assembled, Statics};
+use eom_model::{Assembled, Item, Statics};
 use serde::Serialize;
 
 /// Values smaller than this fraction of the largest of their kind (force or moment) are

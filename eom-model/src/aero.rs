@@ -16,7 +16,7 @@
 
 use crate::Model;
 use crate::error::{ModelError, label};
-use crate::items::{AUTO_REDUCED_FREQUENCY, Strip, Unsteady, Wing};
+use crate::items::{AUTO_REDUCED_FREQUENCY, AnyItem, Unsteady, Wing};
 use eom_aero::validity::{
     PITCH_RATE_LIMIT, REDUCED_FREQUENCY_LIMIT, ROLL_RATE_LIMIT, YAW_RATE_LIMIT, check_rates,
     reduced_frequency,
@@ -249,22 +249,17 @@ fn auto_surfaces(m: &Model<f64>) -> Vec<AutoSurface> {
 fn with_lags(model: &Model<Expr>, lagged: &[String]) -> Model<Expr> {
     let mut m = model.clone();
     for item in m.items_mut() {
-        let any: &mut dyn std::any::Any = item.as_mut();
-        let pick = |name: &str| {
-            if lagged.iter().any(|n| n == name) {
+        let (name, unsteady) = match item {
+            AnyItem::Wing(w) => (&w.name, &mut w.unsteady),
+            AnyItem::Strip(s) => (&s.name, &mut s.unsteady),
+            _ => continue,
+        };
+        if *unsteady == Unsteady::Auto {
+            *unsteady = if lagged.iter().any(|n| **n == **name) {
                 Unsteady::Jones
             } else {
                 Unsteady::QuasiSteady
-            }
-        };
-        if let Some(w) = any.downcast_mut::<Wing<Expr>>() {
-            if w.unsteady == Unsteady::Auto {
-                w.unsteady = pick(&w.name);
-            }
-        } else if let Some(s) = any.downcast_mut::<Strip<Expr>>()
-            && s.unsteady == Unsteady::Auto
-        {
-            s.unsteady = pick(&s.name);
+            };
         }
     }
     m
@@ -280,20 +275,8 @@ pub fn resolve_unsteady<'m>(
     model: &'m Model<Expr>,
     values: &[f64],
 ) -> Result<(Cow<'m, Model<Expr>>, Vec<String>), ModelError> {
-    let any_auto = model
-        .items()
-        .iter()
-        .filter(|x| matches!(x.kind(), "wing" | "strip"))
-        .any(|x| {
-            let any: &dyn std::any::Any = x.as_ref();
-            any.downcast_ref::<Wing<Expr>>()
-                .map(|w| w.unsteady == Unsteady::Auto)
-                .or_else(|| {
-                    any.downcast_ref::<Strip<Expr>>()
-                        .map(|s| s.unsteady == Unsteady::Auto)
-                })
-                .unwrap_or(false)
-        });
+    let any_auto = model.wings().any(|w| w.unsteady == Unsteady::Auto)
+        || model.strips().any(|s| s.unsteady == Unsteady::Auto);
     if !any_auto {
         return Ok((Cow::Borrowed(model), Vec::new()));
     }

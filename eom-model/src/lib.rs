@@ -72,9 +72,9 @@
 //! implements the trait [`Item`], which is all the rest of the crate knows of it:
 //!
 //! * [`Item::kind`], [`Item::name`]: how messages name it (``flex point `tyre` ``);
-//! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and
-//!   [`MapItem::map_item`]: the item converted to another scalar type, field by field in the
-//!   same order (this is how [`Model::evaluate`] turns expressions into numbers);
+//! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and the
+//!   kind's `map`: the item converted to another scalar type, field by field in the same order
+//!   (this is how [`Model::evaluate`] turns expressions into numbers);
 //! * [`Item::bodies`] and [`Item::supports`]: the bodies it connects (checked to exist and to
 //!   differ) and whether it holds them; [`Item::validate`]: its own checks, whose errors name
 //!   the item and field ([`Validation`] gives the known bodies and items, and takes warnings);
@@ -88,22 +88,28 @@
 //!   ([`Assembly::lag_state`], [`Assembly::add_lag`]: a strip's or wing's unsteady lift),
 //!   which every reduction carries after the mechanical states.
 //!
-//! A [`Model`] keeps its bodies and, apart, its items in the order of the kind table
-//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers.
+//! Every kind is declared once, in the `kinds!` table of `items/mod.rs`: its name in messages,
+//! its model-file key and the keys of its tables, and its place in the order. From it come the
+//! closed enum [`AnyItem`] in which a [`Model`] keeps its items (bodies apart), in the order of
+//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers; the
+//! model-file reader's table and keys, the exporter's keys, and the key table of
+//! docs/model-files.md (checked by a test).
 //!
 //! ## Adding an item kind
 //!
 //! 1. Write `items/<kind>.rs`: the struct (public fields, `name: Name`, scalars `S`), its
 //!    builders (a point geometry reuses [`Point`] and `point_builders!`, a two-point one
-//!    [`Line`] and `line_builders!`), and `impl Item<S>` and `impl MapItem<S, T>`.
+//!    [`Line`] and `line_builders!`), its `map` to another scalar type, and `impl Item<S>`.
 //!    `assemble` is usually a few lines: e.g. a velocity-dependent damping block at a point of
 //!    one body takes the rows of its point,
 //!    `let (rows, _) = cx.point(&self.point, "wing", &self.name)`, and adds
 //!    `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square, not
 //!    necessarily symmetric, block with one row and column per direction: forces first, then
 //!    moments).
-//! 2. Register it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and its kind in
-//!    [`KINDS`] (where it stands there decides where its rows go).
+//! 2. Declare it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and one line in
+//!    its `kinds!` table (where it stands there decides where its rows go); the compiler then
+//!    asks for its reader in `file/items.rs`; add its row to the key table of
+//!    docs/model-files.md (the test `key_table` prints it).
 //! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
 //!    the conversion agree; a closed-form model checks its terms.
 //!

@@ -4,7 +4,9 @@
 use crate::assemble::{Assembled, Assembly, BodyFrame};
 use crate::error::ModelError;
 use crate::geometry::zero3;
-use crate::items::{Body, Item, KINDS, ModelScalar, Strip, Wing, kind_rank};
+#[cfg(doc)]
+use crate::items::KINDS;
+use crate::items::{AnyItem, Body, Item, ModelScalar, Part, Strip, Wing};
 use eom_sym::ExprPool;
 use eom_sym::expr::Expr;
 use eom_sym::pool::ParamInfo;
@@ -21,7 +23,7 @@ pub struct Model<S = Expr> {
     /// Bodies (the ground is implicit).
     pub bodies: Vec<Body<S>>,
     /// The items, in the order of [`KINDS`] (items of one kind in the order they were added).
-    pub(crate) items: Vec<Box<dyn Item<S>>>,
+    pub(crate) items: Vec<AnyItem<S>>,
 }
 
 /// Where in a model a body or item is (what errors found by [`Model::validate`] are about).
@@ -38,26 +40,21 @@ pub(crate) enum Place {
 impl<S: 'static> Model<S> {
     /// Insert an item after the items of its kind and of the kinds before it in [`KINDS`];
     /// returns where it went.
-    fn insert_item(&mut self, item: Box<dyn Item<S>>) -> usize {
-        let rank = kind_rank(item.kind());
-        debug_assert!(
-            rank < KINDS.len(),
-            "item kind `{}` is not registered in KINDS",
-            item.kind()
-        );
-        let at = self.items.partition_point(|x| kind_rank(x.kind()) <= rank);
+    fn insert_item(&mut self, item: AnyItem<S>) -> usize {
+        let kind = item.kind_id();
+        let at = self.items.partition_point(|x| x.kind_id() <= kind);
         self.items.insert(at, item);
         at
     }
 
     /// Add a body or an item, and say where it went.
-    pub(crate) fn add_placed(&mut self, item: impl Item<S>) -> Place {
-        match Box::new(item).into_body() {
-            Ok(body) => {
+    pub(crate) fn add_placed(&mut self, part: impl Into<Part<S>>) -> Place {
+        match part.into() {
+            Part::Body(body) => {
                 self.bodies.push(body);
                 Place::Body(self.bodies.len() - 1)
             }
-            Err(item) => Place::Item(self.insert_item(item)),
+            Part::Item(item) => Place::Item(self.insert_item(item)),
         }
     }
 }
@@ -83,27 +80,24 @@ impl<S: ModelScalar> Model<S> {
     }
 
     /// Add a body or an item (validated later, by [`Model::validate`] or the assembly).
-    pub fn add(&mut self, item: impl Item<S>) -> &mut Self {
-        self.add_placed(item);
+    pub fn add(&mut self, part: impl Into<Part<S>>) -> &mut Self {
+        self.add_placed(part);
         self
     }
 
     /// The items (bodies excluded), in the order of [`KINDS`].
-    pub fn items(&self) -> &[Box<dyn Item<S>>] {
+    pub fn items(&self) -> &[AnyItem<S>] {
         &self.items
     }
 
     /// The items, mutable (for settings decided later, such as `unsteady = "auto"`).
-    pub(crate) fn items_mut(&mut self) -> &mut [Box<dyn Item<S>>] {
+    pub(crate) fn items_mut(&mut self) -> &mut [AnyItem<S>] {
         &mut self.items
     }
 
     /// The items of one kind (e.g. `"spring"`), in the order they were added.
-    pub fn items_of<'a>(&'a self, kind: &'a str) -> impl Iterator<Item = &'a dyn Item<S>> + 'a {
-        self.items
-            .iter()
-            .filter(move |x| x.kind() == kind)
-            .map(|x| &**x)
+    pub fn items_of<'a>(&'a self, kind: &'a str) -> impl Iterator<Item = &'a AnyItem<S>> + 'a {
+        self.items.iter().filter(move |x| x.kind() == kind)
     }
 
     /// The body called `name`.
@@ -168,9 +162,9 @@ impl Model<Expr> {
 impl<S: ModelScalar> Model<S> {
     /// The wings of the model, in the order they were added.
     pub fn wings(&self) -> impl Iterator<Item = &Wing<S>> {
-        self.items_of("wing").filter_map(|x| {
-            let any: &dyn std::any::Any = x;
-            any.downcast_ref::<Wing<S>>()
+        self.items.iter().filter_map(|x| match x {
+            AnyItem::Wing(w) => Some(w),
+            _ => None,
         })
     }
 
@@ -182,9 +176,9 @@ impl<S: ModelScalar> Model<S> {
 
     /// The strips of the model, in the order they were added.
     pub fn strips(&self) -> impl Iterator<Item = &Strip<S>> {
-        self.items_of("strip").filter_map(|x| {
-            let any: &dyn std::any::Any = x;
-            any.downcast_ref::<Strip<S>>()
+        self.items.iter().filter_map(|x| match x {
+            AnyItem::Strip(s) => Some(s),
+            _ => None,
         })
     }
 }

@@ -46,7 +46,7 @@ impl<S: ModelScalar> Model<S> {
         self.check_item_names()?;
         for (k, item) in self.items().iter().enumerate() {
             let at = |e| (Place::Item(k), e);
-            cx.check_connected(&**item).map_err(at)?;
+            cx.check_connected(item).map_err(at)?;
             item.validate(&mut cx).map_err(at)?;
         }
         self.check_support()?;
@@ -65,7 +65,10 @@ impl<S: ModelScalar> Model<S> {
     /// is located, and labelled, only when there is one).
     fn check_values(&self) -> Result<(), (Place, ModelError)> {
         let bodies = self.bodies.iter().map(|b| b as &dyn Item<S>);
-        let items = || bodies.clone().chain(self.items().iter().map(|x| &**x));
+        let items = || {
+            let items = self.items().iter().map(|x| x as &dyn Item<S>);
+            bodies.clone().chain(items)
+        };
         let mut finite = true;
         for item in items() {
             item.fields(&mut |_, x| finite &= x.nominal().is_finite());

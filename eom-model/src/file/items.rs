@@ -12,9 +12,6 @@ use std::collections::HashSet;
 use std::ops::Range;
 use toml::de::DeValue;
 
-/// The fields every kind accepts besides its own.
-const COMMON: [&str; 2] = ["name", "mirror"];
-
 /// Applies the point fields through the builder methods every point item shares.
 macro_rules! point_apply {
     ($p:expr, $item:expr) => {{
@@ -82,27 +79,21 @@ impl<'a> Builder<'a> {
 
     /// Every kind, bodies first (items refer to them).
     pub fn all(&mut self, root: &Table<'a>) -> Result<(), FileError> {
-        self.each(root, "body", Self::body)?;
-        for (kind, f) in [
-            ("load", Self::load as Reader<'a>),
-            ("spring", Self::spring),
-            ("link", Self::link),
-            ("beam", Self::beam),
-            ("rigid_point", Self::rigid_point),
-            ("flex_point", Self::flex_point),
-            ("nh_point", Self::nh_point),
-            ("wing", Self::wing),
-            ("strip", Self::strip),
-            ("actuator", Self::actuator),
-            ("sensor", Self::sensor),
-        ] {
-            self.each(root, kind, f)?;
+        self.each(root, &BODY, Self::body)?;
+        for &id in KindId::ALL {
+            self.each(root, id.kind(), reader(id))?;
         }
         Ok(())
     }
 
-    /// Reads every `[[kind]]` table, and its mirror image where asked.
-    fn each(&mut self, root: &Table<'a>, kind: &str, f: Reader<'a>) -> Result<(), FileError> {
+    /// Reads every `[[kind]]` table, and its mirror image where asked: the keys checked, the
+    /// name claimed, the fields read by `f`.
+    fn each(&mut self, root: &Table<'a>, kind: &Kind, f: Reader<'a>) -> Result<(), FileError> {
+        let Kind {
+            name: label,
+            key: kind,
+            keys,
+        } = *kind;
         let Some(v) = root.get(kind) else {
             return Ok(());
         };
@@ -129,6 +120,8 @@ impl<'a> Builder<'a> {
                     t.field_error("mirror", &span, p)
                 })?),
             };
+            t.only(&with_common(keys))?;
+            self.claim(&t, label, &name)?;
             f(self, &t, &name, None)?;
             if let Some(m) = mirror {
                 let mirrored = mirror_name(&name).ok_or_else(|| {
@@ -137,6 +130,7 @@ impl<'a> Builder<'a> {
                          as a word) to name the copy",
                     )
                 })?;
+                self.claim(&t, label, &mirrored)?;
                 f(self, &t, &mirrored, Some(m))?;
             }
         }
@@ -167,7 +161,7 @@ impl<'a> Builder<'a> {
     }
 
     /// Adds a body or item read from table `t` to the model, and where `t` is.
-    pub(super) fn add(&mut self, t: &Table<'_>, item: impl Item<Expr>) {
+    pub(super) fn add(&mut self, t: &Table<'_>, item: impl Into<Part<Expr>>) {
         let place = self.model.add_placed(item);
         self.spans.record(place, Some(t.span.clone()));
     }
@@ -281,15 +275,6 @@ impl<'a> Builder<'a> {
     // ---------------------------------------------------------------- kinds
 
     fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&[
-            "at",
-            "mass",
-            "moments",
-            "products",
-            "velocity",
-            "angular_velocity",
-        ]))?;
-        self.claim(t, "body", name)?;
         let mut b = Body::new(name);
         if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
             b = b.at(v);
@@ -317,8 +302,6 @@ impl<'a> Builder<'a> {
     }
 
     fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&["body", "at", "force", "moment", "frame"]))?;
-        self.claim(t, "load", name)?;
         let body = self
             .named_body(t, "body", m)?
             .unwrap_or_else(|| GROUND.to_string());
@@ -389,16 +372,6 @@ impl<'a> Builder<'a> {
     }
 
     fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&[
-            LINE[0],
-            LINE[1],
-            LINE[2],
-            "stiffness",
-            "damping",
-            "inertance",
-            "preload",
-        ]))?;
-        self.claim(t, "spring", name)?;
         let l = self.line(t, m)?;
         let mut s = l.apply(
             Spring::new(name),
@@ -423,8 +396,6 @@ impl<'a> Builder<'a> {
     }
 
     fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&LINE))?;
-        self.claim(t, "link", name)?;
         let l = self.line(t, m)?;
         let link = l.apply(
             Link::new(name),
@@ -437,15 +408,6 @@ impl<'a> Builder<'a> {
     }
 
     fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&[
-            LINE[0],
-            LINE[1],
-            LINE[2],
-            "gain",
-            "rate_gain",
-            "units",
-        ]))?;
-        self.claim(t, "actuator", name)?;
         let l = self.line(t, m)?;
         let mut a = l.apply(
             Actuator::new(name),
@@ -467,17 +429,6 @@ impl<'a> Builder<'a> {
     }
 
     fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&[
-            LINE[0],
-            LINE[1],
-            LINE[2],
-            "gain",
-            "order",
-            "frame",
-            "feedthrough",
-            "units",
-        ]))?;
-        self.claim(t, "sensor", name)?;
         let l = self.line(t, m)?;
         let mut s = l.apply(
             Sensor::new(name),
@@ -534,14 +485,6 @@ impl<'a> Builder<'a> {
     }
 
     fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&[
-            "between",
-            "ends",
-            "stiffness",
-            "mpul",
-            "perp",
-        ]))?;
-        self.claim(t, "beam", name)?;
         let l = self.line(t, m)?;
         let mut b = Beam::new(name);
         if let Some(bs) = &l.between {
@@ -581,8 +524,6 @@ impl<'a> Builder<'a> {
         name: &str,
         m: Option<Mirror>,
     ) -> Result<(), FileError> {
-        t.only(&with_common(&POINT))?;
-        self.claim(t, "rigid point", name)?;
         let p = self.point(t, m)?;
         let r = point_apply!(p, RigidPoint::new(name));
         self.add(t, r);
@@ -590,8 +531,6 @@ impl<'a> Builder<'a> {
     }
 
     fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        t.only(&with_common(&POINT))?;
-        self.claim(t, "nh point", name)?;
         let p = self.point(t, m)?;
         let r = point_apply!(p, NhPoint::new(name));
         self.add(t, r);
@@ -604,10 +543,6 @@ impl<'a> Builder<'a> {
         name: &str,
         m: Option<Mirror>,
     ) -> Result<(), FileError> {
-        let mut keys = POINT.to_vec();
-        keys.extend(["stiffness", "damping", "stiffness_matrix", "damping_matrix"]);
-        t.only(&with_common(&keys))?;
-        self.claim(t, "flex point", name)?;
         let p = self.point(t, m)?;
         let mut f = point_apply!(p, FlexPoint::new(name));
         if let Some([k, kr]) = self.scalars::<2>(t, "stiffness")? {
@@ -658,6 +593,23 @@ impl Spans {
     }
 }
 
+/// The reader of the fields of a kind (its keys are checked and its name claimed before).
+fn reader<'a>(id: KindId) -> Reader<'a> {
+    match id {
+        KindId::Load => Builder::load,
+        KindId::Spring => Builder::spring,
+        KindId::FlexPoint => Builder::flex_point,
+        KindId::Beam => Builder::beam,
+        KindId::Link => Builder::link,
+        KindId::RigidPoint => Builder::rigid_point,
+        KindId::NhPoint => Builder::nh_point,
+        KindId::Wing => Builder::wing,
+        KindId::Strip => Builder::strip,
+        KindId::Actuator => Builder::actuator,
+        KindId::Sensor => Builder::sensor,
+    }
+}
+
 type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), FileError>;
 
 /// How a vector transforms under a mirror: a position or direction (polar), or a rotation or
@@ -668,11 +620,8 @@ pub(crate) enum VecKind {
     Axial,
 }
 
-const LINE: [&str; 3] = ["between", "ends", "twist"];
-const POINT: [&str; 6] = ["between", "at", "forces", "moments", "axis", "rolling_axis"];
-
-pub(super) fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
-    let mut v: Vec<&'static str> = COMMON.to_vec();
+fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = COMMON_KEYS.to_vec();
     v.extend_from_slice(keys);
     v
 }

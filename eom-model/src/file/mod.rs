@@ -58,7 +58,7 @@ pub use source::FilePosition;
 
 #[cfg(doc)]
 use crate::error::ModelError;
-use crate::items::Load;
+use crate::items::{BODY, KINDS, Load};
 use crate::model::Model;
 use eom_sym::Expr;
 use source::{Ctx, Table};
@@ -117,22 +117,9 @@ fn load_in(
     let ctx = Ctx::new(text, origin, base);
     let doc = ctx.parse()?;
     let root = Table::new(&ctx, &doc, "the file");
-    root.only(&[
-        "model",
-        "parameters",
-        "body",
-        "load",
-        "spring",
-        "link",
-        "beam",
-        "rigid_point",
-        "flex_point",
-        "nh_point",
-        "wing",
-        "strip",
-        "actuator",
-        "sensor",
-    ])?;
+    let mut keys = vec!["model", "parameters", BODY.key];
+    keys.extend(KINDS.iter().map(|k| k.key));
+    root.only(&keys)?;
     let (name, description, gravity, unsteady) = model_section(&root)?;
     let mut model = Model::new(&name);
     let decl = params::declare(&root, &mut model, overrides)?;

@@ -7,21 +7,6 @@ use super::source::Table;
 use crate::items::{Strip, Unsteady};
 use eom_sym::Expr;
 
-/// The keys of `[[strip]]` besides `name` and `mirror`.
-pub(crate) const STRIP_KEYS: [&str; 11] = [
-    "body",
-    "at",
-    "forward",
-    "down",
-    "semichord",
-    "elastic_axis",
-    "width",
-    "lift_slope",
-    "density",
-    "airspeed",
-    "unsteady",
-];
-
 impl Builder<'_> {
     pub(super) fn strip(
         &mut self,
@@ -29,8 +14,6 @@ impl Builder<'_> {
         name: &str,
         m: Option<Mirror>,
     ) -> Result<(), FileError> {
-        t.only(&super::items::with_common(&STRIP_KEYS))?;
-        self.claim(t, "strip", name)?;
         let mut s = Strip::new(name);
         if let Some(u) = self.unsteady {
             s = s.unsteady(u);

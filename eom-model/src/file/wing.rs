@@ -14,22 +14,6 @@ use eom_aero::{AvlOutput, Derivatives, SolverOptions};
 use eom_sym::Expr;
 use std::path::Path;
 
-/// The keys of `[[wing]]` besides `name` and `mirror`.
-pub(crate) const WING_KEYS: [&str; 12] = [
-    "body",
-    "at",
-    "forward",
-    "down",
-    "area",
-    "chord",
-    "span",
-    "density",
-    "airspeed",
-    "derivatives",
-    "avl",
-    "unsteady",
-];
-
 /// Signs of the rows and columns of a wing's derivatives under a mirror image: the wing's own
 /// y changes sign (its mirrored axes are forward', down', and right' = down' × forward').
 const MIRROR_SIGNS: [f64; 6] = [1.0, -1.0, 1.0, -1.0, 1.0, -1.0];
@@ -62,8 +46,6 @@ impl Builder<'_> {
         name: &str,
         m: Option<Mirror>,
     ) -> Result<(), FileError> {
-        t.only(&super::items::with_common(&WING_KEYS))?;
-        self.claim(t, "wing", name)?;
         let mut w = match self.avl_file(t, name)? {
             Some(d) => {
                 for key in ["area", "chord", "span"] {

@@ -1,7 +1,7 @@
 //! [`Actuator`]: an input acting along (or about) a line.
 
 use super::Validation;
-use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use super::{Field, Item, ModelScalar, Name, name};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
 use crate::geometry::{Line, line_builders};
@@ -51,15 +51,16 @@ impl<S: Scalar> Actuator<S> {
 }
 line_builders!(Actuator);
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Actuator<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(Actuator {
+impl<S: Scalar> Actuator<S> {
+    /// The actuator converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Actuator<T> {
+        Actuator {
             name: self.name.clone(),
             line: self.line.map(f),
             gain: f(&self.gain),
             rate_gain: f(&self.rate_gain),
             units: self.units.clone(),
-        })
+        }
     }
 }
 
@@ -124,6 +125,6 @@ mod tests {
             .ends(c.v(), c.v())
             .gain(c.x())
             .rate_gain(c.x());
-        check_fields_and_map(&a);
+        check_fields_and_map(a);
     }
 }

@@ -1,9 +1,7 @@
 //! [`Beam`]: an Euler–Bernoulli beam between two bodies, bending in two planes.
 
 use super::Validation;
-use super::{
-    Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name, visit3, zero3,
-};
+use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name, visit3, zero3};
 use crate::assemble::RowLabel;
 use crate::assemble::{Assembly, ItemRow, Reaction, Rows, Term};
 use crate::error::ModelError;
@@ -66,16 +64,17 @@ impl<S: Scalar> Beam<S> {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Beam<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(Beam {
+impl<S: Scalar> Beam<S> {
+    /// The beam converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Beam<T> {
+        Beam {
             name: self.name.clone(),
             bodies: self.bodies.clone(),
             ends: [map3(&self.ends[0], f), map3(&self.ends[1], f)],
             stiffness: [f(&self.stiffness[0]), f(&self.stiffness[1])],
             mpul: f(&self.mpul),
             perp: map3(&self.perp, f),
-        })
+        }
     }
 }
 
@@ -261,6 +260,6 @@ mod tests {
             .stiffness(c.x(), c.x())
             .mpul(c.x())
             .perp(c.v());
-        check_fields_and_map(&b);
+        check_fields_and_map(b);
     }
 }

@@ -1,9 +1,7 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
 use super::Validation;
-use super::{
-    Field, Item, MapItem, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3,
-};
+use super::{Field, Item, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
@@ -90,12 +88,6 @@ impl<S: Scalar> Body<S> {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Body<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(self.map(f))
-    }
-}
-
 impl<S: ModelScalar> Item<S> for Body<S> {
     fn kind(&self) -> &'static str {
         "body"
@@ -161,10 +153,6 @@ impl<S: ModelScalar> Item<S> for Body<S> {
             cx.add_block(Term::Velocity, (k, 0), (k, 3), &skew(&self.velocity), 1.0);
         }
         Ok(())
-    }
-
-    fn into_body(self: Box<Self>) -> Result<Body<S>, Box<dyn Item<S>>> {
-        Ok(*self)
     }
 }
 
@@ -330,7 +318,7 @@ mod tests {
             .velocity(c.v())
             .angular_velocity(c.v())
             .mass(100.0);
-        check_fields_and_map(&b);
+        check_fields_and_map(b);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! [`FlexPoint`]: an elastic, viscous bushing on the directions of a joint.
 
 use super::Validation;
-use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use super::{Field, Item, ModelScalar, Name, name};
 use crate::assemble::{Assembly, Reaction, Term};
 use crate::error::ModelError;
 use crate::geometry::{Point, point_builders};
@@ -59,16 +59,17 @@ impl<S: Scalar> FlexPoint<S> {
 }
 point_builders!(FlexPoint);
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for FlexPoint<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(FlexPoint {
+impl<S: Scalar> FlexPoint<S> {
+    /// The flexpoint converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> FlexPoint<T> {
+        FlexPoint {
             name: self.name.clone(),
             point: self.point.map(f),
             stiffness: [f(&self.stiffness[0]), f(&self.stiffness[1])],
             damping: [f(&self.damping[0]), f(&self.damping[1])],
             stiffness_matrix: map_matrix(&self.stiffness_matrix, f),
             damping_matrix: map_matrix(&self.damping_matrix, f),
-        })
+        }
     }
 }
 
@@ -192,6 +193,6 @@ mod tests {
             .damping(c.x(), c.x())
             .stiffness_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]])
             .damping_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]]);
-        check_fields_and_map(&p);
+        check_fields_and_map(p);
     }
 }

@@ -1,7 +1,7 @@
 //! [`NhPoint`]: a nonholonomic constraint on the relative velocity at a point (e.g. a tyre that cannot slip).
 
 use super::Validation;
-use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use super::{Field, Item, ModelScalar, Name, name};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
 use crate::geometry::{Point, point_builders};
@@ -26,12 +26,13 @@ impl<S: Scalar> NhPoint<S> {
 }
 point_builders!(NhPoint);
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for NhPoint<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(NhPoint {
+impl<S: Scalar> NhPoint<S> {
+    /// The nhpoint converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> NhPoint<T> {
+        NhPoint {
             name: self.name.clone(),
             point: self.point.map(f),
-        })
+        }
     }
 }
 
@@ -86,6 +87,6 @@ mod tests {
             .at(c.v())
             .axis(c.v())
             .rolling_axis(c.v());
-        check_fields_and_map(&p);
+        check_fields_and_map(p);
     }
 }

@@ -1,7 +1,7 @@
 //! [`RigidPoint`]: a holonomic joint at a point: some relative translations and rotations of two bodies are zero.
 
 use super::Validation;
-use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use super::{Field, Item, ModelScalar, Name, name};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
 use crate::geometry::{Point, point_builders};
@@ -26,12 +26,13 @@ impl<S: Scalar> RigidPoint<S> {
 }
 point_builders!(RigidPoint);
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for RigidPoint<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(RigidPoint {
+impl<S: Scalar> RigidPoint<S> {
+    /// The rigidpoint converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> RigidPoint<T> {
+        RigidPoint {
             name: self.name.clone(),
             point: self.point.map(f),
-        })
+        }
     }
 }
 
@@ -92,6 +93,6 @@ mod tests {
             .at(c.v())
             .axis(c.v())
             .rolling_axis(c.v());
-        check_fields_and_map(&p);
+        check_fields_and_map(p);
     }
 }

@@ -1,7 +1,7 @@
 //! [`Sensor`]: an output measuring the elongation (or twist) of a line, or its rates.
 
 use super::Validation;
-use super::{Field, Item, MapItem, ModelScalar, Name, name};
+use super::{Field, Item, ModelScalar, Name, name};
 use crate::assemble::{Assembly, OutputFrame, OutputKind, OutputOrder};
 use crate::error::ModelError;
 use crate::geometry::{Line, line_builders};
@@ -114,9 +114,10 @@ impl<S> Sensor<S> {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Sensor<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(Sensor {
+impl<S: Scalar> Sensor<S> {
+    /// The sensor converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Sensor<T> {
+        Sensor {
             name: self.name.clone(),
             line: self.line.map(f),
             gain: f(&self.gain),
@@ -125,7 +126,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Sensor<S> {
             actuator: self.actuator.clone(),
             actuator_gain: f(&self.actuator_gain),
             units: self.units.clone(),
-        })
+        }
     }
 }
 
@@ -216,6 +217,6 @@ mod tests {
             .ends(c.v(), c.v())
             .gain(c.x())
             .feedthrough("a", c.x());
-        check_fields_and_map(&s);
+        check_fields_and_map(s);
     }
 }

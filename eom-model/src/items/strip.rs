@@ -30,7 +30,7 @@
 
 use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
+use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{visit3, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
@@ -180,8 +180,9 @@ impl<S: Scalar> Strip<S> {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+impl<S: Scalar> Strip<S> {
+    /// The strip converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Strip<T> {
         let location = map3(&self.location, f);
         let forward = map3(&self.forward, f);
         let down = map3(&self.down, f);
@@ -191,7 +192,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
         let lift_slope = f(&self.lift_slope);
         let density = f(&self.density);
         let airspeed = self.airspeed.as_ref().map(&mut *f);
-        Box::new(Strip {
+        Strip {
             name: self.name.clone(),
             body: self.body.clone(),
             location,
@@ -204,7 +205,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
             density,
             airspeed,
             unsteady: self.unsteady,
-        })
+        }
     }
 }
 
@@ -442,7 +443,7 @@ mod tests {
             .lift_slope(c.x())
             .density(c.x())
             .airspeed(c.x());
-        check_fields_and_map(&s);
+        check_fields_and_map(s);
     }
 
     fn model_with(strip: Strip<f64>) -> crate::Model<f64> {

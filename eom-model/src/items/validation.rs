@@ -1,7 +1,7 @@
 //! [`Validation`]: what an item kind sees of the model's checks: the bodies and items it may
 //! refer to, and the warnings so far. The checks themselves run in [`crate::validate`].
 
-use super::{Body, Item, ModelScalar};
+use super::{AnyItem, Body, Item, ModelScalar};
 use crate::error::{ModelError, field_error};
 use crate::geometry::GROUND;
 use hashbrown::HashSet;
@@ -10,7 +10,7 @@ use hashbrown::HashSet;
 /// warnings so far.
 pub struct Validation<'m, S> {
     bodies: &'m [Body<S>],
-    items: &'m [Box<dyn Item<S>>],
+    items: &'m [AnyItem<S>],
     /// The names of the bodies checked so far.
     names: HashSet<&'m str>,
     warnings: Vec<String>,
@@ -18,7 +18,7 @@ pub struct Validation<'m, S> {
 
 impl<'m, S> Validation<'m, S> {
     /// A validation of `bodies` and `items`, with no body checked yet.
-    pub(crate) fn new(bodies: &'m [Body<S>], items: &'m [Box<dyn Item<S>>]) -> Self {
+    pub(crate) fn new(bodies: &'m [Body<S>], items: &'m [AnyItem<S>]) -> Self {
         Validation {
             bodies,
             items,

@@ -41,7 +41,7 @@
 
 use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
+use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{label, visit3, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
@@ -369,8 +369,9 @@ fn times<S: Scalar>(a: S, b: S) -> S {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+impl<S: Scalar> Wing<S> {
+    /// The wing converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Wing<T> {
         let location = map3(&self.location, f);
         let forward = map3(&self.forward, f);
         let down = map3(&self.down, f);
@@ -382,7 +383,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
         let derivatives =
             std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
         let acceleration = std::array::from_fn(|i| f(&self.acceleration[i]));
-        Box::new(Wing {
+        Wing {
             acceleration,
             unsteady: self.unsteady,
             name: self.name.clone(),
@@ -397,7 +398,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
             airspeed,
             derivatives,
             unknown: self.unknown.clone(),
-        })
+        }
     }
 }
 
@@ -722,7 +723,7 @@ mod tests {
         for n in WING_ACCELERATION_DERIVATIVES {
             w = w.derivative(n, c.x());
         }
-        check_fields_and_map(&w);
+        check_fields_and_map(w);
     }
 
     /// A body on a slider moving at `speed` with `wing` on it.
