@@ -5,7 +5,7 @@ use crate::error::ModelError;
 
 /// A model file that cannot be loaded: the position in the file (file, line and column), and
 /// either what is wrong with the text there or the model error of the body or item defined
-/// there.
+/// there (boxed: a file error is passed up through every reader).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum FileError {
@@ -28,12 +28,12 @@ pub enum FileError {
         position: FilePosition,
         /// The model's error.
         #[source]
-        error: ModelError,
+        error: Box<ModelError>,
     },
     /// A value given with the file for a parameter it does not declare, or declares as
     /// derived: not about the text, so not positioned in it.
     #[error(transparent)]
-    Override(ModelError),
+    Override(Box<ModelError>),
 }
 
 impl FileError {
@@ -51,7 +51,7 @@ impl FileError {
     pub(crate) fn whole(origin: &str, error: ModelError) -> Self {
         FileError::Model {
             position: FilePosition::whole(origin),
-            error,
+            error: Box::new(error),
         }
     }
 }

@@ -5,39 +5,13 @@ use super::error::FileError;
 use super::mirror::{Mirror, mirror_name};
 use super::params::{Declarations, value_expr};
 use super::source::{Ctx, Table, Value, array_of};
+use crate::geometry::name;
 use crate::items::*;
 use crate::model::{Model, Place};
 use eom_sym::{Expr, Scope};
 use std::collections::HashSet;
 use std::ops::Range;
 use toml::de::DeValue;
-
-/// Applies the point fields through the builder methods every point item shares.
-macro_rules! point_apply {
-    ($p:expr, $item:expr) => {{
-        let p = $p;
-        let mut x = $item;
-        if let Some(b) = &p.between {
-            x = x.between(&b[0], &b[1]);
-        }
-        if let Some(a) = p.at {
-            x = x.at(a);
-        }
-        if let Some(n) = p.forces {
-            x = x.forces(n);
-        }
-        if let Some(n) = p.moments {
-            x = x.moments(n);
-        }
-        if let Some(a) = p.axis {
-            x = x.axis(a);
-        }
-        if let Some(a) = p.rolling_axis {
-            x = x.rolling_axis(a);
-        }
-        x
-    }};
-}
 
 /// Reads the items of a file into a model.
 pub(crate) struct Builder<'a> {
@@ -337,8 +311,8 @@ impl<'a> Builder<'a> {
         self.body_ref(t, key, v, s, m).map(Some)
     }
 
-    /// `between`, `ends`, `twist` of a line item.
-    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<LineFields, FileError> {
+    /// `between`, `ends`, `twist` of a line item (the defaults where not given).
+    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Line<Expr>, FileError> {
         let ends = match t.get("ends") {
             None => None,
             Some(v) => {
@@ -364,21 +338,20 @@ impl<'a> Builder<'a> {
                 Some([e[0], e[1]])
             }
         };
-        Ok(LineFields {
-            between: self.between(t, m)?,
-            ends,
-            twist: t.bool("twist")?.unwrap_or(false),
-        })
+        let mut line = Line::new();
+        if let Some(e) = ends {
+            line.ends = e;
+        }
+        if let Some([b1, b2]) = self.between(t, m)? {
+            line.bodies = [name(&b1), name(&b2)];
+        }
+        line.twist = t.bool("twist")?.unwrap_or(false);
+        Ok(line)
     }
 
     fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let l = self.line(t, m)?;
-        let mut s = l.apply(
-            Spring::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Spring::twist,
-        );
+        let mut s = Spring::new(name);
+        s.line = self.line(t, m)?;
         if let Some(x) = self.scalar(t, "stiffness")? {
             s = s.stiffness(x);
         }
@@ -396,25 +369,15 @@ impl<'a> Builder<'a> {
     }
 
     fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let l = self.line(t, m)?;
-        let link = l.apply(
-            Link::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Link::twist,
-        );
+        let mut link = Link::new(name);
+        link.line = self.line(t, m)?;
         self.add(t, link);
         Ok(())
     }
 
     fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let l = self.line(t, m)?;
-        let mut a = l.apply(
-            Actuator::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Actuator::twist,
-        );
+        let mut a = Actuator::new(name);
+        a.line = self.line(t, m)?;
         if let Some(x) = self.scalar(t, "gain")? {
             a = a.gain(x);
         }
@@ -429,13 +392,8 @@ impl<'a> Builder<'a> {
     }
 
     fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let l = self.line(t, m)?;
-        let mut s = l.apply(
-            Sensor::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Sensor::twist,
-        );
+        let mut s = Sensor::new(name);
+        s.line = self.line(t, m)?;
         if let Some(x) = self.scalar(t, "gain")? {
             s = s.gain(x);
         }
@@ -487,12 +445,7 @@ impl<'a> Builder<'a> {
     fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         let l = self.line(t, m)?;
         let mut b = Beam::new(name);
-        if let Some(bs) = &l.between {
-            b = b.between(&bs[0], &bs[1]);
-        }
-        if let Some(e) = l.ends {
-            b = b.ends(e[0], e[1]);
-        }
+        (b.bodies, b.ends) = (l.bodies, l.ends);
         if let Some([e1, e2]) = self.scalars::<2>(t, "stiffness")? {
             b = b.stiffness(e1, e2);
         }
@@ -506,16 +459,39 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
-    /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item.
-    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<PointFields, FileError> {
-        Ok(PointFields {
-            between: self.between(t, m)?,
-            at: self.vector(t, "at", m, VecKind::Polar)?,
-            forces: t.count("forces", 3)?,
-            moments: t.count("moments", 3)?,
-            axis: self.vector(t, "axis", m, VecKind::Polar)?,
-            rolling_axis: self.vector(t, "rolling_axis", m, VecKind::Polar)?,
+    /// `body`, `at`, `forward` and `down` of a lifting surface (a wing or strip); the axes not
+    /// given are `forward` and `down`, mirrored where mirrored.
+    pub(super) fn surface(
+        &self,
+        t: &Table<'_>,
+        m: Option<Mirror>,
+        forward: Vec3<Expr>,
+        down: Vec3<Expr>,
+    ) -> Result<SurfaceFrame, FileError> {
+        let polar = |key| self.vector(t, key, m, VecKind::Polar);
+        let mirrored = |v| m.map_or(v, |m| m.apply(v, VecKind::Polar));
+        Ok(SurfaceFrame {
+            body: self.named_body(t, "body", m)?,
+            at: polar("at")?,
+            forward: polar("forward")?.unwrap_or_else(|| mirrored(forward)),
+            down: polar("down")?.unwrap_or_else(|| mirrored(down)),
         })
+    }
+
+    /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item (the
+    /// defaults where not given).
+    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Point<Expr>, FileError> {
+        let mut p = Point::new();
+        if let Some([b1, b2]) = self.between(t, m)? {
+            p.bodies = [name(&b1), name(&b2)];
+        }
+        let polar = |key| self.vector(t, key, m, VecKind::Polar);
+        p.location = polar("at")?.unwrap_or(p.location);
+        p.forces = t.count("forces", 3)?.unwrap_or(p.forces);
+        p.moments = t.count("moments", 3)?.unwrap_or(p.moments);
+        p.axis = polar("axis")?.unwrap_or(p.axis);
+        p.rolling_axis = polar("rolling_axis")?.unwrap_or(p.rolling_axis);
+        Ok(p)
     }
 
     fn rigid_point(
@@ -524,15 +500,15 @@ impl<'a> Builder<'a> {
         name: &str,
         m: Option<Mirror>,
     ) -> Result<(), FileError> {
-        let p = self.point(t, m)?;
-        let r = point_apply!(p, RigidPoint::new(name));
+        let mut r = RigidPoint::new(name);
+        r.point = self.point(t, m)?;
         self.add(t, r);
         Ok(())
     }
 
     fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let p = self.point(t, m)?;
-        let r = point_apply!(p, NhPoint::new(name));
+        let mut r = NhPoint::new(name);
+        r.point = self.point(t, m)?;
         self.add(t, r);
         Ok(())
     }
@@ -543,8 +519,8 @@ impl<'a> Builder<'a> {
         name: &str,
         m: Option<Mirror>,
     ) -> Result<(), FileError> {
-        let p = self.point(t, m)?;
-        let mut f = point_apply!(p, FlexPoint::new(name));
+        let mut f = FlexPoint::new(name);
+        f.point = self.point(t, m)?;
         if let Some([k, kr]) = self.scalars::<2>(t, "stiffness")? {
             f = f.stiffness(k, kr);
         }
@@ -610,6 +586,29 @@ fn reader<'a>(id: KindId) -> Reader<'a> {
     }
 }
 
+/// The frame of a lifting surface as its table gives it (see [`Builder::surface`]).
+pub(super) struct SurfaceFrame {
+    pub body: Option<String>,
+    pub at: Option<Vec3<Expr>>,
+    pub forward: Vec3<Expr>,
+    pub down: Vec3<Expr>,
+}
+
+/// `unsteady = "quasi-steady" | "jones" | "auto"` of table `t`.
+pub(super) fn unsteady(t: &Table<'_>) -> Result<Option<Unsteady>, FileError> {
+    let Some(u) = t.string("unsteady")? else {
+        return Ok(None);
+    };
+    let span = t.get("unsteady").map_or(t.span.clone(), |v| v.span());
+    Unsteady::parse(&u).map(Some).map_err(|_| {
+        t.field_error(
+            "unsteady",
+            &span,
+            format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
+        )
+    })
+}
+
 type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), FileError>;
 
 /// How a vector transforms under a mirror: a position or direction (polar), or a rotation or
@@ -624,40 +623,4 @@ fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
     let mut v: Vec<&'static str> = COMMON_KEYS.to_vec();
     v.extend_from_slice(keys);
     v
-}
-
-struct LineFields {
-    between: Option<[String; 2]>,
-    ends: Option<[Vec3<Expr>; 2]>,
-    twist: bool,
-}
-
-impl LineFields {
-    fn apply<T>(
-        self,
-        mut item: T,
-        between: impl Fn(T, &[String; 2]) -> T,
-        ends: impl Fn(T, [Vec3<Expr>; 2]) -> T,
-        twist: impl Fn(T) -> T,
-    ) -> T {
-        if let Some(b) = &self.between {
-            item = between(item, b);
-        }
-        if let Some(e) = self.ends {
-            item = ends(item, e);
-        }
-        if self.twist {
-            item = twist(item);
-        }
-        item
-    }
-}
-
-struct PointFields {
-    between: Option<[String; 2]>,
-    at: Option<Vec3<Expr>>,
-    forces: Option<u8>,
-    moments: Option<u8>,
-    axis: Option<Vec3<Expr>>,
-    rolling_axis: Option<Vec3<Expr>>,
 }

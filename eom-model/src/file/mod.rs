@@ -140,7 +140,7 @@ fn load_in(
                 Some(span) => ctx.position(span.start),
                 None => FilePosition::whole(ctx.origin),
             },
-            error,
+            error: Box::new(error),
         })?;
     Ok(LoadedModel {
         model,
@@ -151,7 +151,6 @@ fn load_in(
     })
 }
 
-/// `[model]`: name, description, gravity.
 /// `[model]`: name, description, gravity, and the default `unsteady` of wings and strips.
 type ModelSection<'a> = (
     String,
@@ -167,20 +166,7 @@ fn model_section<'a>(root: &Table<'a>) -> Result<ModelSection<'a>, FileError> {
     m.only(&["name", "description", "gravity", "unsteady"])?;
     let name = m.string("name")?.unwrap_or_else(|| "model".into());
     let description = m.string("description")?.unwrap_or_default();
-    let unsteady = match m.string("unsteady")? {
-        None => None,
-        Some(u) => Some(crate::items::Unsteady::parse(&u).map_err(|_| {
-            let span = m
-                .get("unsteady")
-                .map(|v| v.span())
-                .unwrap_or(m.span.clone());
-            m.field_error(
-                "unsteady",
-                &span,
-                format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-            )
-        })?),
-    };
+    let unsteady = items::unsteady(&m)?;
     Ok((name, description, m.get("gravity"), unsteady))
 }
 

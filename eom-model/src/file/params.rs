@@ -221,20 +221,20 @@ pub(crate) fn declare(
     for (k, _) in overrides {
         if derived.iter().any(|d| d.0 == *k) {
             let d = derived.iter().find(|d| d.0 == *k).expect("found");
-            return Err(FileError::Override(ModelError::Model {
+            return Err(FileError::Override(Box::new(ModelError::Model {
                 item: format!("parameter `{k}`"),
                 field: String::new(),
                 problem: format!("is derived (= {}); set the parameters it is made of", d.1),
-            }));
+            })));
         }
         if !specs.iter().any(|s| s.0.name == *k) {
             let known: Vec<&str> = specs.iter().map(|s| s.0.name.as_str()).collect();
-            return Err(FileError::Override(ModelError::Sym(
+            return Err(FileError::Override(Box::new(ModelError::Sym(
                 SymError::UnknownParameter {
                     name: k.to_string(),
                     known: known.iter().map(|s| s.to_string()).collect(),
                 },
-            )));
+            ))));
         }
     }
     let mut scope_params = Vec::new();

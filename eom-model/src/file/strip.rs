@@ -1,10 +1,10 @@
 //! `[[strip]]`: a thin-airfoil strip's fields through the builder, and its `unsteady` setting.
 
 use super::error::FileError;
-use super::items::{Builder, VecKind};
+use super::items::{Builder, unsteady};
 use super::mirror::Mirror;
 use super::source::Table;
-use crate::items::{Strip, Unsteady};
+use crate::items::Strip;
 use eom_sym::Expr;
 
 impl Builder<'_> {
@@ -18,22 +18,14 @@ impl Builder<'_> {
         if let Some(u) = self.unsteady {
             s = s.unsteady(u);
         }
-        if let Some(b) = self.named_body(t, "body", m)? {
+        let frame = self.surface(t, m, s.forward, s.down)?;
+        if let Some(b) = frame.body {
             s = s.on(&b);
         }
-        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
+        if let Some(v) = frame.at {
             s = s.at(v);
         }
-        let forward = self.vector(t, "forward", m, VecKind::Polar)?;
-        let down = self.vector(t, "down", m, VecKind::Polar)?;
-        let (f0, d0) = match m {
-            Some(m) => (
-                m.apply(s.forward, VecKind::Polar),
-                m.apply(s.down, VecKind::Polar),
-            ),
-            None => (s.forward, s.down),
-        };
-        s = s.axes(forward.unwrap_or(f0), down.unwrap_or(d0));
+        s = s.axes(frame.forward, frame.down);
         for (key, set) in [
             (
                 "semichord",
@@ -49,18 +41,7 @@ impl Builder<'_> {
                 s = set(s, x);
             }
         }
-        if let Some(u) = t.string("unsteady")? {
-            let span = t
-                .get("unsteady")
-                .map(|v| v.span())
-                .unwrap_or(t.span.clone());
-            let u = Unsteady::parse(&u).map_err(|_| {
-                t.field_error(
-                    "unsteady",
-                    &span,
-                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-                )
-            })?;
+        if let Some(u) = unsteady(t)? {
             s = s.unsteady(u);
         }
         self.add(t, s);

@@ -3,13 +3,11 @@
 //! relative to the model file.
 
 use super::error::FileError;
-use super::items::{Builder, VecKind};
+use super::items::{Builder, unsteady};
 use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
-use crate::items::{
-    Unsteady, WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index,
-};
+use crate::items::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 use eom_aero::{AvlOutput, Derivatives, SolverOptions};
 use eom_sym::Expr;
 use std::path::Path;
@@ -64,22 +62,14 @@ impl Builder<'_> {
         if let Some(u) = self.unsteady {
             w = w.unsteady(u);
         }
-        if let Some(b) = self.named_body(t, "body", m)? {
+        let frame = self.surface(t, m, w.forward, w.down)?;
+        if let Some(b) = frame.body {
             w = w.on(&b);
         }
-        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
+        if let Some(v) = frame.at {
             w = w.at(v);
         }
-        let forward = self.vector(t, "forward", m, VecKind::Polar)?;
-        let down = self.vector(t, "down", m, VecKind::Polar)?;
-        let (f0, d0) = match m {
-            Some(m) => (
-                m.apply(w.forward, VecKind::Polar),
-                m.apply(w.down, VecKind::Polar),
-            ),
-            None => (w.forward, w.down),
-        };
-        w = w.axes(forward.unwrap_or(f0), down.unwrap_or(d0));
+        w = w.axes(frame.forward, frame.down);
         for (key, set) in [
             ("area", Wing::area as fn(Wing<Expr>, Expr) -> Wing<Expr>),
             ("chord", Wing::chord),
@@ -92,18 +82,7 @@ impl Builder<'_> {
             }
         }
         w = self.derivative_table(t, w)?;
-        if let Some(u) = t.string("unsteady")? {
-            let span = t
-                .get("unsteady")
-                .map(|v| v.span())
-                .unwrap_or(t.span.clone());
-            let u = Unsteady::parse(&u).map_err(|_| {
-                t.field_error(
-                    "unsteady",
-                    &span,
-                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-                )
-            })?;
+        if let Some(u) = unsteady(t)? {
             w = w.unsteady(u);
         }
         if m.is_some() {

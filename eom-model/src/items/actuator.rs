@@ -111,20 +111,3 @@ impl<S: ModelScalar> Item<S> for Actuator<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let a = Actuator::new("a")
-            .between("a", "b")
-            .ends(c.v(), c.v())
-            .gain(c.x())
-            .rate_gain(c.x());
-        check_fields_and_map(a);
-    }
-}

@@ -245,21 +245,3 @@ fn beam_rows<S: Scalar>(cx: &Assembly<'_, S>, bm: &Beam<S>) -> BeamParts<S> {
         quad(&emat, &md, mscale),
     )
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let b = Beam::new("b")
-            .between("a", "b")
-            .ends(c.v(), c.v())
-            .stiffness(c.x(), c.x())
-            .mpul(c.x())
-            .perp(c.v());
-        check_fields_and_map(b);
-    }
-}

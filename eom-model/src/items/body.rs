@@ -305,21 +305,7 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), ModelErro
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
     use crate::items::vec3;
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let b = Body::new("b")
-            .at(c.v())
-            .moments(c.v())
-            .products(c.v())
-            .velocity(c.v())
-            .angular_velocity(c.v())
-            .mass(100.0);
-        check_fields_and_map(b);
-    }
 
     #[test]
     fn a_spin_about_an_unsymmetric_principal_axis_is_an_error() {

@@ -173,26 +173,3 @@ fn diag<S: Scalar>(v: &[S]) -> Vec<Vec<S>> {
         })
         .collect()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let p = FlexPoint::new("p")
-            .between("a", "b")
-            .at(c.v())
-            .axis(c.v())
-            .rolling_axis(c.v())
-            .forces(1)
-            .moments(1)
-            .stiffness(c.x(), c.x())
-            .damping(c.x(), c.x())
-            .stiffness_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]])
-            .damping_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]]);
-        check_fields_and_map(p);
-    }
-}

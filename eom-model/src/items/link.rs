@@ -72,16 +72,3 @@ impl<S: ModelScalar> Item<S> for Link<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let l = Link::new("l").between("a", "b").ends(c.v(), c.v());
-        check_fields_and_map(l);
-    }
-}

@@ -154,20 +154,3 @@ impl<S: ModelScalar> Item<S> for Load<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let l = Load::new("l", "b")
-            .at(c.v())
-            .force(c.v())
-            .moment(c.v())
-            .frame("b");
-        check_fields_and_map(l);
-    }
-}

@@ -417,7 +417,7 @@ pub(crate) mod tests {
     /// Checks the contract between [`Item::fields`] and the kind's `map` for a body or item
     /// whose fields hold the distinct values 1, 2, 3, …: the map visits the fields in the
     /// order of `fields`, converts every one of them, and keeps their names.
-    pub(crate) fn check_fields_and_map(part: impl Into<Part<f64>>) {
+    fn check_fields_and_map(part: impl Into<Part<f64>>) {
         let part = part.into();
         let mut seen = Vec::new();
         let mut convert = |x: &f64| {
@@ -478,9 +478,126 @@ pub(crate) mod tests {
             k
         }
         /// A vector of the next three values.
-        pub(crate) fn v(&self) -> Vec3<f64> {
+        fn v(&self) -> Vec3<f64> {
             [self.x(), self.x(), self.x()]
         }
+    }
+
+    /// Every kind's field visitor and conversion agree (fields with distinct values).
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        check_fields_and_map(
+            Body::new("b")
+                .at(c.v())
+                .moments(c.v())
+                .products(c.v())
+                .velocity(c.v())
+                .angular_velocity(c.v())
+                .mass(100.0),
+        );
+        check_fields_and_map(
+            Load::new("l", "b")
+                .at(c.v())
+                .force(c.v())
+                .moment(c.v())
+                .frame("b"),
+        );
+        check_fields_and_map(
+            Spring::new("s")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .stiffness(c.x())
+                .damping(c.x())
+                .inertance(c.x())
+                .preload(c.x()),
+        );
+        check_fields_and_map(
+            Spring::new("t")
+                .ends(c.v(), c.v())
+                .stiffness(c.x())
+                .damping(c.x())
+                .inertance(c.x()),
+        );
+        check_fields_and_map(
+            FlexPoint::new("p")
+                .between("a", "b")
+                .at(c.v())
+                .axis(c.v())
+                .rolling_axis(c.v())
+                .forces(1)
+                .moments(1)
+                .stiffness(c.x(), c.x())
+                .damping(c.x(), c.x())
+                .stiffness_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]])
+                .damping_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]]),
+        );
+        check_fields_and_map(
+            Beam::new("b")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .stiffness(c.x(), c.x())
+                .mpul(c.x())
+                .perp(c.v()),
+        );
+        check_fields_and_map(Link::new("l").between("a", "b").ends(c.v(), c.v()));
+        check_fields_and_map(
+            RigidPoint::new("p")
+                .between("a", "b")
+                .at(c.v())
+                .axis(c.v())
+                .rolling_axis(c.v()),
+        );
+        check_fields_and_map(
+            NhPoint::new("p")
+                .between("a", "b")
+                .at(c.v())
+                .axis(c.v())
+                .rolling_axis(c.v()),
+        );
+        let mut w = Wing::new("w")
+            .on("a")
+            .at(c.v())
+            .axes(c.v(), c.v())
+            .area(c.x())
+            .chord(c.x())
+            .span(c.x())
+            .density(c.x())
+            .airspeed(c.x());
+        for n in WING_DERIVATIVES
+            .iter()
+            .flatten()
+            .chain(&WING_ACCELERATION_DERIVATIVES)
+        {
+            w = w.derivative(n, c.x());
+        }
+        check_fields_and_map(w);
+        check_fields_and_map(
+            Strip::new("s")
+                .on("a")
+                .at(c.v())
+                .axes(c.v(), c.v())
+                .semichord(c.x())
+                .elastic_axis(c.x())
+                .width(c.x())
+                .lift_slope(c.x())
+                .density(c.x())
+                .airspeed(c.x()),
+        );
+        check_fields_and_map(
+            Actuator::new("a")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .gain(c.x())
+                .rate_gain(c.x()),
+        );
+        check_fields_and_map(
+            Sensor::new("s")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .gain(c.x())
+                .feedthrough("a", c.x()),
+        );
     }
 
     #[test]

@@ -73,20 +73,3 @@ impl<S: ModelScalar> Item<S> for NhPoint<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let p = NhPoint::new("p")
-            .between("a", "b")
-            .at(c.v())
-            .axis(c.v())
-            .rolling_axis(c.v());
-        check_fields_and_map(p);
-    }
-}

@@ -79,20 +79,3 @@ impl<S: ModelScalar> Item<S> for RigidPoint<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let p = RigidPoint::new("p")
-            .between("a", "b")
-            .at(c.v())
-            .axis(c.v())
-            .rolling_axis(c.v());
-        check_fields_and_map(p);
-    }
-}

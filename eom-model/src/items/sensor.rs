@@ -203,20 +203,3 @@ impl<S: ModelScalar> Item<S> for Sensor<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let s = Sensor::new("s")
-            .between("a", "b")
-            .ends(c.v(), c.v())
-            .gain(c.x())
-            .feedthrough("a", c.x());
-        check_fields_and_map(s);
-    }
-}

@@ -127,29 +127,3 @@ impl<S: ModelScalar> Item<S> for Spring<S> {
         Ok(())
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let s = Spring::new("s")
-            .between("a", "b")
-            .ends(c.v(), c.v())
-            .stiffness(c.x())
-            .damping(c.x())
-            .inertance(c.x())
-            .preload(c.x());
-        check_fields_and_map(s);
-        check_fields_and_map(
-            Spring::new("t")
-                .ends(c.v(), c.v())
-                .stiffness(c.x())
-                .damping(c.x())
-                .inertance(c.x()),
-        );
-    }
-}

@@ -428,23 +428,6 @@ impl<S: ModelScalar> Strip<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let s = Strip::new("s")
-            .on("a")
-            .at(c.v())
-            .axes(c.v(), c.v())
-            .semichord(c.x())
-            .elastic_axis(c.x())
-            .width(c.x())
-            .lift_slope(c.x())
-            .density(c.x())
-            .airspeed(c.x());
-        check_fields_and_map(s);
-    }
 
     fn model_with(strip: Strip<f64>) -> crate::Model<f64> {
         let mut m = crate::Model::new("m");

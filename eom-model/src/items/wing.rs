@@ -701,30 +701,7 @@ impl<S: ModelScalar> Wing<S> {
 mod tests {
     use super::*;
     use crate::Model;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let mut w = Wing::new("w")
-            .on("a")
-            .at(c.v())
-            .axes(c.v(), c.v())
-            .area(c.x())
-            .chord(c.x())
-            .span(c.x())
-            .density(c.x())
-            .airspeed(c.x());
-        for row in WING_DERIVATIVES {
-            for n in row {
-                w = w.derivative(n, c.x());
-            }
-        }
-        for n in WING_ACCELERATION_DERIVATIVES {
-            w = w.derivative(n, c.x());
-        }
-        check_fields_and_map(w);
-    }
+    use crate::items::tests::Counter;
 
     /// A body on a slider moving at `speed` with `wing` on it.
     fn model_with(wing: Wing<f64>, speed: f64) -> Model<f64> {
