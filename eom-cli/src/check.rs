@@ -90,9 +90,9 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     };
     let mut items: Vec<(String, usize)> = Vec::new();
     for kind in eom_model::KINDS {
-        let n = model.items_of(kind).count();
+        let n = model.items_of(kind.name).count();
         if n > 0 {
-            items.push((kind.to_string(), n));
+            items.push((kind.name.to_string(), n));
         }
     }
     Ok(CheckReport {
@@ -116,7 +116,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
 /// relative to body 2); a sensor measures end 1 relative to end 2 along the line from end 2 to
 /// end 1 (or body 1's rotation relative to body 2 about it).
 pub fn signal_descriptions(model: &eom_model::Model<f64>) -> Vec<String> {
-    use eom_model::{Actuator, Line, Sensor, SensorFrame, SensorOrder};
+    use eom_model::{AnyItem, Line, SensorFrame, SensorOrder};
     let fmt = |v: &[f64; 3]| {
         format!(
             "({}, {}, {})",
@@ -145,8 +145,7 @@ pub fn signal_descriptions(model: &eom_model::Model<f64>) -> Vec<String> {
     };
     let mut out = Vec::new();
     for item in model.items() {
-        let any: &dyn std::any::Any = &**item;
-        if let Some(a) = any.downcast_ref::<Actuator<f64>>() {
+        if let AnyItem::Actuator(a) = item {
             let l = &a.line;
             let what = if l.twist {
                 format!(
@@ -163,7 +162,7 @@ pub fn signal_descriptions(model: &eom_model::Model<f64>) -> Vec<String> {
                 )
             };
             out.push(format!("input `{}`: {what}; {}", a.name, ends(l)));
-        } else if let Some(s) = any.downcast_ref::<Sensor<f64>>() {
+        } else if let AnyItem::Sensor(s) = item {
             let l = &s.line;
             let order = match s.order {
                 SensorOrder::Displacement => "displacement",

@@ -1,6 +1,7 @@
 //! [`CliError`]: the one error type of the `eom` binary, and its exit codes.
 
 use eom_model::ModelError;
+use eom_model::file::FileError;
 use eom_num::NumError;
 use eom_num::sweep::SweepError;
 use eom_sym::SymError;
@@ -31,6 +32,10 @@ pub enum CliError {
     /// Building, reducing or evaluating the model failed.
     #[error(transparent)]
     Model(#[from] ModelError),
+    /// A model file is invalid (the message names the file, line and column), or an override
+    /// names a parameter it does not declare.
+    #[error(transparent)]
+    File(#[from] FileError),
     /// An expression could not be built or evaluated.
     #[error(transparent)]
     Sym(#[from] SymError),
@@ -124,7 +129,7 @@ impl CliError {
                 | CatalogueError::BadValue { .. },
             )
             | CliError::BadArgument { .. }
-            | CliError::Model(eom_model::ModelError::File { .. })
+            | CliError::File(FileError::Invalid { .. } | FileError::Model { .. })
             | CliError::Aero(
                 eom_aero::AeroError::Parse { .. }
                 | eom_aero::AeroError::UnsupportedKeyword { .. }

@@ -10,19 +10,23 @@
 //! * [`response_rates`]: the largest normalised rates |p b/2V|, |q c/2V|, |r b/2V| of each wing
 //!   along a time response (given by its states), against AVL's limits 0.10, 0.03 and 0.25
 //!   (beyond which the straight trailing legs of the vortex lattice no longer follow the
-//!   wake); [`simulated_rates`] simulates the response first.
+//!   wake); [`simulated_rates`] simulates the response first;
+//! * [`resolve_unsteady`]: the `unsteady = "auto"` surfaces decided by the reduced
+//!   frequencies of the modes: Jones' lag states where they matter, quasi-steady elsewhere.
 
 use crate::Model;
-use crate::error::ModelError;
-use crate::items::Wing;
+use crate::error::{ModelError, label};
+use crate::items::{AUTO_REDUCED_FREQUENCY, AnyItem, Unsteady, Wing};
 use eom_aero::validity::{
     PITCH_RATE_LIMIT, REDUCED_FREQUENCY_LIMIT, ROLL_RATE_LIMIT, YAW_RATE_LIMIT, check_rates,
     reduced_frequency,
 };
 use eom_num::NumError;
 use eom_num::StateSpace;
+use eom_sym::Expr;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
+use std::borrow::Cow;
 
 /// The reduced frequency of one oscillatory mode at one wing.
 #[derive(Clone, Debug, PartialEq)]
@@ -207,5 +211,125 @@ fn rates_of(model: &Model<f64>, w: &Wing<f64>, omega: &DMatrix<f64>) -> WingRate
         at,
         limits: [ROLL_RATE_LIMIT, PITCH_RATE_LIMIT, YAW_RATE_LIMIT],
         exceeded,
+    }
+}
+
+/// A surface with `unsteady = "auto"`: kind, name, semichord and airspeed at a point.
+struct AutoSurface {
+    kind: &'static str,
+    name: String,
+    semichord: f64,
+    airspeed: f64,
+}
+
+fn auto_surfaces(m: &Model<f64>) -> Vec<AutoSurface> {
+    let mut out = Vec::new();
+    for w in m.wings().filter(|w| w.unsteady == Unsteady::Auto) {
+        out.push(AutoSurface {
+            kind: "wing",
+            name: w.name.to_string(),
+            semichord: 0.5 * w.chord,
+            airspeed: m.airspeed_of(w),
+        });
+    }
+    for s in m.strips().filter(|s| s.unsteady == Unsteady::Auto) {
+        let velocity = m.body(&s.body).map_or([0.0; 3], |b| b.velocity);
+        out.push(AutoSurface {
+            kind: "strip",
+            name: s.name.to_string(),
+            semichord: s.semichord,
+            airspeed: s.airspeed_with(&velocity),
+        });
+    }
+    out
+}
+
+/// The model with every `auto` surface set to Jones' states when its name is in `lagged`,
+/// else quasi-steady.
+fn with_lags(model: &Model<Expr>, lagged: &[String]) -> Model<Expr> {
+    let mut m = model.clone();
+    for item in m.items_mut() {
+        let (name, unsteady) = match item {
+            AnyItem::Wing(w) => (&w.name, &mut w.unsteady),
+            AnyItem::Strip(s) => (&s.name, &mut s.unsteady),
+            _ => continue,
+        };
+        if *unsteady == Unsteady::Auto {
+            *unsteady = if lagged.iter().any(|n| **n == **name) {
+                Unsteady::Jones
+            } else {
+                Unsteady::QuasiSteady
+            };
+        }
+    }
+    m
+}
+
+/// Decides every `unsteady = "auto"` of `model` at the parameter `values` (scope order):
+/// analyse with the undecided surfaces quasi-steady, give Jones' states to each surface at
+/// which an oscillatory mode has the reduced frequency k = |Im λ|·b/V above
+/// [`AUTO_REDUCED_FREQUENCY`] (b its semichord, V its airspeed), re-analyse, and repeat until
+/// no surface is added. Returns the decided model (borrowed when nothing is `auto`) and one
+/// line per `auto` surface saying what it got and why.
+pub fn resolve_unsteady<'m>(
+    model: &'m Model<Expr>,
+    values: &[f64],
+) -> Result<(Cow<'m, Model<Expr>>, Vec<String>), ModelError> {
+    let any_auto = model.wings().any(|w| w.unsteady == Unsteady::Auto)
+        || model.strips().any(|s| s.unsteady == Unsteady::Auto);
+    if !any_auto {
+        return Ok((Cow::Borrowed(model), Vec::new()));
+    }
+    let surfaces = auto_surfaces(&model.evaluate(values)?);
+    let mut lagged: Vec<String> = Vec::new();
+    let mut notes = Vec::new();
+    loop {
+        let m = with_lags(model, &lagged);
+        let a = crate::assemble(&m.evaluate(values)?)?;
+        let ss = match crate::reduce(&a, None) {
+            Ok(r) => r.state_space,
+            Err(_) => crate::reduce_robust(&a)?.0,
+        };
+        let eig = eom_num::modes::eigenvalues(&ss.a)?;
+        let mut added = false;
+        let mut rest = Vec::new();
+        let pending: Vec<&AutoSurface> = surfaces
+            .iter()
+            .filter(|s| !lagged.contains(&s.name))
+            .collect();
+        for s in pending {
+            let top = eig
+                .iter()
+                .filter(|z| z.im > 0.0)
+                .map(|z| (z.im * s.semichord / s.airspeed, *z))
+                .max_by(|a, b| a.0.total_cmp(&b.0));
+            match top {
+                Some((k, z)) if k > AUTO_REDUCED_FREQUENCY => {
+                    notes.push(format!(
+                        "{}: unsteady = \"auto\": Jones' lag states added: the mode λ = {:.6} ± {:.6}i \
+                         has the reduced frequency k = |Im λ|·b/V = {k:.4} > {AUTO_REDUCED_FREQUENCY} \
+                         (quasi-steady lift would be off by |1 − C(k)| ≥ 0.16)",
+                        label(s.kind, &s.name),
+                        z.re,
+                        z.im
+                    ));
+                    lagged.push(s.name.clone());
+                    added = true;
+                }
+                Some((k, _)) => rest.push(format!(
+                    "{}: unsteady = \"auto\": quasi-steady: every mode has k = |Im λ|·b/V ≤ \
+                     {AUTO_REDUCED_FREQUENCY} (largest {k:.4})",
+                    label(s.kind, &s.name)
+                )),
+                None => rest.push(format!(
+                    "{}: unsteady = \"auto\": quasi-steady: no oscillatory mode",
+                    label(s.kind, &s.name)
+                )),
+            }
+        }
+        if !added {
+            notes.extend(rest);
+            return Ok((Cow::Owned(m), notes));
+        }
     }
 }

@@ -1,4 +1,4 @@
-//! The error type of eom-model.
+//! The error type of eom-model, and how its messages name an item.
 
 use eom_num::NumError;
 use eom_sym::SymError;
@@ -32,20 +32,31 @@ pub enum ModelError {
     /// A model feature that this path does not support (the message says which path does).
     #[error("not supported: {0}")]
     Unsupported(String),
-    /// A model file is invalid: where, about what (item and field), and what is wrong.
-    #[error("{position}: {}{problem}", if context.is_empty() { String::new() } else { format!("{context}: ") })]
-    File {
-        /// File, line and column.
-        position: crate::file::FilePosition,
-        /// The item and field, e.g. ``spring `front`, field `stiffness` ``.
-        context: String,
-        /// What is wrong, with the valid alternatives where there is a short list.
-        problem: String,
-    },
     /// An error of the expression layer (a parameter, an expression, an evaluation).
     #[error(transparent)]
     Sym(#[from] SymError),
     /// An error of the numeric layer.
     #[error(transparent)]
     Num(#[from] NumError),
+}
+
+/// The label of an item in messages: ``spring `front` ``. Built directly rather than by
+/// `format!`: every reacting item's preload is labelled on every assembly.
+pub(crate) fn label(kind: &str, name: &str) -> String {
+    let name = eom_text::shown(name);
+    let mut s = String::with_capacity(kind.len() + name.len() + 3);
+    s.push_str(kind);
+    s.push_str(" `");
+    s.push_str(&name);
+    s.push('`');
+    s
+}
+
+/// The error of a bad field of an item.
+pub(crate) fn field_error(kind: &str, name: &str, field: &str, problem: String) -> ModelError {
+    ModelError::Model {
+        item: label(kind, name),
+        field: field.to_string(),
+        problem,
+    }
 }

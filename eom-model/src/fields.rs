@@ -12,7 +12,7 @@ impl<S: ModelScalar> Model<S> {
     /// Every body and item in order, as items.
     fn all_items(&self) -> impl Iterator<Item = &dyn Item<S>> {
         let bodies = self.bodies.iter().map(|b| b as &dyn Item<S>);
-        bodies.chain(self.items.iter().map(|x| &**x))
+        bodies.chain(self.items.iter().map(|x| x as &dyn Item<S>))
     }
 
     /// Visit every field in the order of [`Model::map`], without building anything.
@@ -29,7 +29,7 @@ impl<S: ModelScalar> Model<S> {
             name: self.name.clone(),
             scope: self.scope.clone(),
             bodies: self.bodies.iter().map(|b| b.map(f)).collect(),
-            items: self.items.iter().map(|x| T::map_item(&**x, f)).collect(),
+            items: self.items.iter().map(|x| x.map(f)).collect(),
         }
     }
 
@@ -105,7 +105,7 @@ mod tests {
         ];
         assert_eq!(got, want);
         assert_eq!(m.bodies.len(), 1);
-        let ranks: Vec<usize> = m.items().iter().map(|x| kind_rank(x.kind())).collect();
+        let ranks: Vec<KindId> = m.items().iter().map(|x| x.kind_id()).collect();
         assert!(ranks.windows(2).all(|w| w[0] <= w[1]));
         assert_eq!(m.items_of("spring").count(), 2);
     }

@@ -1,8 +1,60 @@
-//! Small generic 3-D geometry over any [`Scalar`]: cross products, skew matrices, unit
-//! vectors, and the deterministic direction basis of point and line items.
+//! The geometry every layer above shares: names of bodies and items, 3-vectors and the
+//! global axes, the point and line shapes of the items ([`Point`], [`Line`]), and small
+//! generic 3-D algebra over any [`Scalar`]: cross products, skew matrices, unit vectors, and
+//! the deterministic direction basis of point and line items.
 
-use crate::items::Vec3;
+mod line;
+mod point;
+
+pub use line::Line;
+pub(crate) use line::line_builders;
+pub use point::Point;
+pub(crate) use point::point_builders;
+
 use eom_sym::scalar::Scalar;
+use std::sync::Arc;
+
+/// The name of the ground (the fixed frame). Reserved: no body may be called this.
+pub const GROUND: &str = "ground";
+
+/// A shared item or body name.
+pub type Name = Arc<str>;
+
+/// A shared name from text.
+pub(crate) fn name(s: &str) -> Name {
+    Arc::from(s)
+}
+
+/// A 3-vector.
+pub type Vec3<S> = [S; 3];
+
+/// A 3-vector from three components of any convertible type.
+pub fn vec3<S>(x: impl Into<S>, y: impl Into<S>, z: impl Into<S>) -> Vec3<S> {
+    [x.into(), y.into(), z.into()]
+}
+
+/// The zero vector.
+pub fn zero3<S: Scalar>() -> Vec3<S> {
+    [S::zero(), S::zero(), S::zero()]
+}
+
+/// The global x axis.
+pub fn x_axis<S: Scalar>() -> Vec3<S> {
+    [S::one(), S::zero(), S::zero()]
+}
+/// The global y axis.
+pub fn y_axis<S: Scalar>() -> Vec3<S> {
+    [S::zero(), S::one(), S::zero()]
+}
+/// The global z axis.
+pub fn z_axis<S: Scalar>() -> Vec3<S> {
+    [S::zero(), S::zero(), S::one()]
+}
+
+/// Vector `v` converted with `f`.
+pub(crate) fn map3<S, T>(v: &Vec3<S>, f: &mut dyn FnMut(&S) -> T) -> Vec3<T> {
+    [f(&v[0]), f(&v[1]), f(&v[2])]
+}
 
 /// A 3×3 matrix, row-major.
 pub type Mat3<S> = [[S; 3]; 3];

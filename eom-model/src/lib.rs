@@ -72,9 +72,9 @@
 //! implements the trait [`Item`], which is all the rest of the crate knows of it:
 //!
 //! * [`Item::kind`], [`Item::name`]: how messages name it (``flex point `tyre` ``);
-//! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and
-//!   [`MapItem::map_item`]: the item converted to another scalar type, field by field in the
-//!   same order (this is how [`Model::evaluate`] turns expressions into numbers);
+//! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and the
+//!   kind's `map`: the item converted to another scalar type, field by field in the same order
+//!   (this is how [`Model::evaluate`] turns expressions into numbers);
 //! * [`Item::bodies`] and [`Item::supports`]: the bodies it connects (checked to exist and to
 //!   differ) and whether it holds them; [`Item::validate`]: its own checks, whose errors name
 //!   the item and field ([`Validation`] gives the known bodies and items, and takes warnings);
@@ -88,22 +88,28 @@
 //!   ([`Assembly::lag_state`], [`Assembly::add_lag`]: a strip's or wing's unsteady lift),
 //!   which every reduction carries after the mechanical states.
 //!
-//! A [`Model`] keeps its bodies and, apart, its items in the order of the kind table
-//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers.
+//! Every kind is declared once, in the `kinds!` table of `items/mod.rs`: its name in messages,
+//! its model-file key and the keys of its tables, and its place in the order. From it come the
+//! closed enum [`AnyItem`] in which a [`Model`] keeps its items (bodies apart), in the order of
+//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers; the
+//! model-file reader's table and keys, the exporter's keys, and the key table of
+//! docs/model-files.md (checked by a test).
 //!
 //! ## Adding an item kind
 //!
 //! 1. Write `items/<kind>.rs`: the struct (public fields, `name: Name`, scalars `S`), its
 //!    builders (a point geometry reuses [`Point`] and `point_builders!`, a two-point one
-//!    [`Line`] and `line_builders!`), and `impl Item<S>` and `impl MapItem<S, T>`.
+//!    [`Line`] and `line_builders!`), its `map` to another scalar type, and `impl Item<S>`.
 //!    `assemble` is usually a few lines: e.g. a velocity-dependent damping block at a point of
 //!    one body takes the rows of its point,
 //!    `let (rows, _) = cx.point(&self.point, "wing", &self.name)`, and adds
 //!    `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square, not
 //!    necessarily symmetric, block with one row and column per direction: forces first, then
 //!    moments).
-//! 2. Register it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and its kind in
-//!    [`KINDS`] (where it stands there decides where its rows go).
+//! 2. Declare it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and one line in
+//!    its `kinds!` table (where it stands there decides where its rows go); the compiler then
+//!    asks for its reader in `file/items.rs`; add its row to the key table of
+//!    docs/model-files.md (the test `key_table` prints it).
 //! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
 //!    the conversion agree; a closed-form model checks its terms.
 //!
@@ -123,6 +129,7 @@ pub mod geometry;
 pub mod items;
 pub mod linearize;
 pub mod preloads;
+mod model;
 pub mod reduce;
 pub mod robust;
 pub mod sensitivity;
@@ -140,15 +147,19 @@ pub mod prelude {
     pub use crate::{Model, SymbolicStateSpace};
 }
 
-pub use aero::{ReducedFrequency, WingRates, reduced_frequencies, response_rates, simulated_rates};
+pub use aero::{
+    ReducedFrequency, WingRates, reduced_frequencies, resolve_unsteady, response_rates,
+    simulated_rates,
+};
 pub use assemble::{
-    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, PointGeometry, Preload, Reaction,
-    RowLabel, Rows, Statics, Term, assemble,
+    Assembled, Assembly, ItemRow, LagTerm, Lags, LineGeometry, OutputFrame, OutputKind,
+    OutputOrder, PointGeometry, Preload, Reaction, RowLabel, Rows, Statics, Term,
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
 pub use items::*;
 pub use linearize::{Linearization, Linearizer, Method};
+pub use model::{Model, assemble};
 pub use reduce::{
     CheckLabel, Coord, ReducedDescriptor, Reduction, ReductionPlan, ReductionReport, ValidityCheck,
     reduce, reduce_report,
@@ -156,139 +167,3 @@ pub use reduce::{
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};
 pub use validate::Validation;
-
-use eom_sym::ExprPool;
-use eom_sym::expr::Expr;
-use eom_sym::pool::ParamInfo;
-use eom_sym::scope::Scope;
-use eom_sym::tape::Tape;
-
-/// A multibody model: parameters, bodies and items.
-#[derive(Clone, Debug)]
-pub struct Model<S = Expr> {
-    /// Name of the model.
-    pub name: String,
-    /// Parameters (symbolic models).
-    pub scope: Scope,
-    /// Bodies (the ground is implicit).
-    pub bodies: Vec<Body<S>>,
-    /// The items, in the order of [`KINDS`] (items of one kind in the order they were added).
-    items: Vec<Box<dyn Item<S>>>,
-}
-
-impl<S: 'static> Model<S> {
-    /// Insert an item after the items of its kind and of the kinds before it in [`KINDS`].
-    pub(crate) fn insert_item(&mut self, item: Box<dyn Item<S>>) {
-        let rank = kind_rank(item.kind());
-        debug_assert!(
-            rank < KINDS.len(),
-            "item kind `{}` is not registered in KINDS",
-            item.kind()
-        );
-        let at = self.items.partition_point(|x| kind_rank(x.kind()) <= rank);
-        self.items.insert(at, item);
-    }
-}
-
-impl<S: ModelScalar> Model<S> {
-    /// An empty model. A symbolic model gets a new expression pool of its own, made current on
-    /// this thread (so that the expressions built for it land there), and freed when the model
-    /// and everything built from it are dropped.
-    pub fn new(name: &str) -> Self {
-        let scope = if S::SYMBOLIC {
-            let pool = ExprPool::new();
-            pool.make_current();
-            Scope::in_pool(pool)
-        } else {
-            Scope::new()
-        };
-        Model {
-            name: name.to_string(),
-            scope,
-            bodies: Vec::new(),
-            items: Vec::new(),
-        }
-    }
-
-    /// Add a body or an item (validated later, by [`Model::validate`] or the assembly).
-    pub fn add(&mut self, item: impl Item<S>) -> &mut Self {
-        item.add_to(self);
-        self
-    }
-
-    /// The items (bodies excluded), in the order of [`KINDS`].
-    pub fn items(&self) -> &[Box<dyn Item<S>>] {
-        &self.items
-    }
-
-    /// The items, mutable (for settings decided later, such as `unsteady = "auto"`).
-    pub(crate) fn items_mut(&mut self) -> &mut [Box<dyn Item<S>>] {
-        &mut self.items
-    }
-
-    /// The items of one kind (e.g. `"spring"`), in the order they were added.
-    pub fn items_of<'a>(&'a self, kind: &'a str) -> impl Iterator<Item = &'a dyn Item<S>> + 'a {
-        self.items
-            .iter()
-            .filter(move |x| x.kind() == kind)
-            .map(|x| &**x)
-    }
-
-    /// The body called `name`.
-    pub fn body(&self, name: &str) -> Option<&Body<S>> {
-        self.bodies.iter().find(|b| &*b.name == name)
-    }
-}
-
-impl Model<Expr> {
-    /// The model's expression pool.
-    pub fn pool(&self) -> ExprPool {
-        self.scope.pool().cloned().unwrap_or_else(ExprPool::current)
-    }
-
-    /// Runs `f` with the model's pool current (new constants and parameters go there).
-    pub fn in_pool<R>(&self, f: impl FnOnce() -> R) -> R {
-        match self.scope.pool() {
-            Some(p) => p.enter(f),
-            None => f(),
-        }
-    }
-
-    /// Declare a parameter of the model.
-    pub fn param(&mut self, name: &str, nominal: f64) -> Result<Expr, ModelError> {
-        Ok(self.scope.declare(name, nominal)?)
-    }
-
-    /// Declare a parameter with full metadata.
-    pub fn param_info(&mut self, info: ParamInfo) -> Result<Expr, ModelError> {
-        Ok(self.scope.declare_info(info)?)
-    }
-
-    /// The numeric model at the given parameter values (in the order of `scope.params()`).
-    pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, ModelError> {
-        let fields = self.field_values();
-        for (k, e) in fields.iter().enumerate() {
-            e.check().map_err(|x| self.field_error(k, x.to_string()))?;
-        }
-        let tape = Tape::new(&fields, &self.scope.params())?;
-        let mut vals = vec![0.0; fields.len()];
-        let mut work = vec![0.0; tape.work_len()];
-        tape.eval_into(values, &mut vals, &mut work)?;
-        if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
-            return Err(self.field_error(
-                k,
-                format!("evaluates to {} at the given parameter values", vals[k]),
-            ));
-        }
-        let mut k = 0;
-        Ok(self.map(&mut |_| {
-            k += 1;
-            vals[k - 1]
-        }))
-    }
-
-    /// The numeric model at the nominal parameter values.
-    pub fn nominal(&self) -> Result<Model<f64>, ModelError> {
-        self.evaluate(&self.scope.nominal_values())
-    }
-}

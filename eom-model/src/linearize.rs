@@ -21,12 +21,13 @@
 //! ```
 
 use super::Model;
-use super::assemble::assemble;
 use super::compiled::SymbolicStateSpace;
 use super::reduce::{ReductionReport, reduce};
 use super::robust::{RobustReport, reduce_robust};
+use crate::aero::resolve_unsteady;
 use crate::error::ModelError;
-use crate::items::{ModelScalar, resolve_unsteady};
+use crate::items::ModelScalar;
+use crate::model::assemble;
 use eom_num::StateSpace;
 use eom_num::deflate::structural_zero_states;
 use eom_sym::SymError;

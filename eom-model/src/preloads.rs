@@ -5,6 +5,7 @@
 
 use crate::Model;
 use crate::assemble::{Assembled, Preload, Statics};
+use crate::items::Item;
 use serde::Serialize;
 
 /// Values smaller than this fraction of the largest of their kind (force or moment) are

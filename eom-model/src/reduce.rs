@@ -28,12 +28,12 @@
 //! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
 
 use super::assemble::{Assembled, RowLabel};
+use super::assemble::{OutputFrame, OutputOrder};
 use super::eliminate::{
     EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref, rref_keeping,
 };
-use super::items::Name;
-use super::items::{SensorFrame, SensorOrder};
 use crate::error::ModelError;
+use crate::geometry::Name;
 use eom_num::{SignalNames, StateSpace};
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
@@ -983,30 +983,30 @@ fn outputs<S: Scalar>(
         d_out.push(i, j, v);
     }
     let (kin, wfull) = (&dyn_.kin, &dyn_.wfull);
-    for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
+    for (o, kind) in a.output_kinds.iter().enumerate() {
         let row = sel.c_s.select_rows(&[o]);
-        let (c_row, d_row) = match (order, frame) {
-            (SensorOrder::Displacement, _) => {
+        let (c_row, d_row) = match (kind.order, kind.frame) {
+            (OutputOrder::Displacement, _) => {
                 let c = row.mul(&dyn_.pfull)?;
                 let dr = c.mul(gamma)?;
                 (c, dr)
             }
-            (SensorOrder::Velocity, SensorFrame::Global) => {
+            (OutputOrder::Velocity, OutputFrame::Global) => {
                 let c = row.mul(kin)?;
                 let dr = c.mul(gamma)?;
                 (c, dr)
             }
-            (SensorOrder::Velocity, SensorFrame::Local) => {
+            (OutputOrder::Velocity, OutputFrame::Local) => {
                 let c = row.mul(wfull)?;
                 let dr = c.mul(gamma)?;
                 (c, dr)
             }
-            (SensorOrder::Acceleration, SensorFrame::Global) => {
+            (OutputOrder::Acceleration, OutputFrame::Global) => {
                 let cv = row.mul(kin)?;
                 rate_check(&cv.mul(gamma)?, &a.outputs[o].0, &a.inputs)?;
                 (cv.mul(a_ss)?, cv.mul(b_ss)?)
             }
-            (SensorOrder::Acceleration, SensorFrame::Local) => {
+            (OutputOrder::Acceleration, OutputFrame::Local) => {
                 let cw = row.mul(wfull)?;
                 rate_check(&cw.mul(gamma)?, &a.outputs[o].0, &a.inputs)?;
                 let cvw = row.mul(&sel.vel)?.mul(wfull)?;

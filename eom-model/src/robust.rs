@@ -31,7 +31,7 @@
 //! independent check of the symbolic-numeric reduction.
 
 use super::assemble::Assembled;
-use super::items::{SensorFrame, SensorOrder};
+use super::assemble::{OutputFrame, OutputOrder};
 use crate::error::ModelError;
 use eom_num::descriptor::{DescriptorOptions, DescriptorReport, descriptor_to_state_space};
 use eom_num::linalg::{Equilibrate, RankTolerance, nullspace_equilibrated, nullspace_structured};
@@ -366,24 +366,24 @@ fn output_rows(a: &Assembled<f64>) -> (DMatrix<f64>, Vec<Post>) {
         rows.push(z);
         rows.len() - 1
     };
-    for (o, &(order, frame)) in a.sensor_kinds.iter().enumerate() {
+    for (o, kind) in a.output_kinds.iter().enumerate() {
         let row = cs.rows(o, 1).into_owned();
         let mut z = DMatrix::<f64>::zeros(1, nz);
-        match (order, frame) {
-            (SensorOrder::Displacement, _) => {
+        match (kind.order, kind.frame) {
+            (OutputOrder::Displacement, _) => {
                 put(&mut z, 0, 0, &row, 1.0);
                 post.push(Post::Direct(push(z, &mut rows)));
             }
-            (SensorOrder::Velocity, SensorFrame::Local) => {
+            (OutputOrder::Velocity, OutputFrame::Local) => {
                 put(&mut z, 0, d, &row, 1.0);
                 post.push(Post::Direct(push(z, &mut rows)));
             }
-            (SensorOrder::Velocity, SensorFrame::Global) => {
+            (OutputOrder::Velocity, OutputFrame::Global) => {
                 put(&mut z, 0, 0, &(&row * &v), -1.0);
                 put(&mut z, 0, d, &row, 1.0);
                 post.push(Post::Direct(push(z, &mut rows)));
             }
-            (SensorOrder::Acceleration, SensorFrame::Global) => {
+            (OutputOrder::Acceleration, OutputFrame::Global) => {
                 put(&mut z, 0, 0, &(&row * &v), -1.0);
                 put(&mut z, 0, d, &row, 1.0);
                 post.push(Post::Acc {
@@ -391,7 +391,7 @@ fn output_rows(a: &Assembled<f64>) -> (DMatrix<f64>, Vec<Post>) {
                     minus: None,
                 });
             }
-            (SensorOrder::Acceleration, SensorFrame::Local) => {
+            (OutputOrder::Acceleration, OutputFrame::Local) => {
                 put(&mut z, 0, d, &row, 1.0);
                 let wv = push(z, &mut rows);
                 let mut z2 = DMatrix::<f64>::zeros(1, nz);

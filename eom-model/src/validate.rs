@@ -14,152 +14,61 @@
 //! 5. **Support**: every body is attached to an item that [`Item::supports`] it.
 //! 6. The model has a body.
 
-use crate::Model;
-use crate::error::ModelError;
-use crate::items::{Body, GROUND, Item, ModelScalar, Name, field_error, label};
+use crate::error::{ModelError, field_error, label};
+use crate::geometry::{GROUND, Name};
+use crate::items::{Body, Item, ModelScalar};
+use crate::model::{Model, Place};
 use hashbrown::HashSet;
 
-/// What an item's [`Item::validate`] sees: the bodies and items of the model, and the
-/// warnings so far.
-pub struct Validation<'m, S> {
-    model: &'m Model<S>,
-    bodies: HashSet<&'m str>,
-    warnings: Vec<String>,
-}
-
-impl<S> Validation<'_, S> {
-    /// Report a warning.
-    pub fn warn(&mut self, message: String) {
-        self.warnings.push(message);
-    }
-}
-
-impl<S: ModelScalar> Validation<'_, S> {
-    /// Is `body` the ground or a body of the model?
-    pub fn is_body(&self, body: &str) -> bool {
-        body == GROUND || self.bodies.contains(body)
-    }
-
-    /// The body called `name` (`None` for the ground or an unknown name).
-    pub fn body(&self, name: &str) -> Option<&Body<S>> {
-        self.model.body(name)
-    }
-
-    /// `field` of item `kind` `item` must name a body (or the ground).
-    pub fn check_body(
-        &self,
-        kind: &str,
-        item: &str,
-        field: &str,
-        body: &str,
-    ) -> Result<(), ModelError> {
-        if self.is_body(body) {
-            return Ok(());
-        }
-        let mut names: Vec<&str> = self.model.bodies.iter().map(|b| &*b.name).collect();
-        names.push(GROUND);
-        Err(field_error(
-            kind,
-            item,
-            field,
-            format!("unknown body `{body}`; bodies are: {}", names.join(", ")),
-        ))
-    }
-
-    /// `field` of item `kind` `item` must name an item of kind `target_kind`.
-    pub fn check_item(
-        &self,
-        kind: &str,
-        item: &str,
-        field: &str,
-        target_kind: &str,
-        target: &str,
-    ) -> Result<(), ModelError> {
-        let mut of_kind = self
-            .model
-            .items()
-            .iter()
-            .filter(|x| x.kind() == target_kind);
-        if of_kind.clone().any(|x| &**x.name() == target) {
-            return Ok(());
-        }
-        let names: Vec<&str> = of_kind.by_ref().map(|x| &**x.name()).collect();
-        Err(field_error(
-            kind,
-            item,
-            field,
-            format!(
-                "unknown {target_kind} `{target}`; {target_kind}s are: {}",
-                names.join(", ")
-            ),
-        ))
-    }
-
-    /// The bodies an item connects exist, and two of them differ.
-    fn check_connected(&self, item: &dyn Item<S>) -> Result<(), ModelError> {
-        let bs = item.bodies();
-        for (k, b) in bs.iter().enumerate() {
-            if !self.is_body(b) {
-                let field = match (bs.len(), k) {
-                    (1, _) => "body",
-                    (_, 0) => "body[1]",
-                    _ => "body[2]",
-                };
-                return self.check_body(item.kind(), item.name(), field, b);
-            }
-        }
-        if bs.len() == 2 && bs[0] == bs[1] {
-            return Err(field_error(
-                item.kind(),
-                item.name(),
-                "bodies",
-                format!("connects `{}` to itself", bs[0]),
-            ));
-        }
-        Ok(())
-    }
-}
+pub use crate::items::Validation;
 
 impl<S: ModelScalar> Model<S> {
     /// Check names, references, geometry and values (see [`crate::validate`] for the steps).
     /// Errors name the item and field. Warnings (physically dubious but computable input) are
     /// returned.
     pub fn validate(&self) -> Result<Vec<String>, ModelError> {
+        self.validate_at().map_err(|(_, e)| e)
+    }
+
+    /// [`Model::validate`], an error with the place of the body or item at fault.
+    pub(crate) fn validate_at(&self) -> Result<Vec<String>, (Place, ModelError)> {
         if let Some(p) = eom_text::name_problem(&self.name) {
-            return Err(ModelError::Model {
+            let e = ModelError::Model {
                 item: "the model".into(),
                 field: "name".into(),
                 problem: p,
-            });
+            };
+            return Err((Place::Model, e));
         }
         self.check_values()?;
-        let mut cx = Validation {
-            model: self,
-            bodies: HashSet::with_capacity(self.bodies.len()),
-            warnings: Vec::new(),
-        };
+        let mut cx = Validation::new(&self.bodies, self.items());
         check_bodies(&mut cx)?;
         self.check_item_names()?;
-        for item in self.items() {
-            cx.check_connected(&**item)?;
-            item.validate(&mut cx)?;
+        for (k, item) in self.items().iter().enumerate() {
+            let at = |e| (Place::Item(k), e);
+            cx.check_connected(item).map_err(at)?;
+            item.validate(&mut cx).map_err(at)?;
         }
         self.check_support()?;
         if self.bodies.is_empty() {
-            return Err(ModelError::Model {
+            let e = ModelError::Model {
                 item: format!("model `{}`", self.name),
                 field: "bodies".into(),
                 problem: "the model has no bodies".into(),
-            });
+            };
+            return Err((Place::Model, e));
         }
-        Ok(cx.warnings)
+        Ok(cx.into_warnings())
     }
 
     /// Step 1: every field is finite at the nominal point (a cheap pass; the first bad field
     /// is located, and labelled, only when there is one).
-    fn check_values(&self) -> Result<(), ModelError> {
+    fn check_values(&self) -> Result<(), (Place, ModelError)> {
         let bodies = self.bodies.iter().map(|b| b as &dyn Item<S>);
-        let items = || bodies.clone().chain(self.items().iter().map(|x| &**x));
+        let items = || {
+            let items = self.items().iter().map(|x| x as &dyn Item<S>);
+            bodies.clone().chain(items)
+        };
         let mut finite = true;
         for item in items() {
             item.fields(&mut |_, x| finite &= x.nominal().is_finite());
@@ -167,55 +76,63 @@ impl<S: ModelScalar> Model<S> {
         if finite {
             return Ok(());
         }
-        let mut bad = None;
         let mut k = 0;
-        for item in items() {
+        for (i, item) in items().enumerate() {
+            let mut bad = None;
             item.fields(&mut |_, x| {
                 if bad.is_none() && !x.nominal().is_finite() {
                     bad = Some((k, x.nominal()));
                 }
                 k += 1;
             });
+            if let Some((k, v)) = bad {
+                let place = match i.checked_sub(self.bodies.len()) {
+                    None => Place::Body(i),
+                    Some(j) => Place::Item(j),
+                };
+                return Err((
+                    place,
+                    self.field_error(k, format!("value {v} is not finite")),
+                ));
+            }
         }
-        match bad {
-            Some((k, v)) => Err(self.field_error(k, format!("value {v} is not finite"))),
-            None => Ok(()),
-        }
+        Ok(())
     }
 
     /// Step 3: every item has a name, unique among the items.
-    fn check_item_names(&self) -> Result<(), ModelError> {
+    fn check_item_names(&self) -> Result<(), (Place, ModelError)> {
         // Borrowed names, sized up front: no reference counting, no rehashing.
         let mut names: HashSet<&str> = HashSet::with_capacity(self.items().len());
-        for item in self.items() {
+        for (k, item) in self.items().iter().enumerate() {
             let (kind, n) = (item.kind(), item.name());
-            if n.is_empty() {
-                return Err(field_error(kind, "", "name", "an item needs a name".into()));
-            }
-            if !names.insert(n) {
-                return Err(field_error(kind, n, "name", "duplicate item name".into()));
-            }
-            if let Some(p) = eom_text::name_problem(n) {
-                return Err(field_error(kind, n, "name", p));
+            let problem = if n.is_empty() {
+                Some("an item needs a name".to_string())
+            } else if !names.insert(n) {
+                Some("duplicate item name".to_string())
+            } else {
+                eom_text::name_problem(n)
+            };
+            if let Some(p) = problem {
+                return Err((Place::Item(k), field_error(kind, n, "name", p)));
             }
         }
         Ok(())
     }
 
     /// Step 5: every body is attached to an item that supports it.
-    fn check_support(&self) -> Result<(), ModelError> {
+    fn check_support(&self) -> Result<(), (Place, ModelError)> {
         let mut supported: HashSet<&str> = HashSet::new();
         for item in self.items().iter().filter(|x| x.supports()) {
             supported.extend(item.bodies().iter().map(|b: &Name| &**b));
         }
-        for b in &self.bodies {
+        for (k, b) in self.bodies.iter().enumerate() {
             if !supported.contains(&*b.name) {
-                return Err(field_error(
+                return Err((Place::Body(k), field_error(
                     "body",
                     &b.name,
                     "",
                     "nothing constrains or supports it (no joint, spring, link or beam attaches to it)".into(),
-                ));
+                )));
             }
         }
         Ok(())
@@ -223,26 +140,27 @@ impl<S: ModelScalar> Model<S> {
 }
 
 /// Step 2: the bodies' names, and each body's own checks.
-fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), ModelError> {
-    let bodies: &'m [Body<S>] = &cx.model.bodies;
-    for b in bodies {
+fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), (Place, ModelError)> {
+    let bodies: &'m [Body<S>] = cx.bodies();
+    for (k, b) in bodies.iter().enumerate() {
         let problem = if b.name.is_empty() {
             Some("a body needs a name".to_string())
         } else if &*b.name == GROUND {
             Some("`ground` is reserved for the fixed frame".to_string())
-        } else if !cx.bodies.insert(&b.name) {
+        } else if !cx.insert_body(&b.name) {
             Some("duplicate body name".to_string())
         } else {
             eom_text::name_problem(&b.name)
         };
         if let Some(p) = problem {
-            return Err(ModelError::Model {
+            let e = ModelError::Model {
                 item: label("body", &b.name),
                 field: "name".into(),
                 problem: p,
-            });
+            };
+            return Err((Place::Body(k), e));
         }
-        b.validate(cx)?;
+        b.validate(cx).map_err(|e| (Place::Body(k), e))?;
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! defined in `python/eom/_errors.py`), with the Rust messages unchanged.
 
 use eom_model::ModelError;
+use eom_model::file::FileError;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
@@ -12,11 +13,17 @@ pub fn eom_error(message: impl std::fmt::Display) -> PyErr {
     raise("EomError", |py| (message,).into_pyobject(py))
 }
 
-/// A model error: `eom.ModelFileError(message, file, line, column)` for an invalid model
-/// file, `eom.EomError` otherwise.
+/// A model error: `eom.EomError(message)`.
 pub fn model_error(e: ModelError) -> PyErr {
-    match &e {
-        ModelError::File { position, .. } => {
+    eom_error(e)
+}
+
+/// A model file error: `eom.ModelFileError(message, file, line, column)` where it has a
+/// position in the file, `eom.EomError` otherwise (an override of a parameter the file does
+/// not declare).
+pub fn file_error(e: FileError) -> PyErr {
+    match e.position() {
+        Some(position) => {
             let args = (
                 e.to_string(),
                 position.file.clone(),
@@ -25,7 +32,7 @@ pub fn model_error(e: ModelError) -> PyErr {
             );
             raise("ModelFileError", |py| args.into_pyobject(py))
         }
-        _ => eom_error(e),
+        None => eom_error(e),
     }
 }
 

@@ -2,8 +2,9 @@
 //! building it at parameter values. The text travels with a pickled model, so a worker that
 //! has no copy of the file rebuilds the same model.
 
-use crate::errors::{catalogue_error, eom_error, model_error};
-use eom_model::{Model, ModelError};
+use crate::errors::{catalogue_error, eom_error, file_error};
+use eom_model::Model;
+use eom_model::file::FileError;
 use pyo3::{PyErr, PyResult};
 use std::path::{Path, PathBuf};
 
@@ -34,7 +35,7 @@ impl Source {
         }
         let text = eom_text::read_limited(Path::new(name_or_path), eom_text::MAX_FILE_BYTES)
             .map_err(|e| {
-                model_error(eom_model::ModelError::File {
+                file_error(eom_model::file::FileError::Invalid {
                     position: eom_model::file::FilePosition::whole(name_or_path),
                     context: String::new(),
                     problem: format!("cannot be read: {e}"),
@@ -61,7 +62,7 @@ impl Source {
                 } else {
                     eom_model::file::load_str(text, path, overrides)
                 };
-                Ok(loaded.map_err(BuildError::Model)?.model)
+                Ok(loaded.map_err(BuildError::File)?.model)
             }
         }
     }
@@ -101,15 +102,15 @@ impl Source {
 pub enum BuildError {
     /// Of the catalogue (unknown parameter, bad value).
     Catalogue(models::CatalogueError),
-    /// Of the model (a model file).
-    Model(ModelError),
+    /// Of a model file.
+    File(FileError),
 }
 
 impl std::fmt::Display for BuildError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             BuildError::Catalogue(e) => e.fmt(f),
-            BuildError::Model(e) => e.fmt(f),
+            BuildError::File(e) => e.fmt(f),
         }
     }
 }
@@ -118,7 +119,7 @@ impl From<BuildError> for PyErr {
     fn from(e: BuildError) -> PyErr {
         match e {
             BuildError::Catalogue(e) => catalogue_error(e),
-            BuildError::Model(e) => model_error(e),
+            BuildError::File(e) => file_error(e),
         }
     }
 }

@@ -168,7 +168,12 @@ impl ModelInfo {
     ) -> Result<Model<Expr>, CatalogueError> {
         let values = self.values(overrides, name)?;
         match self.recipe {
-            Recipe::File(text) => Ok(file::load_str(text, name, overrides)?.model),
+            Recipe::File(text) => match file::load_str(text, name, overrides) {
+                Ok(loaded) => Ok(loaded.model),
+                // A value the overrides give: the user's error, without a file position.
+                Err(file::FileError::Override(e)) => Err(CatalogueError::Model(*e)),
+                Err(e) => Err(CatalogueError::Shipped(e.to_string())),
+            },
             Recipe::Family(builder) => {
                 let mut m = Model::new(name);
                 let mut ps = Vec::with_capacity(values.len());

@@ -104,9 +104,9 @@ impl Sketch {
         let load_z = model
             .items()
             .iter()
-            .filter_map(|i| {
-                let any: &dyn std::any::Any = &**i;
-                any.downcast_ref::<eom_model::Load<f64>>()
+            .filter_map(|i| match i {
+                eom_model::AnyItem::Load(l) => Some(l),
+                _ => None,
             })
             .filter(|l| &*l.frame == eom_model::GROUND)
             .map(|l| l.force[2])
@@ -121,7 +121,7 @@ impl Sketch {
                 continue;
             }
             let on: Vec<Option<usize>> = item.bodies().iter().map(|n| index(n)).collect();
-            let (location, ends) = item_points(item.as_ref());
+            let (location, ends) = item_points(item);
             if let Some(p) = location {
                 s.attach(p, &on);
                 let body = on.iter().copied().flatten().next();

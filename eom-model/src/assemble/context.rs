@@ -4,10 +4,9 @@
 //! mass, stiffness and damping terms, holonomic, elastic or nonholonomic rows with the reaction
 //! their multipliers carry, known preloads, applied loads, inputs and outputs.
 
-use super::RowLabel;
-use crate::geometry::{self, Mat3, cross, scale, sub, unit};
-use crate::items::{Body, GROUND, Line, Name, Point, SensorFrame, SensorOrder, Vec3};
-use crate::items::{x_axis, y_axis, z_axis, zero3};
+use super::{OutputKind, RowLabel};
+use crate::geometry::{self, GROUND, Line, Mat3, Name, Point, Vec3, cross, scale, sub, unit};
+use crate::geometry::{x_axis, y_axis, z_axis, zero3};
 use eom_sym::matrix::Triplets;
 use eom_sym::scalar::Scalar;
 use hashbrown::HashMap;
@@ -206,7 +205,7 @@ pub(crate) struct Signals<S> {
     pub(crate) input_rate_force: Vec<(usize, usize, S)>,
     pub(crate) outputs: Vec<(String, String)>,
     pub(crate) sensor_rows: Vec<(usize, usize, S)>,
-    pub(crate) sensor_kinds: Vec<(SensorOrder, SensorFrame)>,
+    pub(crate) output_kinds: Vec<OutputKind>,
     pub(crate) feedthrough: Vec<(usize, usize, S)>,
 }
 
@@ -250,9 +249,20 @@ impl<S> Default for LagTerms<S> {
 /// Bodies above which [`Assembly::body`] looks names up in a hash map rather than by a scan.
 const BODY_MAP_AFTER: usize = 8;
 
+/// A body as the assembly sees it: its name and its mass centre.
+#[derive(Clone, Copy, Debug)]
+pub struct BodyFrame<'m, S> {
+    /// The body's name.
+    pub name: &'m Name,
+    /// Its mass centre.
+    pub location: Vec3<S>,
+    /// The nominal velocity of its mass centre.
+    pub velocity: Vec3<S>,
+}
+
 /// The assembly context: the bodies, and every term the items add to.
 pub struct Assembly<'m, S> {
-    pub(crate) bodies: &'m [Body<S>],
+    pub(crate) bodies: Vec<BodyFrame<'m, S>>,
     /// Body indices by name, for models with many bodies.
     body_map: Option<HashMap<&'m str, usize>>,
     pub(crate) mass: Triplets<S>,
@@ -276,7 +286,7 @@ pub struct Assembly<'m, S> {
 
 impl<'m, S: Scalar> Assembly<'m, S> {
     /// An empty assembly over `bodies`, for `items` items, with `warnings` so far.
-    pub(crate) fn new(bodies: &'m [Body<S>], items: usize, warnings: Vec<String>) -> Self {
+    pub(crate) fn new(bodies: Vec<BodyFrame<'m, S>>, items: usize, warnings: Vec<String>) -> Self {
         let d = 6 * bodies.len();
         // Room for a few 3×3 blocks per body in each matrix, so that filling rarely
         // reallocates.
@@ -285,7 +295,7 @@ impl<'m, S: Scalar> Assembly<'m, S> {
         let body_map = (bodies.len() > BODY_MAP_AFTER).then(|| {
             let mut map = HashMap::with_capacity(bodies.len());
             for (k, b) in bodies.iter().enumerate() {
-                map.entry(&*b.name).or_insert(k);
+                map.entry(&**b.name).or_insert(k);
             }
             map
         });
@@ -312,7 +322,7 @@ impl<'m, S: Scalar> Assembly<'m, S> {
                 input_rate_force: Vec::new(),
                 outputs: Vec::new(),
                 sensor_rows: Vec::new(),
-                sensor_kinds: Vec::new(),
+                output_kinds: Vec::new(),
                 feedthrough: Vec::new(),
             },
             lags: LagTerms::default(),
@@ -332,7 +342,7 @@ impl<'m, S: Scalar> Assembly<'m, S> {
         }
         match &self.body_map {
             Some(map) => map.get(name).copied(),
-            None => self.bodies.iter().position(|b| &*b.name == name),
+            None => self.bodies.iter().position(|b| &**b.name == name),
         }
     }
 
@@ -532,11 +542,11 @@ impl<'m, S: Scalar> Assembly<'m, S> {
     }
 
     /// A new output (a row of `C_s`, `D_s`) measuring `kind`; returns its index.
-    pub fn output(&mut self, name: &Name, units: &str, kind: (SensorOrder, SensorFrame)) -> usize {
+    pub fn output(&mut self, name: &Name, units: &str, kind: OutputKind) -> usize {
         self.signals
             .outputs
             .push((name.to_string(), units.to_string()));
-        self.signals.sensor_kinds.push(kind);
+        self.signals.output_kinds.push(kind);
         self.signals.outputs.len() - 1
     }
 

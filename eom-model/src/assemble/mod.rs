@@ -8,8 +8,8 @@
 //!
 //! The assembly, one function per step:
 //!
-//! 1. **Validation** ([`Model::validate`]): errors name the item and field; the warnings
-//!    are kept in the result.
+//! 1. **Validation** ([`Model::validate`](crate::Model::validate)): errors name the item and
+//!    field; the warnings are kept in the result.
 //! 2. **Item terms**: every body and then every item, in the order of
 //!    [`KINDS`](crate::items::KINDS), adds its terms through the [`Assembly`] context: a body
 //!    its mass and inertia, momentum and gyroscopic terms and the kinematic velocity matrix; a
@@ -49,12 +49,12 @@ pub mod statics;
 pub mod tangent;
 
 pub use context::{
-    Assembly, ITEM_ROW, ItemRow, LagTerm, LineGeometry, PointGeometry, Reaction, Rows, Term,
+    Assembly, BodyFrame, ITEM_ROW, ItemRow, LagTerm, LineGeometry, PointGeometry, Reaction, Rows,
+    Term,
 };
 
-use crate::Model;
 use crate::error::ModelError;
-use crate::items::{ModelScalar, Name, SensorFrame, SensorOrder, Vec3};
+use crate::geometry::{Name, Vec3};
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
 use statics::{StaticsProblem, StaticsResult, solve_statics};
@@ -80,6 +80,35 @@ impl std::fmt::Display for RowLabel {
         }
         Ok(())
     }
+}
+
+/// What an output measures along its line: the displacement, or its first or second rate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputOrder {
+    /// The elongation (or twist angle).
+    Displacement,
+    /// Its rate.
+    Velocity,
+    /// Its second rate.
+    Acceleration,
+}
+
+/// The axes in which an output's rates are taken.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputFrame {
+    /// Fixed (global) axes: the rates of the global displacements.
+    Global,
+    /// The moving bodies' axes: the body-axis velocities.
+    Local,
+}
+
+/// What an output row measures: its order and the axes of its rates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutputKind {
+    /// Displacement, velocity or acceleration.
+    pub order: OutputOrder,
+    /// Global or body axes.
+    pub frame: OutputFrame,
 }
 
 /// Static force carried by an item at the nominal configuration.
@@ -174,8 +203,8 @@ pub struct Assembled<S> {
     pub input_rate_force: SparseMatrix<S>,
     /// Sensor rows `C_s = −diag(gain)·J_s` (p × d).
     pub sensor_rows: SparseMatrix<S>,
-    /// What each sensor measures.
-    pub sensor_kinds: Vec<(SensorOrder, SensorFrame)>,
+    /// What each output row measures.
+    pub output_kinds: Vec<OutputKind>,
     /// Feedthrough from sensor–actuator pairing (p × m).
     pub feedthrough: SparseMatrix<S>,
     /// Input names and units.
@@ -201,36 +230,22 @@ impl<S: Scalar> Assembled<S> {
     }
 }
 
-/// Assemble the linearized model (see the module documentation for the steps).
-pub fn assemble<S: ModelScalar>(model: &Model<S>) -> Result<Assembled<S>, ModelError> {
-    let warnings = model.validate()?;
-    let mut cx = item_terms(model, warnings)?;
-    let k_el = std::mem::replace(&mut cx.stiffness, Triplets::new(0, 0)).build();
-    let st = statics(&cx, &k_el)?;
-    cx.warnings.extend(st.warnings);
-    let (k_t, mut preloads) = tangent_stiffness(&cx, &st.lambda_c, &st.lambda_e);
-    // Holonomic items come first, in the order of their rows.
-    let mut start = 0;
-    for (r, p) in cx.holonomic.reactions.iter().zip(preloads.iter_mut()) {
-        p.unique = !st.not_unique[start..start + r.rows].iter().any(|&x| x);
-        start += r.rows;
+impl<S: Scalar> Assembly<'_, S> {
+    /// Steps 3 to 5, once every body and item has added its terms: the static preloads, their
+    /// geometric stiffness, and the matrices of the assembled model `name`.
+    pub(crate) fn finish(mut self, name: &str) -> Result<Assembled<S>, ModelError> {
+        let k_el = std::mem::replace(&mut self.stiffness, Triplets::new(0, 0)).build();
+        let st = statics(&self, &k_el)?;
+        self.warnings.extend(st.warnings);
+        let (k_t, mut preloads) = tangent_stiffness(&self, &st.lambda_c, &st.lambda_e);
+        // Holonomic items come first, in the order of their rows.
+        let mut start = 0;
+        for (r, p) in self.holonomic.reactions.iter().zip(preloads.iter_mut()) {
+            p.unique = !st.not_unique[start..start + r.rows].iter().any(|&x| x);
+            start += r.rows;
+        }
+        result(name, self, k_el, k_t, preloads, st.kind)
     }
-    result(model, cx, k_el, k_t, preloads, st.kind)
-}
-
-/// Step 2: the terms of every body and item.
-fn item_terms<'m, S: ModelScalar>(
-    model: &'m Model<S>,
-    warnings: Vec<String>,
-) -> Result<Assembly<'m, S>, ModelError> {
-    let mut cx = Assembly::new(&model.bodies, model.items().len(), warnings);
-    for b in &model.bodies {
-        crate::items::Item::assemble(b, &mut cx)?;
-    }
-    for item in model.items() {
-        item.assemble(&mut cx)?;
-    }
-    Ok(cx)
 }
 
 /// Step 3: the static preloads.
@@ -247,7 +262,7 @@ fn statics<S: Scalar>(
         known: &cx.known,
         stiffness_blocks: &cx.stiffness_blocks,
         k_el,
-        bodies: cx.bodies,
+        bodies: &cx.bodies,
     })
 }
 
@@ -268,7 +283,7 @@ fn tangent_stiffness<S: Scalar>(
 
 /// Step 5: the matrices of the assembled model.
 fn result<S: Scalar>(
-    model: &Model<S>,
+    name: &str,
     cx: Assembly<'_, S>,
     k_el: SparseMatrix<S>,
     k_t: Triplets<S>,
@@ -295,9 +310,9 @@ fn result<S: Scalar>(
         names: cx.lags.names,
     };
     Ok(Assembled {
-        name: model.name.clone(),
-        bodies: model.bodies.iter().map(|b| b.name.to_string()).collect(),
-        locations: model.bodies.iter().map(|b| b.location).collect(),
+        name: name.to_string(),
+        bodies: cx.bodies.iter().map(|b| b.name.to_string()).collect(),
+        locations: cx.bodies.iter().map(|b| b.location).collect(),
         mass: cx.mass.build().add(&cx.item_mass.build())?,
         stiffness,
         damping: cx.damping.build().add(&cx.momentum.build())?,
@@ -309,7 +324,7 @@ fn result<S: Scalar>(
         input_force: matrix(d, nin, s.input_force),
         input_rate_force: matrix(d, nin, s.input_rate_force),
         sensor_rows: matrix(nout, d, s.sensor_rows),
-        sensor_kinds: s.sensor_kinds,
+        output_kinds: s.output_kinds,
         feedthrough: matrix(nout, nin, s.feedthrough),
         inputs: s.inputs,
         outputs: s.outputs,

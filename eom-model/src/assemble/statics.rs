@@ -27,7 +27,7 @@
 //!    taken as the equilibrium with a warning that names the residual (a negligible geometric
 //!    offset, e.g. a coordinate written `0.5*sin(2π)`); beyond, it is an error.
 
-use super::context::{ItemRow, KnownPreload};
+use super::context::{BodyFrame, ItemRow, KnownPreload};
 use super::rank::{
     RANK_TOLERANCE, certify_full_column_rank, complete_pivots, coordinate_weight,
     equilibrate_columns, length_scale, plan_of, rank, redundant_rows, self_stress_basis,
@@ -35,7 +35,6 @@ use super::rank::{
 use super::{RowLabel, Statics};
 use crate::eliminate::{Row, RowStore, Rref, rref};
 use crate::error::ModelError;
-use crate::items::Body;
 use eom_sym::matrix::SparseMatrix;
 use eom_sym::scalar::Scalar;
 use nalgebra::{DMatrix, DVector};
@@ -59,7 +58,7 @@ pub(crate) struct StaticsProblem<'a, S> {
     /// The elastic stiffness `K_e`.
     pub(crate) k_el: &'a SparseMatrix<S>,
     /// The bodies (for messages).
-    pub(crate) bodies: &'a [Body<S>],
+    pub(crate) bodies: &'a [BodyFrame<'a, S>],
 }
 
 /// Relative residual (see the module documentation) below which an equation holds.

@@ -4,8 +4,8 @@
 
 use super::Preload;
 use super::context::{LineGeometry, PointGeometry, Reacting, Reaction, add_block};
-use crate::geometry::{self, mat_mul, mat_scale, outer, scale, skew, unit};
-use crate::items::{Point, Vec3, label, zero3};
+use crate::error::label;
+use crate::geometry::{self, Point, Vec3, mat_mul, mat_scale, outer, scale, skew, unit, zero3};
 use eom_sym::matrix::Triplets;
 use eom_sym::scalar::Scalar;
 

@@ -3,7 +3,7 @@
 
 use super::params::ParamRange;
 use crate::Model;
-use crate::items::{Field, Index, Item, Setting};
+use crate::items::{BODY, Field, Index, Item, Setting};
 use eom_sym::Expr;
 use std::fmt::Write;
 
@@ -34,10 +34,10 @@ pub fn to_toml(model: &Model) -> String {
         let _ = writeln!(t, "{} = {{ {} }}", key(&info.name), fields.join(", "));
     }
     for b in &model.bodies {
-        write_item(&mut t, "body", b);
+        write_item(&mut t, BODY.key, b);
     }
     for item in model.items() {
-        write_item(&mut t, &item.kind().replace(' ', "_"), item.as_ref());
+        write_item(&mut t, item.kind_id().kind().key, item);
     }
     t
 }

@@ -1,45 +1,17 @@
 //! One array of tables per item kind: fields read with positions, converted through the
 //! builders (so every default is the builder's), mirrored copies added where asked.
 
+use super::error::FileError;
 use super::mirror::{Mirror, mirror_name};
 use super::params::{Declarations, value_expr};
 use super::source::{Ctx, Table, Value, array_of};
-use crate::Model;
-use crate::error::ModelError;
+use crate::geometry::name;
 use crate::items::*;
+use crate::model::{Model, Place};
 use eom_sym::{Expr, Scope};
 use std::collections::HashSet;
+use std::ops::Range;
 use toml::de::DeValue;
-
-/// The fields every kind accepts besides its own.
-const COMMON: [&str; 2] = ["name", "mirror"];
-
-/// Applies the point fields through the builder methods every point item shares.
-macro_rules! point_apply {
-    ($p:expr, $item:expr) => {{
-        let p = $p;
-        let mut x = $item;
-        if let Some(b) = &p.between {
-            x = x.between(&b[0], &b[1]);
-        }
-        if let Some(a) = p.at {
-            x = x.at(a);
-        }
-        if let Some(n) = p.forces {
-            x = x.forces(n);
-        }
-        if let Some(n) = p.moments {
-            x = x.moments(n);
-        }
-        if let Some(a) = p.axis {
-            x = x.axis(a);
-        }
-        if let Some(a) = p.rolling_axis {
-            x = x.rolling_axis(a);
-        }
-        x
-    }};
-}
 
 /// Reads the items of a file into a model.
 pub(crate) struct Builder<'a> {
@@ -51,9 +23,9 @@ pub(crate) struct Builder<'a> {
     items: HashSet<String>,
     /// The bodies declared so far.
     bodies: HashSet<String>,
-    /// Where each body and item was defined, by its label in the model's messages
-    /// (``flex point `spring` ``), for errors found after loading.
-    pub spans: Vec<(String, std::ops::Range<usize>)>,
+    /// Where each body and item was defined, by its place in the model, for errors found
+    /// after loading.
+    pub spans: Spans,
     /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
     pub(super) warnings: Vec<String>,
     /// `[model] unsteady`: the default of the wings and strips that do not set their own.
@@ -73,35 +45,29 @@ impl<'a> Builder<'a> {
             model,
             items: HashSet::new(),
             bodies: HashSet::new(),
-            spans: Vec::new(),
+            spans: Spans::default(),
             warnings: Vec::new(),
             unsteady: None,
         }
     }
 
     /// Every kind, bodies first (items refer to them).
-    pub fn all(&mut self, root: &Table<'a>) -> Result<(), ModelError> {
-        self.each(root, "body", Self::body)?;
-        for (kind, f) in [
-            ("load", Self::load as Reader<'a>),
-            ("spring", Self::spring),
-            ("link", Self::link),
-            ("beam", Self::beam),
-            ("rigid_point", Self::rigid_point),
-            ("flex_point", Self::flex_point),
-            ("nh_point", Self::nh_point),
-            ("wing", Self::wing),
-            ("strip", Self::strip),
-            ("actuator", Self::actuator),
-            ("sensor", Self::sensor),
-        ] {
-            self.each(root, kind, f)?;
+    pub fn all(&mut self, root: &Table<'a>) -> Result<(), FileError> {
+        self.each(root, &BODY, Self::body)?;
+        for &id in KindId::ALL {
+            self.each(root, id.kind(), reader(id))?;
         }
         Ok(())
     }
 
-    /// Reads every `[[kind]]` table, and its mirror image where asked.
-    fn each(&mut self, root: &Table<'a>, kind: &str, f: Reader<'a>) -> Result<(), ModelError> {
+    /// Reads every `[[kind]]` table, and its mirror image where asked: the keys checked, the
+    /// name claimed, the fields read by `f`.
+    fn each(&mut self, root: &Table<'a>, kind: &Kind, f: Reader<'a>) -> Result<(), FileError> {
+        let Kind {
+            name: label,
+            key: kind,
+            keys,
+        } = *kind;
         let Some(v) = root.get(kind) else {
             return Ok(());
         };
@@ -128,6 +94,8 @@ impl<'a> Builder<'a> {
                     t.field_error("mirror", &span, p)
                 })?),
             };
+            t.only(&with_common(keys))?;
+            self.claim(&t, label, &name)?;
             f(self, &t, &name, None)?;
             if let Some(m) = mirror {
                 let mirrored = mirror_name(&name).ok_or_else(|| {
@@ -136,20 +104,14 @@ impl<'a> Builder<'a> {
                          as a word) to name the copy",
                     )
                 })?;
+                self.claim(&t, label, &mirrored)?;
                 f(self, &t, &mirrored, Some(m))?;
             }
         }
         Ok(())
     }
 
-    pub(super) fn claim(
-        &mut self,
-        t: &Table<'_>,
-        kind: &str,
-        name: &str,
-    ) -> Result<(), ModelError> {
-        self.spans
-            .push((crate::items::label(kind, name), t.span.clone()));
+    pub(super) fn claim(&mut self, t: &Table<'_>, kind: &str, name: &str) -> Result<(), FileError> {
         let taken = if kind == "body" {
             self.bodies.contains(name) || name == GROUND
         } else {
@@ -172,9 +134,15 @@ impl<'a> Builder<'a> {
         Ok(())
     }
 
+    /// Adds a body or item read from table `t` to the model, and where `t` is.
+    pub(super) fn add(&mut self, t: &Table<'_>, item: impl Into<Part<Expr>>) {
+        let place = self.model.add_placed(item);
+        self.spans.record(place, Some(t.span.clone()));
+    }
+
     // ---------------------------------------------------------------- field readers
 
-    pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, ModelError> {
+    pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, FileError> {
         t.get(key)
             .map(|v| value_expr(self.ctx, self.decl, v, &t.field_context(key)))
             .transpose()
@@ -184,7 +152,7 @@ impl<'a> Builder<'a> {
         &self,
         t: &Table<'_>,
         key: &str,
-    ) -> Result<Option<[Expr; N]>, ModelError> {
+    ) -> Result<Option<[Expr; N]>, FileError> {
         let Some(v) = t.get(key) else {
             return Ok(None);
         };
@@ -202,14 +170,14 @@ impl<'a> Builder<'a> {
         key: &str,
         m: Option<Mirror>,
         kind: VecKind,
-    ) -> Result<Option<Vec3<Expr>>, ModelError> {
+    ) -> Result<Option<Vec3<Expr>>, FileError> {
         Ok(self.scalars::<3>(t, key)?.map(|v| match m {
             Some(m) => m.apply(v, kind),
             None => v,
         }))
     }
 
-    fn matrix(&self, t: &Table<'_>, key: &str) -> Result<Option<Vec<Vec<Expr>>>, ModelError> {
+    fn matrix(&self, t: &Table<'_>, key: &str) -> Result<Option<Vec<Vec<Expr>>>, FileError> {
         let Some(v) = t.get(key) else {
             return Ok(None);
         };
@@ -231,7 +199,7 @@ impl<'a> Builder<'a> {
 
     /// `between = [body 1, body 2]` (mirrored names where mirrored); the default is the
     /// builder's.
-    fn between(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Option<[String; 2]>, ModelError> {
+    fn between(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Option<[String; 2]>, FileError> {
         let Some(v) = t.get("between") else {
             return Ok(None);
         };
@@ -254,7 +222,7 @@ impl<'a> Builder<'a> {
         v: &Value<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<String, ModelError> {
+    ) -> Result<String, FileError> {
         let name = match m {
             Some(_) => mirror_name(name)
                 .filter(|n| self.bodies.contains(n))
@@ -280,16 +248,7 @@ impl<'a> Builder<'a> {
 
     // ---------------------------------------------------------------- kinds
 
-    fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&[
-            "at",
-            "mass",
-            "moments",
-            "products",
-            "velocity",
-            "angular_velocity",
-        ]))?;
-        self.claim(t, "body", name)?;
+    fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         let mut b = Body::new(name);
         if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
             b = b.at(v);
@@ -312,13 +271,11 @@ impl<'a> Builder<'a> {
         if let Some(v) = self.vector(t, "angular_velocity", m, VecKind::Axial)? {
             b = b.angular_velocity(v);
         }
-        self.model.add(b);
+        self.add(t, b);
         Ok(())
     }
 
-    fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&["body", "at", "force", "moment", "frame"]))?;
-        self.claim(t, "load", name)?;
+    fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         let body = self
             .named_body(t, "body", m)?
             .unwrap_or_else(|| GROUND.to_string());
@@ -335,7 +292,7 @@ impl<'a> Builder<'a> {
         if let Some(f) = self.named_body(t, "frame", m)? {
             l = l.frame(&f);
         }
-        self.model.add(l);
+        self.add(t, l);
         Ok(())
     }
 
@@ -344,7 +301,7 @@ impl<'a> Builder<'a> {
         t: &Table<'_>,
         key: &str,
         m: Option<Mirror>,
-    ) -> Result<Option<String>, ModelError> {
+    ) -> Result<Option<String>, FileError> {
         let Some(v) = t.get(key) else {
             return Ok(None);
         };
@@ -354,8 +311,8 @@ impl<'a> Builder<'a> {
         self.body_ref(t, key, v, s, m).map(Some)
     }
 
-    /// `between`, `ends`, `twist` of a line item.
-    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<LineFields, ModelError> {
+    /// `between`, `ends`, `twist` of a line item (the defaults where not given).
+    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Line<Expr>, FileError> {
         let ends = match t.get("ends") {
             None => None,
             Some(v) => {
@@ -381,31 +338,20 @@ impl<'a> Builder<'a> {
                 Some([e[0], e[1]])
             }
         };
-        Ok(LineFields {
-            between: self.between(t, m)?,
-            ends,
-            twist: t.bool("twist")?.unwrap_or(false),
-        })
+        let mut line = Line::new();
+        if let Some(e) = ends {
+            line.ends = e;
+        }
+        if let Some([b1, b2]) = self.between(t, m)? {
+            line.bodies = [name(&b1), name(&b2)];
+        }
+        line.twist = t.bool("twist")?.unwrap_or(false);
+        Ok(line)
     }
 
-    fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&[
-            LINE[0],
-            LINE[1],
-            LINE[2],
-            "stiffness",
-            "damping",
-            "inertance",
-            "preload",
-        ]))?;
-        self.claim(t, "spring", name)?;
-        let l = self.line(t, m)?;
-        let mut s = l.apply(
-            Spring::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Spring::twist,
-        );
+    fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
+        let mut s = Spring::new(name);
+        s.line = self.line(t, m)?;
         if let Some(x) = self.scalar(t, "stiffness")? {
             s = s.stiffness(x);
         }
@@ -418,41 +364,20 @@ impl<'a> Builder<'a> {
         if let Some(x) = self.scalar(t, "preload")? {
             s = s.preload(x);
         }
-        self.model.add(s);
+        self.add(t, s);
         Ok(())
     }
 
-    fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&LINE))?;
-        self.claim(t, "link", name)?;
-        let l = self.line(t, m)?;
-        let link = l.apply(
-            Link::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Link::twist,
-        );
-        self.model.add(link);
+    fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
+        let mut link = Link::new(name);
+        link.line = self.line(t, m)?;
+        self.add(t, link);
         Ok(())
     }
 
-    fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&[
-            LINE[0],
-            LINE[1],
-            LINE[2],
-            "gain",
-            "rate_gain",
-            "units",
-        ]))?;
-        self.claim(t, "actuator", name)?;
-        let l = self.line(t, m)?;
-        let mut a = l.apply(
-            Actuator::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Actuator::twist,
-        );
+    fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
+        let mut a = Actuator::new(name);
+        a.line = self.line(t, m)?;
         if let Some(x) = self.scalar(t, "gain")? {
             a = a.gain(x);
         }
@@ -462,29 +387,13 @@ impl<'a> Builder<'a> {
         if let Some(u) = t.string("units")? {
             a = a.units(&u);
         }
-        self.model.add(a);
+        self.add(t, a);
         Ok(())
     }
 
-    fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&[
-            LINE[0],
-            LINE[1],
-            LINE[2],
-            "gain",
-            "order",
-            "frame",
-            "feedthrough",
-            "units",
-        ]))?;
-        self.claim(t, "sensor", name)?;
-        let l = self.line(t, m)?;
-        let mut s = l.apply(
-            Sensor::new(name),
-            |x, b| x.between(&b[0], &b[1]),
-            |x, e| x.ends(e[0], e[1]),
-            Sensor::twist,
-        );
+    fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
+        let mut s = Sensor::new(name);
+        s.line = self.line(t, m)?;
         if let Some(x) = self.scalar(t, "gain")? {
             s = s.gain(x);
         }
@@ -529,27 +438,14 @@ impl<'a> Builder<'a> {
         if let Some(u) = t.string("units")? {
             s = s.units(&u);
         }
-        self.model.add(s);
+        self.add(t, s);
         Ok(())
     }
 
-    fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&[
-            "between",
-            "ends",
-            "stiffness",
-            "mpul",
-            "perp",
-        ]))?;
-        self.claim(t, "beam", name)?;
+    fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
         let l = self.line(t, m)?;
         let mut b = Beam::new(name);
-        if let Some(bs) = &l.between {
-            b = b.between(&bs[0], &bs[1]);
-        }
-        if let Some(e) = l.ends {
-            b = b.ends(e[0], e[1]);
-        }
+        (b.bodies, b.ends) = (l.bodies, l.ends);
         if let Some([e1, e2]) = self.scalars::<2>(t, "stiffness")? {
             b = b.stiffness(e1, e2);
         }
@@ -559,20 +455,43 @@ impl<'a> Builder<'a> {
         if let Some(v) = self.vector(t, "perp", m, VecKind::Polar)? {
             b = b.perp(v);
         }
-        self.model.add(b);
+        self.add(t, b);
         Ok(())
     }
 
-    /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item.
-    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<PointFields, ModelError> {
-        Ok(PointFields {
-            between: self.between(t, m)?,
-            at: self.vector(t, "at", m, VecKind::Polar)?,
-            forces: t.count("forces", 3)?,
-            moments: t.count("moments", 3)?,
-            axis: self.vector(t, "axis", m, VecKind::Polar)?,
-            rolling_axis: self.vector(t, "rolling_axis", m, VecKind::Polar)?,
+    /// `body`, `at`, `forward` and `down` of a lifting surface (a wing or strip); the axes not
+    /// given are `forward` and `down`, mirrored where mirrored.
+    pub(super) fn surface(
+        &self,
+        t: &Table<'_>,
+        m: Option<Mirror>,
+        forward: Vec3<Expr>,
+        down: Vec3<Expr>,
+    ) -> Result<SurfaceFrame, FileError> {
+        let polar = |key| self.vector(t, key, m, VecKind::Polar);
+        let mirrored = |v| m.map_or(v, |m| m.apply(v, VecKind::Polar));
+        Ok(SurfaceFrame {
+            body: self.named_body(t, "body", m)?,
+            at: polar("at")?,
+            forward: polar("forward")?.unwrap_or_else(|| mirrored(forward)),
+            down: polar("down")?.unwrap_or_else(|| mirrored(down)),
         })
+    }
+
+    /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item (the
+    /// defaults where not given).
+    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Point<Expr>, FileError> {
+        let mut p = Point::new();
+        if let Some([b1, b2]) = self.between(t, m)? {
+            p.bodies = [name(&b1), name(&b2)];
+        }
+        let polar = |key| self.vector(t, key, m, VecKind::Polar);
+        p.location = polar("at")?.unwrap_or(p.location);
+        p.forces = t.count("forces", 3)?.unwrap_or(p.forces);
+        p.moments = t.count("moments", 3)?.unwrap_or(p.moments);
+        p.axis = polar("axis")?.unwrap_or(p.axis);
+        p.rolling_axis = polar("rolling_axis")?.unwrap_or(p.rolling_axis);
+        Ok(p)
     }
 
     fn rigid_point(
@@ -580,21 +499,17 @@ impl<'a> Builder<'a> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
-        t.only(&with_common(&POINT))?;
-        self.claim(t, "rigid point", name)?;
-        let p = self.point(t, m)?;
-        let r = point_apply!(p, RigidPoint::new(name));
-        self.model.add(r);
+    ) -> Result<(), FileError> {
+        let mut r = RigidPoint::new(name);
+        r.point = self.point(t, m)?;
+        self.add(t, r);
         Ok(())
     }
 
-    fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), ModelError> {
-        t.only(&with_common(&POINT))?;
-        self.claim(t, "nh point", name)?;
-        let p = self.point(t, m)?;
-        let r = point_apply!(p, NhPoint::new(name));
-        self.model.add(r);
+    fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
+        let mut r = NhPoint::new(name);
+        r.point = self.point(t, m)?;
+        self.add(t, r);
         Ok(())
     }
 
@@ -603,13 +518,9 @@ impl<'a> Builder<'a> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
-        let mut keys = POINT.to_vec();
-        keys.extend(["stiffness", "damping", "stiffness_matrix", "damping_matrix"]);
-        t.only(&with_common(&keys))?;
-        self.claim(t, "flex point", name)?;
-        let p = self.point(t, m)?;
-        let mut f = point_apply!(p, FlexPoint::new(name));
+    ) -> Result<(), FileError> {
+        let mut f = FlexPoint::new(name);
+        f.point = self.point(t, m)?;
         if let Some([k, kr]) = self.scalars::<2>(t, "stiffness")? {
             f = f.stiffness(k, kr);
         }
@@ -622,12 +533,83 @@ impl<'a> Builder<'a> {
         if let Some(c) = self.matrix(t, "damping_matrix")? {
             f = f.damping_matrix(c);
         }
-        self.model.add(f);
+        self.add(t, f);
         Ok(())
     }
 }
 
-type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), ModelError>;
+/// The table that defined each body and item of a model, by its place in the model.
+#[derive(Debug, Default)]
+pub(crate) struct Spans {
+    bodies: Vec<Range<usize>>,
+    items: Vec<Option<Range<usize>>>,
+}
+
+impl Spans {
+    /// Records the span of the body or item added at `place` (`None`: added by the loader,
+    /// not defined by a table), shifting the items after it as the model did.
+    pub fn record(&mut self, place: Place, span: Option<Range<usize>>) {
+        match place {
+            Place::Body(k) => {
+                debug_assert_eq!(k, self.bodies.len(), "bodies are appended");
+                self.bodies.extend(span);
+            }
+            Place::Item(k) => self.items.insert(k, span),
+            Place::Model => {}
+        }
+    }
+
+    /// The span of the table that defined the body or item at `place`.
+    pub fn of(&self, place: Place) -> Option<&Range<usize>> {
+        match place {
+            Place::Body(k) => self.bodies.get(k),
+            Place::Item(k) => self.items.get(k).and_then(Option::as_ref),
+            Place::Model => None,
+        }
+    }
+}
+
+/// The reader of the fields of a kind (its keys are checked and its name claimed before).
+fn reader<'a>(id: KindId) -> Reader<'a> {
+    match id {
+        KindId::Load => Builder::load,
+        KindId::Spring => Builder::spring,
+        KindId::FlexPoint => Builder::flex_point,
+        KindId::Beam => Builder::beam,
+        KindId::Link => Builder::link,
+        KindId::RigidPoint => Builder::rigid_point,
+        KindId::NhPoint => Builder::nh_point,
+        KindId::Wing => Builder::wing,
+        KindId::Strip => Builder::strip,
+        KindId::Actuator => Builder::actuator,
+        KindId::Sensor => Builder::sensor,
+    }
+}
+
+/// The frame of a lifting surface as its table gives it (see [`Builder::surface`]).
+pub(super) struct SurfaceFrame {
+    pub body: Option<String>,
+    pub at: Option<Vec3<Expr>>,
+    pub forward: Vec3<Expr>,
+    pub down: Vec3<Expr>,
+}
+
+/// `unsteady = "quasi-steady" | "jones" | "auto"` of table `t`.
+pub(super) fn unsteady(t: &Table<'_>) -> Result<Option<Unsteady>, FileError> {
+    let Some(u) = t.string("unsteady")? else {
+        return Ok(None);
+    };
+    let span = t.get("unsteady").map_or(t.span.clone(), |v| v.span());
+    Unsteady::parse(&u).map(Some).map_err(|_| {
+        t.field_error(
+            "unsteady",
+            &span,
+            format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
+        )
+    })
+}
+
+type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), FileError>;
 
 /// How a vector transforms under a mirror: a position or direction (polar), or a rotation or
 /// moment (axial, a pseudo-vector).
@@ -637,47 +619,8 @@ pub(crate) enum VecKind {
     Axial,
 }
 
-const LINE: [&str; 3] = ["between", "ends", "twist"];
-const POINT: [&str; 6] = ["between", "at", "forces", "moments", "axis", "rolling_axis"];
-
-pub(super) fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
-    let mut v: Vec<&'static str> = COMMON.to_vec();
+fn with_common(keys: &[&'static str]) -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = COMMON_KEYS.to_vec();
     v.extend_from_slice(keys);
     v
-}
-
-struct LineFields {
-    between: Option<[String; 2]>,
-    ends: Option<[Vec3<Expr>; 2]>,
-    twist: bool,
-}
-
-impl LineFields {
-    fn apply<T>(
-        self,
-        mut item: T,
-        between: impl Fn(T, &[String; 2]) -> T,
-        ends: impl Fn(T, [Vec3<Expr>; 2]) -> T,
-        twist: impl Fn(T) -> T,
-    ) -> T {
-        if let Some(b) = &self.between {
-            item = between(item, b);
-        }
-        if let Some(e) = self.ends {
-            item = ends(item, e);
-        }
-        if self.twist {
-            item = twist(item);
-        }
-        item
-    }
-}
-
-struct PointFields {
-    between: Option<[String; 2]>,
-    at: Option<Vec3<Expr>>,
-    forces: Option<u8>,
-    moments: Option<u8>,
-    axis: Option<Vec3<Expr>>,
-    rolling_axis: Option<Vec3<Expr>>,
 }

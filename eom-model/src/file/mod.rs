@@ -10,8 +10,9 @@
 //!
 //! Loading is strict: an unknown key, a value of the wrong type, an expression that does not
 //! parse or names an unknown parameter, a duplicated name, a body that does not exist, a cycle
-//! among derived parameters — each is a [`ModelError::File`] with the file, line and column,
-//! the item and field, and the valid alternatives where there is a short list.
+//! among derived parameters — each is a [`FileError`] with the file, line and column, the item
+//! and field, and the valid alternatives where there is a short list; an error of the model's
+//! checks ([`ModelError`]) is positioned at the table of the body or item at fault.
 //!
 //! ```
 //! let text = r#"
@@ -41,6 +42,7 @@
 //! assert_eq!(lin.state_space.a[(1, 0)], -4.0); // −k/m
 //! ```
 
+mod error;
 mod export;
 mod items;
 mod mirror;
@@ -49,12 +51,15 @@ mod source;
 mod strip;
 mod wing;
 
+pub use error::FileError;
 pub use export::{to_toml, toml_string};
 pub use params::{ParamRange, ParamSpec};
 pub use source::FilePosition;
 
+#[cfg(doc)]
 use crate::error::ModelError;
-use crate::{Model, items::Load};
+use crate::items::{BODY, KINDS, Load};
+use crate::model::Model;
 use eom_sym::Expr;
 use source::{Ctx, Table};
 use std::path::Path;
@@ -77,9 +82,9 @@ pub struct LoadedModel {
 }
 
 /// Reads and loads the model file at `path`; `overrides` replace nominal values by name.
-pub fn load(path: &Path, overrides: &[(&str, f64)]) -> Result<LoadedModel, ModelError> {
+pub fn load(path: &Path, overrides: &[(&str, f64)]) -> Result<LoadedModel, FileError> {
     let text =
-        eom_text::read_limited(path, eom_text::MAX_FILE_BYTES).map_err(|e| ModelError::File {
+        eom_text::read_limited(path, eom_text::MAX_FILE_BYTES).map_err(|e| FileError::Invalid {
             position: FilePosition::whole(&path.display().to_string()),
             context: String::new(),
             problem: format!("cannot be read: {e}"),
@@ -88,7 +93,7 @@ pub fn load(path: &Path, overrides: &[(&str, f64)]) -> Result<LoadedModel, Model
 }
 
 /// Loads a model file given as text (`origin` names it in messages).
-pub fn from_str(text: &str, origin: &str, overrides: &[(&str, f64)]) -> Result<Model, ModelError> {
+pub fn from_str(text: &str, origin: &str, overrides: &[(&str, f64)]) -> Result<Model, FileError> {
     Ok(load_str(text, origin, overrides)?.model)
 }
 
@@ -98,7 +103,7 @@ pub fn load_str(
     text: &str,
     origin: &str,
     overrides: &[(&str, f64)],
-) -> Result<LoadedModel, ModelError> {
+) -> Result<LoadedModel, FileError> {
     load_in(text, origin, overrides, None)
 }
 
@@ -108,26 +113,13 @@ fn load_in(
     origin: &str,
     overrides: &[(&str, f64)],
     base: Option<&Path>,
-) -> Result<LoadedModel, ModelError> {
+) -> Result<LoadedModel, FileError> {
     let ctx = Ctx::new(text, origin, base);
     let doc = ctx.parse()?;
     let root = Table::new(&ctx, &doc, "the file");
-    root.only(&[
-        "model",
-        "parameters",
-        "body",
-        "load",
-        "spring",
-        "link",
-        "beam",
-        "rigid_point",
-        "flex_point",
-        "nh_point",
-        "wing",
-        "strip",
-        "actuator",
-        "sensor",
-    ])?;
+    let mut keys = vec!["model", "parameters", BODY.key];
+    keys.extend(KINDS.iter().map(|k| k.key));
+    root.only(&keys)?;
     let (name, description, gravity, unsteady) = model_section(&root)?;
     let mut model = Model::new(&name);
     let decl = params::declare(&root, &mut model, overrides)?;
@@ -135,13 +127,21 @@ fn load_in(
     let mut cx = items::Builder::new(&ctx, &scope, &decl, &mut model);
     cx.unsteady = unsteady;
     cx.all(&root)?;
-    let spans = std::mem::take(&mut cx.spans);
+    let mut spans = std::mem::take(&mut cx.spans);
     let warnings = std::mem::take(&mut cx.warnings);
     if let Some(g) = gravity {
         let g = params::vector(&ctx, &scope, &decl, g, "[model] gravity")?;
-        add_weights(&mut model, g);
+        add_weights(&mut model, g, &mut spans);
     }
-    model.validate().map_err(|e| positioned(&ctx, &spans, e))?;
+    model
+        .validate_at()
+        .map_err(|(place, error)| FileError::Model {
+            position: match spans.of(place) {
+                Some(span) => ctx.position(span.start),
+                None => FilePosition::whole(ctx.origin),
+            },
+            error: Box::new(error),
+        })?;
     Ok(LoadedModel {
         model,
         description,
@@ -151,7 +151,6 @@ fn load_in(
     })
 }
 
-/// `[model]`: name, description, gravity.
 /// `[model]`: name, description, gravity, and the default `unsteady` of wings and strips.
 type ModelSection<'a> = (
     String,
@@ -160,81 +159,31 @@ type ModelSection<'a> = (
     Option<crate::items::Unsteady>,
 );
 
-fn model_section<'a>(root: &Table<'a>) -> Result<ModelSection<'a>, ModelError> {
+fn model_section<'a>(root: &Table<'a>) -> Result<ModelSection<'a>, FileError> {
     let Some(m) = root.table("model")? else {
         return Ok(("model".into(), String::new(), None, None));
     };
     m.only(&["name", "description", "gravity", "unsteady"])?;
     let name = m.string("name")?.unwrap_or_else(|| "model".into());
     let description = m.string("description")?.unwrap_or_default();
-    let unsteady = match m.string("unsteady")? {
-        None => None,
-        Some(u) => Some(crate::items::Unsteady::parse(&u).map_err(|_| {
-            let span = m
-                .get("unsteady")
-                .map(|v| v.span())
-                .unwrap_or(m.span.clone());
-            m.field_error(
-                "unsteady",
-                &span,
-                format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-            )
-        })?),
-    };
+    let unsteady = items::unsteady(&m)?;
     Ok((name, description, m.get("gravity"), unsteady))
 }
 
-/// A weight (dead load `m·g` at the mass centre) on every body with mass.
-fn add_weights(model: &mut Model, g: [Expr; 3]) {
+/// A weight (dead load `m·g` at the mass centre) on every body with mass (defined by no table
+/// of the file).
+fn add_weights(model: &mut Model, g: [Expr; 3], spans: &mut items::Spans) {
     let bodies: Vec<_> = model.bodies.clone();
     for b in bodies {
         if b.mass.is_zero() {
             continue;
         }
         let f = [b.mass * g[0], b.mass * g[1], b.mass * g[2]];
-        model.add(
+        let place = model.add_placed(
             Load::new(&format!("{} weight", b.name), &b.name)
                 .at(b.location)
                 .force(f),
         );
-    }
-}
-
-/// A model error about an item or body, positioned at the table that defined it.
-fn positioned(
-    ctx: &Ctx<'_>,
-    spans: &[(String, std::ops::Range<usize>)],
-    e: ModelError,
-) -> ModelError {
-    match e {
-        ModelError::Model {
-            item,
-            field,
-            problem,
-        } => match spans.iter().find(|(label, _)| *label == item) {
-            Some((_, span)) => {
-                let context = if field.is_empty() {
-                    item
-                } else {
-                    format!("{item}, field `{field}`")
-                };
-                ctx.error(span, &context, problem)
-            }
-            None => ModelError::File {
-                position: FilePosition::whole(ctx.origin),
-                context: item,
-                problem: if field.is_empty() {
-                    problem
-                } else {
-                    format!("field `{field}`: {problem}")
-                },
-            },
-        },
-        ModelError::File { .. } => e,
-        other => ModelError::File {
-            position: FilePosition::whole(ctx.origin),
-            context: String::new(),
-            problem: other.to_string(),
-        },
+        spans.record(place, None);
     }
 }

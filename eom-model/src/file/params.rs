@@ -1,6 +1,7 @@
 //! `[parameters]`: independent parameters with ranges, derived parameters as expressions, and
 //! the conversion of field values (numbers and expression strings) to expressions.
 
+use super::error::FileError;
 use super::source::{Ctx, Table, Value, array_of, parse_integer};
 use crate::Model;
 use crate::error::ModelError;
@@ -181,7 +182,7 @@ pub(crate) struct Declarations {
 
 impl Declarations {
     /// The parse scope (independent parameters and derived names).
-    pub fn scope(&self, _model: &mut Model) -> Result<Scope, ModelError> {
+    pub fn scope(&self, _model: &mut Model) -> Result<Scope, FileError> {
         Ok(self.parse_scope.clone())
     }
 
@@ -209,7 +210,7 @@ pub(crate) fn declare(
     root: &Table<'_>,
     model: &mut Model,
     overrides: &[(&str, f64)],
-) -> Result<Declarations, ModelError> {
+) -> Result<Declarations, FileError> {
     let mut specs: Vec<(ParamSpec, Range<usize>)> = Vec::new();
     let mut derived: Vec<(String, String, Range<usize>)> = Vec::new();
     if let Some(t) = root.table("parameters")? {
@@ -220,18 +221,20 @@ pub(crate) fn declare(
     for (k, _) in overrides {
         if derived.iter().any(|d| d.0 == *k) {
             let d = derived.iter().find(|d| d.0 == *k).expect("found");
-            return Err(ModelError::Model {
+            return Err(FileError::Override(Box::new(ModelError::Model {
                 item: format!("parameter `{k}`"),
                 field: String::new(),
                 problem: format!("is derived (= {}); set the parameters it is made of", d.1),
-            });
+            })));
         }
         if !specs.iter().any(|s| s.0.name == *k) {
             let known: Vec<&str> = specs.iter().map(|s| s.0.name.as_str()).collect();
-            return Err(ModelError::Sym(SymError::UnknownParameter {
-                name: k.to_string(),
-                known: known.iter().map(|s| s.to_string()).collect(),
-            }));
+            return Err(FileError::Override(Box::new(ModelError::Sym(
+                SymError::UnknownParameter {
+                    name: k.to_string(),
+                    known: known.iter().map(|s| s.to_string()).collect(),
+                },
+            ))));
         }
     }
     let mut scope_params = Vec::new();
@@ -294,7 +297,7 @@ fn entry(
     v: &Value<'_>,
     specs: &mut Vec<(ParamSpec, Range<usize>)>,
     derived: &mut Vec<(String, String, Range<usize>)>,
-) -> Result<(), ModelError> {
+) -> Result<(), FileError> {
     let context = format!("parameter `{}`", eom_text::shown(name));
     let mut spec = ParamSpec {
         name: name.to_string(),
@@ -341,7 +344,7 @@ fn entry(
 }
 
 /// A finite number.
-fn number(ctx: &Ctx<'_>, v: &Value<'_>, context: &str) -> Result<f64, ModelError> {
+fn number(ctx: &Ctx<'_>, v: &Value<'_>, context: &str) -> Result<f64, FileError> {
     let x = match v.get_ref() {
         DeValue::Integer(i) => parse_integer(i.as_str(), i.radix()).map(|n| n as f64),
         DeValue::Float(f) => f.as_str().replace('_', "").parse::<f64>().ok(),
@@ -369,11 +372,13 @@ fn resolve_derived(
     model: &Model,
     params: &[Expr],
     derived: &[(String, String, Range<usize>)],
-) -> Result<(Scope, Vec<(Expr, Expr)>), ModelError> {
+) -> Result<(Scope, Vec<(Expr, Expr)>), FileError> {
     let pool = model.pool();
     let mut scope = Scope::in_pool(pool.clone());
     for &p in params {
-        scope.insert(p)?;
+        scope
+            .insert(p)
+            .map_err(|e| FileError::whole(ctx.origin, e.into()))?;
     }
     let mut holders = Vec::new();
     for (name, _, span) in derived {
@@ -434,7 +439,9 @@ fn resolve_derived(
                 .iter()
                 .map(|&j| (holders[j], done[j].expect("resolved first")))
                 .collect();
-            parsed[k].subs(&own)?
+            parsed[k]
+                .subs(&own)
+                .map_err(|e| FileError::whole(ctx.origin, e.into()))?
         };
         done[k] = Some(e);
         map.push((holders[k], e));
@@ -469,7 +476,7 @@ pub(crate) fn string_error(
     context: &str,
     text: &str,
     e: &SymError,
-) -> ModelError {
+) -> FileError {
     // An expression too long to repeat is cut (the column still points into it).
     let shown = format!("{}`", eom_text::shown_within(text, 80));
     let (at, problem) = match e {
@@ -501,7 +508,7 @@ pub(crate) fn value_expr(
     decl: &Declarations,
     v: &Value<'_>,
     context: &str,
-) -> Result<Expr, ModelError> {
+) -> Result<Expr, FileError> {
     match v.get_ref() {
         DeValue::Integer(i) => match parse_integer(i.as_str(), i.radix()) {
             Some(n) => Ok(Expr::int(n)),
@@ -539,7 +546,7 @@ pub(crate) fn vector(
     decl: &Declarations,
     v: &Value<'_>,
     context: &str,
-) -> Result<[Expr; 3], ModelError> {
+) -> Result<[Expr; 3], FileError> {
     let t = Table {
         ctx,
         table: empty_table(),

@@ -1,7 +1,7 @@
 //! The TOML document with positions: tables whose keys are checked against the known ones,
 //! typed getters, and errors that name the file, line and column.
 
-use crate::error::ModelError;
+use super::error::FileError;
 use std::ops::Range;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
@@ -74,8 +74,8 @@ impl<'t> Ctx<'t> {
         span: &Range<usize>,
         context: &str,
         problem: impl Into<String>,
-    ) -> ModelError {
-        ModelError::File {
+    ) -> FileError {
+        FileError::Invalid {
             position: self.position(span.start),
             context: context.to_string(),
             problem: problem.into(),
@@ -83,7 +83,7 @@ impl<'t> Ctx<'t> {
     }
 
     /// The document (a TOML syntax error is reported at its position).
-    pub fn parse(&self) -> Result<Spanned<DeTable<'t>>, ModelError> {
+    pub fn parse(&self) -> Result<Spanned<DeTable<'t>>, FileError> {
         DeTable::parse(self.text).map_err(|e| {
             let span = e.span().unwrap_or(0..0);
             self.error(&span, "", format!("not valid TOML: {}", e.message().trim()))
@@ -110,7 +110,7 @@ impl<'a> Table<'a> {
     }
 
     /// A sub-table value as a [`Table`] with its own context.
-    pub fn sub(ctx: &'a Ctx<'a>, v: &'a Value<'a>, context: String) -> Result<Self, ModelError> {
+    pub fn sub(ctx: &'a Ctx<'a>, v: &'a Value<'a>, context: String) -> Result<Self, FileError> {
         match v.get_ref() {
             DeValue::Table(t) => Ok(Table {
                 ctx,
@@ -127,7 +127,7 @@ impl<'a> Table<'a> {
     }
 
     /// An error about the whole table.
-    pub fn error(&self, problem: impl Into<String>) -> ModelError {
+    pub fn error(&self, problem: impl Into<String>) -> FileError {
         self.ctx.error(&self.span, &self.context, problem)
     }
 
@@ -137,7 +137,7 @@ impl<'a> Table<'a> {
         key: &str,
         span: &Range<usize>,
         problem: impl Into<String>,
-    ) -> ModelError {
+    ) -> FileError {
         self.ctx.error(span, &self.field_context(key), problem)
     }
 
@@ -151,7 +151,7 @@ impl<'a> Table<'a> {
     }
 
     /// Every key must be one of `known`.
-    pub fn only(&self, known: &[&str]) -> Result<(), ModelError> {
+    pub fn only(&self, known: &[&str]) -> Result<(), FileError> {
         for (k, _) in self.table.iter() {
             if !known.contains(&k.get_ref().as_ref()) {
                 let close = closest(k.get_ref(), known);
@@ -181,14 +181,14 @@ impl<'a> Table<'a> {
             .map(|(k, v)| (k.get_ref().as_ref(), k.span(), v))
     }
 
-    pub fn table(&self, key: &str) -> Result<Option<Table<'a>>, ModelError> {
+    pub fn table(&self, key: &str) -> Result<Option<Table<'a>>, FileError> {
         match self.get(key) {
             None => Ok(None),
             Some(v) => Table::sub(self.ctx, v, format!("[{key}]")).map(Some),
         }
     }
 
-    pub fn string(&self, key: &str) -> Result<Option<String>, ModelError> {
+    pub fn string(&self, key: &str) -> Result<Option<String>, FileError> {
         match self.get(key) {
             None => Ok(None),
             Some(v) => match v.get_ref() {
@@ -214,7 +214,7 @@ impl<'a> Table<'a> {
         }
     }
 
-    pub fn bool(&self, key: &str) -> Result<Option<bool>, ModelError> {
+    pub fn bool(&self, key: &str) -> Result<Option<bool>, FileError> {
         match self.get(key) {
             None => Ok(None),
             Some(v) => match v.get_ref() {
@@ -229,7 +229,7 @@ impl<'a> Table<'a> {
     }
 
     /// A small non-negative integer (a count such as `forces`), at most `max`.
-    pub fn count(&self, key: &str, max: u8) -> Result<Option<u8>, ModelError> {
+    pub fn count(&self, key: &str, max: u8) -> Result<Option<u8>, FileError> {
         match self.get(key) {
             None => Ok(None),
             Some(v) => match v.get_ref() {
@@ -263,7 +263,7 @@ pub(crate) fn array_of<'a>(
     key: &str,
     v: &'a Value<'a>,
     n: usize,
-) -> Result<&'a [Value<'a>], ModelError> {
+) -> Result<&'a [Value<'a>], FileError> {
     match v.get_ref() {
         DeValue::Array(a) if a.len() == n => Ok(a),
         DeValue::Array(a) => Err(t.field_error(

@@ -1,26 +1,11 @@
 //! `[[strip]]`: a thin-airfoil strip's fields through the builder, and its `unsteady` setting.
 
-use super::items::{Builder, VecKind};
+use super::error::FileError;
+use super::items::{Builder, unsteady};
 use super::mirror::Mirror;
 use super::source::Table;
-use crate::error::ModelError;
-use crate::items::{Strip, Unsteady};
+use crate::items::Strip;
 use eom_sym::Expr;
-
-/// The keys of `[[strip]]` besides `name` and `mirror`.
-pub(crate) const STRIP_KEYS: [&str; 11] = [
-    "body",
-    "at",
-    "forward",
-    "down",
-    "semichord",
-    "elastic_axis",
-    "width",
-    "lift_slope",
-    "density",
-    "airspeed",
-    "unsteady",
-];
 
 impl Builder<'_> {
     pub(super) fn strip(
@@ -28,29 +13,19 @@ impl Builder<'_> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
-        t.only(&super::items::with_common(&STRIP_KEYS))?;
-        self.claim(t, "strip", name)?;
+    ) -> Result<(), FileError> {
         let mut s = Strip::new(name);
         if let Some(u) = self.unsteady {
             s = s.unsteady(u);
         }
-        if let Some(b) = self.named_body(t, "body", m)? {
+        let frame = self.surface(t, m, s.forward, s.down)?;
+        if let Some(b) = frame.body {
             s = s.on(&b);
         }
-        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
+        if let Some(v) = frame.at {
             s = s.at(v);
         }
-        let forward = self.vector(t, "forward", m, VecKind::Polar)?;
-        let down = self.vector(t, "down", m, VecKind::Polar)?;
-        let (f0, d0) = match m {
-            Some(m) => (
-                m.apply(s.forward, VecKind::Polar),
-                m.apply(s.down, VecKind::Polar),
-            ),
-            None => (s.forward, s.down),
-        };
-        s = s.axes(forward.unwrap_or(f0), down.unwrap_or(d0));
+        s = s.axes(frame.forward, frame.down);
         for (key, set) in [
             (
                 "semichord",
@@ -66,21 +41,10 @@ impl Builder<'_> {
                 s = set(s, x);
             }
         }
-        if let Some(u) = t.string("unsteady")? {
-            let span = t
-                .get("unsteady")
-                .map(|v| v.span())
-                .unwrap_or(t.span.clone());
-            let u = Unsteady::parse(&u).map_err(|_| {
-                t.field_error(
-                    "unsteady",
-                    &span,
-                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-                )
-            })?;
+        if let Some(u) = unsteady(t)? {
             s = s.unsteady(u);
         }
-        self.model.add(s);
+        self.add(t, s);
         Ok(())
     }
 }

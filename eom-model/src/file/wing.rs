@@ -2,33 +2,15 @@
 //! or from an AVL file (`.sb`, `.st` read; `.avl` solved by eom-aero's vortex lattice),
 //! relative to the model file.
 
-use super::items::{Builder, VecKind};
+use super::error::FileError;
+use super::items::{Builder, unsteady};
 use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
-use crate::error::ModelError;
-use crate::items::{
-    Unsteady, WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index,
-};
+use crate::items::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 use eom_aero::{AvlOutput, Derivatives, SolverOptions};
 use eom_sym::Expr;
 use std::path::Path;
-
-/// The keys of `[[wing]]` besides `name` and `mirror`.
-pub(crate) const WING_KEYS: [&str; 12] = [
-    "body",
-    "at",
-    "forward",
-    "down",
-    "area",
-    "chord",
-    "span",
-    "density",
-    "airspeed",
-    "derivatives",
-    "avl",
-    "unsteady",
-];
 
 /// Signs of the rows and columns of a wing's derivatives under a mirror image: the wing's own
 /// y changes sign (its mirrored axes are forward', down', and right' = down' × forward').
@@ -61,9 +43,7 @@ impl Builder<'_> {
         t: &Table<'_>,
         name: &str,
         m: Option<Mirror>,
-    ) -> Result<(), ModelError> {
-        t.only(&super::items::with_common(&WING_KEYS))?;
-        self.claim(t, "wing", name)?;
+    ) -> Result<(), FileError> {
         let mut w = match self.avl_file(t, name)? {
             Some(d) => {
                 for key in ["area", "chord", "span"] {
@@ -82,22 +62,14 @@ impl Builder<'_> {
         if let Some(u) = self.unsteady {
             w = w.unsteady(u);
         }
-        if let Some(b) = self.named_body(t, "body", m)? {
+        let frame = self.surface(t, m, w.forward, w.down)?;
+        if let Some(b) = frame.body {
             w = w.on(&b);
         }
-        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
+        if let Some(v) = frame.at {
             w = w.at(v);
         }
-        let forward = self.vector(t, "forward", m, VecKind::Polar)?;
-        let down = self.vector(t, "down", m, VecKind::Polar)?;
-        let (f0, d0) = match m {
-            Some(m) => (
-                m.apply(w.forward, VecKind::Polar),
-                m.apply(w.down, VecKind::Polar),
-            ),
-            None => (w.forward, w.down),
-        };
-        w = w.axes(forward.unwrap_or(f0), down.unwrap_or(d0));
+        w = w.axes(frame.forward, frame.down);
         for (key, set) in [
             ("area", Wing::area as fn(Wing<Expr>, Expr) -> Wing<Expr>),
             ("chord", Wing::chord),
@@ -110,18 +82,7 @@ impl Builder<'_> {
             }
         }
         w = self.derivative_table(t, w)?;
-        if let Some(u) = t.string("unsteady")? {
-            let span = t
-                .get("unsteady")
-                .map(|v| v.span())
-                .unwrap_or(t.span.clone());
-            let u = Unsteady::parse(&u).map_err(|_| {
-                t.field_error(
-                    "unsteady",
-                    &span,
-                    format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-                )
-            })?;
+        if let Some(u) = unsteady(t)? {
             w = w.unsteady(u);
         }
         if m.is_some() {
@@ -138,12 +99,12 @@ impl Builder<'_> {
                 }
             }
         }
-        self.model.add(w);
+        self.add(t, w);
         Ok(())
     }
 
     /// `derivatives = { CYv = …, … }`: each by its AVL name (replacing the AVL file's).
-    fn derivative_table(&self, t: &Table<'_>, mut w: Wing<Expr>) -> Result<Wing<Expr>, ModelError> {
+    fn derivative_table(&self, t: &Table<'_>, mut w: Wing<Expr>) -> Result<Wing<Expr>, FileError> {
         let Some(v) = t.get("derivatives") else {
             return Ok(w);
         };
@@ -177,7 +138,7 @@ impl Builder<'_> {
 
     /// `avl = "file"`: the derivatives (and S, c, b) of an AVL `.sb` or `.st` file, or of a
     /// `.avl` geometry by the vortex lattice at α = 0; the path is relative to the model file.
-    fn avl_file(&mut self, t: &Table<'_>, name: &str) -> Result<Option<Derivatives>, ModelError> {
+    fn avl_file(&mut self, t: &Table<'_>, name: &str) -> Result<Option<Derivatives>, FileError> {
         let Some(path) = t.string("avl")? else {
             return Ok(None);
         };

@@ -1,13 +1,10 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
-use super::{
-    Field, Item, MapItem, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3,
-};
-use crate::Model;
+use super::Validation;
+use super::{Field, Item, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// A rigid body: mass, inertia about its mass centre (global axes), and the nominal motion
@@ -91,12 +88,6 @@ impl<S: Scalar> Body<S> {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Body<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
-        Box::new(self.map(f))
-    }
-}
-
 impl<S: ModelScalar> Item<S> for Body<S> {
     fn kind(&self) -> &'static str {
         "body"
@@ -162,10 +153,6 @@ impl<S: ModelScalar> Item<S> for Body<S> {
             cx.add_block(Term::Velocity, (k, 0), (k, 3), &skew(&self.velocity), 1.0);
         }
         Ok(())
-    }
-
-    fn add_to(self, model: &mut Model<S>) {
-        model.bodies.push(self);
     }
 }
 
@@ -318,21 +305,7 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), ModelErro
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
     use crate::items::vec3;
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let b = Body::new("b")
-            .at(c.v())
-            .moments(c.v())
-            .products(c.v())
-            .velocity(c.v())
-            .angular_velocity(c.v())
-            .mass(100.0);
-        check_fields_and_map(&b);
-    }
 
     #[test]
     fn a_spin_about_an_unsymmetric_principal_axis_is_an_error() {

@@ -7,9 +7,11 @@
 //!
 //! Items name the bodies they connect; `"ground"` is the fixed frame and the default.
 //!
-//! Every kind implements [`Item`]; the crate documentation ("Adding an item kind") describes
-//! the trait and how a new kind is added. [`KINDS`] fixes the order in which the kinds are
-//! visited.
+//! Every kind implements [`Item`] and is declared once, in the `kinds!` table of this module
+//! (its name in messages, its model-file key and keys, its place in the order of [`KINDS`]),
+//! from which come the closed enum [`AnyItem`] a model stores its items in, the model-file
+//! reader's table and keys, the exporter's keys and the key table of docs/model-files.md. The
+//! crate documentation ("Adding an item kind") describes the trait and how a new kind is added.
 
 mod actuator;
 mod beam;
@@ -25,180 +27,268 @@ mod sensor;
 mod spring;
 mod strip;
 mod unsteady;
+mod validation;
 mod wing;
 
 pub use actuator::Actuator;
 pub use beam::Beam;
 pub use body::Body;
 pub use flex_point::FlexPoint;
-pub use line::Line;
 pub use link::Link;
 pub use load::Load;
 pub use nh_point::NhPoint;
-pub use point::Point;
 pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
 pub use strip::Strip;
-pub use unsteady::{
-    AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c, resolve_unsteady,
-};
+pub use unsteady::{AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c};
+pub use validation::Validation;
 pub use wing::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 
-use crate::Model;
+pub use crate::geometry::{GROUND, Line, Name, Point, Vec3, vec3, x_axis, y_axis, z_axis, zero3};
+
 use crate::assemble::Assembly;
 use crate::error::ModelError;
-use crate::validate::Validation;
+pub(crate) use crate::error::{field_error, label};
+pub(crate) use crate::geometry::{map3, name};
 use eom_sym::scalar::Scalar;
 use eom_sym::{Dd, Expr};
-use std::sync::Arc;
-
-/// The item kinds in the order in which a model stores, validates and assembles them (bodies
-/// are kept apart and come first). The order fixes the order of the constraint rows and of
-/// their multipliers: the elastic rows are the springs', the flex points' and then the
-/// beams'; the holonomic rows the links' and then the rigid points'. Inputs come before
-/// outputs, so a sensor finds the actuator it feeds through. A new kind is registered by
-/// adding its [`Item::kind`] here.
-pub const KINDS: &[&str] = &[
-    "load",
-    "spring",
-    "flex point",
-    "beam",
-    "link",
-    "rigid point",
-    "nh point",
-    "wing",
-    "strip",
-    "actuator",
-    "sensor",
-];
-
-/// The position of `kind` in [`KINDS`] (an unregistered kind sorts last).
-pub(crate) fn kind_rank(kind: &str) -> usize {
-    KINDS.iter().position(|k| *k == kind).unwrap_or(KINDS.len())
-}
-
-/// The name of the ground (the fixed frame). Reserved: no body may be called this.
-pub const GROUND: &str = "ground";
-
-/// A shared item or body name.
-pub type Name = Arc<str>;
-
-/// A 3-vector.
-pub type Vec3<S> = [S; 3];
-
-/// A 3-vector from three components of any convertible type.
-pub fn vec3<S>(x: impl Into<S>, y: impl Into<S>, z: impl Into<S>) -> Vec3<S> {
-    [x.into(), y.into(), z.into()]
-}
-
-/// The zero vector.
-pub fn zero3<S: Scalar>() -> Vec3<S> {
-    [S::zero(), S::zero(), S::zero()]
-}
-
-/// The global x axis.
-pub fn x_axis<S: Scalar>() -> Vec3<S> {
-    [S::one(), S::zero(), S::zero()]
-}
-/// The global y axis.
-pub fn y_axis<S: Scalar>() -> Vec3<S> {
-    [S::zero(), S::one(), S::zero()]
-}
-/// The global z axis.
-pub fn z_axis<S: Scalar>() -> Vec3<S> {
-    [S::zero(), S::zero(), S::one()]
-}
-
-pub(crate) fn name(s: &str) -> Name {
-    Arc::from(s)
-}
 
 /// The scalar types a model can hold and be converted between: eom-sym's [`Expr`], `f64` and
-/// [`Dd`]. A model stores its items as trait objects, and a trait object cannot have a method
-/// generic in the target type; the conversion is therefore one method per target scalar
-/// ([`MapItem`]), and this trait picks the one for `Self`.
-pub trait ModelScalar: Scalar + Send + Sync {
-    /// `item` converted field by field with `f`.
-    fn map_item<S: ModelScalar>(
-        item: &dyn Item<S>,
-        f: &mut dyn FnMut(&S) -> Self,
-    ) -> Box<dyn Item<Self>>;
+/// [`Dd`].
+pub trait ModelScalar: Scalar + Send + Sync + 'static {}
+
+impl ModelScalar for f64 {}
+impl ModelScalar for Dd {}
+impl ModelScalar for Expr {}
+
+/// What messages and model files know of an item kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Kind {
+    /// How messages name it: `flex point`.
+    pub name: &'static str,
+    /// Its array of tables in a model file: `[[flex_point]]`.
+    pub key: &'static str,
+    /// The keys its tables take besides `name` and `mirror`.
+    pub keys: &'static [&'static str],
 }
 
-impl ModelScalar for f64 {
-    fn map_item<S: ModelScalar>(
-        item: &dyn Item<S>,
-        f: &mut dyn FnMut(&S) -> f64,
-    ) -> Box<dyn Item<f64>> {
-        MapItem::<S, f64>::map_item(item, f)
+/// The keys every table of a body or item takes besides its kind's own.
+pub const COMMON_KEYS: [&str; 2] = ["name", "mirror"];
+
+/// The body: not an item (a model keeps its bodies apart and first), but a table of a model
+/// file like one.
+pub const BODY: Kind = Kind {
+    name: "body",
+    key: "body",
+    keys: &[
+        "at",
+        "mass",
+        "moments",
+        "products",
+        "velocity",
+        "angular_velocity",
+    ],
+};
+
+/// Declares the item kinds, each once, in the order in which a model stores, validates and
+/// assembles them: its type, its name in messages, its file key and the keys of its tables.
+/// From this come the closed enum [`AnyItem`] (with the [`Item`] methods dispatched to the
+/// kind), [`KindId`], [`KINDS`], and the conversions [`Model::add`] takes.
+///
+/// [`Model::add`]: crate::Model::add
+macro_rules! kinds {
+    ($($kind:ident: $name:literal, $key:literal, [$($field:literal),* $(,)?];)*) => {
+        /// Any item of a model: one variant per kind (bodies are kept apart).
+        #[derive(Clone, Debug, PartialEq)]
+        pub enum AnyItem<S> {
+            $(
+                #[doc = concat!("A ", $name, ".")]
+                $kind($kind<S>),
+            )*
+        }
+
+        /// The item kinds, in the order of [`KINDS`].
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        pub enum KindId {
+            $(
+                #[doc = concat!("The ", $name, ".")]
+                $kind,
+            )*
+        }
+
+        const ALL_KINDS: [KindId; KINDS.len()] = [$(KindId::$kind,)*];
+
+        /// The item kinds in the order in which a model stores, validates and assembles them
+        /// (bodies are kept apart and come first). The order fixes the order of the
+        /// constraint rows and of their multipliers: the elastic rows are the springs', the
+        /// flex points' and then the beams'; the holonomic rows the links' and then the rigid
+        /// points'. Inputs come before outputs, so a sensor finds the actuator it feeds
+        /// through.
+        pub const KINDS: &[Kind] = &[
+            $(Kind { name: $name, key: $key, keys: &[$($field),*] },)*
+        ];
+
+        impl<S> AnyItem<S> {
+            /// The item's kind.
+            pub fn kind_id(&self) -> KindId {
+                match self {
+                    $(AnyItem::$kind(_) => KindId::$kind,)*
+                }
+            }
+
+            /// The item converted field by field with `f`, in the order of [`Item::fields`].
+            pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> AnyItem<T>
+            where
+                S: Scalar,
+            {
+                match self {
+                    $(AnyItem::$kind(x) => AnyItem::$kind(x.map(f)),)*
+                }
+            }
+
+            /// The kind as messages name it (`flex point`).
+            pub fn kind(&self) -> &'static str {
+                self.kind_id().kind().name
+            }
+
+            /// The item's name.
+            pub fn name(&self) -> &Name {
+                match self {
+                    $(AnyItem::$kind(x) => &x.name,)*
+                }
+            }
+
+            /// The item as its kind's [`Item`].
+            pub fn as_item(&self) -> &dyn Item<S>
+            where
+                S: ModelScalar,
+            {
+                match self {
+                    $(AnyItem::$kind(x) => x,)*
+                }
+            }
+        }
+
+        $(
+            impl<S> From<$kind<S>> for AnyItem<S> {
+                fn from(x: $kind<S>) -> Self {
+                    AnyItem::$kind(x)
+                }
+            }
+
+            impl<S> From<$kind<S>> for Part<S> {
+                fn from(x: $kind<S>) -> Self {
+                    Part::Item(AnyItem::$kind(x))
+                }
+            }
+        )*
+    };
+}
+
+kinds! {
+    Load: "load", "load", ["body", "at", "force", "moment", "frame"];
+    Spring: "spring", "spring", [
+        "between", "ends", "twist", "stiffness", "damping", "inertance", "preload",
+    ];
+    FlexPoint: "flex point", "flex_point", [
+        "between", "at", "forces", "moments", "axis", "rolling_axis", "stiffness", "damping",
+        "stiffness_matrix", "damping_matrix",
+    ];
+    Beam: "beam", "beam", ["between", "ends", "stiffness", "mpul", "perp"];
+    Link: "link", "link", ["between", "ends", "twist"];
+    RigidPoint: "rigid point", "rigid_point", [
+        "between", "at", "forces", "moments", "axis", "rolling_axis",
+    ];
+    NhPoint: "nh point", "nh_point", [
+        "between", "at", "forces", "moments", "axis", "rolling_axis",
+    ];
+    Wing: "wing", "wing", [
+        "body", "at", "forward", "down", "area", "chord", "span", "density", "airspeed",
+        "derivatives", "avl", "unsteady",
+    ];
+    Strip: "strip", "strip", [
+        "body", "at", "forward", "down", "semichord", "elastic_axis", "width", "lift_slope",
+        "density", "airspeed", "unsteady",
+    ];
+    Actuator: "actuator", "actuator", [
+        "between", "ends", "twist", "gain", "rate_gain", "units",
+    ];
+    Sensor: "sensor", "sensor", [
+        "between", "ends", "twist", "gain", "order", "frame", "feedthrough", "units",
+    ];
+}
+
+impl KindId {
+    /// Every kind, in the order of [`KINDS`].
+    pub const ALL: &'static [KindId] = &ALL_KINDS;
+
+    /// What messages and model files know of the kind.
+    pub fn kind(self) -> &'static Kind {
+        &KINDS[self as usize]
     }
 }
 
-impl ModelScalar for Dd {
-    fn map_item<S: ModelScalar>(
-        item: &dyn Item<S>,
-        f: &mut dyn FnMut(&S) -> Dd,
-    ) -> Box<dyn Item<Dd>> {
-        MapItem::<S, Dd>::map_item(item, f)
+/// A body or an item: what [`Model::add`](crate::Model::add) takes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Part<S> {
+    /// A body (kept apart from the items).
+    Body(Body<S>),
+    /// An item.
+    Item(AnyItem<S>),
+}
+
+impl<S> From<Body<S>> for Part<S> {
+    fn from(b: Body<S>) -> Self {
+        Part::Body(b)
     }
 }
 
-impl ModelScalar for Expr {
-    fn map_item<S: ModelScalar>(
-        item: &dyn Item<S>,
-        f: &mut dyn FnMut(&S) -> Expr,
-    ) -> Box<dyn Item<Expr>> {
-        MapItem::<S, Expr>::map_item(item, f)
+impl<S> From<AnyItem<S>> for Part<S> {
+    fn from(x: AnyItem<S>) -> Self {
+        Part::Item(x)
     }
 }
 
-/// Conversion of an item into scalar type `T`, every field with `f`, in the order of
-/// [`Item::fields`]. Implemented once per kind, generically in `S` and `T`.
-pub trait MapItem<S, T> {
-    /// The converted item.
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>>;
-}
-
-/// A boxed copy of an item (implemented for every `Clone` item).
-pub trait CloneItem<S> {
-    /// The copy.
-    fn clone_box(&self) -> Box<dyn Item<S>>;
-}
-
-impl<S, I: Item<S> + Clone> CloneItem<S> for I {
-    fn clone_box(&self) -> Box<dyn Item<S>> {
-        Box::new(self.clone())
+/// An item dispatches to its kind.
+impl<S: ModelScalar> Item<S> for AnyItem<S> {
+    fn kind(&self) -> &'static str {
+        AnyItem::kind(self)
     }
-}
-
-impl<S> Clone for Box<dyn Item<S>> {
-    fn clone(&self) -> Self {
-        self.clone_box()
+    fn name(&self) -> &Name {
+        AnyItem::name(self)
+    }
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        self.as_item().fields(f)
+    }
+    fn settings(&self) -> Vec<(&'static str, Setting)> {
+        self.as_item().settings()
+    }
+    fn bodies(&self) -> &[Name] {
+        self.as_item().bodies()
+    }
+    fn supports(&self) -> bool {
+        self.as_item().supports()
+    }
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        self.as_item().validate(cx)
+    }
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        self.as_item().assemble(cx)
     }
 }
 
 /// What every item kind implements: its fields, its checks, the bodies it connects and its
 /// contribution to the linearized equations. See the crate documentation, "Adding an item
 /// kind".
-pub trait Item<S>:
-    std::fmt::Debug
-    + CloneItem<S>
-    + MapItem<S, f64>
-    + MapItem<S, Dd>
-    + MapItem<S, Expr>
-    + Send
-    + Sync
-    + std::any::Any
-    + 'static
-{
+pub trait Item<S>: std::fmt::Debug + Send + Sync {
     /// The kind as it appears in messages and in [`KINDS`], e.g. `"flex point"`.
     fn kind(&self) -> &'static str;
 
     /// The item's name, unique among the items of a model.
     fn name(&self) -> &Name;
 
-    /// Visit every scalar field with its name, in the order in which [`MapItem::map_item`]
+    /// Visit every scalar field with its name, in the order in which the kind's `map`
     /// converts them.
     fn fields(&self, f: &mut dyn FnMut(Field, &S));
 
@@ -224,16 +314,6 @@ pub trait Item<S>:
 
     /// Add the item's terms to the linearized equations.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError>;
-
-    /// Put the item into `model`; called by [`Model::add`]. Items are kept in the order of
-    /// [`KINDS`]; a body overrides this to go to [`Model::bodies`].
-    fn add_to(self, model: &mut Model<S>)
-    where
-        Self: Sized,
-        S: 'static,
-    {
-        model.insert_item(Box::new(self));
-    }
 }
 
 /// A setting of an item that is not a scalar field (see [`Item::settings`]).
@@ -330,54 +410,40 @@ pub(crate) fn visit3<S>(f: &mut dyn FnMut(Field, &S), name: &'static str, v: &Ve
     }
 }
 
-/// Vector `v` converted with `f`.
-pub(crate) fn map3<S, T>(v: &Vec3<S>, f: &mut dyn FnMut(&S) -> T) -> Vec3<T> {
-    [f(&v[0]), f(&v[1]), f(&v[2])]
-}
-
-/// The label of an item in messages: ``spring `front` ``. Built directly rather than by
-/// `format!`: every reacting item's preload is labelled on every assembly.
-pub(crate) fn label(kind: &str, name: &str) -> String {
-    let name = eom_text::shown(name);
-    let mut s = String::with_capacity(kind.len() + name.len() + 3);
-    s.push_str(kind);
-    s.push_str(" `");
-    s.push_str(&name);
-    s.push('`');
-    s
-}
-
-/// The error of a bad field of an item.
-pub(crate) fn field_error(kind: &str, name: &str, field: &str, problem: String) -> ModelError {
-    ModelError::Model {
-        item: label(kind, name),
-        field: field.to_string(),
-        problem,
-    }
-}
-
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
 
-    /// Checks the contract between [`Item::fields`] and [`MapItem::map_item`] for an item whose
-    /// fields hold the distinct values 1, 2, 3, …: the map visits the fields in the order of
-    /// `fields`, converts every one of them, and keeps their names.
-    pub(crate) fn check_fields_and_map(item: &dyn Item<f64>) {
+    /// Checks the contract between [`Item::fields`] and the kind's `map` for a body or item
+    /// whose fields hold the distinct values 1, 2, 3, …: the map visits the fields in the
+    /// order of `fields`, converts every one of them, and keeps their names.
+    fn check_fields_and_map(part: impl Into<Part<f64>>) {
+        let part = part.into();
+        let mut seen = Vec::new();
+        let mut convert = |x: &f64| {
+            seen.push(*x);
+            *x + 1000.0
+        };
+        let mapped = match &part {
+            Part::Body(b) => Part::Body(b.map(&mut convert)),
+            Part::Item(x) => Part::Item(x.map(&mut convert)),
+        };
+        let item = |p: &Part<f64>| -> Box<dyn Item<f64>> {
+            match p {
+                Part::Body(b) => Box::new(b.clone()),
+                Part::Item(x) => Box::new(x.clone()),
+            }
+        };
+        let (item, mapped) = (item(&part), item(&mapped));
         let mut names = Vec::new();
         let mut values = Vec::new();
         item.fields(&mut |fd, x| {
             names.push(fd.to_string());
             values.push(*x);
         });
-        let mut seen = Vec::new();
-        let mapped = MapItem::<f64, f64>::map_item(item, &mut |x| {
-            seen.push(*x);
-            *x + 1000.0
-        });
         assert_eq!(
             seen, values,
-            "map_item visits the fields in the order of fields()"
+            "map visits the fields in the order of fields()"
         );
         let mut after = Vec::new();
         let mut after_names = Vec::new();
@@ -412,9 +478,126 @@ pub(crate) mod tests {
             k
         }
         /// A vector of the next three values.
-        pub(crate) fn v(&self) -> Vec3<f64> {
+        fn v(&self) -> Vec3<f64> {
             [self.x(), self.x(), self.x()]
         }
+    }
+
+    /// Every kind's field visitor and conversion agree (fields with distinct values).
+    #[test]
+    fn fields_and_map_agree() {
+        let c = Counter::default();
+        check_fields_and_map(
+            Body::new("b")
+                .at(c.v())
+                .moments(c.v())
+                .products(c.v())
+                .velocity(c.v())
+                .angular_velocity(c.v())
+                .mass(100.0),
+        );
+        check_fields_and_map(
+            Load::new("l", "b")
+                .at(c.v())
+                .force(c.v())
+                .moment(c.v())
+                .frame("b"),
+        );
+        check_fields_and_map(
+            Spring::new("s")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .stiffness(c.x())
+                .damping(c.x())
+                .inertance(c.x())
+                .preload(c.x()),
+        );
+        check_fields_and_map(
+            Spring::new("t")
+                .ends(c.v(), c.v())
+                .stiffness(c.x())
+                .damping(c.x())
+                .inertance(c.x()),
+        );
+        check_fields_and_map(
+            FlexPoint::new("p")
+                .between("a", "b")
+                .at(c.v())
+                .axis(c.v())
+                .rolling_axis(c.v())
+                .forces(1)
+                .moments(1)
+                .stiffness(c.x(), c.x())
+                .damping(c.x(), c.x())
+                .stiffness_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]])
+                .damping_matrix(vec![vec![c.x(), c.x()], vec![c.x(), c.x()]]),
+        );
+        check_fields_and_map(
+            Beam::new("b")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .stiffness(c.x(), c.x())
+                .mpul(c.x())
+                .perp(c.v()),
+        );
+        check_fields_and_map(Link::new("l").between("a", "b").ends(c.v(), c.v()));
+        check_fields_and_map(
+            RigidPoint::new("p")
+                .between("a", "b")
+                .at(c.v())
+                .axis(c.v())
+                .rolling_axis(c.v()),
+        );
+        check_fields_and_map(
+            NhPoint::new("p")
+                .between("a", "b")
+                .at(c.v())
+                .axis(c.v())
+                .rolling_axis(c.v()),
+        );
+        let mut w = Wing::new("w")
+            .on("a")
+            .at(c.v())
+            .axes(c.v(), c.v())
+            .area(c.x())
+            .chord(c.x())
+            .span(c.x())
+            .density(c.x())
+            .airspeed(c.x());
+        for n in WING_DERIVATIVES
+            .iter()
+            .flatten()
+            .chain(&WING_ACCELERATION_DERIVATIVES)
+        {
+            w = w.derivative(n, c.x());
+        }
+        check_fields_and_map(w);
+        check_fields_and_map(
+            Strip::new("s")
+                .on("a")
+                .at(c.v())
+                .axes(c.v(), c.v())
+                .semichord(c.x())
+                .elastic_axis(c.x())
+                .width(c.x())
+                .lift_slope(c.x())
+                .density(c.x())
+                .airspeed(c.x()),
+        );
+        check_fields_and_map(
+            Actuator::new("a")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .gain(c.x())
+                .rate_gain(c.x()),
+        );
+        check_fields_and_map(
+            Sensor::new("s")
+                .between("a", "b")
+                .ends(c.v(), c.v())
+                .gain(c.x())
+                .feedthrough("a", c.x()),
+        );
     }
 
     #[test]
@@ -430,10 +613,25 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn every_kind_is_registered_once() {
-        for (i, k) in KINDS.iter().enumerate() {
-            assert_eq!(kind_rank(k), i);
+    fn every_kind_names_itself_as_declared() {
+        let all: Vec<AnyItem<f64>> = vec![
+            Load::new("a", "b").into(),
+            Spring::new("a").into(),
+            FlexPoint::new("a").into(),
+            Beam::new("a").into(),
+            Link::new("a").into(),
+            RigidPoint::new("a").into(),
+            NhPoint::new("a").into(),
+            Wing::new("a").into(),
+            Strip::new("a").into(),
+            Actuator::new("a").into(),
+            Sensor::new("a").into(),
+        ];
+        assert_eq!(all.len(), KINDS.len());
+        for (i, x) in all.iter().enumerate() {
+            assert_eq!(x.kind_id() as usize, i);
+            assert_eq!(x.as_item().kind(), KINDS[i].name);
+            assert_eq!(x.kind(), KINDS[i].name);
         }
-        assert_eq!(kind_rank("no such kind"), KINDS.len());
     }
 }

@@ -1,152 +1,25 @@
-//! [`Point`]: the geometry shared by the point items (rigid, flexible and nonholonomic
-//! points), with its builders, field visitor and checks.
+//! How a point item lists its [`Point`]: its settings and its scalar fields.
 
-use super::{Field, GROUND, Name, Vec3, field_error, label, map3, name, visit3, zero3};
-use crate::error::ModelError;
-use crate::validate::Validation;
-use eom_sym::scalar::Scalar;
+use super::{Field, Setting, visit3};
+use crate::geometry::Point;
 
-/// Fields shared by the point items (rigid, flexible and nonholonomic points).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Point<S> {
-    /// `[body 1, body 2]`.
-    pub bodies: [Name; 2],
-    /// The point.
-    pub location: Vec3<S>,
-    /// Number of constrained translational directions: 3 all, 2 perpendicular to `axis`,
-    /// 1 along `axis`, 0 none.
-    pub forces: u8,
-    /// Number of constrained rotational directions (same meaning).
-    pub moments: u8,
-    /// Axis for `forces`/`moments` of 1 or 2.
-    pub axis: Vec3<S>,
-    /// Rolling axis (nonzero: a rolling contact; body 1 rolls on body 2).
-    pub rolling_axis: Vec3<S>,
-}
-
-impl<S: Scalar> Point<S> {
-    pub(crate) fn new() -> Self {
-        Point {
-            bodies: [name(GROUND), name(GROUND)],
-            location: zero3(),
-            forces: 0,
-            moments: 0,
-            axis: zero3(),
-            rolling_axis: zero3(),
-        }
-    }
-
-    /// Visit the location and the two axes.
+impl<S> Point<S> {
     /// `between`, `forces` and `moments`.
-    pub(crate) fn settings(&self) -> Vec<(&'static str, super::Setting)> {
+    pub(crate) fn settings(&self) -> Vec<(&'static str, Setting)> {
         vec![
             (
                 "between",
-                super::Setting::Pair(self.bodies.clone().map(|b| b.to_string())),
+                Setting::Pair(self.bodies.clone().map(|b| b.to_string())),
             ),
-            ("forces", super::Setting::Count(self.forces)),
-            ("moments", super::Setting::Count(self.moments)),
+            ("forces", Setting::Count(self.forces)),
+            ("moments", Setting::Count(self.moments)),
         ]
     }
 
+    /// Visit the location and the two axes, in the order of [`Point::map`].
     pub(crate) fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
         visit3(f, "location", &self.location);
         visit3(f, "axis", &self.axis);
         visit3(f, "rolling_axis", &self.rolling_axis);
     }
-
-    /// The point converted with `f`, in the order of [`Point::fields`].
-    pub(crate) fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Point<T> {
-        Point {
-            bodies: self.bodies.clone(),
-            location: map3(&self.location, f),
-            forces: self.forces,
-            moments: self.moments,
-            axis: map3(&self.axis, f),
-            rolling_axis: map3(&self.rolling_axis, f),
-        }
-    }
-
-    /// Whether the point constrains (or supports) anything.
-    pub(crate) fn constrains(&self) -> bool {
-        self.forces + self.moments > 0
-    }
-
-    /// Direction counts in range, an axis where one is needed; a point that constrains
-    /// nothing is a warning.
-    pub(crate) fn validate(
-        &self,
-        kind: &str,
-        item: &str,
-        cx: &mut Validation<'_, S>,
-    ) -> Result<(), ModelError> {
-        for (field, v) in [("forces", self.forces), ("moments", self.moments)] {
-            if v > 3 {
-                return Err(field_error(
-                    kind,
-                    item,
-                    field,
-                    format!("{v} is out of range 0..=3"),
-                ));
-            }
-        }
-        let axis_zero = self.axis.iter().all(|x| x.nominal() == 0.0);
-        if axis_zero && (matches!(self.forces, 1 | 2) || matches!(self.moments, 1 | 2)) {
-            return Err(field_error(
-                kind,
-                item,
-                "axis",
-                format!(
-                    "is zero, but forces = {} / moments = {} need a direction",
-                    self.forces, self.moments
-                ),
-            ));
-        }
-        if !self.constrains() {
-            cx.warn(format!(
-                "{} constrains nothing (forces = moments = 0)",
-                label(kind, item)
-            ));
-        }
-        Ok(())
-    }
 }
-
-/// The builders of a point item (a struct with a `point: Point<S>` field).
-macro_rules! point_builders {
-    ($t:ident) => {
-        impl<S: Scalar> $t<S> {
-            /// The two bodies.
-            pub fn between(mut self, b1: &str, b2: &str) -> Self {
-                self.point.bodies = [super::name(b1), super::name(b2)];
-                self
-            }
-            /// The point.
-            pub fn at(mut self, location: super::Vec3<S>) -> Self {
-                self.point.location = location;
-                self
-            }
-            /// Number of constrained translational directions.
-            pub fn forces(mut self, n: u8) -> Self {
-                self.point.forces = n;
-                self
-            }
-            /// Number of constrained rotational directions.
-            pub fn moments(mut self, n: u8) -> Self {
-                self.point.moments = n;
-                self
-            }
-            /// Axis for 1- or 2-direction constraints.
-            pub fn axis(mut self, a: super::Vec3<S>) -> Self {
-                self.point.axis = a;
-                self
-            }
-            /// Rolling axis (makes it a rolling contact).
-            pub fn rolling_axis(mut self, a: super::Vec3<S>) -> Self {
-                self.point.rolling_axis = a;
-                self
-            }
-        }
-    };
-}
-pub(crate) use point_builders;

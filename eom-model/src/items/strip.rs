@@ -28,14 +28,14 @@
 //! airspeed the air moves at `v_air = v_body − U·forward`, and the stream turned by the body's
 //! rotation adds the `U θ` part of the downwash as a stiffness on the rotations.
 
-use super::point::Point;
+use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
+use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{visit3, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
+use crate::geometry::Point;
 use crate::geometry::{cross, dot};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// A thin-airfoil strip at a point of a body (see the module documentation).
@@ -180,8 +180,9 @@ impl<S: Scalar> Strip<S> {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+impl<S: Scalar> Strip<S> {
+    /// The strip converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Strip<T> {
         let location = map3(&self.location, f);
         let forward = map3(&self.forward, f);
         let down = map3(&self.down, f);
@@ -191,7 +192,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
         let lift_slope = f(&self.lift_slope);
         let density = f(&self.density);
         let airspeed = self.airspeed.as_ref().map(&mut *f);
-        Box::new(Strip {
+        Strip {
             name: self.name.clone(),
             body: self.body.clone(),
             location,
@@ -204,7 +205,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Strip<S> {
             density,
             airspeed,
             unsteady: self.unsteady,
-        })
+        }
     }
 }
 
@@ -424,36 +425,9 @@ impl<S: ModelScalar> Strip<S> {
     }
 }
 
-impl<S: ModelScalar> crate::Model<S> {
-    /// The strips of the model, in the order they were added.
-    pub fn strips(&self) -> impl Iterator<Item = &Strip<S>> {
-        self.items_of("strip").filter_map(|x| {
-            let any: &dyn std::any::Any = x;
-            any.downcast_ref::<Strip<S>>()
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let s = Strip::new("s")
-            .on("a")
-            .at(c.v())
-            .axes(c.v(), c.v())
-            .semichord(c.x())
-            .elastic_axis(c.x())
-            .width(c.x())
-            .lift_slope(c.x())
-            .density(c.x())
-            .airspeed(c.x());
-        check_fields_and_map(&s);
-    }
 
     fn model_with(strip: Strip<f64>) -> crate::Model<f64> {
         let mut m = crate::Model::new("m");

@@ -13,11 +13,8 @@
 //! that drives the lift), and `C[w] = ½ w + 0.165 β₁ x₁ + 0.335 β₂ x₂`. At `s̄ = ik` it is within
 //! |ΔC| ≤ 0.0145 of Theodorsen's function for every k (docs/aero-references.md, §1).
 
-use super::{Strip, Wing, label};
-use crate::Model;
+use super::label;
 use crate::error::ModelError;
-use eom_sym::Expr;
-use std::borrow::Cow;
 
 /// The circulatory lift of a strip or wing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -27,7 +24,7 @@ pub enum Unsteady {
     QuasiSteady,
     /// R. T. Jones' approximation of Wagner's function: two lag states per surface.
     Jones,
-    /// Decided by the linearization ([`resolve_unsteady`]): Jones' states where a mode's
+    /// Decided by the linearization ([`resolve_unsteady`](crate::resolve_unsteady)): Jones' states where a mode's
     /// reduced frequency at this surface exceeds [`AUTO_REDUCED_FREQUENCY`], else
     /// quasi-steady. Assembled directly, it is quasi-steady (with a warning).
     Auto,
@@ -87,143 +84,6 @@ pub(crate) fn auto_assembled(kind: &str, name: &str) -> String {
          assembled here as quasi-steady",
         label(kind, name)
     )
-}
-
-/// A surface with `unsteady = "auto"`: kind, name, semichord and airspeed at a point.
-struct AutoSurface {
-    kind: &'static str,
-    name: String,
-    semichord: f64,
-    airspeed: f64,
-}
-
-fn auto_surfaces(m: &Model<f64>) -> Vec<AutoSurface> {
-    let mut out = Vec::new();
-    for w in m.wings().filter(|w| w.unsteady == Unsteady::Auto) {
-        out.push(AutoSurface {
-            kind: "wing",
-            name: w.name.to_string(),
-            semichord: 0.5 * w.chord,
-            airspeed: m.airspeed_of(w),
-        });
-    }
-    for s in m.strips().filter(|s| s.unsteady == Unsteady::Auto) {
-        let velocity = m.body(&s.body).map_or([0.0; 3], |b| b.velocity);
-        out.push(AutoSurface {
-            kind: "strip",
-            name: s.name.to_string(),
-            semichord: s.semichord,
-            airspeed: s.airspeed_with(&velocity),
-        });
-    }
-    out
-}
-
-/// The model with every `auto` surface set to Jones' states when its name is in `lagged`,
-/// else quasi-steady.
-fn with_lags(model: &Model<Expr>, lagged: &[String]) -> Model<Expr> {
-    let mut m = model.clone();
-    for item in m.items_mut() {
-        let any: &mut dyn std::any::Any = item.as_mut();
-        let pick = |name: &str| {
-            if lagged.iter().any(|n| n == name) {
-                Unsteady::Jones
-            } else {
-                Unsteady::QuasiSteady
-            }
-        };
-        if let Some(w) = any.downcast_mut::<Wing<Expr>>() {
-            if w.unsteady == Unsteady::Auto {
-                w.unsteady = pick(&w.name);
-            }
-        } else if let Some(s) = any.downcast_mut::<Strip<Expr>>()
-            && s.unsteady == Unsteady::Auto
-        {
-            s.unsteady = pick(&s.name);
-        }
-    }
-    m
-}
-
-/// Decides every `unsteady = "auto"` of `model` at the parameter `values` (scope order):
-/// analyse with the undecided surfaces quasi-steady, give Jones' states to each surface at
-/// which an oscillatory mode has the reduced frequency k = |Im λ|·b/V above
-/// [`AUTO_REDUCED_FREQUENCY`] (b its semichord, V its airspeed), re-analyse, and repeat until
-/// no surface is added. Returns the decided model (borrowed when nothing is `auto`) and one
-/// line per `auto` surface saying what it got and why.
-pub fn resolve_unsteady<'m>(
-    model: &'m Model<Expr>,
-    values: &[f64],
-) -> Result<(Cow<'m, Model<Expr>>, Vec<String>), ModelError> {
-    let any_auto = model
-        .items()
-        .iter()
-        .filter(|x| matches!(x.kind(), "wing" | "strip"))
-        .any(|x| {
-            let any: &dyn std::any::Any = x.as_ref();
-            any.downcast_ref::<Wing<Expr>>()
-                .map(|w| w.unsteady == Unsteady::Auto)
-                .or_else(|| {
-                    any.downcast_ref::<Strip<Expr>>()
-                        .map(|s| s.unsteady == Unsteady::Auto)
-                })
-                .unwrap_or(false)
-        });
-    if !any_auto {
-        return Ok((Cow::Borrowed(model), Vec::new()));
-    }
-    let surfaces = auto_surfaces(&model.evaluate(values)?);
-    let mut lagged: Vec<String> = Vec::new();
-    let mut notes = Vec::new();
-    loop {
-        let m = with_lags(model, &lagged);
-        let a = crate::assemble(&m.evaluate(values)?)?;
-        let ss = match crate::reduce(&a, None) {
-            Ok(r) => r.state_space,
-            Err(_) => crate::reduce_robust(&a)?.0,
-        };
-        let eig = eom_num::modes::eigenvalues(&ss.a)?;
-        let mut added = false;
-        let mut rest = Vec::new();
-        let pending: Vec<&AutoSurface> = surfaces
-            .iter()
-            .filter(|s| !lagged.contains(&s.name))
-            .collect();
-        for s in pending {
-            let top = eig
-                .iter()
-                .filter(|z| z.im > 0.0)
-                .map(|z| (z.im * s.semichord / s.airspeed, *z))
-                .max_by(|a, b| a.0.total_cmp(&b.0));
-            match top {
-                Some((k, z)) if k > AUTO_REDUCED_FREQUENCY => {
-                    notes.push(format!(
-                        "{}: unsteady = \"auto\": Jones' lag states added: the mode λ = {:.6} ± {:.6}i \
-                         has the reduced frequency k = |Im λ|·b/V = {k:.4} > {AUTO_REDUCED_FREQUENCY} \
-                         (quasi-steady lift would be off by |1 − C(k)| ≥ 0.16)",
-                        label(s.kind, &s.name),
-                        z.re,
-                        z.im
-                    ));
-                    lagged.push(s.name.clone());
-                    added = true;
-                }
-                Some((k, _)) => rest.push(format!(
-                    "{}: unsteady = \"auto\": quasi-steady: every mode has k = |Im λ|·b/V ≤ \
-                     {AUTO_REDUCED_FREQUENCY} (largest {k:.4})",
-                    label(s.kind, &s.name)
-                )),
-                None => rest.push(format!(
-                    "{}: unsteady = \"auto\": quasi-steady: no oscillatory mode",
-                    label(s.kind, &s.name)
-                )),
-            }
-        }
-        if !added {
-            notes.extend(rest);
-            return Ok((Cow::Owned(m), notes));
-        }
-    }
 }
 
 #[cfg(test)]

@@ -39,15 +39,14 @@
 //! the model's x forward, y left, z up turned by π about x (entry `(i, j)` of the block
 //! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
 
-use super::point::Point;
+use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{Field, GROUND, Item, MapItem, ModelScalar, Name, Vec3, field_error, map3, name};
+use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name};
 use super::{label, visit3, zero3};
-use crate::Model;
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
+use crate::geometry::Point;
 use crate::geometry::{cross, dot, skew};
-use crate::validate::Validation;
 use eom_sym::scalar::Scalar;
 
 /// The 36 derivative names in AVL's body-axis layout: `WING_DERIVATIVES[i][j]` is row i
@@ -370,8 +369,9 @@ fn times<S: Scalar>(a: S, b: S) -> S {
     }
 }
 
-impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
-    fn map_item(&self, f: &mut dyn FnMut(&S) -> T) -> Box<dyn Item<T>> {
+impl<S: Scalar> Wing<S> {
+    /// The wing converted field by field with `f`, in the order of [`Item::fields`].
+    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Wing<T> {
         let location = map3(&self.location, f);
         let forward = map3(&self.forward, f);
         let down = map3(&self.down, f);
@@ -383,7 +383,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
         let derivatives =
             std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
         let acceleration = std::array::from_fn(|i| f(&self.acceleration[i]));
-        Box::new(Wing {
+        Wing {
             acceleration,
             unsteady: self.unsteady,
             name: self.name.clone(),
@@ -398,7 +398,7 @@ impl<S: ModelScalar, T: ModelScalar> MapItem<S, T> for Wing<S> {
             airspeed,
             derivatives,
             unknown: self.unknown.clone(),
-        })
+        }
     }
 }
 
@@ -697,49 +697,11 @@ impl<S: ModelScalar> Wing<S> {
     }
 }
 
-impl<S: ModelScalar> Model<S> {
-    /// The wings of the model, in the order they were added.
-    pub fn wings(&self) -> impl Iterator<Item = &Wing<S>> {
-        self.items_of("wing").filter_map(|x| {
-            let any: &dyn std::any::Any = x;
-            any.downcast_ref::<Wing<S>>()
-        })
-    }
-
-    /// The airspeed of `wing` in this model (given, or from its body's nominal velocity).
-    pub fn airspeed_of(&self, wing: &Wing<S>) -> S {
-        let velocity = self.body(&wing.body).map_or(zero3(), |b| b.velocity);
-        wing.airspeed_with(&velocity)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::items::tests::{Counter, check_fields_and_map};
-
-    #[test]
-    fn fields_and_map_agree() {
-        let c = Counter::default();
-        let mut w = Wing::new("w")
-            .on("a")
-            .at(c.v())
-            .axes(c.v(), c.v())
-            .area(c.x())
-            .chord(c.x())
-            .span(c.x())
-            .density(c.x())
-            .airspeed(c.x());
-        for row in WING_DERIVATIVES {
-            for n in row {
-                w = w.derivative(n, c.x());
-            }
-        }
-        for n in WING_ACCELERATION_DERIVATIVES {
-            w = w.derivative(n, c.x());
-        }
-        check_fields_and_map(&w);
-    }
+    use crate::Model;
+    use crate::items::tests::Counter;
 
     /// A body on a slider moving at `speed` with `wing` on it.
     fn model_with(wing: Wing<f64>, speed: f64) -> Model<f64> {
