@@ -6,7 +6,9 @@
 use eom_codegen::build::{Generate, write_if_changed};
 use std::path::PathBuf;
 
-/// The models generated in both precisions (the benchmark's model list).
+/// The models generated in both precisions: the benchmark's model list
+/// (`work_precision::MODELS`, a deliberate subset, one of each kind, to keep the build short;
+/// a build script cannot read the crate it builds, hence the copy: keep the two equal).
 const MODELS: [&str; 9] = [
     "smd",
     "shimmy",

@@ -1,5 +1,5 @@
-//! Generates Rust code for every built-in model with eom-codegen, for the `codegen` tests and
-//! benches (`include!`d from `$OUT_DIR/generated.rs`).
+//! Generates Rust code for the built-in models of `MODELS` with eom-codegen, for the `codegen`
+//! tests and benches (`include!`d from `$OUT_DIR/generated.rs`).
 //!
 //! Variants: every model in `f64` and `f32` (libm); the bicycle also with std math, split into
 //! small chunks (to exercise the work buffer), simplified by the egg pass, and with every
@@ -13,7 +13,8 @@ use eom_codegen::{EmitOptions, Functions, emit_model};
 use std::fmt::Write;
 use std::path::PathBuf;
 
-/// The models generated with the stability verdict.
+/// The models generated with the stability verdict: those of `MODELS` with at most 16 states
+/// (the verdict's limit).
 const STABILITY: [&str; 10] = [
     "smd",
     "pendulum",
@@ -27,6 +28,11 @@ const STABILITY: [&str; 10] = [
     "shimmy_wing",
 ];
 
+/// The models generated for the codegen tests: a deliberate subset of the catalogue (every
+/// kind of item and expression the emitter meets: trigonometry and square roots, rolling
+/// contacts, wings, lag states, 1 to 100 states), because each is compiled into the test
+/// binary; the larger aeroelastic and flight models (goland_wing, navion, …) would lengthen every
+/// build and add nothing the emitter has not seen.
 const MODELS: [&str; 13] = [
     "smd",
     "pendulum",

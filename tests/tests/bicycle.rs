@@ -20,8 +20,12 @@ use tests::{max_abs_error, read_csv};
 /// ±5.53094371765393) (`tests/data/bicycle_table2.csv`): v, Re weave, Im weave, capsize,
 /// castor for v = 1…10 m/s.
 fn published() -> Vec<[f64; 5]> {
-    include_str!("../data/bicycle_table2.csv")
-        .lines()
+    table(include_str!("../data/bicycle_table2.csv"))
+}
+
+/// The rows of a table of v, Re weave, Im weave, capsize, castor (a header line first).
+fn table(text: &str) -> Vec<[f64; 5]> {
+    text.lines()
         .skip(1)
         .map(|l| {
             let v: Vec<f64> = l.split(',').map(|x| x.parse().expect("a number")).collect();
@@ -31,79 +35,11 @@ fn published() -> Vec<[f64; 5]> {
 }
 
 /// The same quantities computed exactly (mpmath, 60 digits) and printed to 17 digits
-/// (docs/references.md §A, computed for this project in 60-digit arithmetic).
-const EXACT: [[f64; 5]; 10] = [
-    [
-        1.0,
-        3.5269617099006942,
-        0.80774027519931005,
-        -3.1342312506657842,
-        -7.1100801463744077,
-    ],
-    [
-        2.0,
-        2.6823451751274535,
-        1.6806629659067578,
-        -3.0715864564151425,
-        -8.6738798483173716,
-    ],
-    [
-        3.0,
-        1.7067560566397352,
-        2.3158244738432436,
-        -2.633661372536653,
-        -10.351014672459228,
-    ],
-    [
-        4.0,
-        0.41325331521124132,
-        3.0791081860320536,
-        -1.4294442736132575,
-        -12.15861426576444,
-    ],
-    [
-        5.0,
-        -0.77534188219584193,
-        4.4648677137882251,
-        -0.32286642900408708,
-        -14.078389692798247,
-    ],
-    [
-        6.0,
-        -1.5264448658414171,
-        5.876730605987084,
-        -0.0040669007697033624,
-        -16.085371230980284,
-    ],
-    [
-        7.0,
-        -2.1387564425836343,
-        7.1952591332980426,
-        0.10268170574766416,
-        -18.157884661252021,
-    ],
-    [
-        8.0,
-        -2.6934868358109477,
-        8.4603797139693359,
-        0.1432787976571295,
-        -20.279408943945663,
-    ],
-    [
-        9.0,
-        -3.2167540225249075,
-        9.693773515317822,
-        0.15790184030917298,
-        -22.437885590408591,
-    ],
-    [
-        10.0,
-        -3.7201684043728757,
-        10.906811394762882,
-        0.16105338653171554,
-        -24.624596350174,
-    ],
-];
+/// (`tests/data/bicycle_exact.csv`; docs/references.md §A, computed for this project in
+/// 60-digit arithmetic).
+fn exact() -> Vec<[f64; 5]> {
+    table(include_str!("../data/bicycle_exact.csv"))
+}
 
 fn expected(row: &[f64; 5]) -> Vec<Complex64> {
     vec![
@@ -300,7 +236,7 @@ fn double_double_reproduces_exact_and_published_digits() {
     let model = models::build("bicycle", &[]).unwrap();
     let names = model.scope.names();
     let mut worst_exact = 0.0f64;
-    for (row, publ) in EXACT.iter().zip(published().iter()) {
+    for (row, publ) in exact().iter().zip(published().iter()) {
         let values: Vec<Dd> = names
             .iter()
             .zip(model.scope.nominal_values())

@@ -1,13 +1,12 @@
-//! Built-in models against closed-form results (docs/references.md §D, §E),
-//! at the defaults and at other parameter values, by the symbolic, numeric and robust paths.
-
-// Reference values are transcribed digit for digit from their sources.
-#![allow(clippy::excessive_precision)]
+//! Built-in models against closed-form results (docs/references.md §D, §E), evaluated here at
+//! many parameter values, by the symbolic, numeric and robust paths. The reference numbers of
+//! each model (at its defaults and elsewhere) live beside it in `models/NAME.ref.toml`, checked
+//! through the command line by eom-cli/tests/references.rs.
 
 use eom_model::{Linearizer, Method};
 use eom_num::StateSpace;
 use num_complex::Complex64;
-use tests::{max_abs_error, max_relative_error, nonzero};
+use tests::{max_relative_error, nonzero};
 
 const METHODS: [Method; 3] = [Method::Symbolic, Method::Numeric, Method::Robust];
 
@@ -47,14 +46,6 @@ fn spring_mass_damper() {
             assert!(err < 1e-13, "m {m} k {k} c {cc} {method:?}: {err:e}");
         }
     }
-    // The defaults of the EoM sample give −0.05 ± 3.1618823507524754i.
-    let e = eig(&state_space("smd", &[], Method::Symbolic));
-    assert!(
-        max_abs_error(
-            &e,
-            &[c(-0.05, 3.1618823507524754), c(-0.05, -3.1618823507524754)]
-        ) < 1e-15
-    );
 }
 
 /// (Ix + m r²) φ'' + m g r φ = … : s = ±i √(m g r/(Ix + m r²)) (docs/references.md §E). The
@@ -79,13 +70,6 @@ fn pendulum() {
             assert!(err < 1e-13, "{method:?} Ix {ix}: {err:e}");
         }
     }
-    let e = eig(&state_space("pendulum", &[("Ix", -4.5)], Method::Symbolic));
-    assert!(
-        max_abs_error(
-            &e,
-            &[c(0.0, 4.2226661117011242), c(0.0, -4.2226661117011242)]
-        ) < 1e-14
-    );
     let model = models::build("pendulum", &[("Ix", -4.5)]).unwrap();
     let lin = Linearizer::new(&model).run().unwrap();
     assert!(
@@ -124,12 +108,6 @@ fn spinning_top() {
             assert!(err < 1e-12, "r {r} {method:?}: {err:e}");
         }
     }
-    // At r = 1 (closed form): ±3.46658 ± 0.632911i.
-    let e = nonzero(&eig(&state_space("top", &[], Method::Symbolic)), 1e-6);
-    assert!(
-        e.iter()
-            .all(|z| (z.re.abs() - 3.46658).abs() < 5e-6 && (z.im.abs() - 0.632911).abs() < 5e-7)
-    );
 }
 
 /// Uniform disk rolling upright: eliminating the yaw rate from the linearized equations gives
@@ -153,9 +131,6 @@ fn rolling_disk() {
             assert!(err < 1e-12, "u {u} {method:?}: {err:e}");
         }
     }
-    // At the defaults (closed form): ±3.94968.
-    let e = nonzero(&eig(&state_space("disk", &[], Method::Numeric)), 1e-6);
-    assert!(e.iter().all(|z| (z.re.abs() - 3.94968).abs() < 5e-6));
 }
 
 /// N equal masses in a fixed–free chain, spring k and damper c in every link: M = m I,
@@ -299,14 +274,4 @@ fn quarter_car_eigenvalues() {
             assert!(err < 1e-11, "{method:?}: {err:e}");
         }
     }
-}
-
-/// The shimmy's steady-state gains (from the closed-form transfer functions): [0.5, 0.333333] at the defaults with u = 1.
-#[test]
-fn shimmy_static_gain_matches_reference() {
-    let ss = state_space("shimmy", &[("u", 1.0)], Method::Symbolic);
-    let g = -(&ss.c * ss.a.clone().try_inverse().unwrap() * &ss.b) + &ss.d;
-    // spring force/applied force = b/l ... the reference values: 0.5 and 1/3 (m/N).
-    assert!((g[(0, 0)] - 0.5).abs() < 1e-12, "{g}");
-    assert!((g[(1, 0)] - 1.0 / 3.0).abs() < 1e-12, "{g}");
 }

@@ -35,7 +35,11 @@ use rand::{Rng, SeedableRng, rngs::StdRng};
 use reference::{Reference, ReferenceModel};
 use std::time::Duration;
 
-/// The models of the benchmark.
+/// The models of the benchmark: a deliberate subset of the catalogue, one of each kind (a
+/// few states, a rolling vehicle, a spinning body, wings, 100-state chains with shared and
+/// per-element parameters), because each is compiled into generated code at build time
+/// (`eom-bench/build.rs` keeps the same list) and timed at every run; the accuracy of every
+/// model of the catalogue is tested elsewhere (`eom-cli/tests/references.rs`).
 pub const MODELS: [&str; 9] = [
     "smd",
     "shimmy",

@@ -22,8 +22,6 @@ HEADER = """{title}
 """
 
 GEOMETRIES = {
-    # the AVL 3.32 fixture ../dihedral10_ar6.avl, for the AVL 3.32 / 3.52 comparison
-    "dihedral10_ar6.avl": open("../dihedral10_ar6.avl").read(),
     # AR 8, taper 0.5, unswept leading edge, cosine/cosine 8 x 16 per half
     "tapered_ar8.avl": HEADER.format(izsym=0, zsym=0.0, title="Tapered wing AR 8, taper 0.5", mach=0.0,
                                      sref=6.0, cref=0.75, bref=6.0, xref=0.1875) + """
@@ -133,9 +131,10 @@ SECTION
 """,
 }
 
-# (file, alpha in degrees, Mach)
+# (file, alpha in degrees, Mach); the first is the AVL 3.32 fixture of the folder above (its
+# one home), for the AVL 3.32 / 3.52 comparison
 CASES = [
-    ("dihedral10_ar6.avl", 5.0, 0.0),
+    ("../dihedral10_ar6.avl", 5.0, 0.0),
     ("tapered_ar8.avl", 0.0, 0.0),
     ("tapered_ar8.avl", 5.0, 0.0),
     ("swept30.avl", 0.0, 0.0),
