@@ -1,8 +1,8 @@
 //! Every model's reference answers, as the user sees them: for each model file under
 //! `models/` (found by reading the folder, never a typed list) its sidecar `NAME.ref.toml`
 //! (format: docs/model-files.md, "Reference answers") is read, and each reference is checked
-//! against the `eom` command line's JSON output (`eom analyze --format json`, `eom sweep
-//! --format json`) at the parameter values it names, within the tolerance it states. A model
+//! against the `eom` command line's JSON output (`eom analyze --format json`: eigenvalues,
+//! steady-state gains, preloads; `eom sweep --format json`: stability boundaries) at the parameter values it names, within the tolerance it states. A model
 //! without an independent reference says so in its sidecar, with the reason; those are
 //! counted and printed. Every entry of the catalogue (`models::names()`) must have a file
 //! there, so a new built-in model cannot come without its sidecar.
@@ -30,6 +30,25 @@ struct Sidecar {
     gain: Vec<Gain>,
     #[serde(default)]
     boundary: Vec<Boundary>,
+    #[serde(default)]
+    preload: Vec<Preload>,
+}
+
+/// The static force (and moment) an item carries at the equilibrium (`eom analyze`'s
+/// `preloads`), on the body it names, in ground axes.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Preload {
+    source: String,
+    #[serde(default)]
+    set: toml::Table,
+    /// The item as the output names it, e.g. "flex point `tail gear`".
+    item: String,
+    force: [f64; 3],
+    #[serde(default)]
+    moment: [f64; 3],
+    tolerance: f64,
+    why: String,
 }
 
 /// The eigenvalues of `eom analyze` at one point.
@@ -115,9 +134,7 @@ struct Boundary {
 fn json_number(v: &serde_json::Value, what: &str) -> f64 {
     match v {
         serde_json::Value::Number(n) => n.as_f64().expect("a finite number"),
-        serde_json::Value::String(s) => s
-            .parse()
-            .unwrap_or_else(|e| panic!("{what}: `{s}` ({e})")),
+        serde_json::Value::String(s) => s.parse().unwrap_or_else(|e| panic!("{what}: `{s}` ({e})")),
         _ => panic!("{what}: not a number: {v}"),
     }
 }
@@ -134,10 +151,9 @@ enum Kind {
 /// those.
 fn json_values(v: &serde_json::Value, kind: Kind, what: &str, out: &mut Vec<(f64, f64)>) {
     match v {
-        serde_json::Value::Object(o) => out.push((
-            json_number(&o["re"], what),
-            json_number(&o["im"], what),
-        )),
+        serde_json::Value::Object(o) => {
+            out.push((json_number(&o["re"], what), json_number(&o["im"], what)))
+        }
         serde_json::Value::Array(a)
             if kind == Kind::Complex
                 && a.len() == 2
@@ -207,7 +223,12 @@ fn shown(set: &toml::Table) -> String {
 /// `--set NAME=VALUE` arguments.
 fn set_args(set: &toml::Table, what: &str) -> Vec<String> {
     set.iter()
-        .flat_map(|(k, v)| ["--set".to_string(), format!("{k}={:?}", toml_number(v, what))])
+        .flat_map(|(k, v)| {
+            [
+                "--set".to_string(),
+                format!("{k}={:?}", toml_number(v, what)),
+            ]
+        })
         .collect()
 }
 
@@ -217,7 +238,12 @@ fn run(args: Vec<String>) -> serde_json::Value {
 }
 
 fn analyze(model: &str, set: &[String]) -> serde_json::Value {
-    let mut a = vec!["analyze".to_string(), model.into(), "--format".into(), "json".into()];
+    let mut a = vec![
+        "analyze".to_string(),
+        model.into(),
+        "--format".into(),
+        "json".into(),
+    ];
     a.extend(set.iter().cloned());
     run(a)
 }
@@ -277,7 +303,11 @@ fn check_eigenvalues(model: &str, r: &Eigenvalues, out: &mut Checked) {
     let data = data_file(&r.data);
     let mut want = values(&r.values, &data, Kind::Complex, &what);
     if r.pairs {
-        let conj: Vec<_> = want.iter().filter(|z| z.1 != 0.0).map(|z| (z.0, -z.1)).collect();
+        let conj: Vec<_> = want
+            .iter()
+            .filter(|z| z.1 != 0.0)
+            .map(|z| (z.0, -z.1))
+            .collect();
         want.extend(conj);
     }
     let got = common::eigenvalues(&analyze(model, &set_args(&r.set, &what)));
@@ -317,7 +347,11 @@ fn check_table(model: &str, r: &EigenvalueTable, out: &mut Checked) {
             }
         }
         if r.pairs {
-            let conj: Vec<_> = want.iter().filter(|z| z.1 != 0.0).map(|z| (z.0, -z.1)).collect();
+            let conj: Vec<_> = want
+                .iter()
+                .filter(|z| z.1 != 0.0)
+                .map(|z| (z.0, -z.1))
+                .collect();
             want.extend(conj);
         }
         let mut set = set_args(&r.set, &what);
@@ -401,6 +435,38 @@ fn check_boundary(model: &str, r: &Boundary, out: &mut Checked) {
     out.push((what, worst, r.tolerance));
 }
 
+fn check_preload(model: &str, r: &Preload, out: &mut Checked) {
+    let what = format!(
+        "{model} preload of {} at {} ({})",
+        r.item,
+        shown(&r.set),
+        r.source
+    );
+    let a = analyze(model, &set_args(&r.set, &what));
+    let p = a["preloads"]["items"]
+        .as_array()
+        .expect("preloads")
+        .iter()
+        .find(|p| p["item"] == r.item.as_str())
+        .unwrap_or_else(|| panic!("{what}: no such item in {}", a["preloads"]));
+    let vector = |key: &str| -> Vec<f64> {
+        p[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{what}: no {key}: {p}"))
+            .iter()
+            .map(|x| x.as_f64().expect("a number"))
+            .collect()
+    };
+    let mut worst = 0.0f64;
+    for (got, want) in [(vector("force"), r.force), (vector("moment"), r.moment)] {
+        let scale = want.iter().map(|x| x * x).sum::<f64>().sqrt().max(1.0);
+        for (g, w) in got.iter().zip(want) {
+            worst = worst.max((g - w).abs() / scale);
+        }
+    }
+    out.push((what, worst, r.tolerance));
+}
+
 /// The message of a caught panic.
 fn panic_text(e: &(dyn std::any::Any + Send)) -> String {
     e.downcast_ref::<String>()
@@ -429,7 +495,11 @@ fn sidecar(file: &Path) -> Sidecar {
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("{}: a model needs its sidecar ({e})", path.display()));
     let s: Sidecar = toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let refs = s.eigenvalues.len() + s.eigenvalue_table.len() + s.gain.len() + s.boundary.len();
+    let refs = s.eigenvalues.len()
+        + s.eigenvalue_table.len()
+        + s.gain.len()
+        + s.boundary.len()
+        + s.preload.len();
     match &s.none {
         Some(why) => assert!(
             refs == 0 && why.len() > 20,
@@ -442,9 +512,14 @@ fn sidecar(file: &Path) -> Sidecar {
         .eigenvalues
         .iter()
         .map(|r| (&r.source, &r.why, r.tolerance))
-        .chain(s.eigenvalue_table.iter().map(|r| (&r.source, &r.why, r.tolerance)))
+        .chain(
+            s.eigenvalue_table
+                .iter()
+                .map(|r| (&r.source, &r.why, r.tolerance)),
+        )
         .chain(s.gain.iter().map(|r| (&r.source, &r.why, r.tolerance)))
-        .chain(s.boundary.iter().map(|r| (&r.source, &r.why, r.tolerance)));
+        .chain(s.boundary.iter().map(|r| (&r.source, &r.why, r.tolerance)))
+        .chain(s.preload.iter().map(|r| (&r.source, &r.why, r.tolerance)));
     for (source, why, tol) in texts {
         assert!(
             !source.trim().is_empty() && !why.trim().is_empty() && tol > 0.0 && tol < 0.1,
@@ -459,7 +534,11 @@ fn sidecar(file: &Path) -> Sidecar {
 /// (what users type), and the file itself too where the catalogue builds it another way (a
 /// family: `chain10` is built in Rust, `models/chain10.toml` read from the file).
 fn invocations(file: &Path) -> Vec<String> {
-    let stem = file.file_stem().expect("a name").to_string_lossy().into_owned();
+    let stem = file
+        .file_stem()
+        .expect("a name")
+        .to_string_lossy()
+        .into_owned();
     // Relative to the package folder, where cargo runs the test (shorter messages).
     let name = file.file_name().expect("a name").to_string_lossy();
     let path = format!("../models/{name}");
@@ -486,6 +565,9 @@ fn check_model(file: &Path) -> (Checked, Option<String>) {
         s.boundary
             .iter()
             .for_each(|r| check_boundary(&model, r, &mut out));
+        s.preload
+            .iter()
+            .for_each(|r| check_preload(&model, r, &mut out));
     }
     (out, s.none)
 }
@@ -497,7 +579,9 @@ fn every_model_meets_its_reference_answers() {
     for name in models::names() {
         let stem = name.replace('N', "10");
         assert!(
-            files.iter().any(|f| f.file_stem().is_some_and(|s| s == stem.as_str())),
+            files
+                .iter()
+                .any(|f| f.file_stem().is_some_and(|s| s == stem.as_str())),
             "the catalogue's `{name}` has no models/{stem}.toml"
         );
     }
@@ -512,28 +596,29 @@ fn every_model_meets_its_reference_answers() {
 
     // Two workers: the CI machine's cores.
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<(PathBuf, Result<(Checked, Option<String>), String>)> = std::thread::scope(|s| {
-        let workers: Vec<_> = (0..2)
-            .map(|_| {
-                s.spawn(|| {
-                    let mut done = Vec::new();
-                    loop {
-                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        let Some(f) = files.get(k) else { break };
-                        // A model whose check panics is reported with the others.
-                        let r = std::panic::catch_unwind(|| check_model(f))
-                            .map_err(|e| panic_text(e.as_ref()));
-                        done.push((f.clone(), r));
-                    }
-                    done
+    let results: Vec<(PathBuf, Result<(Checked, Option<String>), String>)> =
+        std::thread::scope(|s| {
+            let workers: Vec<_> = (0..2)
+                .map(|_| {
+                    s.spawn(|| {
+                        let mut done = Vec::new();
+                        loop {
+                            let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                            let Some(f) = files.get(k) else { break };
+                            // A model whose check panics is reported with the others.
+                            let r = std::panic::catch_unwind(|| check_model(f))
+                                .map_err(|e| panic_text(e.as_ref()));
+                            done.push((f.clone(), r));
+                        }
+                        done
+                    })
                 })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|w| w.join().expect("a worker"))
-            .collect()
-    });
+                .collect();
+            workers
+                .into_iter()
+                .flat_map(|w| w.join().expect("a worker"))
+                .collect()
+        });
 
     let (mut failed, mut checked, mut without) = (Vec::new(), 0, Vec::new());
     for (file, result) in &results {

@@ -149,3 +149,68 @@ def yaw_rate_gain(u=10, m=mp.mpf("1730.3"), a=mp.mpf("1.289"), b=mp.mpf("1.596")
 
 show("truck_trailer r/delta_f defaults", [yaw_rate_gain()])
 show("truck_trailer r/delta_f u=25", [yaw_rate_gain(u=25)])
+
+# Car with wings, bounce and pitch (models/ride_wings.toml), derived by hand in the frame
+# moving with the car: heave z up, pitch θ about y, nose down positive; the suspensions act on
+# z - x θ and its rate. A wing at x_i, in the stream u from ahead, sees in its own axes
+# (x forward, z down) w = -(z' + u θ - x_i θ') (the pitch attitude tilts the stream) and
+# q = -θ', and pushes F_z = -Z, M_y = -M - x_i F_z, with (q̄ = ρ u S/2, per unit velocity)
+# Z = q̄ (CZw w + CZq (c/2) q) and M = q̄ c (Cmw w + Cmq (c/2) q). The wings' derivatives are
+# the file's (from a vortex lattice): the reference is the assembly, independent of eom's.
+def ride_wings(u=40, rho=mp.mpf("1.225")):
+    m, Iy, a, b = 1200, 1800, mp.mpf("1.2"), mp.mpf("1.4")
+    kf, kr, cf, cr = 35000, 38000, 3000, 3000
+    wings = [  # x, area, chord, CZw, CZq, Cmw, Cmq
+        (a + mp.mpf("0.7"), mp.mpf("0.5599999999999999"), mp.mpf("0.35"), -mp.mpf("3.819025933690348"),
+         -mp.mpf("3.936684282881915"), mp.mpf("0.058815165062207055"), -mp.mpf("0.683137734076857")),
+        (-b - mp.mpf("0.4"), mp.mpf("0.52"), mp.mpf("0.4"), -mp.mpf("3.276807813097697"),
+         -mp.mpf("3.4281261300766004"), mp.mpf("0.07564936740602789"), -mp.mpf("0.6484567116328459")),
+    ]
+    K = mp.zeros(2, 2)
+    C = mp.zeros(2, 2)
+    for x, ks, cs in [(a, kf, cf), (-b, kr, cr)]:
+        g = [1, -x]
+        for i in range(2):
+            for j in range(2):
+                K[i, j] += ks * g[i] * g[j]
+                C[i, j] += cs * g[i] * g[j]
+    for x, S, ch, CZw, CZq, Cmw, Cmq in wings:
+        q = rho * u * S / 2
+        zw, zq = q * CZw, q * CZq * ch / 2
+        mw, mq = q * ch * Cmw, q * ch * Cmq * ch / 2
+        fz = [zw, -zw * x + zq, zw * u]  # coefficients of z', θ', θ
+        my = [mw - x * fz[0], (-mw * x + mq) - x * fz[1], mw * u - x * fz[2]]
+        C[0, 0] -= fz[0]
+        C[0, 1] -= fz[1]
+        K[0, 1] -= fz[2]
+        C[1, 0] -= my[0]
+        C[1, 1] -= my[1]
+        K[1, 1] -= my[2]
+    A = mp.zeros(4, 4)
+    A[0, 2] = A[1, 3] = 1
+    Minv = [1 / mp.mpf(m), 1 / mp.mpf(Iy)]
+    for i in range(2):
+        for j in range(2):
+            A[2 + i, j] = -Minv[i] * K[i, j]
+            A[2 + i, 2 + j] = -Minv[i] * C[i, j]
+    ev = mp.eig(A, left=False, right=False)
+    return sorted((mp.mpc(z) for z in ev), key=lambda z: (float(z.real), float(z.imag)))
+
+
+show("ride_wings defaults (u = 40)", ride_wings())
+show("ride_wings u = 20", ride_wings(u=20))
+
+
+# Static preloads (force on the body, ground axes, z up) from the equilibrium of forces and
+# moments. Pendulum: the pin carries the weight m g. Double pendulum: pin1 carries both rods,
+# pin2 the lower one. Half car: the axles share the weight by the lever rule, m g b/(a + b)
+# front and m g a/(a + b) rear. Taildragger on its gear: the tail wheel at 4.6 m behind the
+# mass centre and the two main wheels xm ahead share the weight W = m g by the lever rule,
+# W xm/(xm + 4.6) on the tail wheel and W 4.6/(2 (xm + 4.6)) on each main wheel (no lift at
+# the trim: the wing and tail sit at zero incidence).
+show("pendulum pin", [10 * mp.mpf("9.807")])
+show("double_pendulum pin1, pin2", [2 * mp.mpf("9.81"), mp.mpf("9.81")])
+m, g, a, b = 1200, mp.mpf("9.81"), mp.mpf("1.2"), mp.mpf("1.4")
+show("half_car front, rear", [m * g * b / (a + b), m * g * a / (a + b)])
+W, xm = 550 * mp.mpf("9.81"), mp.mpf("0.45")
+show("aircraft_ground tail, each main", [W * xm / (xm + mp.mpf("4.6")), W * mp.mpf("4.6") / (2 * (xm + mp.mpf("4.6")))])
