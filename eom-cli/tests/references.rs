@@ -298,6 +298,9 @@ fn match_eigenvalues(
 /// What one model's references gave: (what, deviation, tolerance) per reference.
 type Checked = Vec<(String, f64, f64)>;
 
+/// One model file's outcome: its references checked and its `none`, or why the check failed.
+type Outcome = Result<(Checked, Option<String>), String>;
+
 fn check_eigenvalues(model: &str, r: &Eigenvalues, out: &mut Checked) {
     let what = format!("{model} eigenvalues at {} ({})", shown(&r.set), r.source);
     let data = data_file(&r.data);
@@ -596,29 +599,28 @@ fn every_model_meets_its_reference_answers() {
 
     // Two workers: the CI machine's cores.
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<(PathBuf, Result<(Checked, Option<String>), String>)> =
-        std::thread::scope(|s| {
-            let workers: Vec<_> = (0..2)
-                .map(|_| {
-                    s.spawn(|| {
-                        let mut done = Vec::new();
-                        loop {
-                            let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                            let Some(f) = files.get(k) else { break };
-                            // A model whose check panics is reported with the others.
-                            let r = std::panic::catch_unwind(|| check_model(f))
-                                .map_err(|e| panic_text(e.as_ref()));
-                            done.push((f.clone(), r));
-                        }
-                        done
-                    })
+    let results: Vec<(PathBuf, Outcome)> = std::thread::scope(|s| {
+        let workers: Vec<_> = (0..2)
+            .map(|_| {
+                s.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(f) = files.get(k) else { break };
+                        // A model whose check panics is reported with the others.
+                        let r = std::panic::catch_unwind(|| check_model(f))
+                            .map_err(|e| panic_text(e.as_ref()));
+                        done.push((f.clone(), r));
+                    }
+                    done
                 })
-                .collect();
-            workers
-                .into_iter()
-                .flat_map(|w| w.join().expect("a worker"))
-                .collect()
-        });
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().expect("a worker"))
+            .collect()
+    });
 
     let (mut failed, mut checked, mut without) = (Vec::new(), 0, Vec::new());
     for (file, result) in &results {
@@ -636,7 +638,8 @@ fn every_model_meets_its_reference_answers() {
         for (what, d, tol) in refs {
             checked += 1;
             println!("{d:9.2e} (tolerance {tol:e}) {what}");
-            if !(*d <= *tol) {
+            // A NaN deviation fails too.
+            if d.is_nan() || d > tol {
                 failed.push(format!("{what}: deviation {d:e} > {tol:e}"));
             }
         }
