@@ -36,14 +36,18 @@ fn catalogue() -> Vec<Case> {
         .collect()
 }
 
-/// Every `models/*.toml` (but the crate's `Cargo.toml`).
+/// Every `models/*.toml` (but the crate's `Cargo.toml` and the sidecars `*.ref.toml`).
 fn files() -> Vec<Case> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../models");
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("the models directory")
         .map(|e| e.expect("a directory entry").path())
-        // The directory is also the `models` crate: its manifest is no model.
-        .filter(|p| p.extension().is_some_and(|x| x == "toml") && !p.ends_with("Cargo.toml"))
+        // The directory is also the `models` crate: its manifest is no model, nor are the
+        // models' reference answers (`NAME.ref.toml`, docs/model-files.md).
+        .filter(|p| {
+            let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            name.ends_with(".toml") && name != "Cargo.toml" && !name.ends_with(".ref.toml")
+        })
         .collect();
     paths.sort();
     assert!(!paths.is_empty(), "no model files in {}", dir.display());
