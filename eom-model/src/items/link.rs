@@ -1,58 +1,28 @@
 //! [`Link`]: an inextensible rigid link between two bodies.
 
 use super::Validation;
-use super::{Field, Item, ModelScalar, Name, name};
+use super::{ModelScalar, Name, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
-use crate::geometry::{Line, line_builders};
+use crate::geometry::Line;
 use eom_sym::scalar::Scalar;
 
-/// An inextensible rigid link.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Link<S> {
-    /// Unique name.
-    pub name: Name,
-    /// Geometry.
-    pub line: Line<S>,
+item! {
+    /// An inextensible rigid link.
+    pub struct Link<S>: "link", "link" {
+        /// Geometry.
+        pub line: Line<S> = Line::new() => line(),
+    }
 }
+
 impl<S: Scalar> Link<S> {
     /// A link between ground and ground (set bodies and ends).
     pub fn new(n: &str) -> Self {
-        Link {
-            name: name(n),
-            line: Line::new(),
-        }
-    }
-}
-line_builders!(Link);
-
-impl<S: Scalar> Link<S> {
-    /// The link converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Link<T> {
-        Link {
-            name: self.name.clone(),
-            line: self.line.map(f),
-        }
+        Self::declared(n)
     }
 }
 
-impl<S: ModelScalar> Item<S> for Link<S> {
-    fn kind(&self) -> &'static str {
-        "link"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        self.line.settings()
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        self.line.fields(f);
-    }
-
+impl<S: ModelScalar> Physics<S> for Link<S> {
     fn bodies(&self) -> &[Name] {
         &self.line.bodies
     }

@@ -16,6 +16,7 @@
 mod actuator;
 mod beam;
 mod body;
+mod declare;
 mod flex_point;
 mod line;
 mod link;
@@ -26,6 +27,7 @@ mod rigid_point;
 mod sensor;
 mod spring;
 mod strip;
+mod surface;
 mod unsteady;
 mod validation;
 mod wing;
@@ -33,6 +35,8 @@ mod wing;
 pub use actuator::Actuator;
 pub use beam::Beam;
 pub use body::Body;
+pub(crate) use declare::{concat_keys, item, key_count, map_matrix};
+pub use declare::{Choice, Declared, Physics, Source, VecKind};
 pub use flex_point::FlexPoint;
 pub use link::Link;
 pub use load::Load;
@@ -50,7 +54,7 @@ pub use crate::geometry::{GROUND, Line, Name, Point, Vec3, vec3, x_axis, y_axis,
 use crate::assemble::Assembly;
 use crate::error::ModelError;
 pub(crate) use crate::error::{field_error, label};
-pub(crate) use crate::geometry::{map3, name};
+pub(crate) use crate::geometry::name;
 use eom_sym::scalar::Scalar;
 use eom_sym::{Dd, Expr};
 
@@ -78,18 +82,7 @@ pub const COMMON_KEYS: [&str; 2] = ["name", "mirror"];
 
 /// The body: not an item (a model keeps its bodies apart and first), but a table of a model
 /// file like one.
-pub const BODY: Kind = Kind {
-    name: "body",
-    key: "body",
-    keys: &[
-        "at",
-        "mass",
-        "moments",
-        "products",
-        "velocity",
-        "angular_velocity",
-    ],
-};
+pub const BODY: Kind = Body::<f64>::KIND;
 
 /// Declares the item kinds, each once, in the order in which a model stores, validates and
 /// assembles them: its type, its name in messages, its file key and the keys of its tables.
@@ -98,12 +91,12 @@ pub const BODY: Kind = Kind {
 ///
 /// [`Model::add`]: crate::Model::add
 macro_rules! kinds {
-    ($($kind:ident: $name:literal, $key:literal, [$($field:literal),* $(,)?];)*) => {
+    ($($kind:ident),* $(,)?) => {
         /// Any item of a model: one variant per kind (bodies are kept apart).
         #[derive(Clone, Debug, PartialEq)]
         pub enum AnyItem<S> {
             $(
-                #[doc = concat!("A ", $name, ".")]
+                #[doc = concat!("A [`", stringify!($kind), "`].")]
                 $kind($kind<S>),
             )*
         }
@@ -112,7 +105,7 @@ macro_rules! kinds {
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
         pub enum KindId {
             $(
-                #[doc = concat!("The ", $name, ".")]
+                #[doc = concat!("The kind of [`", stringify!($kind), "`].")]
                 $kind,
             )*
         }
@@ -125,9 +118,7 @@ macro_rules! kinds {
         /// flex points' and then the beams'; the holonomic rows the links' and then the rigid
         /// points'. Inputs come before outputs, so a sensor finds the actuator it feeds
         /// through.
-        pub const KINDS: &[Kind] = &[
-            $(Kind { name: $name, key: $key, keys: &[$($field),*] },)*
-        ];
+        pub const KINDS: &[Kind] = &[$($kind::<f64>::KIND,)*];
 
         impl<S> AnyItem<S> {
             /// The item's kind.
@@ -168,6 +159,23 @@ macro_rules! kinds {
                     $(AnyItem::$kind(x) => x,)*
                 }
             }
+
+            /// An item of kind `id` with every field at its declared default.
+            pub(crate) fn declared(id: KindId, name: &str) -> Self
+            where
+                S: Scalar,
+            {
+                match id {
+                    $(KindId::$kind => AnyItem::$kind($kind::declared(name)),)*
+                }
+            }
+
+            /// Sets every field of the item that `source` gives.
+            pub(crate) fn read<R: Source<S>>(&mut self, source: &R) -> Result<(), R::Error> {
+                match self {
+                    $(AnyItem::$kind(x) => x.read(source),)*
+                }
+            }
         }
 
         $(
@@ -187,36 +195,7 @@ macro_rules! kinds {
 }
 
 kinds! {
-    Load: "load", "load", ["body", "at", "force", "moment", "frame"];
-    Spring: "spring", "spring", [
-        "between", "ends", "twist", "stiffness", "damping", "inertance", "preload",
-    ];
-    FlexPoint: "flex point", "flex_point", [
-        "between", "at", "forces", "moments", "axis", "rolling_axis", "stiffness", "damping",
-        "stiffness_matrix", "damping_matrix",
-    ];
-    Beam: "beam", "beam", ["between", "ends", "stiffness", "mpul", "perp"];
-    Link: "link", "link", ["between", "ends", "twist"];
-    RigidPoint: "rigid point", "rigid_point", [
-        "between", "at", "forces", "moments", "axis", "rolling_axis",
-    ];
-    NhPoint: "nh point", "nh_point", [
-        "between", "at", "forces", "moments", "axis", "rolling_axis",
-    ];
-    Wing: "wing", "wing", [
-        "body", "at", "forward", "down", "area", "chord", "span", "density", "airspeed",
-        "derivatives", "avl", "unsteady",
-    ];
-    Strip: "strip", "strip", [
-        "body", "at", "forward", "down", "semichord", "elastic_axis", "width", "lift_slope",
-        "density", "airspeed", "unsteady",
-    ];
-    Actuator: "actuator", "actuator", [
-        "between", "ends", "twist", "gain", "rate_gain", "units",
-    ];
-    Sensor: "sensor", "sensor", [
-        "between", "ends", "twist", "gain", "order", "frame", "feedthrough", "units",
-    ];
+    Load, Spring, FlexPoint, Beam, Link, RigidPoint, NhPoint, Wing, Strip, Actuator, Sensor,
 }
 
 impl KindId {
@@ -251,19 +230,23 @@ impl<S> From<AnyItem<S>> for Part<S> {
 }
 
 /// An item dispatches to its kind.
-impl<S: ModelScalar> Item<S> for AnyItem<S> {
-    fn kind(&self) -> &'static str {
+impl<S: ModelScalar> Declared<S> for AnyItem<S> {
+    fn item_kind(&self) -> &'static str {
         AnyItem::kind(self)
     }
-    fn name(&self) -> &Name {
+    fn item_name(&self) -> &Name {
         AnyItem::name(self)
     }
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+    fn visit_fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.as_item().fields(f)
     }
-    fn settings(&self) -> Vec<(&'static str, Setting)> {
+    fn list_settings(&self) -> Vec<(&'static str, Setting)> {
         self.as_item().settings()
     }
+}
+
+/// An item dispatches to its kind.
+impl<S: ModelScalar> Physics<S> for AnyItem<S> {
     fn bodies(&self) -> &[Name] {
         self.as_item().bodies()
     }
@@ -275,6 +258,38 @@ impl<S: ModelScalar> Item<S> for AnyItem<S> {
     }
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         self.as_item().assemble(cx)
+    }
+}
+
+/// Every declared kind with its physics is an item.
+impl<S, T> Item<S> for T
+where
+    S: ModelScalar,
+    T: Declared<S> + Physics<S> + std::fmt::Debug + Send + Sync,
+{
+    fn kind(&self) -> &'static str {
+        self.item_kind()
+    }
+    fn name(&self) -> &Name {
+        self.item_name()
+    }
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        self.visit_fields(f)
+    }
+    fn settings(&self) -> Vec<(&'static str, Setting)> {
+        self.list_settings()
+    }
+    fn bodies(&self) -> &[Name] {
+        Physics::bodies(self)
+    }
+    fn supports(&self) -> bool {
+        Physics::supports(self)
+    }
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        Physics::validate(self, cx)
+    }
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        Physics::assemble(self, cx)
     }
 }
 
@@ -400,6 +415,15 @@ impl std::fmt::Display for Field {
             }
         }
         Ok(())
+    }
+}
+
+/// Visit the two points of field `name` (`ends[1][x]` …).
+pub(crate) fn visit_ends<S>(f: &mut dyn FnMut(Field, &S), name: &'static str, ends: &[Vec3<S>; 2]) {
+    for (i, end) in ends.iter().enumerate() {
+        for (k, x) in end.iter().enumerate() {
+            f(Field::nth_axis(name, i, k), x);
+        }
     }
 }
 

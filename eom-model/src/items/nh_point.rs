@@ -1,58 +1,28 @@
 //! [`NhPoint`]: a nonholonomic constraint on the relative velocity at a point (e.g. a tyre that cannot slip).
 
 use super::Validation;
-use super::{Field, Item, ModelScalar, Name, name};
+use super::{ModelScalar, Name, Physics, item};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
-use crate::geometry::{Point, point_builders};
+use crate::geometry::Point;
 use eom_sym::scalar::Scalar;
 
-/// A nonholonomic constraint on relative velocity (e.g. a no-slip tyre).
-#[derive(Clone, Debug, PartialEq)]
-pub struct NhPoint<S> {
-    /// Unique name.
-    pub name: Name,
-    /// Geometry.
-    pub point: Point<S>,
+item! {
+    /// A nonholonomic constraint on relative velocity (e.g. a no-slip tyre).
+    pub struct NhPoint<S>: "nh point", "nh_point" {
+        /// Geometry.
+        pub point: Point<S> = Point::new() => point(),
+    }
 }
+
 impl<S: Scalar> NhPoint<S> {
     /// A constraint between ground and ground (set bodies and directions).
     pub fn new(n: &str) -> Self {
-        NhPoint {
-            name: name(n),
-            point: Point::new(),
-        }
-    }
-}
-point_builders!(NhPoint);
-
-impl<S: Scalar> NhPoint<S> {
-    /// The nhpoint converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> NhPoint<T> {
-        NhPoint {
-            name: self.name.clone(),
-            point: self.point.map(f),
-        }
+        Self::declared(n)
     }
 }
 
-impl<S: ModelScalar> Item<S> for NhPoint<S> {
-    fn kind(&self) -> &'static str {
-        "nh point"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        self.point.settings()
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        self.point.fields(f);
-    }
-
+impl<S: ModelScalar> Physics<S> for NhPoint<S> {
     fn bodies(&self) -> &[Name] {
         &self.point.bodies
     }

@@ -1,58 +1,28 @@
 //! [`RigidPoint`]: a holonomic joint at a point: some relative translations and rotations of two bodies are zero.
 
 use super::Validation;
-use super::{Field, Item, ModelScalar, Name, name};
+use super::{ModelScalar, Name, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
-use crate::geometry::{Point, point_builders};
+use crate::geometry::Point;
 use eom_sym::scalar::Scalar;
 
-/// A holonomic joint.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RigidPoint<S> {
-    /// Unique name.
-    pub name: Name,
-    /// Geometry.
-    pub point: Point<S>,
+item! {
+    /// A holonomic joint.
+    pub struct RigidPoint<S>: "rigid point", "rigid_point" {
+        /// Geometry.
+        pub point: Point<S> = Point::new() => point(),
+    }
 }
+
 impl<S: Scalar> RigidPoint<S> {
     /// A joint between ground and ground (set bodies and directions).
     pub fn new(n: &str) -> Self {
-        RigidPoint {
-            name: name(n),
-            point: Point::new(),
-        }
-    }
-}
-point_builders!(RigidPoint);
-
-impl<S: Scalar> RigidPoint<S> {
-    /// The rigidpoint converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> RigidPoint<T> {
-        RigidPoint {
-            name: self.name.clone(),
-            point: self.point.map(f),
-        }
+        Self::declared(n)
     }
 }
 
-impl<S: ModelScalar> Item<S> for RigidPoint<S> {
-    fn kind(&self) -> &'static str {
-        "rigid point"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        self.point.settings()
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        self.point.fields(f);
-    }
-
+impl<S: ModelScalar> Physics<S> for RigidPoint<S> {
     fn bodies(&self) -> &[Name] {
         &self.point.bodies
     }
