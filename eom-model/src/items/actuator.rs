@@ -1,7 +1,7 @@
 //! [`Actuator`]: an input acting along (or about) a line.
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, item};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
 use crate::geometry::Line;
@@ -10,7 +10,9 @@ use eom_sym::scalar::Scalar;
 item! {
     /// An actuator: generalized force `gain·u + rate_gain·u̇` that extends the line (or twists
     /// about it).
-    pub struct Actuator<S>: "actuator", "actuator" {
+    pub struct Actuator<S>: "actuator", "actuator"
+        (bodies: line, supports: false)
+    {
         /// Geometry.
         pub line: Line<S> = Line::new() => line(),
         /// Gain.
@@ -20,24 +22,12 @@ item! {
         /// Unit label of the input.
         pub units: String = "N".into() => text(units, "units"),
     }
+    /// An actuator with gain 1.
+    pub fn new;
 }
 
-impl<S: Scalar> Actuator<S> {
-    /// An actuator with gain 1.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for Actuator<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.line.bodies
-    }
-
-    fn supports(&self) -> bool {
-        false
-    }
-
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.line.validate("actuator", &self.name)
     }

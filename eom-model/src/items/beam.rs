@@ -11,7 +11,9 @@ use eom_sym::scalar::Scalar;
 item! {
     /// An Euler–Bernoulli beam between two bodies (bending in two planes, no torsion or axial
     /// stiffness).
-    pub struct Beam<S>: "beam", "beam" {
+    pub struct Beam<S>: "beam", "beam"
+        (bodies: bodies, supports: true)
+    {
         /// `[body 1, body 2]`.
         pub bodies: [Name; 2] = [name(GROUND), name(GROUND)] => bodies(between, "between"),
         /// End points.
@@ -23,24 +25,12 @@ item! {
         /// A vector that with the axis defines bending plane 1 (not parallel to the axis).
         pub perp: Vec3<S> = zero3() => vector(perp, "perp", Polar),
     }
+    /// A beam with zero properties.
+    pub fn new;
 }
 
-impl<S: Scalar> Beam<S> {
-    /// A beam with zero properties.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for Beam<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.bodies
-    }
-
-    fn supports(&self) -> bool {
-        true
-    }
-
     /// A nonzero length, and a bending-plane vector not parallel to the axis.
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         let t = geometry::sub(&self.ends[1], &self.ends[0]);

@@ -1,7 +1,7 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, Vec3, field_error, item, label, zero3};
+use super::{ModelScalar, Physics, Vec3, field_error, item, label, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
@@ -10,7 +10,9 @@ use eom_sym::scalar::Scalar;
 item! {
     /// A rigid body: mass, inertia about its mass centre (global axes), and the nominal motion
     /// about which the equations are linearized.
-    pub struct Body<S>: "body", "body" {
+    pub struct Body<S>: "body", "body"
+        (bodies: none, supports: false)
+    {
         /// Mass centre location.
         pub location: Vec3<S> = zero3() => vector(at, "at", Polar),
         /// Mass (zero is allowed: a massless body).
@@ -25,24 +27,12 @@ item! {
         /// Nominal angular velocity (spin).
         pub angular_velocity: Vec3<S> = zero3() => vector(angular_velocity, "angular_velocity", Axial),
     }
+    /// A body with zero mass and inertia at the origin, at rest.
+    pub fn new;
 }
 
-impl<S: Scalar> Body<S> {
-    /// A body with zero mass and inertia at the origin, at rest.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for Body<S> {
-    fn bodies(&self) -> &[Name] {
-        &[]
-    }
-
-    fn supports(&self) -> bool {
-        false
-    }
-
     /// A negative mass is an error; moments of inertia that no physical body has are a
     /// warning. (The name is checked with the other bodies' names.)
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {

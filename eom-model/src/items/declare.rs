@@ -7,7 +7,7 @@
 //! ```text
 //! item! {
 //!     /// A spring–damper–inerter along (or, twisted, about) a line.
-//!     pub struct Spring<S>: "spring", "spring" {
+//!     pub struct Spring<S>: "spring", "spring" (bodies: line, supports: true) {
 //!         /// Geometry.
 //!         line: Line<S> = Line::new() => line(),
 //!         /// Stiffness (N/m, or N·m/rad twisted).
@@ -15,8 +15,15 @@
 //!         /// Known tension at the given geometry; `None` = solved from equilibrium.
 //!         preload: Option<S> = None => optional(preload, "preload"),
 //!     }
+//!     /// A spring with zero properties.
+//!     pub fn new;
 //! }
 //! ```
+//!
+//! The header gives the kind's name in messages and its model-file key, the field that holds
+//! the bodies it connects (`none` for a body) and whether it supports them (`true`, `false`
+//! or a method such as `point.constrains()`); `pub fn new;` with its documentation makes the
+//! constructor that takes a name and leaves every field at its default.
 //!
 //! Each field gives its type, its default, and after `=>` its *shape*: what it is in a model
 //! file and how its builder takes it (the builder's name, then the file key). The shapes:
@@ -56,23 +63,53 @@ pub trait Declared<S> {
     fn item_kind(&self) -> &'static str;
     /// The item's name.
     fn item_name(&self) -> &Name;
+    /// The bodies it connects (the field named by `bodies:`).
+    fn item_bodies(&self) -> &[Name];
+    /// Whether it supports them (`supports:` `true`, `false` or a method).
+    fn item_supports(&self) -> bool;
     /// Visit every scalar field, in the order of the kind's `map`.
     fn visit_fields(&self, f: &mut dyn FnMut(Field, &S));
     /// The settings that are not scalar fields, by their model-file keys.
     fn list_settings(&self) -> Vec<(&'static str, Setting)>;
 }
 
-/// What a kind does, written by hand in its module: the bodies it connects, whether it
-/// supports them, its checks and its terms (see [`Item`](super::Item) for each).
+/// What a kind does, written by hand in its module: its checks and its terms (see
+/// [`Item`](super::Item) for each).
 pub trait Physics<S> {
-    /// See [`Item::bodies`](super::Item::bodies).
-    fn bodies(&self) -> &[Name];
-    /// See [`Item::supports`](super::Item::supports).
-    fn supports(&self) -> bool;
     /// See [`Item::validate`](super::Item::validate).
     fn validate(&self, cx: &mut super::Validation<'_, S>) -> Result<(), ModelError>;
     /// See [`Item::assemble`](super::Item::assemble).
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError>;
+}
+
+/// A field that names the bodies an item connects (`bodies:` of a declaration).
+pub trait Connects {
+    /// The bodies.
+    fn bodies(&self) -> &[Name];
+}
+
+impl Connects for Name {
+    fn bodies(&self) -> &[Name] {
+        std::slice::from_ref(self)
+    }
+}
+
+impl Connects for [Name; 2] {
+    fn bodies(&self) -> &[Name] {
+        self
+    }
+}
+
+impl<S> Connects for super::Line<S> {
+    fn bodies(&self) -> &[Name] {
+        &self.bodies
+    }
+}
+
+impl<S> Connects for super::Point<S> {
+    fn bodies(&self) -> &[Name] {
+        &self.bodies
+    }
 }
 
 /// A setting chosen by name from a few (`unsteady = "jones"`, `order = "velocity"`).
@@ -167,12 +204,15 @@ pub(crate) fn map_matrix<S, T>(
 macro_rules! item {
     (
         $(#[doc = $doc:literal])*
-        pub struct $kind:ident<S>: $label:literal, $key:literal {
+        pub struct $kind:ident<S>: $label:literal, $key:literal
+            (bodies: $bodies:ident, supports: $($supports:tt)+)
+        {
             $(
                 $(#[doc = $fdoc:literal])*
                 $vis:vis $field:ident: $ty:ty = $default:expr => $shape:ident($($arg:tt)*),
             )*
         }
+        $($(#[doc = $newdoc:literal])+ pub fn new;)?
     ) => {
         $(#[doc = $doc])*
         #[derive(Clone, Debug, PartialEq)]
@@ -206,6 +246,13 @@ macro_rules! item {
         }
 
         impl<S: eom_sym::scalar::Scalar> $kind<S> {
+            $(
+                $(#[doc = $newdoc])+
+                pub fn new(n: &str) -> Self {
+                    Self::declared(n)
+                }
+            )?
+
             /// The kind with every field at its declared default.
             pub(crate) fn declared(n: &str) -> Self {
                 $kind {
@@ -225,12 +272,18 @@ macro_rules! item {
 
         $($crate::items::item!(@builder $kind [$($fdoc)*] $shape($($arg)*) $field: $ty);)*
 
-        impl<S> $crate::items::Declared<S> for $kind<S> {
+        impl<S: eom_sym::scalar::Scalar> $crate::items::Declared<S> for $kind<S> {
             fn item_kind(&self) -> &'static str {
                 $label
             }
             fn item_name(&self) -> &$crate::geometry::Name {
                 &self.name
+            }
+            fn item_bodies(&self) -> &[$crate::geometry::Name] {
+                $crate::items::item!(@bodies self, $bodies)
+            }
+            fn item_supports(&self) -> bool {
+                $crate::items::item!(@supports self, $($supports)+)
             }
             #[allow(unused_variables)]
             fn visit_fields(&self, f: &mut dyn FnMut($crate::items::Field, &S)) {
@@ -244,6 +297,13 @@ macro_rules! item {
             }
         }
     };
+
+    // ---------------------------------------------------------------- bodies and support
+    (@bodies $s:ident, none) => { &[] };
+    (@bodies $s:ident, $f:ident) => { $crate::items::Connects::bodies(&$s.$f) };
+    (@supports $s:ident, true) => { true };
+    (@supports $s:ident, false) => { false };
+    (@supports $s:ident, $($path:ident).+ ()) => { $s.$($path).+() };
 
     // ---------------------------------------------------------------- keys
     (@keys line()) => { $crate::geometry::Line::<()>::KEYS };

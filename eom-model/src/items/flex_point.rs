@@ -1,7 +1,7 @@
 //! [`FlexPoint`]: an elastic, viscous bushing on the directions of a joint.
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, item};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -9,7 +9,9 @@ use eom_sym::scalar::Scalar;
 
 item! {
     /// An elastic, viscous bushing on the same directions as a joint.
-    pub struct FlexPoint<S>: "flex point", "flex_point" {
+    pub struct FlexPoint<S>: "flex point", "flex_point"
+        (bodies: point, supports: point.constrains())
+    {
         /// Geometry.
         pub point: Point<S> = Point::new() => point(),
         /// `[translational, rotational]` stiffness (used when `stiffness_matrix` is `None`).
@@ -22,24 +24,12 @@ item! {
         /// Full damping matrix.
         pub damping_matrix: Option<Vec<Vec<S>>> = None => matrix(damping_matrix, "damping_matrix"),
     }
+    /// A bushing with zero properties.
+    pub fn new;
 }
 
-impl<S: Scalar> FlexPoint<S> {
-    /// A bushing with zero properties.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for FlexPoint<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.point.bodies
-    }
-
-    fn supports(&self) -> bool {
-        self.point.constrains()
-    }
-
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.point
             .validate("flex point", &self.name, &mut |w| cx.warn(w))?;

@@ -1,7 +1,7 @@
 //! [`Link`]: an inextensible rigid link between two bodies.
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, item};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
 use crate::geometry::Line;
@@ -9,28 +9,18 @@ use eom_sym::scalar::Scalar;
 
 item! {
     /// An inextensible rigid link.
-    pub struct Link<S>: "link", "link" {
+    pub struct Link<S>: "link", "link"
+        (bodies: line, supports: true)
+    {
         /// Geometry.
         pub line: Line<S> = Line::new() => line(),
     }
+    /// A link between ground and ground (set bodies and ends).
+    pub fn new;
 }
 
-impl<S: Scalar> Link<S> {
-    /// A link between ground and ground (set bodies and ends).
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for Link<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.line.bodies
-    }
-
-    fn supports(&self) -> bool {
-        true
-    }
-
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.line.validate("link", &self.name)
     }

@@ -11,7 +11,9 @@ item! {
     /// A constant applied force and moment. `frame` names the body whose axes the direction is
     /// fixed to: the ground for a dead load (gravity), the loaded body itself for a follower
     /// load.
-    pub struct Load<S>: "load", "load" {
+    pub struct Load<S>: "load", "load"
+        (bodies: body, supports: false)
+    {
         /// Loaded body.
         pub body: Name = name(GROUND) => body(on, "body"),
         /// Point of application.
@@ -47,14 +49,6 @@ impl<S: Scalar> Load<S> {
 }
 
 impl<S: ModelScalar> Physics<S> for Load<S> {
-    fn bodies(&self) -> &[Name] {
-        std::slice::from_ref(&self.body)
-    }
-
-    fn supports(&self) -> bool {
-        false
-    }
-
     /// The frame must be a body or the ground.
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         cx.check_body("load", &self.name, "frame", &self.frame)

@@ -36,7 +36,7 @@ pub use actuator::Actuator;
 pub use beam::Beam;
 pub use body::Body;
 pub(crate) use declare::{concat_keys, item, key_count, map_matrix};
-pub use declare::{Choice, Declared, Physics, Source, VecKind};
+pub use declare::{Choice, Connects, Declared, Physics, Source, VecKind};
 pub use flex_point::FlexPoint;
 pub use link::Link;
 pub use load::Load;
@@ -237,6 +237,12 @@ impl<S: ModelScalar> Declared<S> for AnyItem<S> {
     fn item_name(&self) -> &Name {
         AnyItem::name(self)
     }
+    fn item_bodies(&self) -> &[Name] {
+        self.as_item().bodies()
+    }
+    fn item_supports(&self) -> bool {
+        self.as_item().supports()
+    }
     fn visit_fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.as_item().fields(f)
     }
@@ -247,12 +253,6 @@ impl<S: ModelScalar> Declared<S> for AnyItem<S> {
 
 /// An item dispatches to its kind.
 impl<S: ModelScalar> Physics<S> for AnyItem<S> {
-    fn bodies(&self) -> &[Name] {
-        self.as_item().bodies()
-    }
-    fn supports(&self) -> bool {
-        self.as_item().supports()
-    }
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.as_item().validate(cx)
     }
@@ -280,10 +280,10 @@ where
         self.list_settings()
     }
     fn bodies(&self) -> &[Name] {
-        Physics::bodies(self)
+        self.item_bodies()
     }
     fn supports(&self) -> bool {
-        Physics::supports(self)
+        self.item_supports()
     }
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         Physics::validate(self, cx)

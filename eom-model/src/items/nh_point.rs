@@ -1,7 +1,7 @@
 //! [`NhPoint`]: a nonholonomic constraint on the relative velocity at a point (e.g. a tyre that cannot slip).
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, item};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -9,28 +9,18 @@ use eom_sym::scalar::Scalar;
 
 item! {
     /// A nonholonomic constraint on relative velocity (e.g. a no-slip tyre).
-    pub struct NhPoint<S>: "nh point", "nh_point" {
+    pub struct NhPoint<S>: "nh point", "nh_point"
+        (bodies: point, supports: point.constrains())
+    {
         /// Geometry.
         pub point: Point<S> = Point::new() => point(),
     }
+    /// A constraint between ground and ground (set bodies and directions).
+    pub fn new;
 }
 
-impl<S: Scalar> NhPoint<S> {
-    /// A constraint between ground and ground (set bodies and directions).
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for NhPoint<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.point.bodies
-    }
-
-    fn supports(&self) -> bool {
-        self.point.constrains()
-    }
-
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.point
             .validate("nh point", &self.name, &mut |w| cx.warn(w))

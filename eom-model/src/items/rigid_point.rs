@@ -1,7 +1,7 @@
 //! [`RigidPoint`]: a holonomic joint at a point: some relative translations and rotations of two bodies are zero.
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, item};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -9,28 +9,18 @@ use eom_sym::scalar::Scalar;
 
 item! {
     /// A holonomic joint.
-    pub struct RigidPoint<S>: "rigid point", "rigid_point" {
+    pub struct RigidPoint<S>: "rigid point", "rigid_point"
+        (bodies: point, supports: point.constrains())
+    {
         /// Geometry.
         pub point: Point<S> = Point::new() => point(),
     }
+    /// A joint between ground and ground (set bodies and directions).
+    pub fn new;
 }
 
-impl<S: Scalar> RigidPoint<S> {
-    /// A joint between ground and ground (set bodies and directions).
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for RigidPoint<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.point.bodies
-    }
-
-    fn supports(&self) -> bool {
-        self.point.constrains()
-    }
-
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.point
             .validate("rigid point", &self.name, &mut |w| cx.warn(w))

@@ -31,7 +31,9 @@ pub enum SensorFrame {
 
 item! {
     /// A sensor: output `gain × elongation` (or its rate / acceleration) of its line.
-    pub struct Sensor<S>: "sensor", "sensor" {
+    pub struct Sensor<S>: "sensor", "sensor"
+        (bodies: line, supports: false)
+    {
         /// Geometry.
         pub line: Line<S> = Line::new() => line(),
         /// Gain.
@@ -47,13 +49,11 @@ item! {
         /// Unit label.
         pub units: String = "m".into() => text(units, "units"),
     }
+    /// A displacement sensor with gain 1.
+    pub fn new;
 }
 
 impl<S: Scalar> Sensor<S> {
-    /// A displacement sensor with gain 1.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
     /// Measure the velocity.
     pub fn velocity(mut self) -> Self {
         self.order = SensorOrder::Velocity;
@@ -131,14 +131,6 @@ impl<S> Sensor<S> {
 }
 
 impl<S: ModelScalar> Physics<S> for Sensor<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.line.bodies
-    }
-
-    fn supports(&self) -> bool {
-        false
-    }
-
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.line.validate("sensor", &self.name)?;
         match &self.actuator {

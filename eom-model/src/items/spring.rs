@@ -1,7 +1,7 @@
 //! [`Spring`]: a spring–damper–inerter along (or, twisted, about) a line.
 
 use super::Validation;
-use super::{ModelScalar, Name, Physics, item};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction, Term};
 use crate::error::ModelError;
 use crate::geometry::Line;
@@ -9,7 +9,9 @@ use eom_sym::scalar::Scalar;
 
 item! {
     /// A spring–damper–inerter along (or, twisted, about) a line.
-    pub struct Spring<S>: "spring", "spring" {
+    pub struct Spring<S>: "spring", "spring"
+        (bodies: line, supports: true)
+    {
         /// Geometry.
         pub line: Line<S> = Line::new() => line(),
         /// Stiffness (N/m, or N·m/rad twisted).
@@ -21,24 +23,12 @@ item! {
         /// Known tension at the given geometry; `None` = solved from equilibrium.
         pub preload: Option<S> = None => optional(preload, "preload"),
     }
+    /// A spring with zero properties.
+    pub fn new;
 }
 
-impl<S: Scalar> Spring<S> {
-    /// A spring with zero properties.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
-}
 
 impl<S: ModelScalar> Physics<S> for Spring<S> {
-    fn bodies(&self) -> &[Name] {
-        &self.line.bodies
-    }
-
-    fn supports(&self) -> bool {
-        true
-    }
-
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.line.validate("spring", &self.name)
     }

@@ -39,7 +39,9 @@ use eom_sym::scalar::Scalar;
 
 item! {
     /// A thin-airfoil strip at a point of a body (see the module documentation).
-    pub struct Strip<S>: "strip", "strip" {
+    pub struct Strip<S>: "strip", "strip"
+        (bodies: body, supports: false)
+    {
         /// The body the strip is fixed to.
         pub body: Name = name(GROUND) => body(on, "body"),
         /// The elastic-axis point of the section (the reference of h, θ and the moment).
@@ -63,14 +65,12 @@ item! {
         /// Quasi-steady, Jones' lag states, or decided by the linearization (`Auto`).
         pub unsteady: Unsteady = Unsteady::QuasiSteady => choice(unsteady, "unsteady"),
     }
+    /// A strip on the ground with unit semichord and width, the elastic axis at mid-chord,
+    /// lift slope 2π, ρ = 1.225, the wing's default axes, quasi-steady.
+    pub fn new;
 }
 
 impl<S: Scalar> Strip<S> {
-    /// A strip on the ground with unit semichord and width, the elastic axis at mid-chord,
-    /// lift slope 2π, ρ = 1.225, the wing's default axes, quasi-steady.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
-    }
     /// The forward (towards the leading edge) and down axes in model axes.
     pub fn axes(mut self, forward: Vec3<S>, down: Vec3<S>) -> Self {
         self.forward = forward;
@@ -142,15 +142,6 @@ impl<S: ModelScalar> Strip<S> {
 }
 
 impl<S: ModelScalar> Physics<S> for Strip<S> {
-    fn bodies(&self) -> &[Name] {
-        std::slice::from_ref(&self.body)
-    }
-
-    /// Aerodynamic forces do not hold a body up.
-    fn supports(&self) -> bool {
-        false
-    }
-
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if &*self.body == GROUND {
             return Err(self.error(

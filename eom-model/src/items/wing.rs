@@ -85,7 +85,9 @@ pub(crate) fn derivative_list() -> String {
 item! {
     /// A wing: quasi-steady aerodynamic damping at a point of a body, from stability
     /// derivatives.
-    pub struct Wing<S>: "wing", "wing" {
+    pub struct Wing<S>: "wing", "wing"
+        (bodies: body, supports: in_free_flight())
+    {
         /// The body the wing is fixed to (its forces act relative to the ground).
         pub body: Name = name(GROUND) => body(on, "body"),
         /// The reference point (moment reference of the derivatives, usually the quarter chord).
@@ -121,13 +123,18 @@ item! {
         /// validation, since a builder cannot fail).
         unknown: Vec<String> = Vec::new() => hidden(),
     }
+    /// A wing on the ground with unit reference quantities, ρ = 1.225, the default
+    /// orientation (forward +x, down −z) and all derivatives zero.
+    pub fn new;
 }
 
 impl<S: Scalar> Wing<S> {
-    /// A wing on the ground with unit reference quantities, ρ = 1.225, the default
-    /// orientation (forward +x, down −z) and all derivatives zero.
-    pub fn new(n: &str) -> Self {
-        Self::declared(n)
+    /// Whether the wing supports its body: aerodynamic forces hold a body up in free flight
+    /// only: a wing without a given airspeed (its body flies at its nominal velocity through
+    /// still air) supports its body; a wing in an air stream (a wind tunnel) leaves it to the
+    /// structure.
+    fn in_free_flight(&self) -> bool {
+        self.airspeed.is_none()
     }
 
     /// A wing with the reference area, chord, span and the 36 derivatives of `d` (computed
@@ -348,17 +355,6 @@ impl<S: ModelScalar> Wing<S> {
 }
 
 impl<S: ModelScalar> Physics<S> for Wing<S> {
-    fn bodies(&self) -> &[Name] {
-        std::slice::from_ref(&self.body)
-    }
-
-    /// Aerodynamic forces hold a body up in free flight only: a wing without a given
-    /// airspeed (its body flies at its nominal velocity through still air) supports its body;
-    /// a wing in an air stream (a wind tunnel) leaves it to the structure.
-    fn supports(&self) -> bool {
-        self.airspeed.is_none()
-    }
-
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if let Some(n) = self.unknown.first() {
             return Err(field_error(
