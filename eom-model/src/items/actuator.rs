@@ -1,6 +1,5 @@
 //! [`Actuator`]: an input acting along (or about) a line.
 
-use super::Validation;
 use super::{ModelScalar, Physics, item};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
@@ -26,12 +25,7 @@ item! {
     pub fn new;
 }
 
-
 impl<S: ModelScalar> Physics<S> for Actuator<S> {
-    fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.line.validate("actuator", &self.name)
-    }
-
     /// A column of the input matrices: the generalized force of `gain·u + rate_gain·u̇`
     /// extending the line.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {

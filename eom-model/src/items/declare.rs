@@ -71,13 +71,19 @@ pub trait Declared<S> {
     fn visit_fields(&self, f: &mut dyn FnMut(Field, &S));
     /// The settings that are not scalar fields, by their model-file keys.
     fn list_settings(&self) -> Vec<(&'static str, Setting)>;
+    /// The checks of its shared shapes (a line's length, a point's directions), before the
+    /// kind's own [`Physics::validate`]; warnings go to `warn`.
+    fn check_shapes(&self, warn: &mut dyn FnMut(String)) -> Result<(), ModelError>;
 }
 
 /// What a kind does, written by hand in its module: its checks and its terms (see
 /// [`Item`](super::Item) for each).
 pub trait Physics<S> {
-    /// See [`Item::validate`](super::Item::validate).
-    fn validate(&self, cx: &mut super::Validation<'_, S>) -> Result<(), ModelError>;
+    /// See [`Item::validate`](super::Item::validate): the kind's own checks, after those of
+    /// its shapes ([`Declared::check_shapes`]); none by default.
+    fn validate(&self, _cx: &mut super::Validation<'_, S>) -> Result<(), ModelError> {
+        Ok(())
+    }
     /// See [`Item::assemble`](super::Item::assemble).
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError>;
 }
@@ -289,6 +295,14 @@ macro_rules! item {
             fn visit_fields(&self, f: &mut dyn FnMut($crate::items::Field, &S)) {
                 $($crate::items::item!(@visit $shape($($arg)*), &self.$field, stringify!($field), f);)*
             }
+            #[allow(unused_variables)]
+            fn check_shapes(
+                &self,
+                warn: &mut dyn FnMut(String),
+            ) -> Result<(), $crate::error::ModelError> {
+                $($crate::items::item!(@check $shape($($arg)*), &self.$field, $label, &self.name, warn);)*
+                Ok(())
+            }
             #[allow(unused_mut)]
             fn list_settings(&self) -> Vec<(&'static str, $crate::items::Setting)> {
                 let mut out = Vec::new();
@@ -391,6 +405,15 @@ macro_rules! item {
     (@visit line(), $x:expr, $n:expr, $f:ident) => { $x.fields($f) };
     (@visit point(), $x:expr, $n:expr, $f:ident) => { $x.fields($f) };
     (@visit $shape:ident($($rest:tt)*), $x:expr, $n:expr, $f:ident) => {};
+
+    // ---------------------------------------------------------------- checks of the shapes
+    (@check line(), $x:expr, $label:literal, $name:expr, $warn:ident) => {
+        $x.validate($label, $name)?
+    };
+    (@check point(), $x:expr, $label:literal, $name:expr, $warn:ident) => {
+        $x.validate($label, $name, $warn)?
+    };
+    (@check $shape:ident($($rest:tt)*), $x:expr, $label:literal, $name:expr, $warn:ident) => {};
 
     // ---------------------------------------------------------------- settings
     (@setting bodies($($b:ident,)? $k:literal), $x:expr, $d:expr, $out:ident) => {

@@ -1,6 +1,5 @@
 //! [`Link`]: an inextensible rigid link between two bodies.
 
-use super::Validation;
 use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
@@ -19,12 +18,7 @@ item! {
     pub fn new;
 }
 
-
 impl<S: ModelScalar> Physics<S> for Link<S> {
-    fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.line.validate("link", &self.name)
-    }
-
     /// One holonomic row; its multiplier is the tension.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         let (rows, geometry) = cx.line(&self.line, "link", &self.name);

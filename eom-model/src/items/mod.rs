@@ -243,6 +243,10 @@ impl<S: ModelScalar> Declared<S> for AnyItem<S> {
     fn item_supports(&self) -> bool {
         self.as_item().supports()
     }
+    /// Checked by the kind's own validation (which this dispatches to).
+    fn check_shapes(&self, _warn: &mut dyn FnMut(String)) -> Result<(), ModelError> {
+        Ok(())
+    }
     fn visit_fields(&self, f: &mut dyn FnMut(Field, &S)) {
         self.as_item().fields(f)
     }
@@ -286,6 +290,7 @@ where
         self.item_supports()
     }
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        self.check_shapes(&mut |w| cx.warn(w))?;
         Physics::validate(self, cx)
     }
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {

@@ -1,6 +1,5 @@
 //! [`NhPoint`]: a nonholonomic constraint on the relative velocity at a point (e.g. a tyre that cannot slip).
 
-use super::Validation;
 use super::{ModelScalar, Physics, item};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
@@ -19,13 +18,7 @@ item! {
     pub fn new;
 }
 
-
 impl<S: ModelScalar> Physics<S> for NhPoint<S> {
-    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.point
-            .validate("nh point", &self.name, &mut |w| cx.warn(w))
-    }
-
     /// One nonholonomic row per constrained direction.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         let (rows, _) = cx.point(&self.point, "nh point", &self.name);

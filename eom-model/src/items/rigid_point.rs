@@ -1,6 +1,5 @@
 //! [`RigidPoint`]: a holonomic joint at a point: some relative translations and rotations of two bodies are zero.
 
-use super::Validation;
 use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
@@ -19,13 +18,7 @@ item! {
     pub fn new;
 }
 
-
 impl<S: ModelScalar> Physics<S> for RigidPoint<S> {
-    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.point
-            .validate("rigid point", &self.name, &mut |w| cx.warn(w))
-    }
-
     /// One holonomic row per constrained direction; the multipliers are the joint's force and
     /// moment.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {

@@ -132,7 +132,6 @@ impl<S> Sensor<S> {
 
 impl<S: ModelScalar> Physics<S> for Sensor<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.line.validate("sensor", &self.name)?;
         match &self.actuator {
             Some(a) => cx.check_item("sensor", &self.name, "actuator", "actuator", a),
             None => Ok(()),

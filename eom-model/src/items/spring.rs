@@ -1,6 +1,5 @@
 //! [`Spring`]: a spring–damper–inerter along (or, twisted, about) a line.
 
-use super::Validation;
 use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction, Term};
 use crate::error::ModelError;
@@ -27,12 +26,7 @@ item! {
     pub fn new;
 }
 
-
 impl<S: ModelScalar> Physics<S> for Spring<S> {
-    fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.line.validate("spring", &self.name)
-    }
-
     /// One elastic row with its stiffness, damping and inertance; its multiplier is the
     /// tension, known when a preload is given.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {

@@ -30,7 +30,8 @@
 
 use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name, surface, zero3};
+use super::surface::{self, Surface};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -120,8 +121,15 @@ impl<S: Scalar> Strip<S> {
 }
 
 impl<S: ModelScalar> Strip<S> {
-    fn error(&self, field: &str, problem: String) -> ModelError {
-        field_error("strip", &self.name, field, problem)
+    /// What the checks shared with the wing read.
+    fn surface(&self) -> Surface<'_, S> {
+        Surface {
+            kind: "strip",
+            item: &self.name,
+            body: &self.body,
+            axes: [&self.forward, &self.down],
+            airspeed: self.airspeed.as_ref(),
+        }
     }
 
     /// The rows of the point's lift-direction displacement z and pitch rotation φ.
@@ -143,25 +151,13 @@ impl<S: ModelScalar> Strip<S> {
 
 impl<S: ModelScalar> Physics<S> for Strip<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        if &*self.body == GROUND {
-            return Err(self.error(
-                "body",
-                "a strip must be on a body, not on the ground".into(),
-            ));
-        }
-        for (field, x, what) in [
+        let positive = [
             ("semichord", &self.semichord, "semichord"),
             ("width", &self.width, "span width"),
             ("lift_slope", &self.lift_slope, "lift slope"),
             ("density", &self.density, "air density"),
-        ] {
-            surface::check_positive("strip", &self.name, field, x, what)?;
-        }
-        surface::check_axes("strip", &self.name, &self.forward, &self.down)?;
-        let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
-        let along = self.airspeed_with(&velocity);
-        surface::check_airspeed("strip", &self.name, self.airspeed.as_ref(), &self.body, along)?;
-        Ok(())
+        ];
+        self.surface().check(&positive, cx)
     }
 
     /// The added mass and damping on the point's (z, φ), and the circulatory force: directly

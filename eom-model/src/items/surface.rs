@@ -1,10 +1,51 @@
 //! The checks a lifting surface (a [`Wing`](super::Wing) or [`Strip`](super::Strip)) shares:
 //! its axes, its positive quantities and its airspeed.
 
-use super::{Name, Vec3, field_error};
+use super::{GROUND, ModelScalar, Name, Validation, Vec3, field_error, zero3};
 use crate::error::ModelError;
 use crate::geometry::dot;
 use eom_sym::scalar::Scalar;
+
+/// What the shared checks read of a lifting surface.
+pub(crate) struct Surface<'a, S> {
+    /// `wing` or `strip`.
+    pub kind: &'static str,
+    /// The item's name.
+    pub item: &'a str,
+    /// The body it is on.
+    pub body: &'a Name,
+    /// Its forward and down axes.
+    pub axes: [&'a Vec3<S>; 2],
+    /// The given airspeed.
+    pub airspeed: Option<&'a S>,
+}
+
+impl<S: ModelScalar> Surface<'_, S> {
+    /// On a body, not the ground; the quantities `positive` (field, value, what) positive;
+    /// the axes orthonormal; the airspeed positive, given or not.
+    pub(crate) fn check(
+        &self,
+        positive: &[(&str, &S, &str)],
+        cx: &Validation<'_, S>,
+    ) -> Result<(), ModelError> {
+        let (kind, item) = (self.kind, self.item);
+        if &**self.body == GROUND {
+            return Err(field_error(
+                kind,
+                item,
+                "body",
+                format!("a {kind} must be on a body, not on the ground"),
+            ));
+        }
+        for (field, x, what) in positive {
+            check_positive(kind, item, field, *x, what)?;
+        }
+        check_axes(kind, item, self.axes[0], self.axes[1])?;
+        let velocity = cx.body(self.body).map_or(zero3(), |b| b.velocity);
+        let along = airspeed_with(self.airspeed.copied(), self.axes[0], &velocity);
+        check_airspeed(kind, item, self.airspeed, self.body, along)
+    }
+}
 
 /// Relative tolerance of the orthonormality of the axes at the nominal point.
 const AXES_TOLERANCE: f64 = 1e-9;
@@ -16,7 +57,7 @@ pub(crate) fn airspeed_with<S: Scalar>(airspeed: Option<S>, forward: &Vec3<S>, v
 }
 
 /// A positive quantity.
-pub(crate) fn check_positive<S: Scalar>(
+fn check_positive<S: Scalar>(
     kind: &str,
     item: &str,
     field: &str,
@@ -36,7 +77,7 @@ pub(crate) fn check_positive<S: Scalar>(
 }
 
 /// Forward and down are unit vectors, perpendicular, at the nominal point.
-pub(crate) fn check_axes<S: Scalar>(
+fn check_axes<S: Scalar>(
     kind: &str,
     item: &str,
     forward: &Vec3<S>,
@@ -70,7 +111,7 @@ pub(crate) fn check_axes<S: Scalar>(
 
 /// A given airspeed is positive; without one, the nominal velocity of `body` along the
 /// forward axis (`along`) must be.
-pub(crate) fn check_airspeed<S: Scalar>(
+fn check_airspeed<S: Scalar>(
     kind: &str,
     item: &str,
     airspeed: Option<&S>,

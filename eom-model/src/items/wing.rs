@@ -41,7 +41,8 @@
 
 use super::Validation;
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name, surface};
+use super::surface::{self, Surface};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name};
 use super::{label, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
@@ -367,26 +368,20 @@ impl<S: ModelScalar> Physics<S> for Wing<S> {
                 ),
             ));
         }
-        if &*self.body == GROUND {
-            return Err(field_error(
-                "wing",
-                &self.name,
-                "body",
-                "a wing must be on a body, not on the ground".into(),
-            ));
-        }
-        for (field, x, what) in [
+        let positive = [
             ("area", &self.area, "reference area"),
             ("chord", &self.chord, "reference chord"),
             ("span", &self.span, "reference span"),
             ("density", &self.density, "air density"),
-        ] {
-            surface::check_positive("wing", &self.name, field, x, what)?;
-        }
-        surface::check_axes("wing", &self.name, &self.forward, &self.down)?;
-        let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
-        let along = self.airspeed_with(&velocity);
-        surface::check_airspeed("wing", &self.name, self.airspeed.as_ref(), &self.body, along)?;
+        ];
+        let surface = Surface {
+            kind: "wing",
+            item: &self.name,
+            body: &self.body,
+            axes: [&self.forward, &self.down],
+            airspeed: self.airspeed.as_ref(),
+        };
+        surface.check(&positive, cx)?;
         self.check_damping_magnitude(cx)?;
         if self.derivatives.iter().flatten().all(|d| d.is_zero())
             && self.acceleration.iter().all(|d| d.is_zero())
