@@ -29,7 +29,6 @@ item! {
     pub fn new;
 }
 
-
 impl<S: ModelScalar> Physics<S> for Beam<S> {
     /// A nonzero length, and a bending-plane vector not parallel to the axis.
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {

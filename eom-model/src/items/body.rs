@@ -25,12 +25,12 @@ item! {
         /// Nominal velocity of the mass centre.
         pub velocity: Vec3<S> = zero3() => vector(velocity, "velocity", Polar),
         /// Nominal angular velocity (spin).
-        pub angular_velocity: Vec3<S> = zero3() => vector(angular_velocity, "angular_velocity", Axial),
+        pub angular_velocity: Vec3<S> = zero3()
+            => vector(angular_velocity, "angular_velocity", Axial),
     }
     /// A body with zero mass and inertia at the origin, at rest.
     pub fn new;
 }
-
 
 impl<S: ModelScalar> Physics<S> for Body<S> {
     /// A negative mass is an error; moments of inertia that no physical body has are a

@@ -267,7 +267,10 @@ macro_rules! item {
                 }
             }
 
-            #[doc = concat!("The ", $label, " converted field by field with `f`, in the order of [`Item::fields`](crate::items::Item::fields).")]
+            #[doc = concat!(
+                "The ", $label, " converted field by field with `f`, in the order of ",
+                "[`Item::fields`](crate::items::Item::fields)."
+            )]
             pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> $kind<T> {
                 $kind {
                     name: self.name.clone(),
@@ -293,17 +296,24 @@ macro_rules! item {
             }
             #[allow(unused_variables)]
             fn visit_fields(&self, f: &mut dyn FnMut($crate::items::Field, &S)) {
-                $($crate::items::item!(@visit $shape($($arg)*), &self.$field, stringify!($field), f);)*
+                $(
+                    let name = stringify!($field);
+                    $crate::items::item!(@visit $shape($($arg)*), &self.$field, name, f);
+                )*
             }
             #[allow(unused_variables)]
             fn check_shapes(
                 &self,
                 warn: &mut dyn FnMut(String),
             ) -> Result<(), $crate::error::ModelError> {
-                $($crate::items::item!(@check $shape($($arg)*), &self.$field, $label, &self.name, warn);)*
+                $(
+                    let x = &self.$field;
+                    $crate::items::item!(@check $shape($($arg)*), x, $label, &self.name, warn);
+                )*
                 Ok(())
             }
-            #[allow(unused_mut)]
+            // Settings are pushed field by field, as the declaration lists them.
+            #[allow(unused_mut, clippy::vec_init_then_push)]
             fn list_settings(&self) -> Vec<(&'static str, $crate::items::Setting)> {
                 let mut out = Vec::new();
                 $($crate::items::item!(@setting $shape($($arg)*), &self.$field, $default, out);)*
@@ -480,7 +490,11 @@ macro_rules! item {
     (@builder $kind:ident [$($d:literal)*] ends($b:ident, $k:literal) $f:ident: $t:ty) => {
         impl<S> $kind<S> {
             $(#[doc = $d])*
-            pub fn $b(mut self, p1: $crate::geometry::Vec3<S>, p2: $crate::geometry::Vec3<S>) -> Self {
+            pub fn $b(
+                mut self,
+                p1: $crate::geometry::Vec3<S>,
+                p2: $crate::geometry::Vec3<S>,
+            ) -> Self {
                 self.$f = [p1, p2];
                 self
             }
@@ -521,7 +535,8 @@ macro_rules! item {
     };
     (@builder $kind:ident [$($d:literal)*] named_rows($($rest:tt)*) $f:ident: $t:ty) => {};
     // `vector` and `choice` take the value itself.
-    (@builder $kind:ident [$($d:literal)*] $shape:ident($b:ident, $k:literal $(, $rest:tt)*) $f:ident: $t:ty) => {
+    (@builder $kind:ident [$($d:literal)*]
+        $shape:ident($b:ident, $k:literal $(, $rest:tt)*) $f:ident: $t:ty) => {
         impl<S> $kind<S> {
             $(#[doc = $d])*
             pub fn $b(mut self, x: $t) -> Self {

@@ -20,14 +20,15 @@ item! {
         pub damping: [S; 2] = [S::zero(), S::zero()] => pair(damping, "damping"),
         /// Full `(forces+moments)²` stiffness matrix, rows ordered `[force rows; moment rows]`
         /// in the point's deterministic direction basis.
-        pub stiffness_matrix: Option<Vec<Vec<S>>> = None => matrix(stiffness_matrix, "stiffness_matrix"),
+        pub stiffness_matrix: Option<Vec<Vec<S>>> = None
+            => matrix(stiffness_matrix, "stiffness_matrix"),
         /// Full damping matrix.
-        pub damping_matrix: Option<Vec<Vec<S>>> = None => matrix(damping_matrix, "damping_matrix"),
+        pub damping_matrix: Option<Vec<Vec<S>>> = None
+            => matrix(damping_matrix, "damping_matrix"),
     }
     /// A bushing with zero properties.
     pub fn new;
 }
-
 
 impl<S: ModelScalar> Physics<S> for FlexPoint<S> {
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {

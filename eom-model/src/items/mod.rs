@@ -7,11 +7,13 @@
 //!
 //! Items name the bodies they connect; `"ground"` is the fixed frame and the default.
 //!
-//! Every kind implements [`Item`] and is declared once, in the `kinds!` table of this module
-//! (its name in messages, its model-file key and keys, its place in the order of [`KINDS`]),
-//! from which come the closed enum [`AnyItem`] a model stores its items in, the model-file
-//! reader's table and keys, the exporter's keys and the key table of docs/model-files.md. The
-//! crate documentation ("Adding an item kind") describes the trait and how a new kind is added.
+//! Every kind is declared once with its fields, in its module, by `item!` (see `declare.rs`:
+//! its name in messages, its model-file key, and each field's type, default, builder and key),
+//! writes its [`Physics`] by hand, and so implements [`Item`]. The `kinds!` table of this
+//! module lists the kinds in the order of [`KINDS`]; from it come the closed enum [`AnyItem`]
+//! a model stores its items in, the model-file reader's loop and keys, the exporter's keys and
+//! the key table of docs/model-files.md. The crate documentation ("Adding an item kind")
+//! describes how a new kind is added.
 
 mod actuator;
 mod beam;
@@ -35,8 +37,8 @@ mod wing;
 pub use actuator::Actuator;
 pub use beam::Beam;
 pub use body::Body;
-pub(crate) use declare::{concat_keys, item, key_count, map_matrix};
 pub use declare::{Choice, Connects, Declared, Physics, Source, VecKind};
+pub(crate) use declare::{concat_keys, item, key_count, map_matrix};
 pub use flex_point::FlexPoint;
 pub use link::Link;
 pub use load::Load;
@@ -84,10 +86,10 @@ pub const COMMON_KEYS: [&str; 2] = ["name", "mirror"];
 /// file like one.
 pub const BODY: Kind = Body::<f64>::KIND;
 
-/// Declares the item kinds, each once, in the order in which a model stores, validates and
-/// assembles them: its type, its name in messages, its file key and the keys of its tables.
-/// From this come the closed enum [`AnyItem`] (with the [`Item`] methods dispatched to the
-/// kind), [`KindId`], [`KINDS`], and the conversions [`Model::add`] takes.
+/// Lists the item kinds (each declared with its name, key and fields by `item!` in its
+/// module), in the order in which a model stores, validates and assembles them. From this
+/// come the closed enum [`AnyItem`] (with the [`Item`] methods dispatched to the kind),
+/// [`KindId`], [`KINDS`], and the conversions [`Model::add`] takes.
 ///
 /// [`Model::add`]: crate::Model::add
 macro_rules! kinds {

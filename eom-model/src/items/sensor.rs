@@ -108,7 +108,9 @@ impl Choice for SensorFrame {
         match s {
             "global" => Ok(SensorFrame::Global),
             "local" => Ok(SensorFrame::Local),
-            other => Err(format!("`{other}` is not a sensor frame; use global or local")),
+            other => Err(format!(
+                "`{other}` is not a sensor frame; use global or local"
+            )),
         }
     }
 }

@@ -29,8 +29,8 @@
 //! rotation adds the `U θ` part of the downwash as a stiffness on the rotations.
 
 use super::Validation;
-use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::surface::{self, Surface};
+use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
@@ -58,7 +58,8 @@ item! {
         /// Span width Δ of the strip.
         pub width: S = S::one() => scalar(width, "width"),
         /// Lift slope c_l per radian (2π: thin-airfoil theory).
-        pub lift_slope: S = S::from_f64(2.0 * std::f64::consts::PI) => scalar(lift_slope, "lift_slope"),
+        pub lift_slope: S = S::from_f64(2.0 * std::f64::consts::PI)
+            => scalar(lift_slope, "lift_slope"),
         /// Air density ρ.
         pub density: S = S::from_f64(1.225) => scalar(density, "density"),
         /// Airspeed U; `None`: the body's nominal velocity along `forward`.

@@ -52,7 +52,11 @@ const AXES_TOLERANCE: f64 = 1e-9;
 
 /// The airspeed used: the given one, else the component of `velocity` (the body's nominal
 /// velocity) along the forward axis.
-pub(crate) fn airspeed_with<S: Scalar>(airspeed: Option<S>, forward: &Vec3<S>, velocity: &Vec3<S>) -> S {
+pub(crate) fn airspeed_with<S: Scalar>(
+    airspeed: Option<S>,
+    forward: &Vec3<S>,
+    velocity: &Vec3<S>,
+) -> S {
     airspeed.unwrap_or_else(|| dot(forward, velocity))
 }
 

@@ -40,8 +40,8 @@
 //! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
 
 use super::Validation;
-use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::surface::{self, Surface};
+use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name};
 use super::{label, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
@@ -119,7 +119,8 @@ item! {
         /// attack, and the angle that a rotation in a given air stream adds) pass through
         /// R. T. Jones' approximation of Wagner's function with the semichord `c/2` (two lag
         /// states, `<name>.lag1`, `<name>.lag2`); the other columns stay quasi-steady.
-        pub unsteady: Unsteady = Unsteady::QuasiSteady => choice(unsteady, "unsteady", unless_default),
+        pub unsteady: Unsteady = Unsteady::QuasiSteady
+            => choice(unsteady, "unsteady", unless_default),
         /// Names given to [`Wing::derivative`] that are not derivative names (reported by the
         /// validation, since a builder cannot fail).
         unknown: Vec<String> = Vec::new() => hidden(),
@@ -352,7 +353,6 @@ impl<S: ModelScalar> Wing<S> {
         }
         Ok(())
     }
-
 }
 
 impl<S: ModelScalar> Physics<S> for Wing<S> {
