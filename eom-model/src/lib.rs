@@ -68,8 +68,9 @@
 //!
 //! # The item layer
 //!
-//! A body or item is a struct with builder methods in its own module under `items/`, and
-//! implements the trait [`Item`], which is all the rest of the crate knows of it:
+//! A body or item is a struct in its own module under `items/`, declared with its fields by
+//! the `item!` macro (`items/declare.rs`), and implements the trait [`Item`], which is all the
+//! rest of the crate knows of it:
 //!
 //! * [`Item::kind`], [`Item::name`]: how messages name it (``flex point `tyre` ``);
 //! * [`Item::fields`]: every scalar field with its [`Field`] name, in a fixed order, and the
@@ -88,30 +89,58 @@
 //!   ([`Assembly::lag_state`], [`Assembly::add_lag`]: a strip's or wing's unsteady lift),
 //!   which every reduction carries after the mechanical states.
 //!
-//! Every kind is declared once, in the `kinds!` table of `items/mod.rs`: its name in messages,
-//! its model-file key and the keys of its tables, and its place in the order. From it come the
-//! closed enum [`AnyItem`] in which a [`Model`] keeps its items (bodies apart), in the order of
-//! [`KINDS`], which fixes the order of the constraint rows and of their multipliers; the
-//! model-file reader's table and keys, the exporter's keys, and the key table of
-//! docs/model-files.md (checked by a test).
+//! A kind's declaration gives, once, its name in messages, its model-file key, the field
+//! holding the bodies it connects, whether it supports them, and every field with its type,
+//! default, documentation (units included), builder and model-file key. From it come the
+//! struct, its constructor and builders, its `map`, [`Item::fields`] and
+//! [`Item::settings`], its keys ([`Kind`]), the reading of its table in a model file
+//! (through the [`Source`](items::Source) trait the file reader implements) and the checks of
+//! the shapes it shares ([`Line`]'s length, [`Point`]'s directions). Only what the kind
+//! *does* is written by hand, as its [`Physics`](items::Physics): `validate` and `assemble`.
+//!
+//! The kinds are listed once, in order, in the `kinds!` table of `items/mod.rs`. From it come
+//! the closed enum [`AnyItem`] in which a [`Model`] keeps its items (bodies apart), in the
+//! order of [`KINDS`], which fixes the order of the constraint rows and of their multipliers;
+//! the model-file reader's loop over the kinds and their allowed keys, the exporter's keys and
+//! defaults, and the key table of docs/model-files.md (checked by a test).
 //!
 //! ## Adding an item kind
 //!
-//! 1. Write `items/<kind>.rs`: the struct (public fields, `name: Name`, scalars `S`), its
-//!    builders (a point geometry reuses [`Point`] and `point_builders!`, a two-point one
-//!    [`Line`] and `line_builders!`), its `map` to another scalar type, and `impl Item<S>`.
-//!    `assemble` is usually a few lines: e.g. a velocity-dependent damping block at a point of
-//!    one body takes the rows of its point,
-//!    `let (rows, _) = cx.point(&self.point, "wing", &self.name)`, and adds
-//!    `cx.add_rows_block(Term::Damping, &rows.rows, &self.damping)` (any square, not
-//!    necessarily symmetric, block with one row and column per direction: forces first, then
-//!    moments).
-//! 2. Declare it: `mod <kind>; pub use <kind>::<Kind>;` in `items/mod.rs`, and one line in
-//!    its `kinds!` table (where it stands there decides where its rows go); the compiler then
-//!    asks for its reader in `file/items.rs`; add its row to the key table of
-//!    docs/model-files.md (the test `key_table` prints it).
-//! 3. Test it: `fields_and_map_agree` (see any item module) checks that the field visitor and
-//!    the conversion agree; a closed-form model checks its terms.
+//! 1. Write `items/<kind>.rs`: the declaration and the physics, e.g.
+//!
+//!    ```text
+//!    item! {
+//!        /// A torsional damper about a line.
+//!        pub struct Damper<S>: "damper", "damper" (bodies: line, supports: false) {
+//!            /// Geometry.
+//!            pub line: Line<S> = Line::new() => line(),
+//!            /// Damping (N·m·s/rad).
+//!            pub damping: S = S::zero() => scalar(damping, "damping"),
+//!        }
+//!        /// A damper with zero damping.
+//!        pub fn new;
+//!    }
+//!
+//!    impl<S: ModelScalar> Physics<S> for Damper<S> {
+//!        fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+//!            let (rows, _) = cx.line(&self.line, "damper", &self.name);
+//!            cx.add_rows_block(Term::Damping, &rows.rows, &[vec![self.damping]]);
+//!            Ok(())
+//!        }
+//!    }
+//!    ```
+//!
+//!    The field shapes (`scalar`, `optional`, `vector`, `pair`, `matrix`, `ends`, `bodies`,
+//!    `body`, `text`, `choice`, `line`, `point`, …) are listed in `items/declare.rs`; a
+//!    field's reading, listing and export follow from its shape. Write `validate` only for
+//!    checks beyond the shapes' (a shared shape checks itself); what a model file gives in a
+//!    way no shape says (a wing's AVL file, a sensor's feedthrough table) is read by hand in
+//!    `file/items.rs` (`Builder::read`), before or after the declared fields.
+//! 2. List it: `mod <kind>; pub use <kind>::<Kind>;` and its place in the `kinds!` table of
+//!    `items/mod.rs` (where it stands there decides where its rows go); add its row to the key
+//!    table of docs/model-files.md (the test `key_table` prints it) and describe its keys there.
+//! 3. Test it: add it to `fields_and_map_agree` in `items/mod.rs` (the field visitor and the
+//!    conversion agree); a closed-form model checks its terms.
 //!
 
 #![warn(missing_docs)]

@@ -3,7 +3,7 @@
 
 use super::params::ParamRange;
 use crate::Model;
-use crate::items::{BODY, Field, Index, Item, Setting};
+use crate::items::{AnyItem, BODY, Body, Field, Index, Item, Setting};
 use eom_sym::Expr;
 use std::fmt::Write;
 
@@ -34,16 +34,24 @@ pub fn to_toml(model: &Model) -> String {
         let _ = writeln!(t, "{} = {{ {} }}", key(&info.name), fields.join(", "));
     }
     for b in &model.bodies {
-        write_item(&mut t, BODY.key, b);
+        write_item(&mut t, BODY.key, b, &Body::new(&b.name));
     }
     for item in model.items() {
-        write_item(&mut t, item.kind_id().kind().key, item);
+        let defaults = AnyItem::declared(item.kind_id(), item.name());
+        write_item(&mut t, item.kind_id().kind().key, item, &defaults);
     }
     t
 }
 
-/// One `[[kind]]` table.
-fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
+/// One `[[kind]]` table: its settings, then its fields, leaving out those that are zero where
+/// the declared default (`defaults`) is zero too.
+fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>, defaults: &dyn Item<Expr>) {
+    let mut nonzero_default: Vec<&'static str> = Vec::new();
+    defaults.fields(&mut |f, e| {
+        if !e.is_zero() && !nonzero_default.contains(&f.name) {
+            nonzero_default.push(f.name);
+        }
+    });
     let _ = writeln!(t, "\n[[{kind}]]\nname = {}", quote(item.name()));
     let mut feedthrough: Option<String> = None;
     for (k, s) in item.settings() {
@@ -88,7 +96,7 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
             }
             continue;
         }
-        if values.iter().all(|(_, e)| e.is_zero()) && !NONZERO_DEFAULT.contains(&name) {
+        if values.iter().all(|(_, e)| e.is_zero()) && !nonzero_default.contains(&name) {
             continue;
         }
         let _ = writeln!(t, "{} = {}", file_key(name), group(&values));
@@ -97,9 +105,6 @@ fn write_item(t: &mut String, kind: &str, item: &dyn Item<Expr>) {
         let _ = writeln!(t, "derivatives = {{ {} }}", derivatives.join(", "));
     }
 }
-
-/// Fields whose builder default is not zero: written even when zero.
-const NONZERO_DEFAULT: [&str; 4] = ["gain", "density", "semichord", "width"];
 
 /// The file's key for a field (the builders' `at` for a location).
 fn file_key(field: &str) -> &str {

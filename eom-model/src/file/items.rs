@@ -1,11 +1,14 @@
-//! One array of tables per item kind: fields read with positions, converted through the
-//! builders (so every default is the builder's), mirrored copies added where asked.
+//! One array of tables per item kind: each table's keys checked against its kind's, its fields
+//! read as the kind's declaration says (`Source`, so every default is the declaration's),
+//! what a declaration cannot say done by hand (a wing's AVL file and derivatives, a sensor's
+//! feedthrough), mirrored copies added where asked.
 
 use super::error::FileError;
 use super::mirror::{Mirror, mirror_name};
 use super::params::{Declarations, value_expr};
 use super::source::{Ctx, Table, Value, array_of};
 use crate::geometry::name;
+pub(crate) use crate::items::VecKind;
 use crate::items::*;
 use crate::model::{Model, Place};
 use eom_sym::{Expr, Scope};
@@ -53,16 +56,16 @@ impl<'a> Builder<'a> {
 
     /// Every kind, bodies first (items refer to them).
     pub fn all(&mut self, root: &Table<'a>) -> Result<(), FileError> {
-        self.each(root, &BODY, Self::body)?;
+        self.each(root, &BODY, None)?;
         for &id in KindId::ALL {
-            self.each(root, id.kind(), reader(id))?;
+            self.each(root, id.kind(), Some(id))?;
         }
         Ok(())
     }
 
-    /// Reads every `[[kind]]` table, and its mirror image where asked: the keys checked, the
-    /// name claimed, the fields read by `f`.
-    fn each(&mut self, root: &Table<'a>, kind: &Kind, f: Reader<'a>) -> Result<(), FileError> {
+    /// Reads every `[[kind]]` table (bodies where `id` is `None`), and its mirror image where
+    /// asked: the keys checked, the name claimed, the fields read by [`Builder::read`].
+    fn each(&mut self, root: &Table<'a>, kind: &Kind, id: Option<KindId>) -> Result<(), FileError> {
         let Kind {
             name: label,
             key: kind,
@@ -96,7 +99,7 @@ impl<'a> Builder<'a> {
             };
             t.only(&with_common(keys))?;
             self.claim(&t, label, &name)?;
-            f(self, &t, &name, None)?;
+            self.read(&t, id, &name, None)?;
             if let Some(m) = mirror {
                 let mirrored = mirror_name(&name).ok_or_else(|| {
                     t.error(
@@ -105,7 +108,7 @@ impl<'a> Builder<'a> {
                     )
                 })?;
                 self.claim(&t, label, &mirrored)?;
-                f(self, &t, &mirrored, Some(m))?;
+                self.read(&t, id, &mirrored, Some(m))?;
             }
         }
         Ok(())
@@ -140,6 +143,41 @@ impl<'a> Builder<'a> {
         self.spans.record(place, Some(t.span.clone()));
     }
 
+    /// Reads the body or item of kind `id` called `name` from table `t` (mirrored by `m`)
+    /// into the model: its declared fields, and what its kind reads by hand before and after.
+    fn read(
+        &mut self,
+        t: &Table<'_>,
+        id: Option<KindId>,
+        name: &str,
+        m: Option<Mirror>,
+    ) -> Result<(), FileError> {
+        let Some(id) = id else {
+            let mut body = Body::new(name);
+            body.read(&TableSource { b: self, t, m })?;
+            self.add(t, body);
+            return Ok(());
+        };
+        let mut item = AnyItem::declared(id, name);
+        match &mut item {
+            AnyItem::Wing(w) => self.wing_before(t, name, w)?,
+            AnyItem::Strip(s) => s.unsteady = self.unsteady.unwrap_or(s.unsteady),
+            _ => {}
+        }
+        item.read(&TableSource { b: self, t, m })?;
+        match &mut item {
+            AnyItem::Wing(w) => {
+                (w.forward, w.down) = mirrored_axes(t, m, w.forward, w.down);
+                self.wing_after(t, m, w)?;
+            }
+            AnyItem::Strip(s) => (s.forward, s.down) = mirrored_axes(t, m, s.forward, s.down),
+            AnyItem::Sensor(s) => self.feedthrough(t, m, s)?,
+            _ => {}
+        }
+        self.add(t, item);
+        Ok(())
+    }
+
     // ---------------------------------------------------------------- field readers
 
     pub(super) fn scalar(&self, t: &Table<'_>, key: &str) -> Result<Option<Expr>, FileError> {
@@ -164,7 +202,7 @@ impl<'a> Builder<'a> {
         Ok(Some(out.try_into().expect("N values")))
     }
 
-    pub(super) fn vector(
+    fn vector(
         &self,
         t: &Table<'_>,
         key: &str,
@@ -197,19 +235,50 @@ impl<'a> Builder<'a> {
         Ok(Some(out))
     }
 
-    /// `between = [body 1, body 2]` (mirrored names where mirrored); the default is the
-    /// builder's.
-    fn between(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Option<[String; 2]>, FileError> {
-        let Some(v) = t.get("between") else {
+    /// Two points, `key = [[x, y, z], [x, y, z]]` (mirrored where mirrored).
+    fn ends(
+        &self,
+        t: &Table<'_>,
+        key: &str,
+        m: Option<Mirror>,
+    ) -> Result<Option<[Vec3<Expr>; 2]>, FileError> {
+        let Some(v) = t.get(key) else {
             return Ok(None);
         };
-        let a = array_of(t, "between", v, 2)?;
+        let a = array_of(t, key, v, 2)?;
+        let mut e = Vec::new();
+        for x in a {
+            let p = array_of(t, key, x, 3)?;
+            let mut c = Vec::new();
+            for y in p {
+                c.push(value_expr(self.ctx, self.decl, y, &t.field_context(key))?);
+            }
+            let c: [Expr; 3] = c.try_into().expect("3");
+            e.push(match m {
+                Some(m) => m.apply(c, VecKind::Polar),
+                None => c,
+            });
+        }
+        Ok(Some([e[0], e[1]]))
+    }
+
+    /// `key = [body 1, body 2]` (mirrored names where mirrored).
+    fn between(
+        &self,
+        t: &Table<'_>,
+        key: &str,
+        m: Option<Mirror>,
+    ) -> Result<Option<[Name; 2]>, FileError> {
+        let Some(v) = t.get(key) else {
+            return Ok(None);
+        };
+        let a = array_of(t, key, v, 2)?;
         let mut out = Vec::new();
         for x in a {
             let DeValue::String(s) = x.get_ref() else {
-                return Err(t.field_error("between", &x.span(), "expected body names"));
+                return Err(t.field_error(key, &x.span(), "expected body names"));
             };
-            out.push(self.body_ref(t, "between", x, s, m)?);
+            out.push(name(&self.body_ref(t, key, x, s, m)?));
         }
         Ok(Some([out[0].clone(), out[1].clone()]))
     }
@@ -246,57 +315,7 @@ impl<'a> Builder<'a> {
         ))
     }
 
-    // ---------------------------------------------------------------- kinds
-
-    fn body(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let mut b = Body::new(name);
-        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
-            b = b.at(v);
-        }
-        if let Some(x) = self.scalar(t, "mass")? {
-            b = b.mass(x);
-        }
-        if let Some(v) = self.scalars::<3>(t, "moments")? {
-            b = b.moments(v);
-        }
-        if let Some(v) = self.scalars::<3>(t, "products")? {
-            b = b.products(match m {
-                Some(m) => m.products(v),
-                None => v,
-            });
-        }
-        if let Some(v) = self.vector(t, "velocity", m, VecKind::Polar)? {
-            b = b.velocity(v);
-        }
-        if let Some(v) = self.vector(t, "angular_velocity", m, VecKind::Axial)? {
-            b = b.angular_velocity(v);
-        }
-        self.add(t, b);
-        Ok(())
-    }
-
-    fn load(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let body = self
-            .named_body(t, "body", m)?
-            .unwrap_or_else(|| GROUND.to_string());
-        let mut l = Load::new(name, &body);
-        if let Some(v) = self.vector(t, "at", m, VecKind::Polar)? {
-            l = l.at(v);
-        }
-        if let Some(v) = self.vector(t, "force", m, VecKind::Polar)? {
-            l = l.force(v);
-        }
-        if let Some(v) = self.vector(t, "moment", m, VecKind::Axial)? {
-            l = l.moment(v);
-        }
-        if let Some(f) = self.named_body(t, "frame", m)? {
-            l = l.frame(&f);
-        }
-        self.add(t, l);
-        Ok(())
-    }
-
-    pub(super) fn named_body(
+    fn named_body(
         &self,
         t: &Table<'_>,
         key: &str,
@@ -311,231 +330,109 @@ impl<'a> Builder<'a> {
         self.body_ref(t, key, v, s, m).map(Some)
     }
 
-    /// `between`, `ends`, `twist` of a line item (the defaults where not given).
-    fn line(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Line<Expr>, FileError> {
-        let ends = match t.get("ends") {
-            None => None,
-            Some(v) => {
-                let a = array_of(t, "ends", v, 2)?;
-                let mut e = Vec::new();
-                for x in a {
-                    let p = array_of(t, "ends", x, 3)?;
-                    let mut c = Vec::new();
-                    for y in p {
-                        c.push(value_expr(
-                            self.ctx,
-                            self.decl,
-                            y,
-                            &t.field_context("ends"),
-                        )?);
-                    }
-                    let c: [Expr; 3] = c.try_into().expect("3");
-                    e.push(match m {
-                        Some(m) => m.apply(c, VecKind::Polar),
-                        None => c,
-                    });
-                }
-                Some([e[0], e[1]])
-            }
-        };
-        let mut line = Line::new();
-        if let Some(e) = ends {
-            line.ends = e;
-        }
-        if let Some([b1, b2]) = self.between(t, m)? {
-            line.bodies = [name(&b1), name(&b2)];
-        }
-        line.twist = t.bool("twist")?.unwrap_or(false);
-        Ok(line)
-    }
+    // ---------------------------------------------------------------- read by hand
 
-    fn spring(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let mut s = Spring::new(name);
-        s.line = self.line(t, m)?;
-        if let Some(x) = self.scalar(t, "stiffness")? {
-            s = s.stiffness(x);
-        }
-        if let Some(x) = self.scalar(t, "damping")? {
-            s = s.damping(x);
-        }
-        if let Some(x) = self.scalar(t, "inertance")? {
-            s = s.inertance(x);
-        }
-        if let Some(x) = self.scalar(t, "preload")? {
-            s = s.preload(x);
-        }
-        self.add(t, s);
-        Ok(())
-    }
-
-    fn link(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let mut link = Link::new(name);
-        link.line = self.line(t, m)?;
-        self.add(t, link);
-        Ok(())
-    }
-
-    fn actuator(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let mut a = Actuator::new(name);
-        a.line = self.line(t, m)?;
-        if let Some(x) = self.scalar(t, "gain")? {
-            a = a.gain(x);
-        }
-        if let Some(x) = self.scalar(t, "rate_gain")? {
-            a = a.rate_gain(x);
-        }
-        if let Some(u) = t.string("units")? {
-            a = a.units(&u);
-        }
-        self.add(t, a);
-        Ok(())
-    }
-
-    fn sensor(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let mut s = Sensor::new(name);
-        s.line = self.line(t, m)?;
-        if let Some(x) = self.scalar(t, "gain")? {
-            s = s.gain(x);
-        }
-        match t.string("order")?.as_deref() {
-            None | Some("displacement") => {}
-            Some("velocity") => s = s.velocity(),
-            Some("acceleration") => s = s.acceleration(),
-            Some(other) => {
-                let span = t.get("order").map(|x| x.span()).unwrap_or(t.span.clone());
-                return Err(t.field_error("order", &span, format!(
-                    "`{other}` is not a sensor order; use displacement, velocity or acceleration"
-                )));
-            }
-        }
-        match t.string("frame")?.as_deref() {
-            None | Some("global") => {}
-            Some("local") => s = s.local(),
-            Some(other) => {
-                let span = t.get("frame").map(|x| x.span()).unwrap_or(t.span.clone());
-                return Err(t.field_error(
-                    "frame",
-                    &span,
-                    format!("`{other}` is not a sensor frame; use global or local"),
-                ));
-            }
-        }
-        if let Some(v) = t.get("feedthrough") {
-            let f = Table::sub(self.ctx, v, t.field_context("feedthrough"))?;
-            f.only(&["actuator", "gain"])?;
-            let actuator = f
-                .string("actuator")?
-                .ok_or_else(|| f.error("`feedthrough` needs an `actuator`"))?;
-            let actuator = match m {
-                Some(_) => mirror_name(&actuator)
-                    .filter(|n| self.items.contains(n))
-                    .unwrap_or(actuator),
-                None => actuator,
-            };
-            let gain = self.scalar(&f, "gain")?.unwrap_or_else(|| Expr::int(-1));
-            s = s.feedthrough(&actuator, gain);
-        }
-        if let Some(u) = t.string("units")? {
-            s = s.units(&u);
-        }
-        self.add(t, s);
-        Ok(())
-    }
-
-    fn beam(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let l = self.line(t, m)?;
-        let mut b = Beam::new(name);
-        (b.bodies, b.ends) = (l.bodies, l.ends);
-        if let Some([e1, e2]) = self.scalars::<2>(t, "stiffness")? {
-            b = b.stiffness(e1, e2);
-        }
-        if let Some(x) = self.scalar(t, "mpul")? {
-            b = b.mpul(x);
-        }
-        if let Some(v) = self.vector(t, "perp", m, VecKind::Polar)? {
-            b = b.perp(v);
-        }
-        self.add(t, b);
-        Ok(())
-    }
-
-    /// `body`, `at`, `forward` and `down` of a lifting surface (a wing or strip); the axes not
-    /// given are `forward` and `down`, mirrored where mirrored.
-    pub(super) fn surface(
+    /// `feedthrough = { actuator = "…", gain = … }` of a sensor (the actuator's mirror image
+    /// in a mirrored copy, where it exists).
+    fn feedthrough(
         &self,
         t: &Table<'_>,
         m: Option<Mirror>,
-        forward: Vec3<Expr>,
-        down: Vec3<Expr>,
-    ) -> Result<SurfaceFrame, FileError> {
-        let polar = |key| self.vector(t, key, m, VecKind::Polar);
-        let mirrored = |v| m.map_or(v, |m| m.apply(v, VecKind::Polar));
-        Ok(SurfaceFrame {
-            body: self.named_body(t, "body", m)?,
-            at: polar("at")?,
-            forward: polar("forward")?.unwrap_or_else(|| mirrored(forward)),
-            down: polar("down")?.unwrap_or_else(|| mirrored(down)),
-        })
-    }
-
-    /// `between`, `at`, `forces`, `moments`, `axis`, `rolling_axis` of a point item (the
-    /// defaults where not given).
-    fn point(&self, t: &Table<'_>, m: Option<Mirror>) -> Result<Point<Expr>, FileError> {
-        let mut p = Point::new();
-        if let Some([b1, b2]) = self.between(t, m)? {
-            p.bodies = [name(&b1), name(&b2)];
-        }
-        let polar = |key| self.vector(t, key, m, VecKind::Polar);
-        p.location = polar("at")?.unwrap_or(p.location);
-        p.forces = t.count("forces", 3)?.unwrap_or(p.forces);
-        p.moments = t.count("moments", 3)?.unwrap_or(p.moments);
-        p.axis = polar("axis")?.unwrap_or(p.axis);
-        p.rolling_axis = polar("rolling_axis")?.unwrap_or(p.rolling_axis);
-        Ok(p)
-    }
-
-    fn rigid_point(
-        &mut self,
-        t: &Table<'_>,
-        name: &str,
-        m: Option<Mirror>,
+        s: &mut Sensor<Expr>,
     ) -> Result<(), FileError> {
-        let mut r = RigidPoint::new(name);
-        r.point = self.point(t, m)?;
-        self.add(t, r);
+        let Some(v) = t.get("feedthrough") else {
+            return Ok(());
+        };
+        let f = Table::sub(self.ctx, v, t.field_context("feedthrough"))?;
+        f.only(&["actuator", "gain"])?;
+        let actuator = f
+            .string("actuator")?
+            .ok_or_else(|| f.error("`feedthrough` needs an `actuator`"))?;
+        let actuator = match m {
+            Some(_) => mirror_name(&actuator)
+                .filter(|n| self.items.contains(n))
+                .unwrap_or(actuator),
+            None => actuator,
+        };
+        let gain = self.scalar(&f, "gain")?.unwrap_or_else(|| Expr::int(-1));
+        *s = s.clone().feedthrough(&actuator, gain);
         Ok(())
     }
+}
 
-    fn nh_point(&mut self, t: &Table<'_>, name: &str, m: Option<Mirror>) -> Result<(), FileError> {
-        let mut r = NhPoint::new(name);
-        r.point = self.point(t, m)?;
-        self.add(t, r);
-        Ok(())
-    }
+/// A table's fields as a kind's declaration reads them: with the table's positions in errors,
+/// mirrored by the table's mirror.
+struct TableSource<'s, 'a, 't> {
+    b: &'s Builder<'a>,
+    t: &'s Table<'t>,
+    m: Option<Mirror>,
+}
 
-    fn flex_point(
-        &mut self,
-        t: &Table<'_>,
-        name: &str,
-        m: Option<Mirror>,
-    ) -> Result<(), FileError> {
-        let mut f = FlexPoint::new(name);
-        f.point = self.point(t, m)?;
-        if let Some([k, kr]) = self.scalars::<2>(t, "stiffness")? {
-            f = f.stiffness(k, kr);
-        }
-        if let Some([c, cr]) = self.scalars::<2>(t, "damping")? {
-            f = f.damping(c, cr);
-        }
-        if let Some(k) = self.matrix(t, "stiffness_matrix")? {
-            f = f.stiffness_matrix(k);
-        }
-        if let Some(c) = self.matrix(t, "damping_matrix")? {
-            f = f.damping_matrix(c);
-        }
-        self.add(t, f);
-        Ok(())
+impl Source<Expr> for TableSource<'_, '_, '_> {
+    type Error = FileError;
+
+    fn scalar(&self, key: &'static str) -> Result<Option<Expr>, FileError> {
+        self.b.scalar(self.t, key)
     }
+    fn vector(&self, key: &'static str, kind: VecKind) -> Result<Option<Vec3<Expr>>, FileError> {
+        self.b.vector(self.t, key, self.m, kind)
+    }
+    fn pair(&self, key: &'static str) -> Result<Option<[Expr; 2]>, FileError> {
+        self.b.scalars::<2>(self.t, key)
+    }
+    fn matrix(&self, key: &'static str) -> Result<Option<Vec<Vec<Expr>>>, FileError> {
+        self.b.matrix(self.t, key)
+    }
+    fn ends(&self, key: &'static str) -> Result<Option<[Vec3<Expr>; 2]>, FileError> {
+        self.b.ends(self.t, key, self.m)
+    }
+    fn bodies(&self, key: &'static str) -> Result<Option<[Name; 2]>, FileError> {
+        self.b.between(self.t, key, self.m)
+    }
+    fn body(&self, key: &'static str) -> Result<Option<Name>, FileError> {
+        Ok(self.b.named_body(self.t, key, self.m)?.map(|b| name(&b)))
+    }
+    fn text(&self, key: &'static str) -> Result<Option<String>, FileError> {
+        self.t.string(key)
+    }
+    fn flag(&self, key: &'static str) -> Result<Option<bool>, FileError> {
+        self.t.bool(key)
+    }
+    fn count(&self, key: &'static str, max: u8) -> Result<Option<u8>, FileError> {
+        self.t.count(key, max)
+    }
+    fn choice<T: Choice>(&self, key: &'static str) -> Result<Option<T>, FileError> {
+        choice(self.t, key)
+    }
+}
+
+/// One of the names of a [`Choice`] at `key` of table `t`.
+fn choice<T: Choice>(t: &Table<'_>, key: &str) -> Result<Option<T>, FileError> {
+    let Some(s) = t.string(key)? else {
+        return Ok(None);
+    };
+    let span = t.get(key).map_or(t.span.clone(), |v| v.span());
+    T::from_name(&s)
+        .map(Some)
+        .map_err(|p| t.field_error(key, &span, p))
+}
+
+/// The axes of a lifting surface: those not given in its table are the defaults, mirrored
+/// where mirrored (those given were mirrored as they were read).
+fn mirrored_axes(
+    t: &Table<'_>,
+    m: Option<Mirror>,
+    forward: Vec3<Expr>,
+    down: Vec3<Expr>,
+) -> (Vec3<Expr>, Vec3<Expr>) {
+    let Some(m) = m else {
+        return (forward, down);
+    };
+    let default = |key, v| match t.get(key) {
+        None => m.apply(v, VecKind::Polar),
+        Some(_) => v,
+    };
+    (default("forward", forward), default("down", down))
 }
 
 /// The table that defined each body and item of a model, by its place in the model.
@@ -569,54 +466,9 @@ impl Spans {
     }
 }
 
-/// The reader of the fields of a kind (its keys are checked and its name claimed before).
-fn reader<'a>(id: KindId) -> Reader<'a> {
-    match id {
-        KindId::Load => Builder::load,
-        KindId::Spring => Builder::spring,
-        KindId::FlexPoint => Builder::flex_point,
-        KindId::Beam => Builder::beam,
-        KindId::Link => Builder::link,
-        KindId::RigidPoint => Builder::rigid_point,
-        KindId::NhPoint => Builder::nh_point,
-        KindId::Wing => Builder::wing,
-        KindId::Strip => Builder::strip,
-        KindId::Actuator => Builder::actuator,
-        KindId::Sensor => Builder::sensor,
-    }
-}
-
-/// The frame of a lifting surface as its table gives it (see [`Builder::surface`]).
-pub(super) struct SurfaceFrame {
-    pub body: Option<String>,
-    pub at: Option<Vec3<Expr>>,
-    pub forward: Vec3<Expr>,
-    pub down: Vec3<Expr>,
-}
-
 /// `unsteady = "quasi-steady" | "jones" | "auto"` of table `t`.
 pub(super) fn unsteady(t: &Table<'_>) -> Result<Option<Unsteady>, FileError> {
-    let Some(u) = t.string("unsteady")? else {
-        return Ok(None);
-    };
-    let span = t.get("unsteady").map_or(t.span.clone(), |v| v.span());
-    Unsteady::parse(&u).map(Some).map_err(|_| {
-        t.field_error(
-            "unsteady",
-            &span,
-            format!("`{u}`: expected \"quasi-steady\", \"jones\" or \"auto\""),
-        )
-    })
-}
-
-type Reader<'a> = fn(&mut Builder<'a>, &Table<'_>, &str, Option<Mirror>) -> Result<(), FileError>;
-
-/// How a vector transforms under a mirror: a position or direction (polar), or a rotation or
-/// moment (axial, a pseudo-vector).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum VecKind {
-    Polar,
-    Axial,
+    choice(t, "unsteady")
 }
 
 fn with_common(keys: &[&'static str]) -> Vec<&'static str> {

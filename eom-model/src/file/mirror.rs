@@ -30,6 +30,8 @@ impl Mirror {
             let flip = match kind {
                 VecKind::Polar => k == self.axis,
                 VecKind::Axial => k != self.axis,
+                VecKind::Products => return self.products(v),
+                VecKind::Plain => return v,
             };
             if flip && !x.is_zero() {
                 *x = -*x;

@@ -48,7 +48,6 @@ mod items;
 mod mirror;
 mod params;
 mod source;
-mod strip;
 mod wing;
 
 pub use error::FileError;

@@ -3,7 +3,7 @@
 //! relative to the model file.
 
 use super::error::FileError;
-use super::items::{Builder, unsteady};
+use super::items::Builder;
 use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
@@ -38,53 +38,42 @@ fn stability_axis_hint(key: &str) -> Option<String> {
 }
 
 impl Builder<'_> {
-    pub(super) fn wing(
+    /// Before a wing's declared fields: the reference quantities and derivatives of its AVL
+    /// file (`avl`, which `area`, `chord` and `span` may not repeat), and the model's default
+    /// `unsteady`.
+    pub(super) fn wing_before(
         &mut self,
         t: &Table<'_>,
         name: &str,
-        m: Option<Mirror>,
+        w: &mut Wing<Expr>,
     ) -> Result<(), FileError> {
-        let mut w = match self.avl_file(t, name)? {
-            Some(d) => {
-                for key in ["area", "chord", "span"] {
-                    if let Some(v) = t.get(key) {
-                        return Err(t.field_error(
-                            key,
-                            &v.span(),
-                            "comes from the AVL file (`avl`); give one or the other",
-                        ));
-                    }
+        if let Some(d) = self.avl_file(t, name)? {
+            for key in ["area", "chord", "span"] {
+                if let Some(v) = t.get(key) {
+                    return Err(t.field_error(
+                        key,
+                        &v.span(),
+                        "comes from the AVL file (`avl`); give one or the other",
+                    ));
                 }
-                Wing::from_derivatives(name, &d)
             }
-            None => Wing::new(name),
-        };
+            *w = Wing::from_derivatives(name, &d);
+        }
         if let Some(u) = self.unsteady {
-            w = w.unsteady(u);
+            w.unsteady = u;
         }
-        let frame = self.surface(t, m, w.forward, w.down)?;
-        if let Some(b) = frame.body {
-            w = w.on(&b);
-        }
-        if let Some(v) = frame.at {
-            w = w.at(v);
-        }
-        w = w.axes(frame.forward, frame.down);
-        for (key, set) in [
-            ("area", Wing::area as fn(Wing<Expr>, Expr) -> Wing<Expr>),
-            ("chord", Wing::chord),
-            ("span", Wing::span),
-            ("density", Wing::density),
-            ("airspeed", Wing::airspeed),
-        ] {
-            if let Some(x) = self.scalar(t, key)? {
-                w = set(w, x);
-            }
-        }
-        w = self.derivative_table(t, w)?;
-        if let Some(u) = unsteady(t)? {
-            w = w.unsteady(u);
-        }
+        Ok(())
+    }
+
+    /// After a wing's declared fields: its `derivatives` table, and in a mirrored copy the
+    /// signs of the derivatives that change with the wing's y.
+    pub(super) fn wing_after(
+        &self,
+        t: &Table<'_>,
+        m: Option<Mirror>,
+        w: &mut Wing<Expr>,
+    ) -> Result<(), FileError> {
+        self.derivative_table(t, w)?;
         if m.is_some() {
             for (i, d) in w.acceleration.iter_mut().enumerate() {
                 if MIRROR_SIGNS[i] * MIRROR_SIGNS[2] < 0.0 && !d.is_zero() {
@@ -99,14 +88,13 @@ impl Builder<'_> {
                 }
             }
         }
-        self.add(t, w);
         Ok(())
     }
 
     /// `derivatives = { CYv = …, … }`: each by its AVL name (replacing the AVL file's).
-    fn derivative_table(&self, t: &Table<'_>, mut w: Wing<Expr>) -> Result<Wing<Expr>, FileError> {
+    fn derivative_table(&self, t: &Table<'_>, w: &mut Wing<Expr>) -> Result<(), FileError> {
         let Some(v) = t.get("derivatives") else {
-            return Ok(w);
+            return Ok(());
         };
         let d = Table::sub(self.ctx, v, t.field_context("derivatives"))?;
         for (key, span, value) in d.entries() {
@@ -133,7 +121,7 @@ impl Builder<'_> {
             let x = value_expr(self.ctx, self.decl, value, &t.field_context("derivatives"))?;
             w.derivatives[i][j] = x;
         }
-        Ok(w)
+        Ok(())
     }
 
     /// `avl = "file"`: the derivatives (and S, c, b) of an AVL `.sb` or `.st` file, or of a

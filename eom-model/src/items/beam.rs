@@ -1,119 +1,35 @@
 //! [`Beam`]: an Euler–Bernoulli beam between two bodies, bending in two planes.
 
 use super::Validation;
-use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name, visit3, zero3};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name, zero3};
 use crate::assemble::RowLabel;
 use crate::assemble::{Assembly, ItemRow, Reaction, Rows, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, cross, scale, sub, unit};
 use eom_sym::scalar::Scalar;
 
-/// An Euler–Bernoulli beam between two bodies (bending in two planes, no torsion or axial
-/// stiffness).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Beam<S> {
-    /// Unique name.
-    pub name: Name,
-    /// `[body 1, body 2]`.
-    pub bodies: [Name; 2],
-    /// End points.
-    pub ends: [Vec3<S>; 2],
-    /// Bending stiffness `[EI₁, EI₂]` towards the two bending directions.
-    pub stiffness: [S; 2],
-    /// Mass per unit length.
-    pub mpul: S,
-    /// A vector that with the axis defines bending plane 1 (not parallel to the axis).
-    pub perp: Vec3<S>,
-}
-impl<S: Scalar> Beam<S> {
+item! {
+    /// An Euler–Bernoulli beam between two bodies (bending in two planes, no torsion or axial
+    /// stiffness).
+    pub struct Beam<S>: "beam", "beam"
+        (bodies: bodies, supports: true)
+    {
+        /// `[body 1, body 2]`.
+        pub bodies: [Name; 2] = [name(GROUND), name(GROUND)] => bodies(between, "between"),
+        /// End points.
+        pub ends: [Vec3<S>; 2] = [zero3(), zero3()] => ends(ends, "ends"),
+        /// Bending stiffness `[EI₁, EI₂]` towards the two bending directions.
+        pub stiffness: [S; 2] = [S::zero(), S::zero()] => pair(stiffness, "stiffness"),
+        /// Mass per unit length.
+        pub mpul: S = S::zero() => scalar(mpul, "mpul"),
+        /// A vector that with the axis defines bending plane 1 (not parallel to the axis).
+        pub perp: Vec3<S> = zero3() => vector(perp, "perp", Polar),
+    }
     /// A beam with zero properties.
-    pub fn new(n: &str) -> Self {
-        Beam {
-            name: name(n),
-            bodies: [name(GROUND), name(GROUND)],
-            ends: [zero3(), zero3()],
-            stiffness: [S::zero(), S::zero()],
-            mpul: S::zero(),
-            perp: zero3(),
-        }
-    }
-    /// The two bodies.
-    pub fn between(mut self, b1: &str, b2: &str) -> Self {
-        self.bodies = [name(b1), name(b2)];
-        self
-    }
-    /// End points.
-    pub fn ends(mut self, p1: Vec3<S>, p2: Vec3<S>) -> Self {
-        self.ends = [p1, p2];
-        self
-    }
-    /// Bending stiffnesses.
-    pub fn stiffness(mut self, ei1: impl Into<S>, ei2: impl Into<S>) -> Self {
-        self.stiffness = [ei1.into(), ei2.into()];
-        self
-    }
-    /// Mass per unit length.
-    pub fn mpul(mut self, mu: impl Into<S>) -> Self {
-        self.mpul = mu.into();
-        self
-    }
-    /// Bending plane vector.
-    pub fn perp(mut self, p: Vec3<S>) -> Self {
-        self.perp = p;
-        self
-    }
+    pub fn new;
 }
 
-impl<S: Scalar> Beam<S> {
-    /// The beam converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Beam<T> {
-        Beam {
-            name: self.name.clone(),
-            bodies: self.bodies.clone(),
-            ends: [map3(&self.ends[0], f), map3(&self.ends[1], f)],
-            stiffness: [f(&self.stiffness[0]), f(&self.stiffness[1])],
-            mpul: f(&self.mpul),
-            perp: map3(&self.perp, f),
-        }
-    }
-}
-
-impl<S: ModelScalar> Item<S> for Beam<S> {
-    fn kind(&self) -> &'static str {
-        "beam"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        vec![(
-            "between",
-            super::Setting::Pair(self.bodies.clone().map(|b| b.to_string())),
-        )]
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        for (i, end) in self.ends.iter().enumerate() {
-            for (k, x) in end.iter().enumerate() {
-                f(Field::nth_axis("ends", i, k), x);
-            }
-        }
-        f(Field::nth("stiffness", 0), &self.stiffness[0]);
-        f(Field::nth("stiffness", 1), &self.stiffness[1]);
-        f(Field::scalar("mpul"), &self.mpul);
-        visit3(f, "perp", &self.perp);
-    }
-
-    fn bodies(&self) -> &[Name] {
-        &self.bodies
-    }
-
-    fn supports(&self) -> bool {
-        true
-    }
-
+impl<S: ModelScalar> Physics<S> for Beam<S> {
     /// A nonzero length, and a bending-plane vector not parallel to the axis.
     fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         let t = geometry::sub(&self.ends[1], &self.ends[0]);

@@ -1,119 +1,38 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
 use super::Validation;
-use super::{Field, Item, ModelScalar, Name, Vec3, field_error, label, map3, name, visit3, zero3};
+use super::{ModelScalar, Physics, Vec3, field_error, item, label, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
 use eom_sym::scalar::Scalar;
 
-/// A rigid body: mass, inertia about its mass centre (global axes), and the nominal motion
-/// about which the equations are linearized.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Body<S> {
-    /// Unique name.
-    pub name: Name,
-    /// Mass centre location.
-    pub location: Vec3<S>,
-    /// Mass (zero is allowed: a massless body).
-    pub mass: S,
-    /// `[Ixx, Iyy, Izz]` about the mass centre.
-    pub moments: Vec3<S>,
-    /// `[Ixy, Iyz, Izx]` as positive integrals (∫xy dm, …); they enter the tensor with a minus
-    /// sign.
-    pub products: Vec3<S>,
-    /// Nominal velocity of the mass centre.
-    pub velocity: Vec3<S>,
-    /// Nominal angular velocity (spin).
-    pub angular_velocity: Vec3<S>,
-}
-
-impl<S: Scalar> Body<S> {
+item! {
+    /// A rigid body: mass, inertia about its mass centre (global axes), and the nominal motion
+    /// about which the equations are linearized.
+    pub struct Body<S>: "body", "body"
+        (bodies: none, supports: false)
+    {
+        /// Mass centre location.
+        pub location: Vec3<S> = zero3() => vector(at, "at", Polar),
+        /// Mass (zero is allowed: a massless body).
+        pub mass: S = S::zero() => scalar(mass, "mass"),
+        /// `[Ixx, Iyy, Izz]` about the mass centre.
+        pub moments: Vec3<S> = zero3() => vector(moments, "moments", Plain),
+        /// `[Ixy, Iyz, Izx]` as positive integrals (∫xy dm, …); they enter the tensor with a
+        /// minus sign.
+        pub products: Vec3<S> = zero3() => vector(products, "products", Products),
+        /// Nominal velocity of the mass centre.
+        pub velocity: Vec3<S> = zero3() => vector(velocity, "velocity", Polar),
+        /// Nominal angular velocity (spin).
+        pub angular_velocity: Vec3<S> = zero3()
+            => vector(angular_velocity, "angular_velocity", Axial),
+    }
     /// A body with zero mass and inertia at the origin, at rest.
-    pub fn new(n: &str) -> Self {
-        Body {
-            name: name(n),
-            location: zero3(),
-            mass: S::zero(),
-            moments: zero3(),
-            products: zero3(),
-            velocity: zero3(),
-            angular_velocity: zero3(),
-        }
-    }
-    /// Mass centre location.
-    pub fn at(mut self, location: Vec3<S>) -> Self {
-        self.location = location;
-        self
-    }
-    /// Mass.
-    pub fn mass(mut self, m: impl Into<S>) -> Self {
-        self.mass = m.into();
-        self
-    }
-    /// Moments of inertia `[Ixx, Iyy, Izz]`.
-    pub fn moments(mut self, i: Vec3<S>) -> Self {
-        self.moments = i;
-        self
-    }
-    /// Products of inertia `[Ixy, Iyz, Izx]` (positive integrals).
-    pub fn products(mut self, p: Vec3<S>) -> Self {
-        self.products = p;
-        self
-    }
-    /// Nominal velocity.
-    pub fn velocity(mut self, v: Vec3<S>) -> Self {
-        self.velocity = v;
-        self
-    }
-    /// Nominal angular velocity.
-    pub fn angular_velocity(mut self, w: Vec3<S>) -> Self {
-        self.angular_velocity = w;
-        self
-    }
+    pub fn new;
 }
 
-impl<S: Scalar> Body<S> {
-    /// The body converted with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Body<T> {
-        Body {
-            name: self.name.clone(),
-            location: map3(&self.location, f),
-            mass: f(&self.mass),
-            moments: map3(&self.moments, f),
-            products: map3(&self.products, f),
-            velocity: map3(&self.velocity, f),
-            angular_velocity: map3(&self.angular_velocity, f),
-        }
-    }
-}
-
-impl<S: ModelScalar> Item<S> for Body<S> {
-    fn kind(&self) -> &'static str {
-        "body"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        visit3(f, "location", &self.location);
-        f(Field::scalar("mass"), &self.mass);
-        visit3(f, "moments", &self.moments);
-        visit3(f, "products", &self.products);
-        visit3(f, "velocity", &self.velocity);
-        visit3(f, "angular_velocity", &self.angular_velocity);
-    }
-
-    fn bodies(&self) -> &[Name] {
-        &[]
-    }
-
-    fn supports(&self) -> bool {
-        false
-    }
-
+impl<S: ModelScalar> Physics<S> for Body<S> {
     /// A negative mass is an error; moments of inertia that no physical body has are a
     /// warning. (The name is checked with the other bodies' names.)
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {

@@ -1,9 +1,12 @@
-//! How a line item lists its [`Line`]: its settings and its scalar fields.
+//! How a line item lists and reads its [`Line`]: its keys, settings and scalar fields.
 
-use super::{Field, Setting};
+use super::{Field, Setting, Source, visit_ends};
 use crate::geometry::Line;
 
 impl<S> Line<S> {
+    /// The model-file keys of a line.
+    pub const KEYS: &'static [&'static str] = &["between", "ends", "twist"];
+
     /// `between` and `twist`.
     pub(crate) fn settings(&self) -> Vec<(&'static str, Setting)> {
         vec![
@@ -17,10 +20,18 @@ impl<S> Line<S> {
 
     /// Visit the end points, in the order of [`Line::map`].
     pub(crate) fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        for (i, end) in self.ends.iter().enumerate() {
-            for (k, x) in end.iter().enumerate() {
-                f(Field::nth_axis("ends", i, k), x);
-            }
+        visit_ends(f, "ends", &self.ends);
+    }
+
+    /// `ends`, `between` and `twist` where `source` gives them.
+    pub(crate) fn read<R: Source<S>>(&mut self, source: &R) -> Result<(), R::Error> {
+        if let Some(e) = source.ends("ends")? {
+            self.ends = e;
         }
+        if let Some(b) = source.bodies("between")? {
+            self.bodies = b;
+        }
+        self.twist = source.flag("twist")?.unwrap_or(false);
+        Ok(())
     }
 }

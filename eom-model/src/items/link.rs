@@ -1,70 +1,24 @@
 //! [`Link`]: an inextensible rigid link between two bodies.
 
-use super::Validation;
-use super::{Field, Item, ModelScalar, Name, name};
+use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction};
 use crate::error::ModelError;
-use crate::geometry::{Line, line_builders};
+use crate::geometry::Line;
 use eom_sym::scalar::Scalar;
 
-/// An inextensible rigid link.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Link<S> {
-    /// Unique name.
-    pub name: Name,
-    /// Geometry.
-    pub line: Line<S>,
-}
-impl<S: Scalar> Link<S> {
+item! {
+    /// An inextensible rigid link.
+    pub struct Link<S>: "link", "link"
+        (bodies: line, supports: true)
+    {
+        /// Geometry.
+        pub line: Line<S> = Line::new() => line(),
+    }
     /// A link between ground and ground (set bodies and ends).
-    pub fn new(n: &str) -> Self {
-        Link {
-            name: name(n),
-            line: Line::new(),
-        }
-    }
-}
-line_builders!(Link);
-
-impl<S: Scalar> Link<S> {
-    /// The link converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Link<T> {
-        Link {
-            name: self.name.clone(),
-            line: self.line.map(f),
-        }
-    }
+    pub fn new;
 }
 
-impl<S: ModelScalar> Item<S> for Link<S> {
-    fn kind(&self) -> &'static str {
-        "link"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        self.line.settings()
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        self.line.fields(f);
-    }
-
-    fn bodies(&self) -> &[Name] {
-        &self.line.bodies
-    }
-
-    fn supports(&self) -> bool {
-        true
-    }
-
-    fn validate(&self, _cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.line.validate("link", &self.name)
-    }
-
+impl<S: ModelScalar> Physics<S> for Link<S> {
     /// One holonomic row; its multiplier is the tension.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         let (rows, geometry) = cx.line(&self.line, "link", &self.name);

@@ -7,15 +7,18 @@
 //!
 //! Items name the bodies they connect; `"ground"` is the fixed frame and the default.
 //!
-//! Every kind implements [`Item`] and is declared once, in the `kinds!` table of this module
-//! (its name in messages, its model-file key and keys, its place in the order of [`KINDS`]),
-//! from which come the closed enum [`AnyItem`] a model stores its items in, the model-file
-//! reader's table and keys, the exporter's keys and the key table of docs/model-files.md. The
-//! crate documentation ("Adding an item kind") describes the trait and how a new kind is added.
+//! Every kind is declared once with its fields, in its module, by `item!` (see `declare.rs`:
+//! its name in messages, its model-file key, and each field's type, default, builder and key),
+//! writes its [`Physics`] by hand, and so implements [`Item`]. The `kinds!` table of this
+//! module lists the kinds in the order of [`KINDS`]; from it come the closed enum [`AnyItem`]
+//! a model stores its items in, the model-file reader's loop and keys, the exporter's keys and
+//! the key table of docs/model-files.md. The crate documentation ("Adding an item kind")
+//! describes how a new kind is added.
 
 mod actuator;
 mod beam;
 mod body;
+mod declare;
 mod flex_point;
 mod line;
 mod link;
@@ -26,6 +29,7 @@ mod rigid_point;
 mod sensor;
 mod spring;
 mod strip;
+mod surface;
 mod unsteady;
 mod validation;
 mod wing;
@@ -33,6 +37,8 @@ mod wing;
 pub use actuator::Actuator;
 pub use beam::Beam;
 pub use body::Body;
+pub use declare::{Choice, Connects, Declared, Physics, Source, VecKind};
+pub(crate) use declare::{concat_keys, item, key_count, map_matrix};
 pub use flex_point::FlexPoint;
 pub use link::Link;
 pub use load::Load;
@@ -50,7 +56,7 @@ pub use crate::geometry::{GROUND, Line, Name, Point, Vec3, vec3, x_axis, y_axis,
 use crate::assemble::Assembly;
 use crate::error::ModelError;
 pub(crate) use crate::error::{field_error, label};
-pub(crate) use crate::geometry::{map3, name};
+pub(crate) use crate::geometry::name;
 use eom_sym::scalar::Scalar;
 use eom_sym::{Dd, Expr};
 
@@ -78,32 +84,21 @@ pub const COMMON_KEYS: [&str; 2] = ["name", "mirror"];
 
 /// The body: not an item (a model keeps its bodies apart and first), but a table of a model
 /// file like one.
-pub const BODY: Kind = Kind {
-    name: "body",
-    key: "body",
-    keys: &[
-        "at",
-        "mass",
-        "moments",
-        "products",
-        "velocity",
-        "angular_velocity",
-    ],
-};
+pub const BODY: Kind = Body::<f64>::KIND;
 
-/// Declares the item kinds, each once, in the order in which a model stores, validates and
-/// assembles them: its type, its name in messages, its file key and the keys of its tables.
-/// From this come the closed enum [`AnyItem`] (with the [`Item`] methods dispatched to the
-/// kind), [`KindId`], [`KINDS`], and the conversions [`Model::add`] takes.
+/// Lists the item kinds (each declared with its name, key and fields by `item!` in its
+/// module), in the order in which a model stores, validates and assembles them. From this
+/// come the closed enum [`AnyItem`] (with the [`Item`] methods dispatched to the kind),
+/// [`KindId`], [`KINDS`], and the conversions [`Model::add`] takes.
 ///
 /// [`Model::add`]: crate::Model::add
 macro_rules! kinds {
-    ($($kind:ident: $name:literal, $key:literal, [$($field:literal),* $(,)?];)*) => {
+    ($($kind:ident),* $(,)?) => {
         /// Any item of a model: one variant per kind (bodies are kept apart).
         #[derive(Clone, Debug, PartialEq)]
         pub enum AnyItem<S> {
             $(
-                #[doc = concat!("A ", $name, ".")]
+                #[doc = concat!("A [`", stringify!($kind), "`].")]
                 $kind($kind<S>),
             )*
         }
@@ -112,7 +107,7 @@ macro_rules! kinds {
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
         pub enum KindId {
             $(
-                #[doc = concat!("The ", $name, ".")]
+                #[doc = concat!("The kind of [`", stringify!($kind), "`].")]
                 $kind,
             )*
         }
@@ -125,9 +120,7 @@ macro_rules! kinds {
         /// flex points' and then the beams'; the holonomic rows the links' and then the rigid
         /// points'. Inputs come before outputs, so a sensor finds the actuator it feeds
         /// through.
-        pub const KINDS: &[Kind] = &[
-            $(Kind { name: $name, key: $key, keys: &[$($field),*] },)*
-        ];
+        pub const KINDS: &[Kind] = &[$($kind::<f64>::KIND,)*];
 
         impl<S> AnyItem<S> {
             /// The item's kind.
@@ -168,6 +161,23 @@ macro_rules! kinds {
                     $(AnyItem::$kind(x) => x,)*
                 }
             }
+
+            /// An item of kind `id` with every field at its declared default.
+            pub(crate) fn declared(id: KindId, name: &str) -> Self
+            where
+                S: Scalar,
+            {
+                match id {
+                    $(KindId::$kind => AnyItem::$kind($kind::declared(name)),)*
+                }
+            }
+
+            /// Sets every field of the item that `source` gives.
+            pub(crate) fn read<R: Source<S>>(&mut self, source: &R) -> Result<(), R::Error> {
+                match self {
+                    $(AnyItem::$kind(x) => x.read(source),)*
+                }
+            }
         }
 
         $(
@@ -187,36 +197,7 @@ macro_rules! kinds {
 }
 
 kinds! {
-    Load: "load", "load", ["body", "at", "force", "moment", "frame"];
-    Spring: "spring", "spring", [
-        "between", "ends", "twist", "stiffness", "damping", "inertance", "preload",
-    ];
-    FlexPoint: "flex point", "flex_point", [
-        "between", "at", "forces", "moments", "axis", "rolling_axis", "stiffness", "damping",
-        "stiffness_matrix", "damping_matrix",
-    ];
-    Beam: "beam", "beam", ["between", "ends", "stiffness", "mpul", "perp"];
-    Link: "link", "link", ["between", "ends", "twist"];
-    RigidPoint: "rigid point", "rigid_point", [
-        "between", "at", "forces", "moments", "axis", "rolling_axis",
-    ];
-    NhPoint: "nh point", "nh_point", [
-        "between", "at", "forces", "moments", "axis", "rolling_axis",
-    ];
-    Wing: "wing", "wing", [
-        "body", "at", "forward", "down", "area", "chord", "span", "density", "airspeed",
-        "derivatives", "avl", "unsteady",
-    ];
-    Strip: "strip", "strip", [
-        "body", "at", "forward", "down", "semichord", "elastic_axis", "width", "lift_slope",
-        "density", "airspeed", "unsteady",
-    ];
-    Actuator: "actuator", "actuator", [
-        "between", "ends", "twist", "gain", "rate_gain", "units",
-    ];
-    Sensor: "sensor", "sensor", [
-        "between", "ends", "twist", "gain", "order", "frame", "feedthrough", "units",
-    ];
+    Load, Spring, FlexPoint, Beam, Link, RigidPoint, NhPoint, Wing, Strip, Actuator, Sensor,
 }
 
 impl KindId {
@@ -251,30 +232,71 @@ impl<S> From<AnyItem<S>> for Part<S> {
 }
 
 /// An item dispatches to its kind.
-impl<S: ModelScalar> Item<S> for AnyItem<S> {
-    fn kind(&self) -> &'static str {
+impl<S: ModelScalar> Declared<S> for AnyItem<S> {
+    fn item_kind(&self) -> &'static str {
         AnyItem::kind(self)
     }
-    fn name(&self) -> &Name {
+    fn item_name(&self) -> &Name {
         AnyItem::name(self)
     }
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        self.as_item().fields(f)
-    }
-    fn settings(&self) -> Vec<(&'static str, Setting)> {
-        self.as_item().settings()
-    }
-    fn bodies(&self) -> &[Name] {
+    fn item_bodies(&self) -> &[Name] {
         self.as_item().bodies()
     }
-    fn supports(&self) -> bool {
+    fn item_supports(&self) -> bool {
         self.as_item().supports()
     }
+    /// Checked by the kind's own validation (which this dispatches to).
+    fn check_shapes(&self, _warn: &mut dyn FnMut(String)) -> Result<(), ModelError> {
+        Ok(())
+    }
+    fn visit_fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        self.as_item().fields(f)
+    }
+    fn list_settings(&self) -> Vec<(&'static str, Setting)> {
+        self.as_item().settings()
+    }
+}
+
+/// An item dispatches to its kind.
+impl<S: ModelScalar> Physics<S> for AnyItem<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         self.as_item().validate(cx)
     }
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         self.as_item().assemble(cx)
+    }
+}
+
+/// Every declared kind with its physics is an item.
+impl<S, T> Item<S> for T
+where
+    S: ModelScalar,
+    T: Declared<S> + Physics<S> + std::fmt::Debug + Send + Sync,
+{
+    fn kind(&self) -> &'static str {
+        self.item_kind()
+    }
+    fn name(&self) -> &Name {
+        self.item_name()
+    }
+    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
+        self.visit_fields(f)
+    }
+    fn settings(&self) -> Vec<(&'static str, Setting)> {
+        self.list_settings()
+    }
+    fn bodies(&self) -> &[Name] {
+        self.item_bodies()
+    }
+    fn supports(&self) -> bool {
+        self.item_supports()
+    }
+    fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
+        self.check_shapes(&mut |w| cx.warn(w))?;
+        Physics::validate(self, cx)
+    }
+    fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
+        Physics::assemble(self, cx)
     }
 }
 
@@ -400,6 +422,15 @@ impl std::fmt::Display for Field {
             }
         }
         Ok(())
+    }
+}
+
+/// Visit the two points of field `name` (`ends[1][x]` …).
+pub(crate) fn visit_ends<S>(f: &mut dyn FnMut(Field, &S), name: &'static str, ends: &[Vec3<S>; 2]) {
+    for (i, end) in ends.iter().enumerate() {
+        for (k, x) in end.iter().enumerate() {
+            f(Field::nth_axis(name, i, k), x);
+        }
     }
 }
 

@@ -1,10 +1,10 @@
 //! [`Sensor`]: an output measuring the elongation (or twist) of a line, or its rates.
 
 use super::Validation;
-use super::{Field, Item, ModelScalar, Name, name};
+use super::{Choice, ModelScalar, Name, Physics, item, name};
 use crate::assemble::{Assembly, OutputFrame, OutputKind, OutputOrder};
 use crate::error::ModelError;
-use crate::geometry::{Line, line_builders};
+use crate::geometry::Line;
 use eom_sym::scalar::Scalar;
 
 /// What a sensor measures: the elongation (or twist) of its line, or its first or second
@@ -29,45 +29,31 @@ pub enum SensorFrame {
     Local,
 }
 
-/// A sensor: output `gain × elongation` (or its rate / acceleration) of its line.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Sensor<S> {
-    /// Unique name (the output's name).
-    pub name: Name,
-    /// Geometry.
-    pub line: Line<S>,
-    /// Gain.
-    pub gain: S,
-    /// Displacement, velocity or acceleration.
-    pub order: SensorOrder,
-    /// Global or body frame.
-    pub frame: SensorFrame,
-    /// An actuator whose input is fed through to this output.
-    pub actuator: Option<Name>,
-    /// Coefficient of that feedthrough (default −1).
-    pub actuator_gain: S,
-    /// Unit label.
-    pub units: String,
-}
-impl<S: Scalar> Sensor<S> {
+item! {
+    /// A sensor: output `gain × elongation` (or its rate / acceleration) of its line.
+    pub struct Sensor<S>: "sensor", "sensor"
+        (bodies: line, supports: false)
+    {
+        /// Geometry.
+        pub line: Line<S> = Line::new() => line(),
+        /// Gain.
+        pub gain: S = S::one() => scalar(gain, "gain"),
+        /// Displacement, velocity or acceleration.
+        pub order: SensorOrder = SensorOrder::Displacement => choice("order"),
+        /// Global or body frame.
+        pub frame: SensorFrame = SensorFrame::Global => choice("frame"),
+        /// An actuator whose input is fed through to this output.
+        pub actuator: Option<Name> = None => item_ref("feedthrough"),
+        /// Coefficient of that feedthrough (default −1).
+        pub actuator_gain: S = -S::one() => part_of("feedthrough"),
+        /// Unit label.
+        pub units: String = "m".into() => text(units, "units"),
+    }
     /// A displacement sensor with gain 1.
-    pub fn new(n: &str) -> Self {
-        Sensor {
-            name: name(n),
-            line: Line::new(),
-            gain: S::one(),
-            order: SensorOrder::Displacement,
-            frame: SensorFrame::Global,
-            actuator: None,
-            actuator_gain: -S::one(),
-            units: "m".into(),
-        }
-    }
-    /// Gain.
-    pub fn gain(mut self, g: impl Into<S>) -> Self {
-        self.gain = g.into();
-        self
-    }
+    pub fn new;
+}
+
+impl<S: Scalar> Sensor<S> {
     /// Measure the velocity.
     pub fn velocity(mut self) -> Self {
         self.order = SensorOrder::Velocity;
@@ -89,13 +75,45 @@ impl<S: Scalar> Sensor<S> {
         self.actuator_gain = gain.into();
         self
     }
-    /// Unit label.
-    pub fn units(mut self, u: &str) -> Self {
-        self.units = u.into();
-        self
+}
+
+impl Choice for SensorOrder {
+    fn name(self) -> &'static str {
+        match self {
+            SensorOrder::Displacement => "displacement",
+            SensorOrder::Velocity => "velocity",
+            SensorOrder::Acceleration => "acceleration",
+        }
+    }
+    fn from_name(s: &str) -> Result<Self, String> {
+        match s {
+            "displacement" => Ok(SensorOrder::Displacement),
+            "velocity" => Ok(SensorOrder::Velocity),
+            "acceleration" => Ok(SensorOrder::Acceleration),
+            other => Err(format!(
+                "`{other}` is not a sensor order; use displacement, velocity or acceleration"
+            )),
+        }
     }
 }
-line_builders!(Sensor);
+
+impl Choice for SensorFrame {
+    fn name(self) -> &'static str {
+        match self {
+            SensorFrame::Global => "global",
+            SensorFrame::Local => "local",
+        }
+    }
+    fn from_name(s: &str) -> Result<Self, String> {
+        match s {
+            "global" => Ok(SensorFrame::Global),
+            "local" => Ok(SensorFrame::Local),
+            other => Err(format!(
+                "`{other}` is not a sensor frame; use global or local"
+            )),
+        }
+    }
+}
 
 impl<S> Sensor<S> {
     /// What the sensor's output row measures, in the assembly's terms.
@@ -114,68 +132,8 @@ impl<S> Sensor<S> {
     }
 }
 
-impl<S: Scalar> Sensor<S> {
-    /// The sensor converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Sensor<T> {
-        Sensor {
-            name: self.name.clone(),
-            line: self.line.map(f),
-            gain: f(&self.gain),
-            order: self.order,
-            frame: self.frame,
-            actuator: self.actuator.clone(),
-            actuator_gain: f(&self.actuator_gain),
-            units: self.units.clone(),
-        }
-    }
-}
-
-impl<S: ModelScalar> Item<S> for Sensor<S> {
-    fn kind(&self) -> &'static str {
-        "sensor"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        use super::Setting::Text;
-        let mut s = self.line.settings();
-        let order = match self.order {
-            SensorOrder::Displacement => "displacement",
-            SensorOrder::Velocity => "velocity",
-            SensorOrder::Acceleration => "acceleration",
-        };
-        s.push(("order", Text(order.into())));
-        let frame = match self.frame {
-            SensorFrame::Global => "global",
-            SensorFrame::Local => "local",
-        };
-        s.push(("frame", Text(frame.into())));
-        if let Some(a) = &self.actuator {
-            s.push(("feedthrough", Text(a.to_string())));
-        }
-        s.push(("units", Text(self.units.clone())));
-        s
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        self.line.fields(f);
-        f(Field::scalar("gain"), &self.gain);
-        f(Field::scalar("actuator_gain"), &self.actuator_gain);
-    }
-
-    fn bodies(&self) -> &[Name] {
-        &self.line.bodies
-    }
-
-    fn supports(&self) -> bool {
-        false
-    }
-
+impl<S: ModelScalar> Physics<S> for Sensor<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        self.line.validate("sensor", &self.name)?;
         match &self.actuator {
             Some(a) => cx.check_item("sensor", &self.name, "actuator", "actuator", a),
             None => Ok(()),

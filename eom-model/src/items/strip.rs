@@ -29,119 +29,60 @@
 //! rotation adds the `U θ` part of the downwash as a stiffness on the rotations.
 
 use super::Validation;
+use super::surface::{self, Surface};
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name};
-use super::{visit3, zero3};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
-use crate::geometry::{cross, dot};
+use crate::geometry::cross;
 use eom_sym::scalar::Scalar;
 
-/// A thin-airfoil strip at a point of a body (see the module documentation).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Strip<S> {
-    /// Unique name.
-    pub name: Name,
-    /// The body the strip is fixed to.
-    pub body: Name,
-    /// The elastic-axis point of the section (the reference of h, θ and the moment).
-    pub location: Vec3<S>,
-    /// The chordwise axis towards the leading edge, a unit vector.
-    pub forward: Vec3<S>,
-    /// The section's down axis (perpendicular to `forward`), a unit vector.
-    pub down: Vec3<S>,
-    /// Semichord b.
-    pub semichord: S,
-    /// Elastic-axis position a, in semichords aft of mid-chord (−1 the leading edge).
-    pub elastic_axis: S,
-    /// Span width Δ of the strip.
-    pub width: S,
-    /// Lift slope c_l per radian (2π: thin-airfoil theory).
-    pub lift_slope: S,
-    /// Air density ρ.
-    pub density: S,
-    /// Airspeed U; `None`: the body's nominal velocity along `forward`.
-    pub airspeed: Option<S>,
-    /// Quasi-steady, Jones' lag states, or decided by the linearization (`Auto`).
-    pub unsteady: Unsteady,
+item! {
+    /// A thin-airfoil strip at a point of a body (see the module documentation).
+    pub struct Strip<S>: "strip", "strip"
+        (bodies: body, supports: false)
+    {
+        /// The body the strip is fixed to.
+        pub body: Name = name(GROUND) => body(on, "body"),
+        /// The elastic-axis point of the section (the reference of h, θ and the moment).
+        pub location: Vec3<S> = zero3() => vector(at, "at", Polar),
+        /// The chordwise axis towards the leading edge, a unit vector.
+        pub forward: Vec3<S> = [S::one(), S::zero(), S::zero()] => vector("forward", Polar),
+        /// The section's down axis (perpendicular to `forward`), a unit vector.
+        pub down: Vec3<S> = [S::zero(), S::zero(), -S::one()] => vector("down", Polar),
+        /// Semichord b.
+        pub semichord: S = S::one() => scalar(semichord, "semichord"),
+        /// Elastic-axis position a, in semichords aft of mid-chord (−1 the leading edge).
+        pub elastic_axis: S = S::zero() => scalar(elastic_axis, "elastic_axis"),
+        /// Span width Δ of the strip.
+        pub width: S = S::one() => scalar(width, "width"),
+        /// Lift slope c_l per radian (2π: thin-airfoil theory).
+        pub lift_slope: S = S::from_f64(2.0 * std::f64::consts::PI)
+            => scalar(lift_slope, "lift_slope"),
+        /// Air density ρ.
+        pub density: S = S::from_f64(1.225) => scalar(density, "density"),
+        /// Airspeed U; `None`: the body's nominal velocity along `forward`.
+        pub airspeed: Option<S> = None => optional(airspeed, "airspeed"),
+        /// Quasi-steady, Jones' lag states, or decided by the linearization (`Auto`).
+        pub unsteady: Unsteady = Unsteady::QuasiSteady => choice(unsteady, "unsteady"),
+    }
+    /// A strip on the ground with unit semichord and width, the elastic axis at mid-chord,
+    /// lift slope 2π, ρ = 1.225, the wing's default axes, quasi-steady.
+    pub fn new;
 }
 
 impl<S: Scalar> Strip<S> {
-    /// A strip on the ground with unit semichord and width, the elastic axis at mid-chord,
-    /// lift slope 2π, ρ = 1.225, the wing's default axes, quasi-steady.
-    pub fn new(n: &str) -> Self {
-        Strip {
-            name: name(n),
-            body: name(GROUND),
-            location: zero3(),
-            forward: [S::one(), S::zero(), S::zero()],
-            down: [S::zero(), S::zero(), -S::one()],
-            semichord: S::one(),
-            elastic_axis: S::zero(),
-            width: S::one(),
-            lift_slope: S::from_f64(2.0 * std::f64::consts::PI),
-            density: S::from_f64(1.225),
-            airspeed: None,
-            unsteady: Unsteady::QuasiSteady,
-        }
-    }
-    /// The body the strip is fixed to.
-    pub fn on(mut self, body: &str) -> Self {
-        self.body = name(body);
-        self
-    }
-    /// The elastic-axis point.
-    pub fn at(mut self, location: Vec3<S>) -> Self {
-        self.location = location;
-        self
-    }
     /// The forward (towards the leading edge) and down axes in model axes.
     pub fn axes(mut self, forward: Vec3<S>, down: Vec3<S>) -> Self {
         self.forward = forward;
         self.down = down;
         self
     }
-    /// Semichord b.
-    pub fn semichord(mut self, b: impl Into<S>) -> Self {
-        self.semichord = b.into();
-        self
-    }
-    /// Elastic-axis position a (semichords aft of mid-chord).
-    pub fn elastic_axis(mut self, a: impl Into<S>) -> Self {
-        self.elastic_axis = a.into();
-        self
-    }
-    /// Span width Δ.
-    pub fn width(mut self, w: impl Into<S>) -> Self {
-        self.width = w.into();
-        self
-    }
-    /// Lift slope per radian.
-    pub fn lift_slope(mut self, c: impl Into<S>) -> Self {
-        self.lift_slope = c.into();
-        self
-    }
-    /// Air density ρ.
-    pub fn density(mut self, rho: impl Into<S>) -> Self {
-        self.density = rho.into();
-        self
-    }
-    /// Airspeed U (default: the body's nominal velocity along `forward`).
-    pub fn airspeed(mut self, v: impl Into<S>) -> Self {
-        self.airspeed = Some(v.into());
-        self
-    }
-    /// Quasi-steady or Jones' lag states.
-    pub fn unsteady(mut self, u: Unsteady) -> Self {
-        self.unsteady = u;
-        self
-    }
 
     /// The airspeed used: the given one, else `velocity` along `forward`.
     pub fn airspeed_with(&self, velocity: &Vec3<S>) -> S {
-        self.airspeed
-            .unwrap_or_else(|| dot(&self.forward, velocity))
+        surface::airspeed_with(self.airspeed, &self.forward, velocity)
     }
 
     /// The nominal velocity of the air (zero without a given airspeed).
@@ -180,75 +121,16 @@ impl<S: Scalar> Strip<S> {
     }
 }
 
-impl<S: Scalar> Strip<S> {
-    /// The strip converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Strip<T> {
-        let location = map3(&self.location, f);
-        let forward = map3(&self.forward, f);
-        let down = map3(&self.down, f);
-        let semichord = f(&self.semichord);
-        let elastic_axis = f(&self.elastic_axis);
-        let width = f(&self.width);
-        let lift_slope = f(&self.lift_slope);
-        let density = f(&self.density);
-        let airspeed = self.airspeed.as_ref().map(&mut *f);
-        Strip {
-            name: self.name.clone(),
-            body: self.body.clone(),
-            location,
-            forward,
-            down,
-            semichord,
-            elastic_axis,
-            width,
-            lift_slope,
-            density,
-            airspeed,
-            unsteady: self.unsteady,
-        }
-    }
-}
-
-/// Relative tolerance of the orthonormality of the axes at the nominal point.
-const AXES_TOLERANCE: f64 = 1e-9;
-
 impl<S: ModelScalar> Strip<S> {
-    fn error(&self, field: &str, problem: String) -> ModelError {
-        field_error("strip", &self.name, field, problem)
-    }
-
-    fn check_positive(&self, field: &str, x: &S, what: &str) -> Result<(), ModelError> {
-        let v = x.nominal();
-        if v > 0.0 {
-            return Ok(());
+    /// What the checks shared with the wing read.
+    fn surface(&self) -> Surface<'_, S> {
+        Surface {
+            kind: "strip",
+            item: &self.name,
+            body: &self.body,
+            axes: [&self.forward, &self.down],
+            airspeed: self.airspeed.as_ref(),
         }
-        Err(self.error(
-            field,
-            format!("the {what} must be positive (nominal value {v})"),
-        ))
-    }
-
-    fn check_axes(&self) -> Result<(), ModelError> {
-        let n = |v: &Vec3<S>| -> [f64; 3] { [v[0].nominal(), v[1].nominal(), v[2].nominal()] };
-        let (f, d) = (n(&self.forward), n(&self.down));
-        let dotf = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        for (field, v) in [("forward", f), ("down", d)] {
-            let len = dotf(v, v).sqrt();
-            if (len - 1.0).abs() > AXES_TOLERANCE {
-                return Err(self.error(
-                    field,
-                    format!("must be a unit vector; its length is {len} at the nominal point"),
-                ));
-            }
-        }
-        let c = dotf(f, d);
-        if c.abs() > AXES_TOLERANCE {
-            return Err(self.error(
-                "down",
-                format!("must be perpendicular to `forward`; their dot product is {c}"),
-            ));
-        }
-        Ok(())
     }
 
     /// The rows of the point's lift-direction displacement z and pitch rotation φ.
@@ -268,78 +150,15 @@ impl<S: ModelScalar> Strip<S> {
     }
 }
 
-impl<S: ModelScalar> Item<S> for Strip<S> {
-    fn kind(&self) -> &'static str {
-        "strip"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        vec![
-            ("body", super::Setting::Text(self.body.to_string())),
-            (
-                "unsteady",
-                super::Setting::Text(self.unsteady.as_str().to_string()),
-            ),
-        ]
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        visit3(f, "location", &self.location);
-        visit3(f, "forward", &self.forward);
-        visit3(f, "down", &self.down);
-        f(Field::scalar("semichord"), &self.semichord);
-        f(Field::scalar("elastic_axis"), &self.elastic_axis);
-        f(Field::scalar("width"), &self.width);
-        f(Field::scalar("lift_slope"), &self.lift_slope);
-        f(Field::scalar("density"), &self.density);
-        if let Some(v) = &self.airspeed {
-            f(Field::scalar("airspeed"), v);
-        }
-    }
-
-    fn bodies(&self) -> &[Name] {
-        std::slice::from_ref(&self.body)
-    }
-
-    /// Aerodynamic forces do not hold a body up.
-    fn supports(&self) -> bool {
-        false
-    }
-
+impl<S: ModelScalar> Physics<S> for Strip<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
-        if &*self.body == GROUND {
-            return Err(self.error(
-                "body",
-                "a strip must be on a body, not on the ground".into(),
-            ));
-        }
-        self.check_positive("semichord", &self.semichord, "semichord")?;
-        self.check_positive("width", &self.width, "span width")?;
-        self.check_positive("lift_slope", &self.lift_slope, "lift slope")?;
-        self.check_positive("density", &self.density, "air density")?;
-        self.check_axes()?;
-        match &self.airspeed {
-            Some(v) => self.check_positive("airspeed", v, "airspeed")?,
-            None => {
-                let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
-                let v = self.airspeed_with(&velocity).nominal();
-                if v <= 0.0 {
-                    return Err(self.error(
-                        "airspeed",
-                        format!(
-                            "not given, and the nominal velocity of body `{}` along the strip's \
-                             forward axis is {v}: give the airspeed (positive)",
-                            self.body
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
+        let positive = [
+            ("semichord", &self.semichord, "semichord"),
+            ("width", &self.width, "span width"),
+            ("lift_slope", &self.lift_slope, "lift slope"),
+            ("density", &self.density, "air density"),
+        ];
+        self.surface().check(&positive, cx)
     }
 
     /// The added mass and damping on the point's (z, φ), and the circulatory force: directly

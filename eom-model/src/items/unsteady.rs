@@ -53,6 +53,16 @@ impl Unsteady {
     }
 }
 
+impl super::Choice for Unsteady {
+    fn name(self) -> &'static str {
+        self.as_str()
+    }
+    fn from_name(s: &str) -> Result<Self, String> {
+        Unsteady::parse(s)
+            .map_err(|_| format!("`{s}`: expected \"quasi-steady\", \"jones\" or \"auto\""))
+    }
+}
+
 /// Jones' coefficients `(Aᵢ, β̄ᵢ)`: `C(s̄) = 1 − Σ Aᵢ s̄/(s̄ + β̄ᵢ)`.
 pub const JONES: [(f64, f64); 2] = [(0.165, 0.0455), (0.335, 0.3)];
 

@@ -40,13 +40,14 @@
 //! changes sign by `sᵢsⱼ`, `s = (+, −, −, +, −, −)`).
 
 use super::Validation;
+use super::surface::{self, Surface};
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{Field, GROUND, Item, ModelScalar, Name, Vec3, field_error, map3, name};
-use super::{label, visit3, zero3};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name};
+use super::{label, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
-use crate::geometry::{cross, dot, skew};
+use crate::geometry::{cross, skew};
 use eom_sym::scalar::Scalar;
 
 /// The 36 derivative names in AVL's body-axis layout: `WING_DERIVATIVES[i][j]` is row i
@@ -82,62 +83,60 @@ pub(crate) fn derivative_list() -> String {
         .join(", ")
 }
 
-/// A wing: quasi-steady aerodynamic damping at a point of a body, from stability derivatives.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Wing<S> {
-    /// Unique name.
-    pub name: Name,
-    /// The body the wing is fixed to (its forces act relative to the ground).
-    pub body: Name,
-    /// The reference point (moment reference of the derivatives, usually the quarter chord).
-    pub location: Vec3<S>,
-    /// The wing's forward axis (AVL's x) in model axes, a unit vector.
-    pub forward: Vec3<S>,
-    /// The wing's down axis (AVL's z) in model axes, a unit vector perpendicular to
-    /// `forward`; the right axis is `down × forward`.
-    pub down: Vec3<S>,
-    /// Reference area S.
-    pub area: S,
-    /// Reference chord c (pitch moment, pitch rate).
-    pub chord: S,
-    /// Reference span b (roll and yaw moments, roll and yaw rates).
-    pub span: S,
-    /// Air density ρ.
-    pub density: S,
-    /// Airspeed V; `None`: the body's nominal velocity along `forward`.
-    pub airspeed: Option<S>,
-    /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero.
-    pub derivatives: [[S; 6]; 6],
-    /// The acceleration derivatives by [`WING_ACCELERATION_DERIVATIVES`] (zero: none).
-    pub acceleration: [S; 6],
-    /// Quasi-steady, or R. T. Jones' lag states on the response to the wing's normal velocity
-    /// (its w column; see [`Wing::unsteady`]).
-    pub unsteady: Unsteady,
-    /// Names given to [`Wing::derivative`] that are not derivative names (reported by the
-    /// validation, since a builder cannot fail).
-    unknown: Vec<String>,
+item! {
+    /// A wing: quasi-steady aerodynamic damping at a point of a body, from stability
+    /// derivatives.
+    pub struct Wing<S>: "wing", "wing"
+        (bodies: body, supports: in_free_flight())
+    {
+        /// The body the wing is fixed to (its forces act relative to the ground).
+        pub body: Name = name(GROUND) => body(on, "body"),
+        /// The reference point (moment reference of the derivatives, usually the quarter chord).
+        pub location: Vec3<S> = zero3() => vector(at, "at", Polar),
+        /// The wing's forward axis (AVL's x) in model axes, a unit vector.
+        pub forward: Vec3<S> = [S::one(), S::zero(), S::zero()] => vector("forward", Polar),
+        /// The wing's down axis (AVL's z) in model axes, a unit vector perpendicular to
+        /// `forward`; the right axis is `down × forward`.
+        pub down: Vec3<S> = [S::zero(), S::zero(), -S::one()] => vector("down", Polar),
+        /// Reference area S.
+        pub area: S = S::one() => scalar(area, "area"),
+        /// Reference chord c (pitch moment, pitch rate).
+        pub chord: S = S::one() => scalar(chord, "chord"),
+        /// Reference span b (roll and yaw moments, roll and yaw rates).
+        pub span: S = S::one() => scalar(span, "span"),
+        /// Air density ρ.
+        pub density: S = S::from_f64(1.225) => scalar(density, "density"),
+        /// Airspeed V; `None`: the body's nominal velocity along `forward`.
+        pub airspeed: Option<S> = None => optional(airspeed, "airspeed"),
+        /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero (a model
+        /// file gives them as a table, `derivatives`, or from an AVL file, `avl`).
+        pub derivatives: [[S; 6]; 6] = [[S::zero(); 6]; 6]
+            => named_rows(WING_DERIVATIVES, "derivatives", "avl"),
+        /// The acceleration derivatives by [`WING_ACCELERATION_DERIVATIVES`] (zero: none).
+        pub acceleration: [S; 6] = [S::zero(); 6] => named(WING_ACCELERATION_DERIVATIVES),
+        /// The circulatory lag: with [`Unsteady::Jones`] the forces and moments of the w
+        /// column (the response to the normal velocity of the reference point: the angle of
+        /// attack, and the angle that a rotation in a given air stream adds) pass through
+        /// R. T. Jones' approximation of Wagner's function with the semichord `c/2` (two lag
+        /// states, `<name>.lag1`, `<name>.lag2`); the other columns stay quasi-steady.
+        pub unsteady: Unsteady = Unsteady::QuasiSteady
+            => choice(unsteady, "unsteady", unless_default),
+        /// Names given to [`Wing::derivative`] that are not derivative names (reported by the
+        /// validation, since a builder cannot fail).
+        unknown: Vec<String> = Vec::new() => hidden(),
+    }
+    /// A wing on the ground with unit reference quantities, ρ = 1.225, the default
+    /// orientation (forward +x, down −z) and all derivatives zero.
+    pub fn new;
 }
 
 impl<S: Scalar> Wing<S> {
-    /// A wing on the ground with unit reference quantities, ρ = 1.225, the default
-    /// orientation (forward +x, down −z) and all derivatives zero.
-    pub fn new(n: &str) -> Self {
-        Wing {
-            name: name(n),
-            body: name(GROUND),
-            location: zero3(),
-            forward: [S::one(), S::zero(), S::zero()],
-            down: [S::zero(), S::zero(), -S::one()],
-            area: S::one(),
-            chord: S::one(),
-            span: S::one(),
-            density: S::from_f64(1.225),
-            airspeed: None,
-            derivatives: [[S::zero(); 6]; 6],
-            acceleration: [S::zero(); 6],
-            unsteady: Unsteady::QuasiSteady,
-            unknown: Vec::new(),
-        }
+    /// Whether the wing supports its body: aerodynamic forces hold a body up in free flight
+    /// only: a wing without a given airspeed (its body flies at its nominal velocity through
+    /// still air) supports its body; a wing in an air stream (a wind tunnel) leaves it to the
+    /// structure.
+    fn in_free_flight(&self) -> bool {
+        self.airspeed.is_none()
     }
 
     /// A wing with the reference area, chord, span and the 36 derivatives of `d` (computed
@@ -156,54 +155,10 @@ impl<S: Scalar> Wing<S> {
         w
     }
 
-    /// The body the wing is fixed to.
-    pub fn on(mut self, body: &str) -> Self {
-        self.body = name(body);
-        self
-    }
-    /// The reference point.
-    pub fn at(mut self, location: Vec3<S>) -> Self {
-        self.location = location;
-        self
-    }
     /// The wing's forward and down axes in model axes (orthonormal at the nominal point).
     pub fn axes(mut self, forward: Vec3<S>, down: Vec3<S>) -> Self {
         self.forward = forward;
         self.down = down;
-        self
-    }
-    /// Reference area S.
-    pub fn area(mut self, s: impl Into<S>) -> Self {
-        self.area = s.into();
-        self
-    }
-    /// Reference chord c.
-    pub fn chord(mut self, c: impl Into<S>) -> Self {
-        self.chord = c.into();
-        self
-    }
-    /// Reference span b.
-    pub fn span(mut self, b: impl Into<S>) -> Self {
-        self.span = b.into();
-        self
-    }
-    /// Air density ρ.
-    pub fn density(mut self, rho: impl Into<S>) -> Self {
-        self.density = rho.into();
-        self
-    }
-    /// Airspeed V (default: the body's nominal velocity along the forward axis).
-    pub fn airspeed(mut self, v: impl Into<S>) -> Self {
-        self.airspeed = Some(v.into());
-        self
-    }
-    /// The circulatory lag: with [`Unsteady::Jones`] the forces and moments of the w column
-    /// (the response to the normal velocity of the reference point: the angle of attack, and
-    /// the angle that a rotation in a given air stream adds) pass through R. T. Jones'
-    /// approximation of Wagner's function with the semichord `c/2` (two lag states,
-    /// `<name>.lag1`, `<name>.lag2`); the other columns stay quasi-steady.
-    pub fn unsteady(mut self, u: Unsteady) -> Self {
-        self.unsteady = u;
         self
     }
     /// One derivative by its AVL name (`"CYv"`, `"Cnr"`, …); an unknown name is reported
@@ -251,8 +206,7 @@ impl<S: Scalar> Wing<S> {
     /// The airspeed used: the given one, else the component of `velocity` (the body's
     /// nominal velocity) along the forward axis.
     pub fn airspeed_with(&self, velocity: &Vec3<S>) -> S {
-        self.airspeed
-            .unwrap_or_else(|| dot(&self.forward, velocity))
+        surface::airspeed_with(self.airspeed, &self.forward, velocity)
     }
 
     /// The nominal velocity of the air for a body moving at `velocity`: zero (still air)
@@ -369,42 +323,6 @@ fn times<S: Scalar>(a: S, b: S) -> S {
     }
 }
 
-impl<S: Scalar> Wing<S> {
-    /// The wing converted field by field with `f`, in the order of [`Item::fields`].
-    pub fn map<T>(&self, f: &mut dyn FnMut(&S) -> T) -> Wing<T> {
-        let location = map3(&self.location, f);
-        let forward = map3(&self.forward, f);
-        let down = map3(&self.down, f);
-        let area = f(&self.area);
-        let chord = f(&self.chord);
-        let span = f(&self.span);
-        let density = f(&self.density);
-        let airspeed = self.airspeed.as_ref().map(&mut *f);
-        let derivatives =
-            std::array::from_fn(|i| std::array::from_fn(|j| f(&self.derivatives[i][j])));
-        let acceleration = std::array::from_fn(|i| f(&self.acceleration[i]));
-        Wing {
-            acceleration,
-            unsteady: self.unsteady,
-            name: self.name.clone(),
-            body: self.body.clone(),
-            location,
-            forward,
-            down,
-            area,
-            chord,
-            span,
-            density,
-            airspeed,
-            derivatives,
-            unknown: self.unknown.clone(),
-        }
-    }
-}
-
-/// Relative tolerance of the orthonormality of the axes at the nominal point.
-const AXES_TOLERANCE: f64 = 1e-9;
-
 impl<S: ModelScalar> Wing<S> {
     /// The damping of each derivative at the nominal point, ρVS/2 times the scaled derivative,
     /// must be a number the analysis can use: an overflow (or an entry beyond
@@ -435,102 +353,9 @@ impl<S: ModelScalar> Wing<S> {
         }
         Ok(())
     }
-
-    /// A positive reference quantity.
-    fn check_positive(&self, field: &str, x: &S, what: &str) -> Result<(), ModelError> {
-        let v = x.nominal();
-        if v > 0.0 {
-            return Ok(());
-        }
-        Err(field_error(
-            "wing",
-            &self.name,
-            field,
-            format!("the {what} must be positive (nominal value {v})"),
-        ))
-    }
-
-    /// Forward and down are unit vectors, perpendicular, at the nominal point.
-    fn check_axes(&self) -> Result<(), ModelError> {
-        let n = |v: &Vec3<S>| -> [f64; 3] { [v[0].nominal(), v[1].nominal(), v[2].nominal()] };
-        let (f, d) = (n(&self.forward), n(&self.down));
-        let dotf = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        for (field, v) in [("forward", f), ("down", d)] {
-            let len = dotf(v, v).sqrt();
-            if (len - 1.0).abs() > AXES_TOLERANCE {
-                return Err(field_error(
-                    "wing",
-                    &self.name,
-                    field,
-                    format!("must be a unit vector; its length is {len} at the nominal point"),
-                ));
-            }
-        }
-        let c = dotf(f, d);
-        if c.abs() > AXES_TOLERANCE {
-            return Err(field_error(
-                "wing",
-                &self.name,
-                "down",
-                format!("must be perpendicular to `forward`; their dot product is {c}"),
-            ));
-        }
-        Ok(())
-    }
 }
 
-impl<S: ModelScalar> Item<S> for Wing<S> {
-    fn kind(&self) -> &'static str {
-        "wing"
-    }
-
-    fn name(&self) -> &Name {
-        &self.name
-    }
-
-    fn settings(&self) -> Vec<(&'static str, super::Setting)> {
-        let mut s = vec![("body", super::Setting::Text(self.body.to_string()))];
-        if self.unsteady != Unsteady::QuasiSteady {
-            s.push((
-                "unsteady",
-                super::Setting::Text(self.unsteady.as_str().to_string()),
-            ));
-        }
-        s
-    }
-
-    fn fields(&self, f: &mut dyn FnMut(Field, &S)) {
-        visit3(f, "location", &self.location);
-        visit3(f, "forward", &self.forward);
-        visit3(f, "down", &self.down);
-        f(Field::scalar("area"), &self.area);
-        f(Field::scalar("chord"), &self.chord);
-        f(Field::scalar("span"), &self.span);
-        f(Field::scalar("density"), &self.density);
-        if let Some(v) = &self.airspeed {
-            f(Field::scalar("airspeed"), v);
-        }
-        for (names, row) in WING_DERIVATIVES.iter().zip(&self.derivatives) {
-            for (n, x) in names.iter().zip(row) {
-                f(Field::scalar(n), x);
-            }
-        }
-        for (n, x) in WING_ACCELERATION_DERIVATIVES.iter().zip(&self.acceleration) {
-            f(Field::scalar(n), x);
-        }
-    }
-
-    fn bodies(&self) -> &[Name] {
-        std::slice::from_ref(&self.body)
-    }
-
-    /// Aerodynamic forces hold a body up in free flight only: a wing without a given
-    /// airspeed (its body flies at its nominal velocity through still air) supports its body;
-    /// a wing in an air stream (a wind tunnel) leaves it to the structure.
-    fn supports(&self) -> bool {
-        self.airspeed.is_none()
-    }
-
+impl<S: ModelScalar> Physics<S> for Wing<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if let Some(n) = self.unknown.first() {
             return Err(field_error(
@@ -543,39 +368,20 @@ impl<S: ModelScalar> Item<S> for Wing<S> {
                 ),
             ));
         }
-        if &*self.body == GROUND {
-            return Err(field_error(
-                "wing",
-                &self.name,
-                "body",
-                "a wing must be on a body, not on the ground".into(),
-            ));
-        }
-        self.check_positive("area", &self.area, "reference area")?;
-        self.check_positive("chord", &self.chord, "reference chord")?;
-        self.check_positive("span", &self.span, "reference span")?;
-        self.check_positive("density", &self.density, "air density")?;
-        self.check_axes()?;
-        match &self.airspeed {
-            Some(v) => self.check_positive("airspeed", v, "airspeed")?,
-            None => {
-                let velocity = cx.body(&self.body).map_or(zero3(), |b| b.velocity);
-                let v = self.airspeed_with(&velocity).nominal();
-                // finite: the fields were checked before the items
-                if v <= 0.0 {
-                    return Err(field_error(
-                        "wing",
-                        &self.name,
-                        "airspeed",
-                        format!(
-                            "not given, and the nominal velocity of body `{}` along the wing's \
-                             forward axis is {v}: give the airspeed (positive)",
-                            self.body
-                        ),
-                    ));
-                }
-            }
-        }
+        let positive = [
+            ("area", &self.area, "reference area"),
+            ("chord", &self.chord, "reference chord"),
+            ("span", &self.span, "reference span"),
+            ("density", &self.density, "air density"),
+        ];
+        let surface = Surface {
+            kind: "wing",
+            item: &self.name,
+            body: &self.body,
+            axes: [&self.forward, &self.down],
+            airspeed: self.airspeed.as_ref(),
+        };
+        surface.check(&positive, cx)?;
         self.check_damping_magnitude(cx)?;
         if self.derivatives.iter().flatten().all(|d| d.is_zero())
             && self.acceleration.iter().all(|d| d.is_zero())

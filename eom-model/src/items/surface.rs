@@ -1,0 +1,144 @@
+//! The checks a lifting surface (a [`Wing`](super::Wing) or [`Strip`](super::Strip)) shares:
+//! its axes, its positive quantities and its airspeed.
+
+use super::{GROUND, ModelScalar, Name, Validation, Vec3, field_error, zero3};
+use crate::error::ModelError;
+use crate::geometry::dot;
+use eom_sym::scalar::Scalar;
+
+/// What the shared checks read of a lifting surface.
+pub(crate) struct Surface<'a, S> {
+    /// `wing` or `strip`.
+    pub kind: &'static str,
+    /// The item's name.
+    pub item: &'a str,
+    /// The body it is on.
+    pub body: &'a Name,
+    /// Its forward and down axes.
+    pub axes: [&'a Vec3<S>; 2],
+    /// The given airspeed.
+    pub airspeed: Option<&'a S>,
+}
+
+impl<S: ModelScalar> Surface<'_, S> {
+    /// On a body, not the ground; the quantities `positive` (field, value, what) positive;
+    /// the axes orthonormal; the airspeed positive, given or not.
+    pub(crate) fn check(
+        &self,
+        positive: &[(&str, &S, &str)],
+        cx: &Validation<'_, S>,
+    ) -> Result<(), ModelError> {
+        let (kind, item) = (self.kind, self.item);
+        if &**self.body == GROUND {
+            return Err(field_error(
+                kind,
+                item,
+                "body",
+                format!("a {kind} must be on a body, not on the ground"),
+            ));
+        }
+        for (field, x, what) in positive {
+            check_positive(kind, item, field, *x, what)?;
+        }
+        check_axes(kind, item, self.axes[0], self.axes[1])?;
+        let velocity = cx.body(self.body).map_or(zero3(), |b| b.velocity);
+        let along = airspeed_with(self.airspeed.copied(), self.axes[0], &velocity);
+        check_airspeed(kind, item, self.airspeed, self.body, along)
+    }
+}
+
+/// Relative tolerance of the orthonormality of the axes at the nominal point.
+const AXES_TOLERANCE: f64 = 1e-9;
+
+/// The airspeed used: the given one, else the component of `velocity` (the body's nominal
+/// velocity) along the forward axis.
+pub(crate) fn airspeed_with<S: Scalar>(
+    airspeed: Option<S>,
+    forward: &Vec3<S>,
+    velocity: &Vec3<S>,
+) -> S {
+    airspeed.unwrap_or_else(|| dot(forward, velocity))
+}
+
+/// A positive quantity.
+fn check_positive<S: Scalar>(
+    kind: &str,
+    item: &str,
+    field: &str,
+    x: &S,
+    what: &str,
+) -> Result<(), ModelError> {
+    let v = x.nominal();
+    if v > 0.0 {
+        return Ok(());
+    }
+    Err(field_error(
+        kind,
+        item,
+        field,
+        format!("the {what} must be positive (nominal value {v})"),
+    ))
+}
+
+/// Forward and down are unit vectors, perpendicular, at the nominal point.
+fn check_axes<S: Scalar>(
+    kind: &str,
+    item: &str,
+    forward: &Vec3<S>,
+    down: &Vec3<S>,
+) -> Result<(), ModelError> {
+    let n = |v: &Vec3<S>| -> [f64; 3] { [v[0].nominal(), v[1].nominal(), v[2].nominal()] };
+    let (f, d) = (n(forward), n(down));
+    let dotf = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    for (field, v) in [("forward", f), ("down", d)] {
+        let len = dotf(v, v).sqrt();
+        if (len - 1.0).abs() > AXES_TOLERANCE {
+            return Err(field_error(
+                kind,
+                item,
+                field,
+                format!("must be a unit vector; its length is {len} at the nominal point"),
+            ));
+        }
+    }
+    let c = dotf(f, d);
+    if c.abs() > AXES_TOLERANCE {
+        return Err(field_error(
+            kind,
+            item,
+            "down",
+            format!("must be perpendicular to `forward`; their dot product is {c}"),
+        ));
+    }
+    Ok(())
+}
+
+/// A given airspeed is positive; without one, the nominal velocity of `body` along the
+/// forward axis (`along`) must be.
+fn check_airspeed<S: Scalar>(
+    kind: &str,
+    item: &str,
+    airspeed: Option<&S>,
+    body: &Name,
+    along: S,
+) -> Result<(), ModelError> {
+    match airspeed {
+        Some(v) => check_positive(kind, item, "airspeed", v, "airspeed"),
+        None => {
+            let v = along.nominal();
+            // finite: the fields were checked before the items
+            if v <= 0.0 {
+                return Err(field_error(
+                    kind,
+                    item,
+                    "airspeed",
+                    format!(
+                        "not given, and the nominal velocity of body `{body}` along the {kind}'s \
+                         forward axis is {v}: give the airspeed (positive)"
+                    ),
+                ));
+            }
+            Ok(())
+        }
+    }
+}
