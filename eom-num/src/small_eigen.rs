@@ -395,10 +395,11 @@ fn shifts<const M: usize>(h: &Fixed<M>, lo: usize, hi: usize, its: usize) -> (f6
         // The eigenvalues of [[x, −0.4375w], [w, x]]: x ± i·0.661w.
         return (2.0 * x, x * x + 0.4375 * w * w);
     }
-    if its == 1 && hi == lo + 3 {
-        if let Some(pair) = quartic_pair(h, lo) {
-            return pair;
-        }
+    if its == 1
+        && hi == lo + 3
+        && let Some(pair) = quartic_pair(h, lo)
+    {
+        return pair;
     }
     let (a, b, c, d) = (h[hi - 1][hi - 1], h[hi][hi - 1], h[hi - 1][hi], h[hi][hi]);
     (a + d, a * d - b * c)
@@ -419,16 +420,18 @@ fn quartic_pair<const M: usize>(h: &Fixed<M>, lo: usize) -> Option<(f64, f64)> {
     p[0][0] = 1.0;
     for k in 1..=4 {
         let d = e(k - 1, k - 1);
-        for c in 0..k {
-            p[k][c + 1] += p[k - 1][c];
-            p[k][c] -= d * p[k - 1][c];
+        let (done, rest) = p.split_at_mut(k);
+        let cur = &mut rest[0];
+        for (c, x) in done[k - 1][..k].iter().enumerate() {
+            cur[c + 1] += x;
+            cur[c] -= d * x;
         }
         let mut prod = 1.0;
         for i in (1..k).rev() {
             prod *= e(i, i - 1);
             let f = e(i - 1, k - 1) * prod;
-            for c in 0..i {
-                p[k][c] -= f * p[i - 1][c];
+            for (x, y) in cur[..i].iter_mut().zip(&done[i - 1][..i]) {
+                *x -= f * y;
             }
         }
     }
@@ -444,7 +447,8 @@ fn quartic_pair<const M: usize>(h: &Fixed<M>, lo: usize) -> Option<(f64, f64)> {
     let s2 = 2.0 * m - pp;
     // Near a biquadratic (Q → 0) s² is the difference of nearly equal numbers and Q/2s
     // undetermined: no pair then.
-    if !(s2 > 1e-8 * m.abs().max(pp.abs())) {
+    let floor = 1e-8 * m.abs().max(pp.abs());
+    if s2.partial_cmp(&floor) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     let s = s2.sqrt();
@@ -627,7 +631,10 @@ mod tests {
                 ((s - ss).abs() / (1.0 + ss.abs())).max((t - tt).abs() / (1.0 + tt.abs()))
             };
             let e = err((s1, t1)).min(err((s2, t2)));
-            assert!(e < 1e-9, "{s} {t} against ({s1}, {t1}) or ({s2}, {t2}): {e:e}");
+            assert!(
+                e < 1e-9,
+                "{s} {t} against ({s1}, {t1}) or ({s2}, {t2}): {e:e}"
+            );
         }
     }
 
@@ -654,8 +661,9 @@ mod tests {
             [0.0, 0.0, 0.0, 1.0],
             [-4.0, 0.0, -5.0, 0.0],
         ];
-        assert!(quartic_pair(&h, 0).is_none_or(|(s, t)| s.abs() < 1e-12
-            && ((t - 1.0).abs() < 1e-12 || (t - 4.0).abs() < 1e-12)));
+        assert!(quartic_pair(&h, 0).is_none_or(
+            |(s, t)| s.abs() < 1e-12 && ((t - 1.0).abs() < 1e-12 || (t - 4.0).abs() < 1e-12)
+        ));
         let mut out = [Complex64::new(0.0, 0.0); 4];
         let a: Vec<f64> = h.iter().flatten().copied().collect();
         eigenvalues_small(&a, 4, &mut out).unwrap();
@@ -681,4 +689,3 @@ mod tests {
         assert!((small.re - 1e-8).abs() < 1e-22, "{small}");
     }
 }
-
