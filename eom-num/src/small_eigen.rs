@@ -15,7 +15,9 @@
 //!    *Matrix Computations*, 4th ed., §7.5), restricted to the unreduced window (only the
 //!    eigenvalues are wanted), with the deflation test of Ahues & Tisseur (1997) that keeps
 //!    small eigenvalues of graded matrices to high relative accuracy, and exceptional shifts
-//!    after 10 and 20 iterations without a deflation;
+//!    after 10 and 20 iterations without a deflation; a 4×4 window (the bicycle after its
+//!    structural zeros) takes its first shifts from a pair of roots of its characteristic
+//!    quartic (Ferrari), which deflates it in 1–2 iterations instead of 5–7;
 //! 5. each 2×2 block's eigenvalues from a scaled, cancellation-free quadratic formula.
 //!
 //! The output follows [`crate::modes::eigenvalues`]: sorted by (real, imaginary) part,
@@ -393,8 +395,91 @@ fn shifts<const M: usize>(h: &Fixed<M>, lo: usize, hi: usize, its: usize) -> (f6
         // The eigenvalues of [[x, −0.4375w], [w, x]]: x ± i·0.661w.
         return (2.0 * x, x * x + 0.4375 * w * w);
     }
+    if its == 1
+        && hi == lo + 3
+        && let Some(pair) = quartic_pair(h, lo)
+    {
+        return pair;
+    }
     let (a, b, c, d) = (h[hi - 1][hi - 1], h[hi][hi - 1], h[hi - 1][hi], h[hi][hi]);
     (a + d, a * d - b * c)
+}
+
+/// A pair of eigenvalues of the 4×4 window at `lo` (as their sum and product), from its
+/// characteristic polynomial by Ferrari's method: the first shifts of a 4×4 window, where
+/// the trailing 2×2 block of a fresh Hessenberg form is a poor guess (its shifts took 4–7
+/// iterations to the first deflation on the bicycle; shifts near an eigenvalue pair deflate
+/// it in one or two). Only the shifts come from the polynomial — the eigenvalues are still
+/// those of the QR iteration, so a poor root costs iterations, not accuracy. `None` where
+/// the construction breaks down (a biquadratic, overflow): the usual shifts then.
+fn quartic_pair<const M: usize>(h: &Fixed<M>, lo: usize) -> Option<(f64, f64)> {
+    // det(λI − H) of the upper Hessenberg window by the recurrence on its leading blocks:
+    // p_k = (λ − h_kk)·p_{k−1} − Σ_{i<k} h_ik·(h_{i+1,i}···h_{k,k−1})·p_{i−1}.
+    let e = |i: usize, j: usize| h[lo + j][lo + i];
+    let mut p = [[0.0f64; 5]; 5];
+    p[0][0] = 1.0;
+    for k in 1..=4 {
+        let d = e(k - 1, k - 1);
+        let (done, rest) = p.split_at_mut(k);
+        let cur = &mut rest[0];
+        for (c, x) in done[k - 1][..k].iter().enumerate() {
+            cur[c + 1] += x;
+            cur[c] -= d * x;
+        }
+        let mut prod = 1.0;
+        for i in (1..k).rev() {
+            prod *= e(i, i - 1);
+            let f = e(i - 1, k - 1) * prod;
+            for (x, y) in cur[..i].iter_mut().zip(&done[i - 1][..i]) {
+                *x -= f * y;
+            }
+        }
+    }
+    let [d, c, b, a, _] = p[4];
+    // λ = y − a/4: y⁴ + P y² + Q y + R.
+    let a2 = a * a;
+    let pp = b - 0.375 * a2;
+    let q = c - 0.5 * a * b + 0.125 * a2 * a;
+    let r = d - 0.25 * a * c + a2 * b / 16.0 - 3.0 * a2 * a2 / 256.0;
+    // y⁴ + Py² + Qy + R = (y² + m)² − (sy − Q/2s)², s² = 2m − P, where m is the largest
+    // root of the resolvent m³ − (P/2)m² − Rm + (PR/2 − Q²/8) (at least P/2).
+    let m = largest_cubic_root(-0.5 * pp, -r, 0.5 * pp * r - 0.125 * q * q)?;
+    let s2 = 2.0 * m - pp;
+    // Near a biquadratic (Q → 0) s² is the difference of nearly equal numbers and Q/2s
+    // undetermined: no pair then.
+    let floor = 1e-8 * m.abs().max(pp.abs());
+    if s2.partial_cmp(&floor) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let s = s2.sqrt();
+    // The factor y² − sy + (m + Q/2s), in λ: λ² − (s − a/2)λ + (a²/16 − sa/4 + m + Q/2s).
+    let sum = s - 0.5 * a;
+    let prod = a2 / 16.0 - 0.25 * s * a + m + q / (2.0 * s);
+    (sum.is_finite() && prod.is_finite()).then_some((sum, prod))
+}
+
+/// The largest real root of `m³ + e2·m² + e1·m + e0` (Cardano, or the trigonometric form
+/// where all three roots are real); `None` where it is not finite.
+fn largest_cubic_root(e2: f64, e1: f64, e0: f64) -> Option<f64> {
+    // m = u − e2/3: u³ + pu + q.
+    let third = e2 / 3.0;
+    let p = e1 - e2 * third;
+    let q = (2.0 * third * third - e1) * third + e0;
+    let half = 0.5 * q;
+    let cub = p / 3.0;
+    let disc = half * half + cub * cub * cub;
+    let u = if disc >= 0.0 {
+        // One real root: A + B with A = −sign(q)·∛(|q|/2 + √disc), B = −p/(3A).
+        let big = -(half.abs() + disc.sqrt()).cbrt().copysign(half);
+        if big == 0.0 { 0.0 } else { big - cub / big }
+    } else {
+        // Three real roots (p < 0): the largest is 2√(−p/3)·cos(θ/3).
+        let rad = (-cub).sqrt();
+        let cos = (-half / (rad * rad * rad)).clamp(-1.0, 1.0);
+        2.0 * rad * (cos.acos() / 3.0).cos()
+    };
+    let m = u - third;
+    m.is_finite().then_some(m)
 }
 
 /// One implicit double-shift (Francis) sweep over the window lo..=hi: the first column of
@@ -517,6 +602,77 @@ pub(crate) fn block_2x2(a: f64, b: f64, c: f64, d: f64) -> (Complex64, Complex64
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A 4×4 upper Hessenberg matrix with characteristic polynomial
+    /// `(λ² − s₁λ + t₁)(λ² − s₂λ + t₂)`: two companion blocks `[[0, −t], [1, s]]` on the
+    /// diagonal, an upper triangle above them and a zero subdiagonal between them.
+    fn blocks(s1: f64, t1: f64, s2: f64, t2: f64) -> Fixed<4> {
+        [
+            [0.0, 1.0, 0.0, 0.0],
+            [-t1, s1, 0.0, 0.0],
+            [0.7, -1.3, 0.0, 1.0],
+            [0.2, 0.4, -t2, s2],
+        ]
+    }
+
+    #[test]
+    fn quartic_shifts_are_an_eigenvalue_pair() {
+        // A complex pair −0.5 ± 3i (s = −1, t = 9.25) and the reals −2, −14 (s = −16,
+        // t = 28); two real pairs; a pair 1e4 apart in size from the other.
+        for (s1, t1, s2, t2) in [
+            (-1.0, 9.25, -16.0, 28.0),
+            (-16.0, 28.0, -1.0, 9.25),
+            (3.0, 2.0, -0.1, 0.0016),
+            (-2e3, 2e6, -0.4, 0.05),
+        ] {
+            let (s, t) = quartic_pair(&blocks(s1, t1, s2, t2), 0).expect("shifts");
+            // The sum and product of one of the two pairs.
+            let err = |(ss, tt): (f64, f64)| {
+                ((s - ss).abs() / (1.0 + ss.abs())).max((t - tt).abs() / (1.0 + tt.abs()))
+            };
+            let e = err((s1, t1)).min(err((s2, t2)));
+            assert!(
+                e < 1e-9,
+                "{s} {t} against ({s1}, {t1}) or ({s2}, {t2}): {e:e}"
+            );
+        }
+    }
+
+    #[test]
+    fn cubic_roots() {
+        // (m − 1)(m − 2)(m + 3) = m³ − 7m + 6: three real roots, the largest 2.
+        assert!((largest_cubic_root(0.0, -7.0, 6.0).unwrap() - 2.0).abs() < 1e-14);
+        // (m − 4)(m² + 1) = m³ − 4m² + m − 4: one real root.
+        assert!((largest_cubic_root(-4.0, 1.0, -4.0).unwrap() - 4.0).abs() < 1e-14);
+        // A triple root at 0.5: (m − 0.5)³.
+        let m = largest_cubic_root(-1.5, 0.75, -0.125).unwrap();
+        assert!((m - 0.5).abs() < 1e-5, "{m}");
+        assert_eq!(largest_cubic_root(f64::MAX, f64::MAX, 1.0), None);
+    }
+
+    #[test]
+    fn biquadratic_falls_back() {
+        // λ⁴ + 5λ² + 4 = (λ² + 1)(λ² + 4): Q = 0 and s² = 2m − P may vanish; the shifts are
+        // then a pair or the usual ones, and the eigenvalues ±i, ±2i either way.
+        // Its companion matrix (unreduced Hessenberg), by columns.
+        let h: Fixed<4> = [
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+            [-4.0, 0.0, -5.0, 0.0],
+        ];
+        assert!(quartic_pair(&h, 0).is_none_or(
+            |(s, t)| s.abs() < 1e-12 && ((t - 1.0).abs() < 1e-12 || (t - 4.0).abs() < 1e-12)
+        ));
+        let mut out = [Complex64::new(0.0, 0.0); 4];
+        let a: Vec<f64> = h.iter().flatten().copied().collect();
+        eigenvalues_small(&a, 4, &mut out).unwrap();
+        let mut mags: Vec<f64> = out.iter().map(|z| z.im.abs()).collect();
+        mags.sort_by(f64::total_cmp);
+        for (m, e) in mags.iter().zip([1.0, 1.0, 2.0, 2.0]) {
+            assert!((m - e).abs() < 1e-13, "{out:?}");
+        }
+    }
 
     #[test]
     fn two_by_two_blocks() {
