@@ -9,7 +9,7 @@ use eom_model::{Linearizer, Method};
 use eom_num::StateSpace;
 use eom_num::modes::{ModeKind, ModeOptions, Modes, Stability};
 use nalgebra::DMatrix;
-use numpy::{PyReadonlyArray2, PyReadwriteArray1, PyReadwriteArray2};
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray2, PyReadwriteArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -292,24 +292,29 @@ impl NativeModel {
         Ok(c.warnings().to_vec())
     }
 
-    /// Evaluates A, B, C, D (row-major, one after the other per point) at the points (rows of
-    /// `points`, all parameters in model order) straight into `out` (C-contiguous, one row
-    /// per point), on `threads` threads (all cores when None) without the GIL.
-    #[pyo3(signature = (points, out, threads=None))]
-    fn evaluate_into(
+    /// A, B, C, D (row-major, one after the other per point: one row per point) at the points
+    /// (rows of `points`, all parameters in model order), on `threads` threads (all cores
+    /// when None) without the GIL, written straight into a Rust buffer that becomes the NumPy
+    /// array without a copy. A buffer NumPy allocates itself is asked to be backed by huge
+    /// pages, and faulting those in (zeroing 2 MiB each, compacting memory) cost a third to a
+    /// half more than the whole evaluation on the development machine (docs/python.md).
+    #[pyo3(signature = (points, threads=None))]
+    fn evaluate<'py>(
         &self,
-        py: Python<'_>,
-        points: PyReadonlyArray2<'_, f64>,
-        mut out: PyReadwriteArray2<'_, f64>,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
         threads: Option<usize>,
-    ) -> PyResult<()> {
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let pts = points.as_slice()?;
-        let out = out.as_slice_mut()?;
         let n = self.param_names.len();
-        py.detach(|| {
+        let (out, len) = py.detach(|| -> PyResult<(Vec<f64>, usize)> {
             let c = self.compiled()?;
-            points::with_threads(threads, || points::evaluate_into(&c, pts, n, out))
-        })
+            let mut out = vec![0.0; pts.len() / n.max(1) * c.abcd_len()];
+            points::with_threads(threads, || points::evaluate_into(&c, pts, n, &mut out))?;
+            Ok((out, c.abcd_len()))
+        })?;
+        let count = out.len() / len.max(1);
+        out.into_pyarray(py).reshape([count, len])
     }
 
     /// The largest real part (structural zeros excluded), the verdict (1 stable, -1
@@ -339,7 +344,7 @@ impl NativeModel {
         })
     }
 
-    /// The Rust-only time of `evaluate_into` (into a fresh buffer, no Python objects), in
+    /// The Rust-only time of `evaluate` (into a fresh buffer, no Python objects), in
     /// seconds: the baseline of the Python benchmark.
     #[pyo3(signature = (points, threads=None))]
     fn _evaluate_seconds(

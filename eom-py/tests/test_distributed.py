@@ -82,11 +82,11 @@ def test_workers_sharing_a_machine_share_its_cores(client):
     )
     assert set(threads.values()) == {max(1, eom.distributed._cores() // 2)}
     # Any thread count gives the same result, bit for bit.
-    bike, pts = bicycle_points(3_000, seed=5)
+    bike, pts = bicycle_points(1_000, seed=5)
     local = bike.stability(pts)
     for threads in (1, 2):
         assert_identical(
-            eom.distributed.stability(bike, pts, client=client, chunk=700, threads=threads),
+            eom.distributed.stability(bike, pts, client=client, chunk=300, threads=threads),
             local,
         )
         assert_identical(bike.stability(pts, threads=threads), local)

@@ -200,16 +200,13 @@ class Model:
     ) -> Evaluation:
         """A, B, C, D at every point, from the compiled symbolic reduction, on ``threads``
         threads (all cores by default) with the GIL released, written straight into the
-        arrays returned. A point outside the validity region of the reduction (pivots
+        buffer of the arrays returned (read-only views of one (N, entries) array). A point outside the validity region of the reduction (pivots
         chosen at the defaults) raises ``EomError`` naming it."""
         p = self.points(points, names)
         shapes = self._native.shapes()
         sizes = [r * c for r, c in shapes]
-        # np.zeros, not np.empty: calloc's pages come zeroed on first touch, by the threads
-        # that write them; np.empty asks the kernel for huge pages, whose faults (zeroing
-        # 2 MiB, compaction) cost more than the evaluation's writes on a loaded machine.
-        out = np.zeros((p.shape[0], sum(sizes)))
-        self._native.evaluate_into(p, out, _threads(threads))
+        # (N, entries of A..D): the Rust buffer the evaluation wrote, not copied.
+        out = self._native.evaluate(p, _threads(threads))
         mats = []
         start = 0
         for (r, c), size in zip(shapes, sizes):
