@@ -18,6 +18,7 @@ figures are only as good as the load they were measured under.
 """
 
 import argparse
+import logging
 import os
 import time
 
@@ -106,12 +107,15 @@ def main():
 
         import eom.distributed as ed
 
-        t = stats([best(lambda: bike.stability(pts), repeat=1) for _ in range(args.repeat)])
-        print(f"stability local: {args.points / t[0]:.0f} points/s "
-              f"(median {args.points / t[1]:.0f}); {load()}")
+        for threads in (None, 1):
+            t = stats([best(lambda: bike.stability(pts, threads=threads), repeat=1)
+                       for _ in range(args.repeat)])
+            print(f"stability local, {threads or 'all'} thread(s): {args.points / t[0]:.0f} "
+                  f"points/s (median {args.points / t[1]:.0f}); {load()}")
         clusters = {
             w: distributed.LocalCluster(n_workers=w, threads_per_worker=1,
-                                        dashboard_address=None)
+                                        dashboard_address=None,
+                                        silence_logs=logging.CRITICAL)
             for w in (1, 2)
         }
         clients = {w: distributed.Client(c) for w, c in clusters.items()}
