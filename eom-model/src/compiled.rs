@@ -220,27 +220,7 @@ impl CompiledStateSpace {
         values: &[f64],
         ws: &mut EvalWorkspace,
     ) -> Result<StateSpace<f64>, ModelError> {
-        ws.out.resize(self.tape.n_outputs(), 0.0);
-        ws.work.resize(self.tape.work_len(), 0.0);
-        self.tape.eval_into(values, &mut ws.out, &mut ws.work)?;
-        let out = &ws.out;
-        for ((start, len, pivot), label) in self.check_layout.iter().zip(&self.check_labels) {
-            let v = out[*start];
-            let others = &out[start + 1..start + len];
-            if !ValidityCheck::<f64>::holds(v, others, *pivot) {
-                return Err(ModelError::PivotBreakdown(format!(
-                    "{label} (value {v:.3e}, largest entry of its row {:.3e})",
-                    others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
-                )));
-            }
-        }
-        if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {
-            return Err(SymError::EvalNonFinite {
-                what: format!("state-space entry {k}"),
-                value: out[k],
-            }
-            .into());
-        }
+        let out = self.run(values, ws)?;
         let mut k = 0;
         let mut take = |(r, c): (usize, usize)| {
             let m = DMatrix::from_column_slice(r, c, &out[k..k + r * c]);
@@ -262,13 +242,84 @@ impl CompiledStateSpace {
         })
     }
 
+    /// The number of entries of A, B, C and D together: the length of the slice
+    /// [`CompiledStateSpace::evaluate_into`] fills per point.
+    pub fn abcd_len(&self) -> usize {
+        self.shapes[..4].iter().map(|(r, c)| r * c).sum()
+    }
+
+    /// A, B, C, D at a point written into `out` (length [`CompiledStateSpace::abcd_len`]):
+    /// one after the other, each row-major (NumPy's order), the same numbers as
+    /// [`CompiledStateSpace::evaluate`] with the same validity checks, and no allocation
+    /// once `ws` has grown. The inner loop of a sweep that writes straight into the caller's
+    /// buffers (one slice per point, split across threads). `out` is left unspecified when
+    /// an error is returned.
+    ///
+    /// # Panics
+    /// When `out.len()` is not [`CompiledStateSpace::abcd_len`] (as `copy_from_slice`).
+    pub fn evaluate_into(
+        &self,
+        values: &[f64],
+        ws: &mut EvalWorkspace,
+        out: &mut [f64],
+    ) -> Result<(), ModelError> {
+        assert_eq!(
+            out.len(),
+            self.abcd_len(),
+            "evaluate_into: the output slice must hold A, B, C and D"
+        );
+        let tape = self.run(values, ws)?;
+        let mut dst = 0;
+        let mut src = 0;
+        for &(r, c) in &self.shapes[..4] {
+            // The tape holds each matrix column-major.
+            let m = &tape[src..src + r * c];
+            for i in 0..r {
+                for j in 0..c {
+                    out[dst] = m[j * r + i];
+                    dst += 1;
+                }
+            }
+            src += r * c;
+        }
+        Ok(())
+    }
+
+    /// The tape at `values` into `ws.out`, checked: the first validity check that fails is a
+    /// [`ModelError::PivotBreakdown`], a non-finite matrix entry an error naming it.
+    fn run<'w>(&self, values: &[f64], ws: &'w mut EvalWorkspace) -> Result<&'w [f64], ModelError> {
+        ws.out.resize(self.tape.n_outputs(), 0.0);
+        ws.work.resize(self.tape.work_len(), 0.0);
+        self.tape.eval_into(values, &mut ws.out, &mut ws.work)?;
+        let out = &ws.out;
+        for ((start, len, pivot), label) in self.check_layout.iter().zip(&self.check_labels) {
+            let v = out[*start];
+            let others = &out[start + 1..start + len];
+            if !ValidityCheck::<f64>::holds(v, others, *pivot) {
+                return Err(ModelError::PivotBreakdown(format!(
+                    "{label} (value {v:.3e}, largest entry of its row {:.3e})",
+                    others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
+                )));
+            }
+        }
+        if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {
+            return Err(SymError::EvalNonFinite {
+                what: format!("state-space entry {k}"),
+                value: out[k],
+            }
+            .into());
+        }
+        Ok(out)
+    }
+
     /// Only the state matrix A at a point, with the validity checks (the inner loop of a sweep).
     pub fn evaluate_a(
         &self,
         values: &[f64],
         ws: &mut EvalWorkspace,
     ) -> Result<DMatrix<f64>, ModelError> {
-        let ss = self.evaluate_with(values, ws)?;
-        Ok(ss.a)
+        let out = self.run(values, ws)?;
+        let (r, c) = self.shapes[0];
+        Ok(DMatrix::from_column_slice(r, c, &out[..r * c]))
     }
 }

@@ -3,14 +3,23 @@
     python eom-py/bench/bench.py [--points N] [--dask]
 
 1. Model.evaluate over N random bicycle points against the Rust-only time of the same
-   evaluation (no copies to or from Python): the per-point overhead of the Python layer.
+   evaluation into a fresh buffer (no Python objects): the per-point overhead of the Python
+   layer; interleaved, the smallest and the median of --repeat runs.
 2. LinearModel creation beyond the Rust linearization (symbolic method, cached tape), the
    baseline the same linearization timed in Rust alone in the same run; also with the
    matrices and names read (they are converted on first use).
-3. With --dask: Model.stability points/s locally and on a LocalCluster of 1 and 2 workers.
+3. With --dask: Model.stability points/s locally, and on LocalClusters of 1 and 2 worker
+   processes (one Dask thread each; the one worker's Rust on one thread, the two workers'
+   on their share of the cores, one each on 2 cores), both up at once and timed in turn,
+   --repeat rounds: the smallest and the median, and the speed-up of 2 workers over 1.
+
+The machine's load (os.getloadavg) is printed with each figure: on a shared machine the
+figures are only as good as the load they were measured under.
 """
 
 import argparse
+import logging
+import os
 import time
 
 import numpy as np
@@ -38,17 +47,32 @@ def _touch(lin):
     return lin.A, lin.B, lin.C, lin.D, lin.states, lin.inputs, lin.outputs, lin.warnings
 
 
+def load():
+    return "load {:.2f} {:.2f} {:.2f}".format(*os.getloadavg())
+
+
+def stats(times):
+    return min(times), sorted(times)[len(times) // 2]
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--points", type=int, default=1_000_000)
+    ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--dask", action="store_true")
     args = ap.parse_args()
     bike, pts = bicycle_points(args.points)
     bike.evaluate(pts[:10])  # compile once
-    rust = min(bike._native._evaluate_seconds(pts) for _ in range(3))
-    py = best(lambda: bike.evaluate(pts))
-    print(f"evaluate: {args.points} points, Rust {rust:.3f} s, Python {py:.3f} s, "
-          f"overhead {100 * (py / rust - 1):.1f} %")
+    rust, py = [], []
+    for _ in range(args.repeat):
+        rust.append(bike._native._evaluate_seconds(pts))
+        t = time.perf_counter()
+        bike.evaluate(pts)
+        py.append(time.perf_counter() - t)
+    (r0, r1), (p0, p1) = stats(rust), stats(py)
+    print(f"evaluate: {args.points} points, Rust {r0:.3f} s (median {r1:.3f}), Python "
+          f"{p0:.3f} s (median {p1:.3f}), overhead {100 * (p0 / r0 - 1):.1f} % "
+          f"(medians {100 * (p1 / r1 - 1):.1f} %); {load()}")
     kw = dict(zip(bike.parameters, pts[0]))
     items = [(k, float(v)) for k, v in kw.items()]
     # The baseline: the same linearization in Rust alone (no conversions), interleaved with
@@ -77,19 +101,45 @@ def main():
           f"(median {1e6 * rs[1]:.1f}); beyond it (min / median):")
     for k, (lo, med) in stat.items():
         print(f"  {k}: {1e6 * (lo - rs[0]):.1f} / {1e6 * (med - rs[1]):.1f} µs")
+    print(f"  ({load()})")
     if args.dask:
         import distributed
 
         import eom.distributed as ed
 
-        t = best(lambda: bike.stability(pts), repeat=1)
-        print(f"stability local: {args.points / t:.0f} points/s")
-        for workers in (1, 2):
-            with distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
-                                          dashboard_address=None) as c, distributed.Client(c) as cl:
+        for threads in (None, 1):
+            t = stats([best(lambda: bike.stability(pts, threads=threads), repeat=1)
+                       for _ in range(args.repeat)])
+            print(f"stability local, {threads or 'all'} thread(s): {args.points / t[0]:.0f} "
+                  f"points/s (median {args.points / t[1]:.0f}); {load()}")
+        clusters = {
+            w: distributed.LocalCluster(n_workers=w, threads_per_worker=1,
+                                        dashboard_address=None,
+                                        silence_logs=logging.CRITICAL)
+            for w in (1, 2)
+        }
+        clients = {w: distributed.Client(c) for w, c in clusters.items()}
+        try:
+            times = {w: [] for w in clients}
+            for cl in clients.values():
                 ed.stability(bike, pts[:1000], client=cl)  # warm up: ship and compile
-                t = best(lambda: ed.stability(bike, pts, client=cl), repeat=1)
-                print(f"stability on {workers} worker(s): {args.points / t:.0f} points/s")
+            for _ in range(args.repeat):
+                for w, cl in clients.items():
+                    # One worker on one core (a node of one core) against two workers sharing
+                    # the two cores (each takes its share: one thread).
+                    threads = 1 if w == 1 else None
+                    times[w].append(best(
+                        lambda: ed.stability(bike, pts, client=cl, threads=threads), repeat=1))
+            s = {w: stats(v) for w, v in times.items()}
+            for w, (lo, med) in s.items():
+                print(f"stability on {w} worker(s): {args.points / lo:.0f} points/s "
+                      f"(median {args.points / med:.0f})")
+            print(f"2 workers over 1: {s[1][0] / s[2][0]:.2f}x (medians "
+                  f"{s[1][1] / s[2][1]:.2f}x); {load()}")
+        finally:
+            for w in clients:
+                clients[w].close()
+                clusters[w].close()
 
 
 if __name__ == "__main__":

@@ -4,14 +4,15 @@
 use crate::errors::{eom_error, model_error};
 use crate::points::{self, Compiled};
 use crate::source::Source;
+use eom_model::file::ParamRange;
 use eom_model::{Linearizer, Method};
 use eom_num::StateSpace;
 use eom_num::modes::{ModeKind, ModeOptions, Modes, Stability};
 use nalgebra::DMatrix;
-use pyo3::buffer::PyBuffer;
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyReadonlyArray2, PyReadwriteArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// A model: where it comes from, its parameters, and (built on first use) its compiled
 /// symbolic state space.
@@ -21,15 +22,19 @@ pub struct NativeModel {
     name: String,
     param_names: Vec<String>,
     defaults: Vec<f64>,
+    /// The parameters' allowed values (model order), for the symbolic method's quick check.
+    ranges: Option<Vec<ParamRange>>,
     compiled: OnceLock<Result<Arc<Compiled>, String>>,
 }
 
 impl NativeModel {
     fn new(source: Source) -> PyResult<Self> {
         let model = source.build(&[])?;
+        let param_names = model.scope.names();
         Ok(NativeModel {
             name: model.name.clone(),
-            param_names: model.scope.names(),
+            ranges: source.ranges(&param_names),
+            param_names,
             defaults: model.scope.nominal_values(),
             source,
             compiled: OnceLock::new(),
@@ -39,10 +44,7 @@ impl NativeModel {
     /// The compiled symbolic state space, reduced once (pivots chosen at the defaults).
     pub fn compiled(&self) -> PyResult<Arc<Compiled>> {
         self.compiled
-            .get_or_init(|| {
-                let model = self.source.build(&[]).map_err(|e| e.to_string())?;
-                Compiled::of(&model).map(Arc::new)
-            })
+            .get_or_init(|| compiled_of(&self.source))
             .clone()
             .map_err(eom_error)
     }
@@ -55,6 +57,11 @@ impl NativeModel {
         method: Method,
         values: &[(String, f64)],
     ) -> PyResult<eom_model::Linearization> {
+        if method == Method::Symbolic
+            && let Some(v) = self.point_values(values)
+        {
+            return self.compiled()?.linearize(&v).map_err(model_error);
+        }
         let ov = self.overrides(values);
         let at_point = self.source.build(&ov)?;
         if method == Method::Symbolic {
@@ -71,10 +78,57 @@ impl NativeModel {
             .map_err(model_error)
     }
 
+    /// All parameter values (model order) of the point: the defaults with `values` by name,
+    /// when every name is a parameter and every value in its declared range; `None` otherwise
+    /// (building the model at the point then says what is wrong, as it always did). What the
+    /// symbolic method needs without building the model at the point: the compiled reduction
+    /// is evaluated there, as `evaluate` does for many points.
+    fn point_values(&self, values: &[(String, f64)]) -> Option<Vec<f64>> {
+        let ranges = self.ranges.as_ref()?;
+        let mut v = self.defaults.clone();
+        for (name, x) in values {
+            let k = self.param_names.iter().position(|n| n == name)?;
+            if !ranges[k].contains(*x) {
+                return None;
+            }
+            v[k] = *x;
+        }
+        Some(v)
+    }
+
     /// Overrides by name, each checked against the parameter list.
     fn overrides<'a>(&self, values: &'a [(String, f64)]) -> Vec<(&'a str, f64)> {
         values.iter().map(|(k, v)| (k.as_str(), *v)).collect()
     }
+}
+
+/// The compiled reduction of `source`, shared by every model of this process that is the
+/// same model (its model file, as `to_toml` writes it, is the key: the text of a file and the
+/// files it reads, such as AVL geometries, are in it): a model unpickled afresh on a Dask
+/// worker for every sweep reuses the reduction the worker compiled for the first (a handful
+/// kept, the oldest dropped).
+fn compiled_of(source: &Source) -> Result<Arc<Compiled>, String> {
+    type Cache = Vec<(String, Arc<Compiled>)>;
+    static CACHE: Mutex<Cache> = Mutex::new(Vec::new());
+    const KEPT: usize = 8;
+    let model = source.build(&[]).map_err(|e| e.to_string())?;
+    let key = eom_model::file::to_toml(&model);
+    let cached = |cache: &Cache| cache.iter().find(|(k, _)| *k == key).map(|e| e.1.clone());
+    if let Some(c) = cached(&CACHE.lock().unwrap_or_else(|e| e.into_inner())) {
+        return Ok(c);
+    }
+    // Compiled without the lock held (other models compile meanwhile); the same reduction
+    // whoever finishes first.
+    let c = Arc::new(Compiled::of(&model)?);
+    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(c) = cached(&cache) {
+        return Ok(c);
+    }
+    if cache.len() == KEPT {
+        cache.remove(0);
+    }
+    cache.push((key, c.clone()));
+    Ok(c)
 }
 
 /// The parameter values of a dict name → number (the keyword arguments of `linearize`).
@@ -238,51 +292,75 @@ impl NativeModel {
         Ok(c.warnings().to_vec())
     }
 
-    /// Evaluates A, B, C, D (row-major, one after the other per point) at the points (rows of
-    /// `points`, all parameters in model order) into `out`, on all cores without the GIL.
-    fn evaluate_into(
+    /// A, B, C, D (row-major, one after the other per point: one row per point) at the points
+    /// (rows of `points`, all parameters in model order), on `threads` threads (all cores
+    /// when None) without the GIL, written straight into a Rust buffer that becomes the NumPy
+    /// array without a copy. A buffer NumPy allocates itself is asked to be backed by huge
+    /// pages, and faulting those in (zeroing 2 MiB each, compacting memory) cost a third to a
+    /// half more than the whole evaluation on the development machine (docs/python.md).
+    #[pyo3(signature = (points, threads=None))]
+    fn evaluate<'py>(
         &self,
-        py: Python<'_>,
-        points: PyBuffer<f64>,
-        out: PyBuffer<f64>,
-    ) -> PyResult<()> {
-        let pts = points.to_vec(py)?;
-        let values = py.detach(|| -> PyResult<Vec<f64>> {
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let pts = points.as_slice()?;
+        let n = self.param_names.len();
+        let (out, len) = py.detach(|| -> PyResult<(Vec<f64>, usize)> {
             let c = self.compiled()?;
-            points::evaluate(&c, &pts, self.param_names.len())
+            let mut out = vec![0.0; pts.len() / n.max(1) * c.abcd_len()];
+            points::with_threads(threads, || points::evaluate_into(&c, pts, n, &mut out))?;
+            Ok((out, c.abcd_len()))
         })?;
-        out.copy_from_slice(py, &values)
+        let count = out.len() / len.max(1);
+        out.into_pyarray(py).reshape([count, len])
     }
 
     /// The largest real part (structural zeros excluded), the verdict (1 stable, -1
-    /// unstable, 0 neither) and whether the robust path was used, per point.
+    /// unstable, 0 neither) and whether the robust path was used, per point, written straight
+    /// into the arrays given, on `threads` threads (all cores when None) without the GIL.
+    #[pyo3(signature = (points, max_real, verdict, fallback, threads=None))]
     fn stability_into(
         &self,
         py: Python<'_>,
-        points: PyBuffer<f64>,
-        max_real: PyBuffer<f64>,
-        verdict: PyBuffer<i8>,
-        fallback: PyBuffer<u8>,
+        points: PyReadonlyArray2<'_, f64>,
+        mut max_real: PyReadwriteArray1<'_, f64>,
+        mut verdict: PyReadwriteArray1<'_, i8>,
+        mut fallback: PyReadwriteArray1<'_, bool>,
+        threads: Option<usize>,
     ) -> PyResult<()> {
-        let pts = points.to_vec(py)?;
-        let r = py.detach(|| -> PyResult<points::StabilityOut> {
+        let pts = points.as_slice()?;
+        let out = points::StabilityOut {
+            max_real: max_real.as_slice_mut()?,
+            verdict: verdict.as_slice_mut()?,
+            fallback: fallback.as_slice_mut()?,
+        };
+        py.detach(|| {
             let c = self.compiled()?;
-            points::stability(&c, &self.source, &self.param_names, &pts)
-        })?;
-        max_real.copy_from_slice(py, &r.max_real)?;
-        verdict.copy_from_slice(py, &r.verdict)?;
-        fallback.copy_from_slice(py, &r.fallback)
+            points::with_threads(threads, || {
+                points::stability_into(&c, &self.source, &self.param_names, pts, out)
+            })
+        })
     }
 
-    /// The Rust-only time of `evaluate_into` (no copies to or from Python), in seconds: the
-    /// baseline of the Python benchmark.
-    fn _evaluate_seconds(&self, py: Python<'_>, points: PyBuffer<f64>) -> PyResult<f64> {
-        let pts = points.to_vec(py)?;
+    /// The Rust-only time of `evaluate` (into a fresh buffer, no Python objects), in
+    /// seconds: the baseline of the Python benchmark.
+    #[pyo3(signature = (points, threads=None))]
+    fn _evaluate_seconds(
+        &self,
+        py: Python<'_>,
+        points: PyReadonlyArray2<'_, f64>,
+        threads: Option<usize>,
+    ) -> PyResult<f64> {
+        let pts = points.as_slice()?;
+        let n = self.param_names.len();
         py.detach(|| -> PyResult<f64> {
             let c = self.compiled()?;
             let t = std::time::Instant::now();
-            let v = points::evaluate(&c, &pts, self.param_names.len())?;
-            std::hint::black_box(&v);
+            let mut out = vec![0.0; pts.len() / n.max(1) * c.abcd_len()];
+            points::with_threads(threads, || points::evaluate_into(&c, pts, n, &mut out))?;
+            std::hint::black_box(&out);
             Ok(t.elapsed().as_secs_f64())
         })
     }

@@ -15,6 +15,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use pyo3::PyResult;
 use rayon::prelude::*;
+use std::sync::{Arc, Mutex};
 
 /// A model's symbolic reduction, compiled, with what every point needs.
 pub struct Compiled {
@@ -70,6 +71,11 @@ impl Compiled {
             .unwrap_or_default()
     }
 
+    /// Entries of A, B, C, D per point.
+    pub fn abcd_len(&self) -> usize {
+        self.css.abcd_len()
+    }
+
     /// Warnings of the symbolic reduction.
     pub fn warnings(&self) -> &[String] {
         &self.warnings
@@ -88,49 +94,54 @@ impl Compiled {
             warnings: self.warnings.clone(),
         })
     }
-
-    /// Entries of A, B, C, D per point.
-    fn point_len(&self) -> usize {
-        self.shapes.iter().map(|(r, c)| r * c).sum()
-    }
 }
 
 /// A, B, C, D (row-major, in this order) at every point (`points`: rows of `n_params`
-/// values). A point outside the validity region of the symbolic reduction is an error naming
-/// the first such point.
-pub fn evaluate(c: &Compiled, points: &[f64], n_params: usize) -> PyResult<Vec<f64>> {
-    let len = c.point_len();
-    let count = points.len() / n_params.max(1);
-    let mut out = vec![0.0; count * len];
+/// values) written straight into `out` (`abcd_len` entries per point), one slice per point,
+/// on all cores. A point outside the validity region of the symbolic reduction is an error
+/// naming the first such point (`out` is then left partly written).
+pub fn evaluate_into(
+    c: &Compiled,
+    points: &[f64],
+    n_params: usize,
+    out: &mut [f64],
+) -> PyResult<()> {
+    let len = c.css.abcd_len();
+    let np = n_params.max(1);
+    let count = points.len() / np;
+    if out.len() != count * len || points.len() != count * np {
+        return Err(eom_error(format!(
+            "evaluate: {} values for {count} points of {len} entries (points of {np} values: {})",
+            out.len(),
+            points.len()
+        )));
+    }
+    // Chunks of points per task: rayon's splitting down to single points costs more than
+    // the evaluation of a small model.
+    const CHUNK: usize = 256;
     let failure = out
-        .par_chunks_mut(len.max(1))
-        .zip(points.par_chunks(n_params.max(1)))
+        .par_chunks_mut((len * CHUNK).max(1))
+        .zip(points.par_chunks(np * CHUNK))
         .enumerate()
-        .map_init(EvalWorkspace::default, |ws, (i, (o, p))| {
-            match c.css.evaluate_with(p, ws) {
-                Ok(ss) => {
-                    let mut k = 0;
-                    for m in [&ss.a, &ss.b, &ss.c, &ss.d] {
-                        for r in 0..m.nrows() {
-                            for col in 0..m.ncols() {
-                                o[k] = m[(r, col)];
-                                k += 1;
-                            }
-                        }
-                    }
-                    None
-                }
-                Err(e) => Some((i, e)),
-            }
+        .map_init(EvalWorkspace::default, |ws, (k, (o, p))| {
+            o.chunks_mut(len.max(1))
+                .zip(p.chunks(np))
+                .enumerate()
+                .find_map(|(i, (o, p))| {
+                    c.css
+                        .evaluate_into(p, ws, o)
+                        .err()
+                        .map(|e| (k * CHUNK + i, e))
+                })
         })
         .flatten()
         .min_by_key(|(i, _)| *i);
     match failure {
-        None => Ok(out),
+        None => Ok(()),
         Some((i, e)) => Err(eom_error(format!(
             "point {i} ({}): {e}; the symbolic reduction (pivots chosen at the defaults) does \
              not hold there: linearize that point with method=\"numeric\" or \"robust\"",
-            describe(c, &points[i * n_params..(i + 1) * n_params])
+            describe(c, &points[i * np..(i + 1) * np])
         ))),
     }
 }
@@ -146,29 +157,46 @@ fn describe(c: &Compiled, p: &[f64]) -> String {
         .join(", ")
 }
 
-/// The stability of every point.
-pub struct StabilityOut {
+/// Where the stability of every point goes (one entry per point each).
+pub struct StabilityOut<'a> {
     /// Largest real part of the eigenvalues, structural zeros excluded.
-    pub max_real: Vec<f64>,
+    pub max_real: &'a mut [f64],
     /// 1 stable, -1 unstable, 0 neither (largest real part exactly 0, or no eigenvalue left).
-    pub verdict: Vec<i8>,
-    /// 1 where the symbolic reduction broke down and the robust path gave A.
-    pub fallback: Vec<u8>,
+    pub verdict: &'a mut [i8],
+    /// Where the symbolic reduction broke down and the robust path gave A.
+    pub fallback: &'a mut [bool],
 }
 
-/// The stability of every point: A from the compiled tape (the robust path where the symbolic
-/// reduction breaks down, as `eom sweep` does), its eigenvalues by the small-matrix kernel with
-/// the structural zeros found at the defaults (as `eom bench throughput`).
-pub fn stability(
+/// The stability of every point, written into `out`: A from the compiled tape (the robust
+/// path where the symbolic reduction breaks down, as `eom sweep` does), its eigenvalues by the
+/// small-matrix kernel with the structural zeros found at the defaults (as `eom bench
+/// throughput`). An error names the first point that fails.
+pub fn stability_into(
     c: &Compiled,
     source: &Source,
     names: &[String],
     points: &[f64],
-) -> PyResult<StabilityOut> {
+    out: StabilityOut<'_>,
+) -> PyResult<()> {
     let np = names.len().max(1);
     let count = points.len() / np;
-    let results: Vec<Result<(f64, i8, u8), String>> = points
-        .par_chunks(np)
+    if [out.max_real.len(), out.verdict.len(), out.fallback.len()] != [count; 3] {
+        return Err(eom_error(format!(
+            "stability: output arrays of {}, {} and {} entries for {count} points",
+            out.max_real.len(),
+            out.verdict.len(),
+            out.fallback.len()
+        )));
+    }
+    // Points per task (see `evaluate_into`).
+    const CHUNK: usize = 64;
+    let failure = out
+        .max_real
+        .par_chunks_mut(CHUNK)
+        .zip(out.verdict.par_chunks_mut(CHUNK))
+        .zip(out.fallback.par_chunks_mut(CHUNK))
+        .zip(points.par_chunks(np * CHUNK))
+        .enumerate()
         .map_init(
             || {
                 (
@@ -176,26 +204,58 @@ pub fn stability(
                     vec![Complex64::new(0.0, 0.0); MAX_N],
                 )
             },
-            |(ws, eig), p| point_stability(c, source, names, p, ws, eig),
+            |(ws, eig), (k, (((re, v), f), p))| {
+                for (i, p) in p.chunks(np).enumerate() {
+                    match point_stability(c, source, names, p, ws, eig) {
+                        Ok((x, verdict, fallback)) => {
+                            re[i] = x;
+                            v[i] = verdict;
+                            f[i] = fallback;
+                        }
+                        Err(e) => return Some((k * CHUNK + i, e)),
+                    }
+                }
+                None
+            },
         )
-        .collect();
-    let mut out = StabilityOut {
-        max_real: Vec::with_capacity(count),
-        verdict: Vec::with_capacity(count),
-        fallback: Vec::with_capacity(count),
-    };
-    for (i, r) in results.into_iter().enumerate() {
-        let (re, v, f) = r.map_err(|e| {
-            eom_error(format!(
-                "point {i} ({}): {e}",
-                describe(c, &points[i * np..(i + 1) * np])
-            ))
-        })?;
-        out.max_real.push(re);
-        out.verdict.push(v);
-        out.fallback.push(f);
+        .flatten()
+        .min_by_key(|(i, _)| *i);
+    match failure {
+        None => Ok(()),
+        Some((i, e)) => Err(eom_error(format!(
+            "point {i} ({}): {e}",
+            describe(c, &points[i * np..(i + 1) * np])
+        ))),
     }
-    Ok(out)
+}
+
+/// `f` on a pool of `threads` threads (rayon's global pool, all cores, when None): a Dask
+/// worker sharing its machine with other workers takes its share of the cores, not all of
+/// them. Pools are kept per size (building one starts its threads).
+pub fn with_threads<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> R {
+    static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+    let Some(n) = threads.filter(|&n| n != rayon::current_num_threads()) else {
+        return f();
+    };
+    let pool = {
+        let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
+        match pools.iter().find(|(k, _)| *k == n) {
+            Some((_, p)) => Some(p.clone()),
+            None => match rayon::ThreadPoolBuilder::new().num_threads(n).build() {
+                Ok(p) => {
+                    let p = Arc::new(p);
+                    pools.push((n, p.clone()));
+                    Some(p)
+                }
+                // No threads to be had: the global pool.
+                Err(_) => None,
+            },
+        }
+    };
+    match pool {
+        Some(p) => p.install(f),
+        None => f(),
+    }
 }
 
 fn point_stability(
@@ -205,7 +265,7 @@ fn point_stability(
     p: &[f64],
     ws: &mut EvalWorkspace,
     eig: &mut [Complex64],
-) -> Result<(f64, i8, u8), String> {
+) -> Result<(f64, i8, bool), String> {
     let (a, fallback) = match c.css.evaluate_a(p, ws) {
         Ok(a) => (a, false),
         Err(ModelError::PivotBreakdown(_))
@@ -243,7 +303,7 @@ fn point_stability(
     } else {
         0
     };
-    Ok((re, verdict, u8::from(fallback)))
+    Ok((re, verdict, fallback))
 }
 
 /// A at a point by the robust (SVD) path.

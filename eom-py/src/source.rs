@@ -4,7 +4,7 @@
 
 use crate::errors::{catalogue_error, eom_error, file_error};
 use eom_model::Model;
-use eom_model::file::FileError;
+use eom_model::file::{FileError, ParamRange};
 use pyo3::{PyErr, PyResult};
 use std::path::{Path, PathBuf};
 
@@ -65,6 +65,19 @@ impl Source {
                 Ok(loaded.map_err(BuildError::File)?.model)
             }
         }
+    }
+
+    /// The allowed values of the parameters `names` (in that order): those the catalogue or
+    /// the file declares. `None` when a name has no declaration.
+    pub fn ranges(&self, names: &[String]) -> Option<Vec<ParamRange>> {
+        let specs = match self {
+            Source::Builtin(name) => models::find(name).ok()?.0.params,
+            Source::File { path, text } => eom_model::file::load_str(text, path, &[]).ok()?.params,
+        };
+        names
+            .iter()
+            .map(|n| specs.iter().find(|s| s.name == *n).map(|s| s.range))
+            .collect()
     }
 
     /// The loading warnings of a model file (none for a built-in).

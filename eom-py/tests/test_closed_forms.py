@@ -125,3 +125,17 @@ def test_bicycle_closed_forms_parse_in_sympy():
 def test_solve_for_must_be_kept():
     with pytest.raises(eom.EomError, match="keep it symbolic"):
         eom.load("smd").symbolic(keep=["k"], solve_for="c")
+
+
+@pytest.mark.parametrize("v, verdict", [(3.0, "never"), (5.0, "always"), (8.0, "never")])
+def test_bicycle_with_every_parameter_substituted_is_decided(tmp_path, v, verdict):
+    # The benchmark bicycle is stable for 4.2923825 < v < 6.0242620 m/s (Meijaard et al.
+    # 2007, Table 2a; docs/references.md §A): below, the weave mode is unstable; above, the
+    # capsize mode. With keep=[] every condition is an exact constant (trigonometric
+    # functions of rationals), whose sign the summary decides.
+    path = tmp_path / "bicycle.toml"
+    path.write_text(eom.load("bicycle").to_toml(v=v))
+    sym = eom.load(str(path)).symbolic(keep=[], transfer=False)
+    assert sym.stability_verdict.startswith(verdict), sym.stability_verdict
+    if verdict == "always":
+        assert sym.stability == []

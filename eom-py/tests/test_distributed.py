@@ -70,3 +70,30 @@ def test_points_do_not_travel_in_the_task_graph(client):
             warnings.filterwarnings("error", message=".*large graph.*")
             remote = eom.distributed.stability(bike, pts, client=client, chunk=1_500)
     assert_identical(remote, bike.stability(pts))
+
+
+def test_workers_sharing_a_machine_share_its_cores(client):
+    # Two one-thread workers on this machine: each sees 2 task slots on its host, so each
+    # task evaluates on cores ÷ 2 threads (one on two cores), not on all of them.
+    slots = eom.distributed._slots_per_host(client)
+    assert len(slots) == 2 and set(slots.values()) == {2}
+    threads = client.run(
+        lambda dask_worker: eom.distributed._worker_threads(slots, dask_worker.address)
+    )
+    assert set(threads.values()) == {max(1, eom.distributed._cores() // 2)}
+    # Any thread count gives the same result, bit for bit.
+    bike, pts = bicycle_points(1_000, seed=5)
+    local = bike.stability(pts)
+    for threads in (1, 2):
+        assert_identical(
+            eom.distributed.stability(bike, pts, client=client, chunk=300, threads=threads),
+            local,
+        )
+        assert_identical(bike.stability(pts, threads=threads), local)
+
+
+def test_threads_must_be_positive():
+    bike, pts = bicycle_points(10)
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(eom.EomError, match="threads"):
+            bike.stability(pts, threads=bad)

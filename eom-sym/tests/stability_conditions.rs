@@ -108,3 +108,39 @@ fn a_declared_positive_leading_coefficient_is_divided_out() {
     conds.sort();
     assert_eq!(conds, ["c", "k"]);
 }
+
+/// The verdict of `s² + c₁ s + c₀` with constant coefficients (every parameter substituted):
+/// decided by the sign of the exact constants, not left as conditions to check.
+fn constant_verdict(c1: Expr, c0: Expr) -> String {
+    use eom_sym::closed::SummaryRequest;
+    let a = companion(&[c0, c1, Expr::one()]);
+    let e = DMatrix::from_fn(2, 2, |i, j| if i == j { Expr::one() } else { Expr::zero() });
+    let none = |r, c| DMatrix::from_element(r, c, Expr::zero());
+    let (b, c, d) = (none(2, 0), none(0, 2), none(0, 0));
+    let summary = ClosedForms::default()
+        .summary(
+            (&e, &a),
+            [&a, &b, &c, &d],
+            &SummaryRequest {
+                stability: true,
+                ..Default::default()
+            },
+        )
+        .expect("summary");
+    summary.verdict().expect("conditions requested")
+}
+
+#[test]
+fn constant_conditions_are_decided_by_their_exact_sign() {
+    let r = |n, d| Expr::rational(n, d).unwrap();
+    // cos(2) = −0.416: a negative damping coefficient, unstable whatever else.
+    let v = constant_verdict(Expr::int(2).cos(), Expr::one());
+    assert!(v.starts_with("never"), "{v}");
+    // sin(3/10) = 0.2955 > 0 and 2 − e^(1/2) = 0.351 > 0: stable.
+    let v = constant_verdict(r(3, 10).sin(), Expr::int(2) - r(1, 2).exp());
+    assert_eq!(v, "always");
+    // √(1 + 10⁻¹⁷) − 1 = 5·10⁻¹⁸ is positive, but no double-precision enclosure shows it.
+    let tiny = (Expr::one() + r(1, 100_000_000_000_000_000)).sqrt() - Expr::one();
+    let v = constant_verdict(tiny, Expr::one());
+    assert!(v.starts_with("undecided"), "{v}");
+}

@@ -317,3 +317,61 @@ fn bicycle_speeds_from_the_full_model_on_any_grid() {
         assert!(result.boundaries.iter().all(|b| b.converged));
     }
 }
+
+/// `CompiledStateSpace::evaluate_into` (the sweep's write-into-the-caller's-buffer path): the
+/// smd's A row-major is [[0, 1], [−k/m, −c/m]]; at a bicycle point every entry of A, B, C, D
+/// is `evaluate`'s, bit for bit, in row-major order; a point outside the validity region is
+/// the same error as `evaluate`'s.
+#[test]
+fn evaluate_into_is_evaluate_row_major() {
+    let row_major = |ss: &eom_num::StateSpace<f64>| -> Vec<f64> {
+        [&ss.a, &ss.b, &ss.c, &ss.d]
+            .iter()
+            .flat_map(|m| m.transpose().iter().copied().collect::<Vec<_>>())
+            .collect()
+    };
+    let smd = models::build("smd", &[]).unwrap();
+    let compiled = Linearizer::new(&smd).symbolic().unwrap().compiled().clone();
+    let (m, k, c) = (2.0, 8.0, 0.5);
+    let mut ws = EvalWorkspace::default();
+    let mut out = vec![f64::NAN; compiled.abcd_len()];
+    compiled
+        .evaluate_into(&[m, k, c], &mut ws, &mut out)
+        .unwrap();
+    assert_eq!(&out[..4], &[0.0, 1.0, -k / m, -c / m]);
+
+    let bike = models::build("bicycle", &[]).unwrap();
+    let compiled = Linearizer::new(&bike)
+        .symbolic()
+        .unwrap()
+        .compiled()
+        .clone();
+    let mut p = bike.scope.nominal_values();
+    for (j, x) in p.iter_mut().enumerate() {
+        *x *= 1.0 + 0.01 * (j % 7) as f64;
+    }
+    let mut out = vec![f64::NAN; compiled.abcd_len()];
+    compiled.evaluate_into(&p, &mut ws, &mut out).unwrap();
+    let expected = row_major(&compiled.evaluate(&p).unwrap());
+    assert_eq!(out.len(), expected.len());
+    assert!(
+        out.iter()
+            .zip(&expected)
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    );
+
+    // The shimmy's reduction divides by a pivot that vanishes at zero caster.
+    let shimmy = models::build("shimmy", &[]).unwrap();
+    let compiled = Linearizer::new(&shimmy)
+        .symbolic()
+        .unwrap()
+        .compiled()
+        .clone();
+    let mut bad = shimmy.scope.nominal_values();
+    bad.iter_mut().for_each(|x| *x = 0.0);
+    let mut out = vec![0.0; compiled.abcd_len()];
+    let into = compiled.evaluate_into(&bad, &mut ws, &mut out).map(|_| ());
+    let full = compiled.evaluate(&bad).map(|_| ());
+    assert!(into.is_err(), "{into:?}");
+    assert_eq!(into, full);
+}

@@ -77,6 +77,14 @@ class Stability(NamedTuple):
         return self.verdict == 1
 
 
+def _threads(threads: Optional[int]) -> Optional[int]:
+    if threads is not None and (
+        not isinstance(threads, int) or isinstance(threads, bool) or threads < 1
+    ):
+        raise _eom_error(f"threads: a positive number of threads, got {threads!r}")
+    return None if threads is None else int(threads)
+
+
 def _readonly(a: np.ndarray) -> np.ndarray:
     a.flags.writeable = False
     return a
@@ -130,7 +138,8 @@ class Model:
 
         ``method``: ``"numeric"`` (elimination at the point, the default), ``"robust"`` (SVD
         complements) or ``"symbolic"`` (the reduction at the defaults, compiled once and
-        evaluated at the point)."""
+        evaluated at the point, as ``evaluate`` does: the values are checked against the
+        parameters' declared ranges, the model is not rebuilt at the point)."""
         return LinearModel(self, self._native.linearize(method, values), values)
 
     def load_warnings(self) -> List["Warning"]:
@@ -182,15 +191,22 @@ class Model:
         states, inputs, outputs = self._native.signal_names()
         return {"states": states, "inputs": inputs, "outputs": outputs}
 
-    def evaluate(self, points: Points, names: Optional[Sequence[str]] = None) -> Evaluation:
-        """A, B, C, D at every point, from the compiled symbolic reduction, on all cores
-        with the GIL released. A point outside the validity region of the reduction (pivots
+    def evaluate(
+        self,
+        points: Points,
+        names: Optional[Sequence[str]] = None,
+        *,
+        threads: Optional[int] = None,
+    ) -> Evaluation:
+        """A, B, C, D at every point, from the compiled symbolic reduction, on ``threads``
+        threads (all cores by default) with the GIL released, written straight into the
+        buffer of the arrays returned (read-only views of one (N, entries) array). A point outside the validity region of the reduction (pivots
         chosen at the defaults) raises ``EomError`` naming it."""
         p = self.points(points, names)
         shapes = self._native.shapes()
         sizes = [r * c for r, c in shapes]
-        out = np.empty((p.shape[0], sum(sizes)))
-        self._native.evaluate_into(p, out)
+        # (N, entries of A..D): the Rust buffer the evaluation wrote, not copied.
+        out = self._native.evaluate(p, _threads(threads))
         mats = []
         start = 0
         for (r, c), size in zip(shapes, sizes):
@@ -198,17 +214,24 @@ class Model:
             start += size
         return Evaluation(*mats)
 
-    def stability(self, points: Points, names: Optional[Sequence[str]] = None) -> Stability:
+    def stability(
+        self,
+        points: Points,
+        names: Optional[Sequence[str]] = None,
+        *,
+        threads: Optional[int] = None,
+    ) -> Stability:
         """The largest real part of the eigenvalues (structural zeros excluded) and the
-        verdict at every point, on all cores with the GIL released (the robust path where
-        the symbolic reduction breaks down, as ``eom sweep``)."""
+        verdict at every point, on ``threads`` threads (all cores by default) with the GIL
+        released (the robust path where the symbolic reduction breaks down, as ``eom
+        sweep``)."""
         p = self.points(points, names)
         n = p.shape[0]
         max_real = np.empty(n)
         verdict = np.empty(n, dtype=np.int8)
-        fallback = np.empty(n, dtype=np.uint8)
-        self._native.stability_into(p, max_real, verdict, fallback)
-        return Stability(max_real, verdict, fallback.astype(bool))
+        fallback = np.empty(n, dtype=np.bool_)
+        self._native.stability_into(p, max_real, verdict, fallback, _threads(threads))
+        return Stability(max_real, verdict, fallback)
 
     def symbolic(
         self,
@@ -297,7 +320,9 @@ class Symbolic:
     * ``characteristic_polynomial`` (a ``Polynomial``), ``second_order`` (ωₙ, ζ) of a
       two-state model;
     * ``stability`` [``Condition``], all of which must hold, and ``stability_verdict``
-      (``"always"``, ``"never: …"`` or ``"when all conditions hold"``);
+      (``"always"``, ``"never: …"``, ``"undecided: …"`` (a condition that is a constant
+      too close to zero to decide its sign) or ``"when all conditions hold"``; conditions
+      that are constants, as with ``keep=[]``, are decided by their exact value);
     * ``transfer_functions`` [``TransferFunction``];
     * ``symbolic_parameters``, ``substituted`` [(name, exact value)], ``notes`` (what was
       skipped and why).

@@ -237,7 +237,8 @@ impl Factor {
         } else if s.is_nonpos() && s.is_nonzero() {
             Some(false)
         } else {
-            None
+            // A constant (every parameter substituted) by its enclosure.
+            super::constant_sign::constant_sign(expr)
         };
         Factor { expr, sign }
     }

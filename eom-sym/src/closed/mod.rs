@@ -29,6 +29,7 @@
 //! the coefficients are still exact expressions — the derivatives of the determinant at
 //! `s = 0` — but not normalised, and [`CharacteristicPolynomial::normalized`] says so.
 
+mod constant_sign;
 mod det;
 mod hurwitz;
 mod modal;

@@ -57,14 +57,30 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// The stability verdict in words: `always`, `never: …` or `when all conditions hold`
-    /// (`None` when the conditions were not requested).
+    /// The stability verdict in words: `always`, `never: …`, `undecided: …` (a condition is
+    /// a constant too close to zero for its sign to be decided in double precision) or `when
+    /// all conditions hold` (`None` when the conditions were not requested).
+    ///
+    /// Conditions that are constants (every parameter substituted) are decided when they are
+    /// built, by an enclosure of their exact value: a positive one is dropped, a negative one
+    /// makes the verdict `never`; only a constant whose enclosure holds zero stays.
     pub fn verdict(&self) -> Option<String> {
         let conds = self.conditions.as_ref()?;
+        let undecided = conds
+            .iter()
+            .find(|c| c.never.is_none() && c.condition.expression.params().is_empty());
         Some(match conds.iter().find_map(|c| c.never.as_deref()) {
             Some(never) => format!("never: {never}"),
             None if conds.is_empty() => "always".into(),
-            None => "when all conditions hold".into(),
+            None => match undecided {
+                Some(c) => format!(
+                    "undecided: the {} condition is a constant (≈ {:.3e}) too close to zero \
+                     to decide its sign in double precision",
+                    c.condition.source,
+                    c.condition.expression.nominal()
+                ),
+                None => "when all conditions hold".into(),
+            },
         })
     }
 }
