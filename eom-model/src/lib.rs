@@ -135,6 +135,7 @@ pub mod robust;
 pub mod sensitivity;
 pub mod tutorials;
 pub mod validate;
+pub mod warning;
 
 /// The types a user needs to build and linearize a model: `use eom_model::prelude::*;`.
 pub mod prelude {
@@ -144,6 +145,7 @@ pub mod prelude {
         SensorOrder, Spring, Wing, vec3, x_axis, y_axis, z_axis,
     };
     pub use crate::linearize::{Linearization, Linearizer, Method};
+    pub use crate::warning::Warning;
     pub use crate::{Model, SymbolicStateSpace};
 }
 
@@ -167,3 +169,4 @@ pub use reduce::{
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};
 pub use validate::Validation;
+pub use warning::{ItemRef, Warning};

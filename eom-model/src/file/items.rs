@@ -8,6 +8,7 @@ use super::source::{Ctx, Table, Value, array_of};
 use crate::geometry::name;
 use crate::items::*;
 use crate::model::{Model, Place};
+use crate::warning::Warning;
 use eom_sym::{Expr, Scope};
 use std::collections::HashSet;
 use std::ops::Range;
@@ -27,7 +28,7 @@ pub(crate) struct Builder<'a> {
     /// after loading.
     pub spans: Spans,
     /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
-    pub(super) warnings: Vec<String>,
+    pub(super) warnings: Vec<Warning>,
     /// `[model] unsteady`: the default of the wings and strips that do not set their own.
     pub(super) unsteady: Option<crate::items::Unsteady>,
 }
