@@ -45,7 +45,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     let (model, mut warnings) = match &choice.source {
         crate::params::Source::File(path) => {
             let loaded = eom_model::file::load(path, &[])?;
-            (loaded.model, loaded.warnings)
+            (loaded.model, shown(&loaded.warnings))
         }
         crate::params::Source::Builtin => (choice.build(&[])?, Vec::new()),
     };
@@ -56,7 +56,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
     // works.
     let states = match reduce_report(&assembled) {
         Ok(reduction) => {
-            warnings.extend(reduction.warnings.iter().cloned());
+            warnings.extend(shown(&reduction.warnings));
             reduction.position_states + reduction.velocity_states + reduction.lag_states
         }
         Err(numeric) => {
@@ -73,7 +73,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
                         numeric,
                         eom_text::shown(&choice.name)
                     ));
-                    warnings.extend(lin.warnings);
+                    warnings.extend(shown(&lin.warnings));
                     lin.state_space.states()
                 }
                 Err(robust) => {
@@ -304,4 +304,9 @@ ends = [[0, 0, "h"], [0, 0, 0]]
 units = "m"
 "#
     ))
+}
+
+/// The messages of the model's warnings.
+fn shown(warnings: &[eom_model::Warning]) -> Vec<String> {
+    warnings.iter().map(ToString::to_string).collect()
 }

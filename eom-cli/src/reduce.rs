@@ -158,7 +158,7 @@ pub fn report_of(
         },
     )?;
     let modes = kept_modes(&red, &full, &reduced, ss);
-    let mut warnings = lin.warnings.clone();
+    let mut warnings: Vec<String> = lin.warnings.iter().map(ToString::to_string).collect();
     warnings.extend(red.warnings.iter().cloned());
     let parameters = choice
         .params

@@ -58,7 +58,12 @@ pub fn wing_reports(
         return None;
     }
     let betas = eom_model::reduced_frequencies(model, eigenvalues);
-    warnings.extend(betas.iter().filter_map(|b| b.warning()));
+    warnings.extend(
+        betas
+            .iter()
+            .filter_map(|b| b.warning())
+            .map(|w| w.to_string()),
+    );
     let reports = wings
         .iter()
         .map(|w| {

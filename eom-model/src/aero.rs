@@ -15,8 +15,9 @@
 //!   frequencies of the modes: Jones' lag states where they matter, quasi-steady elsewhere.
 
 use crate::Model;
-use crate::error::{ModelError, label};
+use crate::error::ModelError;
 use crate::items::{AUTO_REDUCED_FREQUENCY, AnyItem, Unsteady, Wing};
+use crate::warning::{ItemRef, Warning};
 use eom_aero::validity::{
     PITCH_RATE_LIMIT, REDUCED_FREQUENCY_LIMIT, ROLL_RATE_LIMIT, YAW_RATE_LIMIT, check_rates,
     reduced_frequency,
@@ -43,22 +44,14 @@ pub struct ReducedFrequency {
 
 impl ReducedFrequency {
     /// The warning for a reduced frequency above the limit.
-    pub fn warning(&self) -> Option<String> {
-        self.too_high.then(|| {
-            format!(
-                "wing `{}`: the mode λ = {} has the reduced frequency β = |Im λ|·c/V = {:.3} > {}: \
-                 its quasi-steady derivatives are doubtful there (unsteady lift lags)",
-                self.wing,
-                format_eigenvalue(self.eigenvalue),
-                self.beta,
-                REDUCED_FREQUENCY_LIMIT
-            )
+    pub fn warning(&self) -> Option<Warning> {
+        self.too_high.then(|| Warning::ReducedFrequencyBeyondLimit {
+            item: ItemRef::new("wing", &self.wing),
+            eigenvalue: self.eigenvalue,
+            beta: self.beta,
+            limit: REDUCED_FREQUENCY_LIMIT,
         })
     }
-}
-
-fn format_eigenvalue(z: Complex64) -> String {
-    format!("{:.6} ± {:.6}i", z.re, z.im.abs())
 }
 
 /// β = |Im λ|·c/V of every eigenvalue with a positive imaginary part (one per conjugate pair)
@@ -100,16 +93,16 @@ pub struct WingRates {
 
 impl WingRates {
     /// One warning per exceeded limit.
-    pub fn warnings(&self) -> Vec<String> {
+    pub fn warnings(&self) -> Vec<Warning> {
         let names = ["p b/2V", "q c/2V", "r b/2V"];
         (0..3)
             .filter(|&k| self.exceeded[k])
-            .map(|k| {
-                format!(
-                    "wing `{}`: |{}| reaches {:.4} (sample {}), beyond {}: the quasi-steady \
-                     derivatives are doubtful there",
-                    self.wing, names[k], self.max[k], self.at[k], self.limits[k]
-                )
+            .map(|k| Warning::RateBeyondLimit {
+                item: ItemRef::new("wing", &self.wing),
+                rate: names[k],
+                max: self.max[k],
+                sample: self.at[k],
+                limit: self.limits[k],
             })
             .collect()
     }
@@ -274,7 +267,7 @@ fn with_lags(model: &Model<Expr>, lagged: &[String]) -> Model<Expr> {
 pub fn resolve_unsteady<'m>(
     model: &'m Model<Expr>,
     values: &[f64],
-) -> Result<(Cow<'m, Model<Expr>>, Vec<String>), ModelError> {
+) -> Result<(Cow<'m, Model<Expr>>, Vec<Warning>), ModelError> {
     let any_auto = model.wings().any(|w| w.unsteady == Unsteady::Auto)
         || model.strips().any(|s| s.unsteady == Unsteady::Auto);
     if !any_auto {
@@ -305,26 +298,26 @@ pub fn resolve_unsteady<'m>(
                 .max_by(|a, b| a.0.total_cmp(&b.0));
             match top {
                 Some((k, z)) if k > AUTO_REDUCED_FREQUENCY => {
-                    notes.push(format!(
-                        "{}: unsteady = \"auto\": Jones' lag states added: the mode λ = {:.6} ± {:.6}i \
-                         has the reduced frequency k = |Im λ|·b/V = {k:.4} > {AUTO_REDUCED_FREQUENCY} \
-                         (quasi-steady lift would be off by |1 − C(k)| ≥ 0.16)",
-                        label(s.kind, &s.name),
-                        z.re,
-                        z.im
-                    ));
+                    notes.push(Warning::AutoLagged {
+                        item: ItemRef::new(s.kind, &s.name),
+                        re: z.re,
+                        im: z.im,
+                        reduced_frequency: k,
+                        threshold: AUTO_REDUCED_FREQUENCY,
+                    });
                     lagged.push(s.name.clone());
                     added = true;
                 }
-                Some((k, _)) => rest.push(format!(
-                    "{}: unsteady = \"auto\": quasi-steady: every mode has k = |Im λ|·b/V ≤ \
-                     {AUTO_REDUCED_FREQUENCY} (largest {k:.4})",
-                    label(s.kind, &s.name)
-                )),
-                None => rest.push(format!(
-                    "{}: unsteady = \"auto\": quasi-steady: no oscillatory mode",
-                    label(s.kind, &s.name)
-                )),
+                Some((k, _)) => rest.push(Warning::AutoQuasiSteady {
+                    item: ItemRef::new(s.kind, &s.name),
+                    largest: Some(k),
+                    threshold: AUTO_REDUCED_FREQUENCY,
+                }),
+                None => rest.push(Warning::AutoQuasiSteady {
+                    item: ItemRef::new(s.kind, &s.name),
+                    largest: None,
+                    threshold: AUTO_REDUCED_FREQUENCY,
+                }),
             }
         }
         if !added {

@@ -164,6 +164,7 @@ pub mod robust;
 pub mod sensitivity;
 pub mod tutorials;
 pub mod validate;
+pub mod warning;
 
 /// The types a user needs to build and linearize a model: `use eom_model::prelude::*;`.
 pub mod prelude {
@@ -173,6 +174,7 @@ pub mod prelude {
         SensorOrder, Spring, Wing, vec3, x_axis, y_axis, z_axis,
     };
     pub use crate::linearize::{Linearization, Linearizer, Method};
+    pub use crate::warning::Warning;
     pub use crate::{Model, SymbolicStateSpace};
 }
 
@@ -196,3 +198,4 @@ pub use reduce::{
 pub use robust::{ConstrainedDescriptor, RobustReport, constrained_descriptor, reduce_robust};
 pub use sensitivity::{Sensitivities, sensitivities};
 pub use validate::Validation;
+pub use warning::{ItemRef, Warning};

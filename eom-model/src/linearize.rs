@@ -28,6 +28,7 @@ use crate::aero::resolve_unsteady;
 use crate::error::ModelError;
 use crate::items::ModelScalar;
 use crate::model::assemble;
+use crate::warning::Warning;
 use eom_num::StateSpace;
 use eom_num::deflate::structural_zero_states;
 use eom_sym::SymError;
@@ -60,7 +61,7 @@ pub struct Linearization {
     /// Report of the robust path.
     pub robust: Option<RobustReport>,
     /// Warnings.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The zero eigenvalues the model's structure proves at this point, one description each
     /// (ignorable coordinates such as a vehicle's lateral position, or a pair of headings of
     /// which only the difference acts): found on the elimination path's state matrix, whose

@@ -34,6 +34,7 @@ use super::eliminate::{
 };
 use crate::error::ModelError;
 use crate::geometry::Name;
+use crate::warning::Warning;
 use eom_num::{SignalNames, StateSpace};
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
@@ -240,7 +241,7 @@ pub struct ReductionReport {
     /// Constraint rows found redundant at the nominal point.
     pub redundant: Vec<String>,
     /// Warnings.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// The result of a reduction.
@@ -573,18 +574,16 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             self.report.redundant.push(jlabel(r).to_string());
         }
         if !rj.plan.redundant.is_empty() {
-            let names: Vec<String> = rj
+            let rows: Vec<String> = rj
                 .plan
                 .redundant
                 .iter()
                 .map(|&r| jlabel(r).to_string())
                 .collect();
-            self.report.warnings.push(format!(
-                "reduction: {} redundant position constraint row(s) ({}): combinations of the other rows at the nominal point (remaining entries below {:.0e} of the row's size), removed",
-                names.len(),
-                names.join(", "),
-                super::eliminate::NEGLIGIBLE
-            ));
+            self.report.warnings.push(Warning::ReductionRedundant {
+                rows,
+                negligible: super::eliminate::NEGLIGIBLE,
+            });
         }
         let (indep_p, indep_pos) = independent(&rj, n);
         let np = indep_p.len();

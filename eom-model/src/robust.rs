@@ -33,6 +33,7 @@
 use super::assemble::Assembled;
 use super::assemble::{OutputFrame, OutputOrder};
 use crate::error::ModelError;
+use crate::warning::Warning;
 use eom_num::descriptor::{DescriptorOptions, DescriptorReport, descriptor_to_state_space};
 use eom_num::linalg::{Equilibrate, RankTolerance, nullspace_equilibrated, nullspace_structured};
 use eom_num::{Descriptor, SignalNames, StateSpace};
@@ -49,7 +50,7 @@ pub struct RobustReport {
     /// The descriptor reduction's report.
     pub descriptor: DescriptorReport,
     /// Warnings.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 fn dense(m: &SparseMatrix<f64>) -> DMatrix<f64> {
@@ -80,7 +81,7 @@ pub struct ConstrainedDescriptor {
     /// Gap of the constraint rank decision.
     pub gap: f64,
     /// Warnings.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Build the [`ConstrainedDescriptor`] of a numeric assembled model.
@@ -208,7 +209,7 @@ pub fn reduce_robust(a: &Assembled<f64>) -> Result<(StateSpace<f64>, RobustRepor
     };
     let (ss, rep) = descriptor_to_state_space(&desc, &opts)?;
     let mut warnings = cd.warnings;
-    warnings.extend(rep.warnings.iter().cloned());
+    warnings.extend(rep.warnings.iter().cloned().map(Warning::Numeric));
     let (c_out, d_out) = outputs(a, &ss, &post)?;
     let n = ss.a.nrows();
     let names = SignalNames {
@@ -246,7 +247,7 @@ fn complements(
     nmat: &DMatrix<f64>,
     v: &DMatrix<f64>,
     m: usize,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<Option<Complements>, ModelError> {
     let d = j.ncols();
     let (q, t) = (j.nrows(), nmat.nrows());
@@ -302,11 +303,11 @@ fn complements(
     let sc = 2 * q + t;
     let rank = 2 * d - np - nw;
     if rank < sc {
-        warnings.push(format!(
-            "{} of {sc} constraint rows are redundant (rank decision gap {:.3e})",
-            sc - rank,
-            gap_p.min(gap_w)
-        ));
+        warnings.push(Warning::RobustRedundant {
+            redundant: sc - rank,
+            rows: sc,
+            gap: gap_p.min(gap_w),
+        });
     }
     Ok(Some((r, l, rank, gap_p.min(gap_w))))
 }
@@ -321,7 +322,7 @@ fn joint_complements(
     nmat: &DMatrix<f64>,
     v: &DMatrix<f64>,
     m: usize,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<Complements, ModelError> {
     let d = j.ncols();
     let (q, t) = (j.nrows(), nmat.nrows());
@@ -345,11 +346,11 @@ fn joint_complements(
         )));
     }
     if nr.rank < sc {
-        warnings.push(format!(
-            "{} of {sc} constraint rows are redundant (rank decision gap {:.3e})",
-            sc - nr.rank,
-            nr.gap
-        ));
+        warnings.push(Warning::RobustRedundant {
+            redundant: sc - nr.rank,
+            rows: sc,
+            gap: nr.gap,
+        });
     }
     Ok((nr.basis, nl.basis, nr.rank, nr.gap))
 }

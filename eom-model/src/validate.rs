@@ -18,6 +18,7 @@ use crate::error::{ModelError, field_error, label};
 use crate::geometry::{GROUND, Name};
 use crate::items::{Body, Item, ModelScalar};
 use crate::model::{Model, Place};
+use crate::warning::Warning;
 use hashbrown::HashSet;
 
 pub use crate::items::Validation;
@@ -26,12 +27,12 @@ impl<S: ModelScalar> Model<S> {
     /// Check names, references, geometry and values (see [`crate::validate`] for the steps).
     /// Errors name the item and field. Warnings (physically dubious but computable input) are
     /// returned.
-    pub fn validate(&self) -> Result<Vec<String>, ModelError> {
+    pub fn validate(&self) -> Result<Vec<Warning>, ModelError> {
         self.validate_at().map_err(|(_, e)| e)
     }
 
     /// [`Model::validate`], an error with the place of the body or item at fault.
-    pub(crate) fn validate_at(&self) -> Result<Vec<String>, (Place, ModelError)> {
+    pub(crate) fn validate_at(&self) -> Result<Vec<Warning>, (Place, ModelError)> {
         if let Some(p) = eom_text::name_problem(&self.name) {
             let e = ModelError::Model {
                 item: "the model".into(),

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, bottom first.
 const LAYERS: &[&[&str]] = &[
-    &["error"],
+    &["error", "warning"],
     &["geometry"],
     &["eliminate", "canonical"],
     &["assemble"],

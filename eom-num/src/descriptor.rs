@@ -53,9 +53,9 @@ use faer::linalg::gevd::{gevd_real, gevd_scratch};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::NumError;
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
+use crate::{NumError, NumWarning};
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
 /// are rounding noise and treated as exactly zero (the same scale as the default rank
@@ -112,8 +112,8 @@ pub struct DescriptorReport {
     pub e_condition: f64,
     /// The pencil scaling applied (`None` when not equilibrated).
     pub scaling: Option<Scaling>,
-    /// Human-readable warnings (near-tolerance rank decisions, ill-conditioning).
-    pub warnings: Vec<String>,
+    /// Warnings (near-tolerance rank decisions, ill-conditioning, rounding noise).
+    pub warnings: Vec<NumWarning>,
 }
 
 /// Scales the pencil: rows then columns of E, plus A-based scaling of the rows/columns where
@@ -153,13 +153,15 @@ fn scale_cols(m: &mut DMatrix<f64>, f: &DVector<f64>) {
     }
 }
 
-fn near_note(what: &str, r: &Rank, out: &mut Vec<String>) {
+fn near_note(what: &'static str, r: &Rank, out: &mut Vec<NumWarning>) {
     if r.is_near_tolerance(100.0) {
-        out.push(format!(
-            "{what}: rank {} decided within a factor {:.3} of the threshold {:.3e} (gap {:.3e}); \
-             the decision is fragile",
-            r.rank, r.margin, r.threshold, r.gap
-        ));
+        out.push(NumWarning::FragileRank {
+            what,
+            rank: r.rank,
+            margin: r.margin,
+            threshold: r.threshold,
+            gap: r.gap,
+        });
     }
 }
 
@@ -322,7 +324,7 @@ fn check_arguments(
 /// states and massless coordinates after orthonormal projections carry ε-size residues).
 /// They must be made exactly zero before equilibration, which would otherwise scale the
 /// noise up to O(1) and turn it into an equation.
-fn clean_noise(d: &Descriptor<f64>) -> (Descriptor<f64>, Vec<String>) {
+fn clean_noise(d: &Descriptor<f64>) -> (Descriptor<f64>, Vec<NumWarning>) {
     let n = d.states();
     let mut e_clean = d.e.clone();
     let mut notes = Vec::new();
@@ -332,14 +334,24 @@ fn clean_noise(d: &Descriptor<f64>) -> (Descriptor<f64>, Vec<String>) {
         let rmax = e_clean.row(i).iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if rmax > 0.0 && rmax <= noise {
             e_clean.row_mut(i).fill(0.0);
-            notes.push(format!("row {i} of E (largest entry {rmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
+            notes.push(NumWarning::RoundingNoise {
+                line: "row",
+                index: i,
+                largest: rmax,
+                noise,
+            });
         }
     }
     for j in 0..n {
         let cmax = e_clean.column(j).iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if cmax > 0.0 && cmax <= noise {
             e_clean.column_mut(j).fill(0.0);
-            notes.push(format!("column {j} of E (largest entry {cmax:.1e}) is rounding noise (≤ {noise:.1e}): treated as zero"));
+            notes.push(NumWarning::RoundingNoise {
+                line: "column",
+                index: j,
+                largest: cmax,
+                noise,
+            });
         }
     }
     let d = Descriptor {
@@ -390,7 +402,7 @@ fn equilibrate_pencil(
 fn decide_e_rank(
     e: &DMatrix<f64>,
     opts: &DescriptorOptions<'_>,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<NumWarning>,
 ) -> Result<ERank, NumError> {
     let n = e.nrows();
     let (f, split) = structured_svd(e)?;
@@ -405,10 +417,7 @@ fn decide_e_rank(
         f.singular_values[0] / f.singular_values[r - 1]
     };
     if condition > opts.warn_condition {
-        warnings.push(format!(
-            "the kept part of E has condition number {condition:.3e} (σ_1/σ_r): the reduced \
-             model is stiff (nearly massless coordinates kept as dynamic)"
-        ));
+        warnings.push(NumWarning::StiffE { condition });
     }
     let structural = n - r == zeros;
     // Permuted rather than rotated only where there is structure to keep: E11 decouples into
@@ -535,7 +544,7 @@ fn decide_a22(
     blocks: &Blocks,
     e: &ERank,
     opts: &DescriptorOptions<'_>,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<NumWarning>,
 ) -> Result<A22, NumError> {
     let (n, r, k) = (p.e.nrows(), blocks.r, blocks.k);
     let a22 = blocks.a22();
@@ -568,11 +577,7 @@ fn decide_a22(
     let condition = s22[0] / s22[k - 1];
     near_note("invertibility of A22", &a22_rank, warnings);
     if condition > opts.warn_condition {
-        warnings.push(format!(
-            "A22 ({k}×{k}) has condition number {condition:.3e} (equilibrated): the \
-             elimination of the algebraic states loses about {:.0} digits",
-            condition.log10()
-        ));
+        warnings.push(NumWarning::IllConditionedA22 { size: k, condition });
     }
     if !e.structural {
         // A rotated (non-structural) nullspace of E puts rounding errors of size ε‖A‖ into
@@ -584,11 +589,10 @@ fn decide_a22(
         let s22raw = crate::linalg::singular_values(&a22)?;
         let noise = 10.0 * n as f64 * f64::EPSILON * anorm;
         if s22raw.last().copied().unwrap_or(0.0) <= 100.0 * noise {
-            warnings.push(format!(
-                "A22 (σ_min {:.3e}) is within a factor 100 of the rounding level of A \
-                 ({noise:.3e}) and E's nullspace is not structural: the pencil may have index > 1",
-                s22raw.last().copied().unwrap_or(0.0)
-            ));
+            warnings.push(NumWarning::A22NearNoise {
+                smallest: s22raw.last().copied().unwrap_or(0.0),
+                noise,
+            });
         }
     }
     Ok(A22 {

@@ -148,7 +148,9 @@ mod small_estimates;
 pub mod statespace;
 pub mod sweep;
 pub mod time;
+pub mod warning;
 pub mod zeros;
 
 pub use error::{MatrixEntry, NumError};
 pub use statespace::{Descriptor, SignalNames, StateSpace};
+pub use warning::NumWarning;

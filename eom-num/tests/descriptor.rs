@@ -347,7 +347,9 @@ fn noise_level_row_of_e_is_not_amplified() {
         eom_num::descriptor::descriptor_to_state_space(&d, &Default::default()).unwrap();
     assert_eq!((rep.dynamic, rep.algebraic), (2, 1));
     assert!(
-        rep.warnings.iter().any(|w| w.contains("rounding noise")),
+        rep.warnings
+            .iter()
+            .any(|w| matches!(w, eom_num::NumWarning::RoundingNoise { .. })),
         "{:?}",
         rep.warnings
     );

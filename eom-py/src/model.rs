@@ -203,7 +203,7 @@ impl NativeModel {
 
     /// Warnings of loading the model file (none for a built-in).
     #[getter]
-    fn load_warnings(&self) -> Vec<String> {
+    fn load_warnings(&self) -> Vec<crate::source::WarningRow> {
         self.source.load_warnings()
     }
 
@@ -287,9 +287,9 @@ impl NativeModel {
     }
 
     /// Warnings of the symbolic reduction.
-    fn compiled_warnings(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+    fn compiled_warnings(&self, py: Python<'_>) -> PyResult<Vec<crate::source::WarningRow>> {
         let c = py.detach(|| self.compiled())?;
-        Ok(c.warnings().to_vec())
+        Ok(crate::source::warning_rows(c.warnings()))
     }
 
     /// A, B, C, D (row-major, one after the other per point: one row per point) at the points
@@ -484,8 +484,8 @@ impl NativeLinear {
 
     /// The warnings of the reduction (or the robust path).
     #[getter]
-    fn warnings(&self) -> Vec<String> {
-        self.lin.warnings.clone()
+    fn warnings(&self) -> Vec<crate::source::WarningRow> {
+        crate::source::warning_rows(&self.lin.warnings)
     }
 
     /// The zero eigenvalues the model's structure proves, one description each.

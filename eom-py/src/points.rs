@@ -6,7 +6,7 @@
 use crate::errors::eom_error;
 use crate::source::Source;
 use eom_model::compiled::{CompiledStateSpace, EvalWorkspace};
-use eom_model::{Linearizer, Method, Model, ModelError};
+use eom_model::{Linearizer, Method, Model, ModelError, Warning};
 use eom_num::SignalNames;
 use eom_num::deflate::structural_zero_states;
 use eom_num::small_eigen::{KnownZeros, MAX_N, eigenvalues_small, eigenvalues_small_known};
@@ -21,7 +21,7 @@ use std::sync::{Arc, Mutex};
 pub struct Compiled {
     css: CompiledStateSpace,
     shapes: [(usize, usize); 4],
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
     /// The structural zeros of A at the defaults (models of at most [`MAX_N`] states).
     known: Option<KnownZeros>,
     /// Their number (on the elimination path's A at the defaults).
@@ -77,7 +77,7 @@ impl Compiled {
     }
 
     /// Warnings of the symbolic reduction.
-    pub fn warnings(&self) -> &[String] {
+    pub fn warnings(&self) -> &[Warning] {
         &self.warnings
     }
 

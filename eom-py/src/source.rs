@@ -3,8 +3,8 @@
 //! has no copy of the file rebuilds the same model.
 
 use crate::errors::{catalogue_error, eom_error, file_error};
-use eom_model::Model;
 use eom_model::file::{FileError, ParamRange};
+use eom_model::{Model, Warning};
 use pyo3::{PyErr, PyResult};
 use std::path::{Path, PathBuf};
 
@@ -81,11 +81,11 @@ impl Source {
     }
 
     /// The loading warnings of a model file (none for a built-in).
-    pub fn load_warnings(&self) -> Vec<String> {
+    pub fn load_warnings(&self) -> Vec<WarningRow> {
         match self {
             Source::Builtin(_) => Vec::new(),
             Source::File { path, text } => eom_model::file::load_str(text, path, &[])
-                .map(|l| l.warnings)
+                .map(|l| warning_rows(&l.warnings))
                 .unwrap_or_default(),
         }
     }
@@ -135,4 +135,16 @@ impl From<BuildError> for PyErr {
             BuildError::File(e) => file_error(e),
         }
     }
+}
+
+/// A warning as Python receives it: its kind (`"statics_redundant"`), the name of the item
+/// it is about (if any) and its message.
+pub type WarningRow = (&'static str, Option<String>, String);
+
+/// `warnings` as Python receives them.
+pub fn warning_rows(warnings: &[Warning]) -> Vec<WarningRow> {
+    warnings
+        .iter()
+        .map(|w| (w.kind(), w.item().map(|i| i.name.clone()), w.to_string()))
+        .collect()
 }

@@ -212,7 +212,16 @@ def test_unknown_names_are_errors_not_crashes():
 def test_warnings_are_typed():
     lin = eom.load("bicycle").linearize(method="robust", v=5.0)
     for w in lin.warnings:
-        assert isinstance(w, eom.Warning) and w.kind in {"load", "reduction", "robust"}
+        assert isinstance(w, eom.Warning) and w.source in {"load", "reduction", "robust"}
+        assert w.kind and str(w) == w.message
+
+
+def test_a_warning_names_its_kind_and_item():
+    # EoM's pendulum with a negative moment of inertia (a stand-in for one about the pin).
+    lin = eom.load("pendulum").linearize(Ix=-4.5)
+    (w,) = [w for w in lin.warnings if w.kind == "negative_moments"]
+    assert w.item is not None and w.source == "reduction"
+    assert "not those of a physical body" in w.message
 
 
 def test_symbolic_smd_and_sympy():

@@ -106,7 +106,10 @@ fn a_stability_axis_file_gives_the_same_fin_and_says_what_it_cannot() {
     std::fs::remove_file(&path).ok();
     let loaded = loaded.expect("loads");
     assert!(
-        loaded.warnings.iter().any(|w| w.contains("wing `fin`")),
+        loaded.warnings.iter().any(|w| matches!(
+            w,
+            eom_model::Warning::AvlFile { item, .. } if item.name == "fin"
+        )),
         "{:?}",
         loaded.warnings
     );

@@ -165,14 +165,6 @@ pub fn verdict_of(stabilities: impl IntoIterator<Item = eom_num::modes::Stabilit
     out
 }
 
-/// Whether a linearization warning says the result is doubtful: the reduction removed rows
-/// it judged redundant by a numerical rank decision, or the statics found the geometry only
-/// nearly in equilibrium. (Other warnings — e.g. an inertia violating the triangle inequality —
-/// are about the model, not the result.)
-pub fn is_doubt(warning: &str) -> bool {
-    warning.contains("redundant") || warning.contains("not exactly, an equilibrium")
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,7 +16,7 @@ pub mod regions;
 
 use crate::work_precision::generated;
 use crate::work_precision::reference::ReferenceModel;
-use classify::{MethodResult, Outcome, classify, is_doubt, verdict_of};
+use classify::{MethodResult, Outcome, classify, verdict_of};
 use eom_model::{Linearizer, Method, Model, SymbolicStateSpace};
 use eom_num::StateSpace;
 use eom_num::modes::{ModeOptions, Modes};
@@ -200,8 +200,15 @@ fn symbolic(
     }
 }
 
-fn doubts(warnings: &[String]) -> Vec<String> {
-    warnings.iter().filter(|w| is_doubt(w)).cloned().collect()
+/// The warnings that make a result doubtful ([`eom_model::Warning::doubts_result`]: a
+/// constraint row removed as redundant by a numerical rank decision, a geometry only nearly in
+/// equilibrium), as their messages.
+fn doubts(warnings: &[eom_model::Warning]) -> Vec<String> {
+    warnings
+        .iter()
+        .filter(|w| w.doubts_result())
+        .map(ToString::to_string)
+        .collect()
 }
 
 /// Eigenvalues and verdict of a bare state matrix (the generated code's A: its user gets A

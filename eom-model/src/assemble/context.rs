@@ -7,6 +7,7 @@
 use super::{OutputKind, RowLabel};
 use crate::geometry::{self, GROUND, Line, Mat3, Name, Point, Vec3, cross, scale, sub, unit};
 use crate::geometry::{x_axis, y_axis, z_axis, zero3};
+use crate::warning::Warning;
 use eom_sym::matrix::Triplets;
 use eom_sym::scalar::Scalar;
 use hashbrown::HashMap;
@@ -281,12 +282,12 @@ pub struct Assembly<'m, S> {
     pub(crate) known: Vec<KnownPreload<S>>,
     pub(crate) signals: Signals<S>,
     pub(crate) lags: LagTerms<S>,
-    pub(crate) warnings: Vec<String>,
+    pub(crate) warnings: Vec<Warning>,
 }
 
 impl<'m, S: Scalar> Assembly<'m, S> {
     /// An empty assembly over `bodies`, for `items` items, with `warnings` so far.
-    pub(crate) fn new(bodies: Vec<BodyFrame<'m, S>>, items: usize, warnings: Vec<String>) -> Self {
+    pub(crate) fn new(bodies: Vec<BodyFrame<'m, S>>, items: usize, warnings: Vec<Warning>) -> Self {
         let d = 6 * bodies.len();
         // Room for a few 3×3 blocks per body in each matrix, so that filling rarely
         // reallocates.
@@ -581,8 +582,8 @@ impl<'m, S: Scalar> Assembly<'m, S> {
     }
 
     /// Report a warning.
-    pub fn warn(&mut self, message: String) {
-        self.warnings.push(message);
+    pub fn warn(&mut self, warning: Warning) {
+        self.warnings.push(warning);
     }
 }
 

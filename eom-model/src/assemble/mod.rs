@@ -55,6 +55,7 @@ pub use context::{
 
 use crate::error::ModelError;
 use crate::geometry::{Name, Vec3};
+use crate::warning::Warning;
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
 use statics::{StaticsProblem, StaticsResult, solve_statics};
@@ -220,7 +221,7 @@ pub struct Assembled<S> {
     /// Lag states added by items (none for a purely mechanical model).
     pub lags: Lags<S>,
     /// Warnings from validation and assembly.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 impl<S: Scalar> Assembled<S> {

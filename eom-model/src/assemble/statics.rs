@@ -35,6 +35,7 @@ use super::rank::{
 use super::{RowLabel, Statics};
 use crate::eliminate::{Row, RowStore, Rref, rref};
 use crate::error::ModelError;
+use crate::warning::Warning;
 use eom_sym::matrix::SparseMatrix;
 use eom_sym::scalar::Scalar;
 use nalgebra::{DMatrix, DVector};
@@ -92,7 +93,7 @@ pub(crate) struct StaticsResult<S> {
     /// self-stress of redundant rigid rows; the minimum-norm value is used).
     pub(crate) not_unique: Vec<bool>,
     /// Warnings.
-    pub(crate) warnings: Vec<String>,
+    pub(crate) warnings: Vec<Warning>,
 }
 
 /// Solve the static preloads (see the module documentation).
@@ -221,8 +222,8 @@ fn redundancy_warning<S>(
     redundant: &[usize],
     sv: &[f64],
     moved: f64,
-) -> String {
-    let names: Vec<String> = redundant
+) -> Warning {
+    let rows: Vec<String> = redundant
         .iter()
         .map(|&i| p.j_labels[i].to_string())
         .collect();
@@ -230,11 +231,13 @@ fn redundancy_warning<S>(
     let rank = sv.len() - redundant.len().min(sv.len());
     let kept_small = sv.get(rank.saturating_sub(1)).map_or(0.0, |x| x / top);
     let dropped = sv.get(rank).map_or(0.0, |x| x / top);
-    format!(
-        "statics: {} redundant constraint row(s) ({}): combinations of the other holonomic rows (singular values of the scaled Jacobian: smallest kept {kept_small:.1e}, largest dropped {dropped:.1e} of the largest, threshold {RANK_TOLERANCE:.0e}); their preloads are not unique: the minimum-norm preloads are used (self-stress removed: {moved:.1e} of the largest preload), and the geometric stiffness depends on that choice",
-        names.len(),
-        names.join(", ")
-    )
+    Warning::StaticsRedundant {
+        rows,
+        smallest_kept: kept_small,
+        largest_dropped: dropped,
+        threshold: RANK_TOLERANCE,
+        self_stress: moved,
+    }
 }
 
 /// The rows of `[Jᵀ Hᵀ | −F]` (one per coordinate) and of the known preloads
@@ -448,7 +451,7 @@ fn check_equilibrium<S: Scalar>(
     lc: &[S],
     le: &[S],
     length: f64,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<Warning>,
 ) -> Result<(), ModelError> {
     let lam: Vec<S> = lc.iter().chain(le.iter()).copied().collect();
     // Accumulated from the item rows (the columns of Tᵀ) in the order of λ, so each equation
@@ -494,11 +497,12 @@ fn check_equilibrium<S: Scalar>(
         }
     }
     if let Some((i, ratio)) = worst {
-        warnings.push(format!(
-            "statics: the given geometry is close to, but not exactly, an equilibrium: {} residual {:.3e}, {ratio:.1e} of the body's largest force or moment (model length scale {length:.3e}); the residual load is left out of the linearization",
-            coordinate_label(p, i),
-            res[i]
-        ));
+        warnings.push(Warning::NearEquilibrium {
+            equation: coordinate_label(p, i),
+            residual: res[i],
+            ratio,
+            length,
+        });
     }
     Ok(())
 }

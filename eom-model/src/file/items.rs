@@ -11,6 +11,7 @@ use crate::geometry::name;
 pub(crate) use crate::items::VecKind;
 use crate::items::*;
 use crate::model::{Model, Place};
+use crate::warning::Warning;
 use eom_sym::{Expr, Scope};
 use std::collections::HashSet;
 use std::ops::Range;
@@ -30,7 +31,7 @@ pub(crate) struct Builder<'a> {
     /// after loading.
     pub spans: Spans,
     /// Warnings of the loading (e.g. entries an AVL stability-axis file cannot give).
-    pub(super) warnings: Vec<String>,
+    pub(super) warnings: Vec<Warning>,
     /// `[model] unsteady`: the default of the wings and strips that do not set their own.
     pub(super) unsteady: Option<crate::items::Unsteady>,
 }

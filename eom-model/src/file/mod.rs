@@ -59,6 +59,7 @@ pub use source::FilePosition;
 use crate::error::ModelError;
 use crate::items::{BODY, KINDS, Load};
 use crate::model::Model;
+use crate::warning::Warning;
 use eom_sym::Expr;
 use source::{Ctx, Table};
 use std::path::Path;
@@ -77,7 +78,7 @@ pub struct LoadedModel {
     pub derived: Vec<(String, String)>,
     /// Warnings of the loading (e.g. the entries an AVL stability-axis file cannot give,
     /// taken as zero).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Reads and loads the model file at `path`; `overrides` replace nominal values by name.

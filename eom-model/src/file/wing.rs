@@ -8,6 +8,7 @@ use super::mirror::Mirror;
 use super::params::value_expr;
 use super::source::{Table, closest};
 use crate::items::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
+use crate::warning::{ItemRef, Warning};
 use eom_aero::{AvlOutput, Derivatives, SolverOptions};
 use eom_sym::Expr;
 use std::path::Path;
@@ -144,11 +145,12 @@ impl Builder<'_> {
             Some("sb") | Some("st") => {
                 let out = AvlOutput::read(&full).map_err(fail)?;
                 let body = out.derivatives().map_err(fail)?;
-                self.warnings.extend(
-                    body.warnings
-                        .iter()
-                        .map(|w| format!("wing `{name}`: {}: {w}", full.display())),
-                );
+                self.warnings
+                    .extend(body.warnings.iter().map(|w| Warning::AvlFile {
+                        item: ItemRef::new("wing", name),
+                        path: full.display().to_string(),
+                        message: w.clone(),
+                    }));
                 Ok(Some(body.derivatives))
             }
             Some("avl") => {

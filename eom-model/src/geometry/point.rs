@@ -2,7 +2,8 @@
 //! bodies, a location, the constrained directions; with its builders and checks.
 
 use super::{GROUND, Name, Vec3, map3, name, zero3};
-use crate::error::{ModelError, field_error, label};
+use crate::error::{ModelError, field_error};
+use crate::warning::{ItemRef, Warning};
 use eom_sym::scalar::Scalar;
 
 /// Fields shared by the point items (rigid, flexible and nonholonomic points).
@@ -58,7 +59,7 @@ impl<S: Scalar> Point<S> {
         &self,
         kind: &str,
         item: &str,
-        warn: &mut dyn FnMut(String),
+        warn: &mut dyn FnMut(Warning),
     ) -> Result<(), ModelError> {
         for (field, v) in [("forces", self.forces), ("moments", self.moments)] {
             if v > 3 {
@@ -83,10 +84,9 @@ impl<S: Scalar> Point<S> {
             ));
         }
         if !self.constrains() {
-            warn(format!(
-                "{} constrains nothing (forces = moments = 0)",
-                label(kind, item)
-            ));
+            warn(Warning::ConstrainsNothing {
+                item: ItemRef::new(kind, item),
+            });
         }
         Ok(())
     }

@@ -1,10 +1,11 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
 use super::Validation;
-use super::{ModelScalar, Physics, Vec3, field_error, item, label, zero3};
+use super::{ModelScalar, Physics, Vec3, field_error, item, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
+use crate::warning::{ItemRef, Warning};
 use eom_sym::scalar::Scalar;
 
 item! {
@@ -115,10 +116,10 @@ fn check_inertia<S: Scalar>(b: &Body<S>, cx: &mut Validation<'_, S>) -> Result<(
     };
     if e[0] < -tol {
         if !has_products {
-            cx.warn(format!(
-                "{}: moments of inertia {diag:?} are not those of a physical body (negative)",
-                label("body", &b.name)
-            ));
+            cx.warn(Warning::NegativeMoments {
+                item: ItemRef::new("body", &b.name),
+                moments: diag,
+            });
             return Ok(());
         }
         return Err(field_error(
@@ -135,10 +136,11 @@ fn check_inertia<S: Scalar>(b: &Body<S>, cx: &mut Validation<'_, S>) -> Result<(
     // and randomised tests use such values (e.g. only a yaw inertia), and they do not break
     // the linearization as an indefinite tensor does.
     if triangle(&e) {
-        cx.warn(format!(
-            "{}, field `{field}`: principal moments of inertia {e:.6?} violate the triangle inequality I₁ + I₂ ≥ I₃: no body has this inertia",
-            label("body", &b.name)
-        ));
+        cx.warn(Warning::InertiaTriangle {
+            item: ItemRef::new("body", &b.name),
+            field,
+            principal: e,
+        });
     }
     Ok(())
 }

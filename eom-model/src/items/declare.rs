@@ -55,6 +55,7 @@
 use super::{Field, Name, Setting, Vec3};
 use crate::assemble::Assembly;
 use crate::error::ModelError;
+use crate::warning::Warning;
 
 /// What a declaration gives of an item (implemented by `item!`; [`Item`](super::Item) is
 /// implemented for every kind with its [`Physics`]).
@@ -73,7 +74,7 @@ pub trait Declared<S> {
     fn list_settings(&self) -> Vec<(&'static str, Setting)>;
     /// The checks of its shared shapes (a line's length, a point's directions), before the
     /// kind's own [`Physics::validate`]; warnings go to `warn`.
-    fn check_shapes(&self, warn: &mut dyn FnMut(String)) -> Result<(), ModelError>;
+    fn check_shapes(&self, warn: &mut dyn FnMut(Warning)) -> Result<(), ModelError>;
 }
 
 /// What a kind does, written by hand in its module: its checks and its terms (see
@@ -304,7 +305,7 @@ macro_rules! item {
             #[allow(unused_variables)]
             fn check_shapes(
                 &self,
-                warn: &mut dyn FnMut(String),
+                warn: &mut dyn FnMut($crate::warning::Warning),
             ) -> Result<(), $crate::error::ModelError> {
                 $(
                     let x = &self.$field;

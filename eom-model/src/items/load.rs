@@ -1,10 +1,11 @@
 //! [`Load`]: a constant applied force and moment, dead or following a body.
 
 use super::Validation;
-use super::{Body, GROUND, ModelScalar, Name, Physics, Vec3, item, label, name, zero3};
+use super::{Body, GROUND, ModelScalar, Name, Physics, Vec3, item, name, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, cross, mat_add, mat_mul, scale, skew, sub};
+use crate::warning::{ItemRef, Warning};
 use eom_sym::scalar::Scalar;
 
 item! {
@@ -58,10 +59,9 @@ impl<S: ModelScalar> Physics<S> for Load<S> {
     /// with the frame that carries its direction, and its moment arm with the loaded body.
     fn assemble<'m>(&'m self, cx: &mut Assembly<'m, S>) -> Result<(), ModelError> {
         let (Some(p1), p2) = (cx.body(&self.body), cx.body(&self.frame)) else {
-            cx.warn(format!(
-                "{} acts on the ground and has no effect",
-                label("load", &self.name)
-            ));
+            cx.warn(Warning::LoadOnGround {
+                item: ItemRef::new("load", &self.name),
+            });
             return Ok(());
         };
         let r = sub(&self.location, &cx.mass_centre(Some(p1)));

@@ -57,6 +57,7 @@ use crate::assemble::Assembly;
 use crate::error::ModelError;
 pub(crate) use crate::error::{field_error, label};
 pub(crate) use crate::geometry::name;
+use crate::warning::Warning;
 use eom_sym::scalar::Scalar;
 use eom_sym::{Dd, Expr};
 
@@ -246,7 +247,7 @@ impl<S: ModelScalar> Declared<S> for AnyItem<S> {
         self.as_item().supports()
     }
     /// Checked by the kind's own validation (which this dispatches to).
-    fn check_shapes(&self, _warn: &mut dyn FnMut(String)) -> Result<(), ModelError> {
+    fn check_shapes(&self, _warn: &mut dyn FnMut(Warning)) -> Result<(), ModelError> {
         Ok(())
     }
     fn visit_fields(&self, f: &mut dyn FnMut(Field, &S)) {

@@ -13,8 +13,8 @@
 //! that drives the lift), and `C[w] = ½ w + 0.165 β₁ x₁ + 0.335 β₂ x₂`. At `s̄ = ik` it is within
 //! |ΔC| ≤ 0.0145 of Theodorsen's function for every k (docs/aero-references.md, §1).
 
-use super::label;
 use crate::error::ModelError;
+use crate::warning::{ItemRef, Warning};
 
 /// The circulatory lift of a strip or wing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -88,12 +88,10 @@ pub fn jones_c(s: (f64, f64)) -> (f64, f64) {
 pub const AUTO_REDUCED_FREQUENCY: f64 = 0.05;
 
 /// The warning of a surface whose `auto` is assembled without a linearization to decide it.
-pub(crate) fn auto_assembled(kind: &str, name: &str) -> String {
-    format!(
-        "{}: unsteady = \"auto\" is decided by the linearization (eom analyze, sweep, …); \
-         assembled here as quasi-steady",
-        label(kind, name)
-    )
+pub(crate) fn auto_assembled(kind: &str, name: &str) -> Warning {
+    Warning::AutoAssembled {
+        item: ItemRef::new(kind, name),
+    }
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 use super::{AnyItem, Body, Item, ModelScalar};
 use crate::error::{ModelError, field_error};
 use crate::geometry::GROUND;
+use crate::warning::Warning;
 use hashbrown::HashSet;
 
 /// What an item's [`Item::validate`] sees: the bodies and items of the model, and the
@@ -13,7 +14,7 @@ pub struct Validation<'m, S> {
     items: &'m [AnyItem<S>],
     /// The names of the bodies checked so far.
     names: HashSet<&'m str>,
-    warnings: Vec<String>,
+    warnings: Vec<Warning>,
 }
 
 impl<'m, S> Validation<'m, S> {
@@ -28,8 +29,8 @@ impl<'m, S> Validation<'m, S> {
     }
 
     /// Report a warning.
-    pub fn warn(&mut self, message: String) {
-        self.warnings.push(message);
+    pub fn warn(&mut self, warning: Warning) {
+        self.warnings.push(warning);
     }
 
     /// The bodies of the model.
@@ -43,7 +44,7 @@ impl<'m, S> Validation<'m, S> {
     }
 
     /// The warnings reported.
-    pub(crate) fn into_warnings(self) -> Vec<String> {
+    pub(crate) fn into_warnings(self) -> Vec<Warning> {
         self.warnings
     }
 }

@@ -42,12 +42,13 @@
 use super::Validation;
 use super::surface::{self, Surface};
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
+use super::zero3;
 use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name};
-use super::{label, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
 use crate::geometry::{cross, skew};
+use crate::warning::{ItemRef, Warning};
 use eom_sym::scalar::Scalar;
 
 /// The 36 derivative names in AVL's body-axis layout: `WING_DERIVATIVES[i][j]` is row i
@@ -386,10 +387,9 @@ impl<S: ModelScalar> Physics<S> for Wing<S> {
         if self.derivatives.iter().flatten().all(|d| d.is_zero())
             && self.acceleration.iter().all(|d| d.is_zero())
         {
-            cx.warn(format!(
-                "{} has no derivatives: it adds nothing",
-                label("wing", &self.name)
-            ));
+            cx.warn(Warning::NoDerivatives {
+                item: ItemRef::new("wing", &self.name),
+            });
         }
         Ok(())
     }
@@ -592,8 +592,10 @@ mod tests {
             .validate()
             .unwrap();
         assert!(
-            w.iter()
-                .any(|x| x.contains("wing `fin` has no derivatives")),
+            w.iter().any(|x| matches!(
+                x,
+                crate::Warning::NoDerivatives { item } if item.name == "fin"
+            )),
             "{w:?}"
         );
     }

@@ -29,12 +29,22 @@ def load(name_or_path: str) -> "Model":
 
 
 class Warning(NamedTuple):  # noqa: A001 - the name users look for
-    """A warning of eom. ``kind`` says where it comes from: ``"load"`` (reading a model
-    file), ``"reduction"`` (the elimination of the numeric or symbolic method) or
-    ``"robust"`` (the SVD path); ``message`` is eom's text."""
+    """A warning of eom, as data. ``kind`` says what it is, as a short name
+    (``"statics_redundant"``, ``"reduction_redundant"``, ``"robust_redundant"``,
+    ``"near_equilibrium"``, ``"inertia_triangle"``, ``"auto_lagged"``, … — the variants of
+    ``eom_model::Warning``, see docs/diagnostics.md); ``item`` is the name of the item it is
+    about (``None`` when it is about no single item); ``message`` is eom's text (also
+    ``str(w)``); ``source`` says where it comes from: ``"load"`` (reading a model file),
+    ``"reduction"`` (the elimination of the numeric or symbolic method) or ``"robust"`` (the
+    SVD path)."""
 
     kind: str
+    item: Optional[str]
     message: str
+    source: str
+
+    def __str__(self) -> str:
+        return self.message
 
 
 class Mode(NamedTuple):
@@ -143,10 +153,10 @@ class Model:
         return LinearModel(self, self._native.linearize(method, values), values)
 
     def load_warnings(self) -> List["Warning"]:
-        """The warnings of reading the model file (none for a built-in), as
-        ``Warning("load", message)``."""
+        """The warnings of reading the model file (none for a built-in), with
+        ``source == "load"``."""
         if self._load_warnings is None:
-            self._load_warnings = [Warning("load", w) for w in self._native.load_warnings]
+            self._load_warnings = [Warning(*w, "load") for w in self._native.load_warnings]
         return list(self._load_warnings)
 
     def points(self, points: Points, names: Optional[Sequence[str]] = None) -> np.ndarray:
@@ -526,8 +536,8 @@ class LinearModel:
         elif name in _NAMES:
             d.update(zip(_NAMES, native.names()))
         elif name == "warnings":
-            kind = "robust" if native.method == "robust" else "reduction"
-            d[name] = self._model.load_warnings() + [Warning(kind, w) for w in native.warnings]
+            source = "robust" if native.method == "robust" else "reduction"
+            d[name] = self._model.load_warnings() + [Warning(*w, source) for w in native.warnings]
         elif name == "structural_zeros":
             d[name] = native.structural_zeros
         elif name == "method":
@@ -547,7 +557,7 @@ class LinearModel:
     output_units = property(lambda self: self._get("output_units"), doc="Output units.")
     warnings = property(
         lambda self: self._get("warnings"),
-        doc="[Warning(kind, message)]: of loading the file, then of the reduction.",
+        doc="[Warning(kind, item, message, source)]: of loading the file, then of the reduction.",
     )
     structural_zeros = property(
         lambda self: self._get("structural_zeros"),
