@@ -81,8 +81,9 @@
 //!   that use them, so `k/m`, `−k/m` and `2k/m` cost one product;
 //! * `x^a·x^−a` cancels when a validity check keeps `x` away from zero (exact wherever the
 //!   result is returned);
-//! * `sin x` and `cos x` come from one `sincos`, the module's own: inline Taylor polynomials
-//!   for |x| ≤ π/4 (within about an ulp of the library), the math library beyond; operations
+//! * `sin x` and `cos x` come from one `sincos`, the module's own: inline polynomials for
+//!   |x| ≤ π/4 (`f64`: minimax, in Estrin's form for a short dependency chain; within about an
+//!   ulp of the library), the math library beyond; operations
 //!   on numbers are folded;
 //! * pairs of operands that several products (or sums) share become one temporary (greedy);
 //! * the operands of each sum and product are associated by estimated ready time (a value

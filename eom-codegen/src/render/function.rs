@@ -568,15 +568,95 @@ pub(super) fn fn_doc(
 /// The module's `sincos`. Model angles are small (a steer-axis tilt, a caster angle), and a
 /// call of the math library costs more than the polynomial: every register live across the
 /// call is spilled, and the call's latency stalls the values that wait on it. So for
-/// |x| ≤ π/4 the Taylor polynomials run inline — truncated where the next term is below a
-/// tenth of an ulp (`f64`: sine to x¹⁷, cosine to x¹⁶; `f32`: x⁹ and x¹⁰), in Horner form, so
-/// within about an ulp of the library — and beyond it (and for NaN and ±∞) the library.
+/// |x| ≤ π/4 polynomials run inline, and beyond it (and for NaN and ±∞) the library.
+///
+/// * `f64`: the minimax polynomials of degree 13 (sine) and 14 (cosine) on [−π/4, π/4] of
+///   fdlibm's kernels (`__kernel_sin`, `__kernel_cos`; relative error of the polynomial below
+///   2⁻⁵⁸), the cosine's leading `1 − z/2` summed with its rounding error recovered as those
+///   kernels do. Their coefficients in `z = x²` are evaluated in Estrin's form (pairs `a + b z`
+///   combined by `z²` and `z⁴`), not Horner's: the sine and cosine head the longest chain of
+///   a model's code (a steer-axis tilt reaches the mass matrix through `tan λ`), and Estrin's
+///   form has three multiply-add steps on that chain where Horner's has six. Within an ulp of
+///   the library (the fixed `1, 1/2` and the small trailing terms add no rounding of note);
+///   on the bicycle's generated A..D in `bench/pydy`, about 2 ns of 45 less than Taylor's
+///   polynomials to x¹⁷ and x¹⁶ in Horner's form that it replaces (docs/performance.md).
+/// * `f32`: the Taylor polynomials, truncated where the next term is below a tenth of an ulp
+///   (x⁹ and x¹⁰), in Horner form.
 pub(crate) fn sincos_item(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
     let ty = &ctx.ty;
-    let (sin_top, cos_top) = match ctx.num.prec {
-        Precision::F64 => (17u32, 16u32),
-        Precision::F32 => (9, 10),
+    let body = match ctx.num.prec {
+        Precision::F64 => sincos_f64_minimax(ctx)?,
+        Precision::F32 => sincos_taylor(ctx, 9, 10)?,
     };
+    let bound = ctx.num.lit(std::f64::consts::FRAC_PI_4, "π/4")?;
+    let library = match ctx.math {
+        MathLib::Libm => {
+            let f = ctx.libm("sincos");
+            quote!(#f(x))
+        }
+        MathLib::Std => quote!(x.sin_cos()),
+    };
+    Ok(quote! {
+        /// `(sin x, cos x)` as the evaluation functions compute them: inline polynomials for
+        /// |x| ≤ π/4 (within about an ulp of the math library, without the cost of a call),
+        /// the math library beyond.
+        #[inline(always)]
+        pub fn sincos(x: #ty) -> (#ty, #ty) {
+            if x.abs() <= #bound {
+                #body
+            } else {
+                #library
+            }
+        }
+    })
+}
+
+/// fdlibm's minimax coefficients (k_sin.c S1…S6, k_cos.c C1…C6): sin x = x + x·z·(S1 + z·(S2
+/// + … + S6 z⁴)), cos x = 1 − z/2 + z²·(C1 + … + C6 z⁵), z = x², |x| ≤ π/4.
+const SIN_MINIMAX: [f64; 6] = [
+    -1.66666666666666324348e-01,
+    8.33333333332248946124e-03,
+    -1.98412698298579493134e-04,
+    2.75573137070700676789e-06,
+    -2.50507602534068634195e-08,
+    1.58969099521155010221e-10,
+];
+const COS_MINIMAX: [f64; 6] = [
+    4.16666666666666019037e-02,
+    -1.38888888888741095749e-03,
+    2.48015872894767294178e-05,
+    -2.75573143513906633035e-07,
+    2.08757232129817482790e-09,
+    -1.13596475577881948265e-11,
+];
+
+/// The `f64` polynomial part of `sincos` (see [`sincos_item`]).
+fn sincos_f64_minimax(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
+    let l = |x: f64| ctx.num.lit(x, "sincos coefficient");
+    let s: Vec<TokenStream> = SIN_MINIMAX
+        .iter()
+        .map(|&c| l(c))
+        .collect::<Result<_, _>>()?;
+    let c: Vec<TokenStream> = COS_MINIMAX
+        .iter()
+        .map(|&c| l(c))
+        .collect::<Result<_, _>>()?;
+    let (s0, s1, s2, s3, s4, s5) = (&s[0], &s[1], &s[2], &s[3], &s[4], &s[5]);
+    let (c0, c1, c2, c3, c4, c5) = (&c[0], &c[1], &c[2], &c[3], &c[4], &c[5]);
+    Ok(quote! {
+        let z = x * x;
+        let z2 = z * z;
+        let z4 = z2 * z2;
+        let rs = (#s1 + z * #s2) + z2 * (#s3 + z * #s4) + z4 * #s5;
+        let rc = (#c0 + z * #c1) + z2 * (#c2 + z * #c3) + z4 * (#c4 + z * #c5);
+        let hz = 0.5 * z;
+        let w = 1.0 - hz;
+        (x + x * z * (#s0 + z * rs), w + (((1.0 - w) - hz) + z2 * rc))
+    })
+}
+
+/// The Taylor polynomials of `sincos` to `x^sin_top` and `x^cos_top`, in Horner form.
+fn sincos_taylor(ctx: &Ctx, sin_top: u32, cos_top: u32) -> Result<TokenStream, CodegenError> {
     // (−1)^j / n! for n = 2j + 1 (sine) or 2j (cosine), as literals of this precision.
     let coef = |n: u32| -> f64 {
         let f: f64 = (1..=n).map(f64::from).product();
@@ -596,26 +676,8 @@ pub(crate) fn sincos_item(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
     };
     let sin_poly = horner((3..=sin_top).step_by(2).collect())?;
     let cos_poly = horner((2..=cos_top).step_by(2).collect())?;
-    let bound = ctx.num.lit(std::f64::consts::FRAC_PI_4, "π/4")?;
-    let library = match ctx.math {
-        MathLib::Libm => {
-            let f = ctx.libm("sincos");
-            quote!(#f(x))
-        }
-        MathLib::Std => quote!(x.sin_cos()),
-    };
     Ok(quote! {
-        /// `(sin x, cos x)` as the evaluation functions compute them: inline Taylor
-        /// polynomials for |x| ≤ π/4 (within about an ulp of the math library, without the
-        /// cost of a call), the math library beyond.
-        #[inline(always)]
-        pub fn sincos(x: #ty) -> (#ty, #ty) {
-            if x.abs() <= #bound {
-                let z = x * x;
-                (x + x * z * (#sin_poly), 1.0 + z * (#cos_poly))
-            } else {
-                #library
-            }
-        }
+        let z = x * x;
+        (x + x * z * (#sin_poly), 1.0 + z * (#cos_poly))
     })
 }
