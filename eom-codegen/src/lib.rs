@@ -116,9 +116,10 @@
 //! operations into pairs twice as often and loses more to shuffles than it gains. Measure with
 //! your model. Against PyDy's generated C in one driver, both sides compiled alike, the
 //! shimmy's `eval_abcd_varying` (`--simplify`) takes about 0.86–0.92× PyDy's time and the
-//! bicycle's 0.56–0.73×, depending on the target level, and the bicycle's A and B carry less
-//! rounding error (1.4e-14 of the largest entry of each row at 1024 random points, PyDy's
-//! 2.3e-14); the figures and the scripts that measure them are in `bench/pydy/README.md`.
+//! bicycle's 0.59–0.72× (baseline target and `x86-64-v3`), and the bicycle's A and B carry
+//! less rounding error (1.4–1.7e-14 of the largest entry of each row at 1024 random points,
+//! PyDy's 2.3e-14); the figures and the scripts that measure them are in
+//! `bench/pydy/README.md`.
 //!
 //! No fast-math is needed or wanted: the finiteness proofs and the accuracy tests assume IEEE
 //! arithmetic as written (Rust never contracts `a * b + c` into a fused multiply-add by itself).
