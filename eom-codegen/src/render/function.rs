@@ -575,11 +575,12 @@ pub(super) fn fn_doc(
 ///   2⁻⁵⁸), the cosine's leading `1 − z/2` summed with its rounding error recovered as those
 ///   kernels do. Their coefficients in `z = x²` are evaluated in Estrin's form (pairs `a + b z`
 ///   combined by `z²` and `z⁴`), not Horner's: the sine and cosine head the longest chain of
-///   a model's code (a steer-axis tilt reaches the mass matrix through `tan λ`), and Estrin's
-///   form has three multiply-add steps on that chain where Horner's has six. Within an ulp of
-///   the library (the fixed `1, 1/2` and the small trailing terms add no rounding of note);
-///   on the bicycle's generated A..D in `bench/pydy`, about 2 ns of 45 less than Taylor's
-///   polynomials to x¹⁷ and x¹⁶ in Horner's form that it replaces (docs/performance.md).
+///   a model's code (a steer-axis tilt reaches the mass matrix through `tan λ`), and with
+///   Estrin's form the sine is 9 operations deep where the Taylor polynomial to x¹⁷ in
+///   Horner's form it replaces was 17 (the cosine alike). Within an ulp of the library, and
+///   correctly rounded about as often as the Taylor polynomials (sine) or more often
+///   (cosine); on the bicycle's generated A..D in `bench/pydy`, 44.9 → 42.5 ns per call
+///   (docs/performance.md).
 /// * `f32`: the Taylor polynomials, truncated where the next term is below a tenth of an ulp
 ///   (x⁹ and x¹⁰), in Horner form.
 pub(crate) fn sincos_item(ctx: &Ctx) -> Result<TokenStream, CodegenError> {
