@@ -97,3 +97,34 @@ def test_threads_must_be_positive():
     for bad in (0, -1, 1.5, True):
         with pytest.raises(eom.EomError, match="threads"):
             bike.stability(pts, threads=bad)
+
+
+def test_a_dask_array_is_evaluated_where_its_blocks_are(client):
+    # Points that live on the cluster (a dask array, persisted there): each block of rows is
+    # evaluated on the worker that holds it, equal to the local result bit for bit whatever
+    # the blocks; several column blocks are joined into whole rows.
+    da = pytest.importorskip("dask.array")
+    bike, pts = bicycle_points(5_000, seed=13)
+    local = bike.stability(pts)
+    for rows, cols in ((1_000, -1), (1_234, 10), (5_000, -1)):
+        arr = client.persist(da.from_array(pts, chunks=(rows, cols)))
+        assert_identical(eom.distributed.stability(bike, arr, client=client), local)
+    # Lazy (computed on the workers), with names for its columns; and without a client.
+    lazy = da.linspace(0.5, 10.0, 2_001, chunks=700)[:, None]
+    v = lazy.compute()[:, 0]
+    assert_identical(
+        eom.distributed.stability(bike, lazy, client=client, names=["v"]),
+        bike.stability({"v": v}),
+    )
+    assert_identical(eom.distributed.stability(bike, lazy, names=["v"]), bike.stability({"v": v}))
+
+
+def test_a_bad_dask_array_raises(client):
+    da = pytest.importorskip("dask.array")
+    bike = eom.load("bicycle")
+    with pytest.raises(ValueError, match="points"):
+        eom.distributed.stability(bike, da.zeros(10, chunks=5), client=client)
+    with pytest.raises(eom.EomError, match="no parameter `nope`"):
+        eom.distributed.stability(
+            bike, da.zeros((10, 1), chunks=5), client=client, names=["nope"]
+        )
