@@ -128,3 +128,23 @@ def test_a_bad_dask_array_raises(client):
         eom.distributed.stability(
             bike, da.zeros((10, 1), chunks=5), client=client, names=["nope"]
         )
+
+
+def test_only_the_given_columns_travel_and_equal_local(client):
+    # A dict or named columns: the workers fill in the defaults, as Model.points does locally.
+    bike = eom.load("bicycle")
+    rng = np.random.default_rng(3)
+    cols = np.column_stack([np.linspace(0.5, 10.0, 2_500), 80.0 + 10.0 * rng.random(2_500)])
+    names = ["v", "mB"]
+    local = bike.stability(cols, names)
+    assert_identical(
+        eom.distributed.stability(bike, cols, client=client, chunk=700, names=names), local
+    )
+    assert_identical(
+        eom.distributed.stability(bike, dict(zip(names, cols.T)), client=client, chunk=900),
+        local,
+    )
+    with pytest.raises(eom.EomError, match="no parameter `nope`"):
+        eom.distributed.stability(bike, {"nope": cols[:, 0]}, client=client)
+    with pytest.raises(eom.EomError, match="points"):
+        eom.distributed.stability(bike, {"v": cols[:, 0], "mB": cols[:10, 1]}, client=client)

@@ -8,7 +8,7 @@ bit for bit whatever the chunking and the number of workers.
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, Optional, Sequence, Union
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -85,11 +85,11 @@ def stability(
     sharing a machine do not oversubscribe it; locally, all cores."""
     if _is_dask_array(points):
         return _stability_of_dask_array(model, points, client, names, threads)
-    p = model.points(points, names)
     if client is None:
-        return model.stability(p, threads=threads)
+        return model.stability(points, names, threads=threads)
     if chunk < 1:
         raise ValueError(f"chunk: at least 1 point, got {chunk}")
+    p, names = _given_columns(model, points, names)
     slots = _slots_per_host(client) if threads is None else {}
     remote_model = _broadcast(client, model)
     bounds = list(range(0, p.shape[0], chunk))
@@ -107,12 +107,36 @@ def stability(
             [p[i : i + chunk] for i in bounds[r : r + per_round]], hash=False, direct=True
         )
         futures += [
-            client.submit(_chunk_stability, remote_model, part, threads, slots, pure=False)
+            client.submit(
+                _chunk_stability, remote_model, part, threads, slots, names, pure=False
+            )
             for part in parts
         ]
     if not futures:
-        return model.stability(p, threads=threads)
+        return model.stability(p, names, threads=threads)
     return _joined(client.gather(futures, direct=True))
+
+
+def _given_columns(
+    model: Model, points: Points, names: Optional[Sequence[str]]
+) -> Tuple[np.ndarray, Optional[Sequence[str]]]:
+    """The points as an (N, k) array of the parameters given, and their names (None for all
+    parameters in model order): only what varies travels to the workers, which fill in the
+    defaults (``Model.points``, the same values as locally). Checked here first, so that bad
+    points raise on the client, as locally."""
+    if isinstance(points, Mapping):
+        cols = {k: np.asarray(v, dtype=np.float64) for k, v in points.items()}
+        if not cols or len({c.shape for c in cols.values()}) > 1 or next(
+            iter(cols.values())
+        ).ndim != 1:
+            return model.points(points), None  # raises, or the defaults (no column given)
+        model.points({k: c[:1] for k, c in cols.items()})  # the names checked
+        return np.column_stack(list(cols.values())), list(cols)
+    if names is None:
+        return model.points(points), None
+    arr = np.asarray(points, dtype=np.float64)
+    model.points(arr[:1], names)  # the shape and names checked
+    return np.ascontiguousarray(arr), list(names)
 
 
 def _stability_of_dask_array(
