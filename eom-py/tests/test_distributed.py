@@ -37,11 +37,11 @@ def client():
         yield c
 
 
-@pytest.mark.parametrize("chunk", [1_000, 2_345, 20_000])
-def test_dask_equals_local_bit_for_bit(client, chunk):
+@pytest.mark.parametrize("chunk, direct", [(1_000, True), (2_345, False), (20_000, True)])
+def test_dask_equals_local_bit_for_bit(client, chunk, direct):
     bike, pts = bicycle_points(6_000)
     local = bike.stability(pts)
-    remote = eom.distributed.stability(bike, pts, client=client, chunk=chunk)
+    remote = eom.distributed.stability(bike, pts, client=client, chunk=chunk, direct=direct)
     assert_identical(remote, local)
     # Both verdicts occur: the points straddle the weave and capsize speeds.
     assert (local.verdict == 1).any() and (local.verdict == -1).any()

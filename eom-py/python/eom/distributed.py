@@ -70,6 +70,7 @@ def stability(
     chunk: int = DEFAULT_CHUNK,
     names: Optional[Sequence[str]] = None,
     threads: Optional[int] = None,
+    direct: bool = True,
 ) -> Stability:
     """``model.stability(points)`` on the workers of ``client`` (a
     ``dask.distributed.Client``) in chunks of ``chunk`` points; without a client, locally.
@@ -82,9 +83,12 @@ def stability(
 
     ``threads``: Rust threads per task. By default each task takes its worker's share of its
     machine's cores (cores ÷ the task slots of all workers on that machine), so that workers
-    sharing a machine do not oversubscribe it; locally, all cores."""
+    sharing a machine do not oversubscribe it; locally, all cores.
+
+    ``direct``: the chunks and results travel straight between the client and the workers;
+    False where the client reaches the scheduler only (they are relayed by it)."""
     if _is_dask_array(points):
-        return _stability_of_dask_array(model, points, client, names, threads)
+        return _stability_of_dask_array(model, points, client, names, threads, direct)
     if client is None:
         return model.stability(points, names, threads=threads)
     if chunk < 1:
@@ -104,7 +108,7 @@ def stability(
     futures = []
     for r in range(0, len(bounds), per_round):
         parts = client.scatter(
-            [p[i : i + chunk] for i in bounds[r : r + per_round]], hash=False, direct=True
+            [p[i : i + chunk] for i in bounds[r : r + per_round]], hash=False, direct=direct
         )
         futures += [
             client.submit(
@@ -114,7 +118,7 @@ def stability(
         ]
     if not futures:
         return model.stability(p, names, threads=threads)
-    return _joined(client.gather(futures, direct=True))
+    return _joined(client.gather(futures, direct=direct))
 
 
 def _given_columns(
@@ -145,6 +149,7 @@ def _stability_of_dask_array(
     client: Optional[Any],
     names: Optional[Sequence[str]],
     threads: Optional[int],
+    direct: bool,
 ) -> Stability:
     if points.ndim != 2:
         raise ValueError(f"points: an (N, k) dask array, got shape {points.shape}")
@@ -164,7 +169,7 @@ def _stability_of_dask_array(
     ]
     if not futures:
         return model.stability(np.empty((0, len(model.parameters))), threads=threads)
-    return _joined(client.gather(futures, direct=True))
+    return _joined(client.gather(futures, direct=direct))
 
 
 def _broadcast(client: Any, model: Model) -> Any:
