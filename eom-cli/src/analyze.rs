@@ -600,6 +600,26 @@ fn working_methods(at_point: &eom_model::Model<eom_sym::Expr>) -> Vec<&'static s
         .collect()
 }
 
+/// Receives from `rx` without blocking a thread of the pool: while the value is not there,
+/// the thread runs the pool's other jobs (the parallel kernels of the step that will send
+/// it). A worker blocked in `recv` could neither help that step nor, had another worker
+/// taken the wait as a job while itself inside that step, ever let it finish. `None` once
+/// the sender is gone.
+fn receive_helping<T>(rx: &std::sync::mpsc::Receiver<T>) -> Option<T> {
+    use std::sync::mpsc::TryRecvError;
+    loop {
+        match rx.try_recv() {
+            Ok(v) => return Some(v),
+            Err(TryRecvError::Disconnected) => return None,
+            Err(TryRecvError::Empty) => {
+                if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                    std::thread::sleep(std::time::Duration::from_micros(200));
+                }
+            }
+        }
+    }
+}
+
 /// The modes as reported: no mode shapes (nothing here shows them).
 fn mode_options() -> ModeOptions {
     ModeOptions {
@@ -623,11 +643,12 @@ fn analyze_state_space(
     let inputs = signals(ss.inputs(), &n.inputs, &n.input_units, "input");
     let outputs = signals(ss.outputs(), &n.outputs, &n.output_units, "output");
     // Each analysis is a dense O(n³) step on a large model, and all are independent but the
-    // zeros, which are those of the minimal realization: two chains, one per core. The
-    // minimal realization's PBH pass needs the eigenvalues the modes compute: they are sent
-    // over, and waited for only after its staircases (the sender is dropped, and the pass
-    // computes them itself, if the modes fail), while the zeros of the staircases' result
-    // are computed.
+    // zeros, which are those of the minimal realization: two chains, one per core, and
+    // within each step faer's parallel kernels on the pool's threads (a thread whose chain
+    // is done helps the other's). The minimal realization's PBH pass needs the eigenvalues
+    // the modes compute: they are sent over, and waited for only after its staircases and
+    // the zeros of their result (the sender is dropped, and the pass computes them itself,
+    // if the modes fail).
     let (eig_tx, eig_rx) = std::sync::mpsc::channel::<Vec<Complex64>>();
     let ((modes, gain), (reduced, zeros)) = rayon::join(
         move || {
@@ -671,10 +692,8 @@ fn analyze_state_space(
                         } else {
                             draft
                         };
-                        let (z, ev) = rayon::join(
-                            || want_zeros.then(|| step("zeros", || transmission_zeros(sys))),
-                            move || eig_rx.recv().ok(),
-                        );
+                        let z = want_zeros.then(|| step("zeros", || transmission_zeros(sys)));
+                        let ev = receive_helping(&eig_rx);
                         *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some((draft.states(), z));
                         ev
                     },

@@ -102,10 +102,11 @@
 //! [`freq::HessenbergForm::evaluate_in`], [`freq::HessenbergForm::evaluate_batch_in`]),
 //! for sweeps that call them millions of times.
 //!
-//! **Dense algorithms from faer, public types from nalgebra.** Eigenvectors, QZ, SVD and
-//! Hessenberg reductions come from faer: sequential below [`linalg::PARALLEL_MIN`] states
-//! (sweeps parallelise over their points), on every thread of the current rayon pool above
-//! (a model of a thousand bodies); eigenvalues up to 16 states from the stack kernel of
+//! **Dense algorithms from faer, public types from nalgebra.** Eigenvectors, QZ, SVD,
+//! Hessenberg reductions and the eigenvalues of one large matrix ([`modes::eigenvalues`])
+//! come from faer: sequential below [`linalg::PARALLEL_MIN`] states (sweeps parallelise over
+//! their points, and [`modes::eigenvalues_in`] always runs on the calling thread), on every
+//! thread of the current rayon pool above (a model of a thousand bodies); eigenvalues up to 16 states from the stack kernel of
 //! [`small_eigen`]. `DMatrix<f64>` is the public matrix type and provides the matrix
 //! exponential.
 //!

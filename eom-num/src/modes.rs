@@ -90,7 +90,9 @@ pub fn eigenvalues(a: &DMatrix<f64>) -> Result<Vec<Complex64>, NumError> {
         small_eigen::eigenvalues_small(a.as_slice(), a.nrows(), &mut out)?;
         return Ok(out);
     }
-    let mut ws = EigenvaluesWorkspace::new(a.nrows());
+    // One large matrix: faer's parallel kernels on the current pool (its Hessenberg
+    // reduction and multishift QR), where a sweep's workspace stays sequential.
+    let mut ws = EigenvaluesWorkspace::with_par(a.nrows(), crate::linalg::par(a.nrows()));
     let mut out = vec![Complex64::new(0.0, 0.0); a.nrows()];
     eigenvalues_in(a, &mut ws, &mut out)?;
     Ok(out)
@@ -108,6 +110,7 @@ pub struct EigenvaluesWorkspace {
     scale: Vec<f64>,
     re: Vec<f64>,
     im: Vec<f64>,
+    par: Par,
     buf: MemBuffer,
 }
 
@@ -136,7 +139,14 @@ pub fn eigenvalues_workspace_bytes(n: usize) -> usize {
 
 impl EigenvaluesWorkspace {
     /// Allocates the workspace for n × n matrices (the only allocation of the kernel).
+    /// The kernel runs on the calling thread (`Par::Seq`): sweeps parallelise over their
+    /// points instead.
     pub fn new(n: usize) -> Self {
+        Self::with_par(n, Par::Seq)
+    }
+
+    /// The workspace for faer's kernels with parallelism `par` (its scratch depends on it).
+    pub(crate) fn with_par(n: usize, par: Par) -> Self {
         EigenvaluesWorkspace {
             n,
             a: vec![0.0; n * n],
@@ -148,7 +158,8 @@ impl EigenvaluesWorkspace {
             scale: vec![1.0; n],
             re: vec![0.0; n],
             im: vec![0.0; n],
-            buf: MemBuffer::new(eig_scratch(n, false, Par::Seq)),
+            par,
+            buf: MemBuffer::new(eig_scratch(n, false, par)),
         }
     }
 
@@ -202,9 +213,10 @@ fn check_eigenvalues_in(
     Ok(())
 }
 
-/// [`eigenvalues_in`] by faer's QR algorithm (`Par::Seq`) for every size: the path of the
-/// matrices above [`small_eigen::MAX_N`] states, public so that the small kernel can be
-/// compared with it (`eom bench accuracy`).
+/// [`eigenvalues_in`] by faer's QR algorithm for every size (on the calling thread with a
+/// workspace from [`EigenvaluesWorkspace::new`]): the path of the matrices above
+/// [`small_eigen::MAX_N`] states, public so that the small kernel can be compared with it
+/// (`eom bench accuracy`).
 ///
 /// Errors: as [`eigenvalues_in`].
 pub fn eigenvalues_faer_in(
@@ -236,7 +248,7 @@ pub fn eigenvalues_faer_in(
             DiagMut::from_slice_mut(&mut ws.im[..m]),
             None,
             None,
-            Par::Seq,
+            ws.par,
             MemStack::new(&mut ws.buf),
             Default::default(),
         )

@@ -339,3 +339,33 @@ fn hidden_identical_oscillators_keep_two_states_per_input() {
         );
     }
 }
+
+/// [`twin_chains_keep_one_chain`] at 50 masses per axis (200 states, from which the PBH
+/// tests of the clusters run on the pool's threads, and the dense steps use faer's parallel
+/// kernels), on pools of one and of three threads: the same order and the same removed
+/// modes, those of one chain.
+#[test]
+fn twin_chains_keep_one_chain_on_any_number_of_threads() {
+    let k = 50;
+    let sys = two_axis_chain(k, 3);
+    let mut expected = eig_nalgebra(&two_axis_chain_block(k));
+    expected.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let (min, rep) = pool
+            .install(|| minimal_realization(&sys, &MinrealOptions::default()))
+            .unwrap();
+        assert_eq!(min.states(), 2 * k, "{threads} thread(s)");
+        assert_eq!(pbh_directions_removed(&rep), k, "{threads} thread(s)");
+        let got: Vec<_> = rep.removed.iter().map(|r| r.eigenvalue).collect();
+        let dist = set_distance(&got, &expected).unwrap();
+        assert!(dist < 1e-8, "{threads} thread(s): {dist:e}");
+        assert!(
+            tf_rel_error(&min, &sys, &points()) < 1e-8,
+            "{threads} thread(s)"
+        );
+    }
+}

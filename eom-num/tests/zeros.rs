@@ -261,3 +261,37 @@ fn bad_input_gets_typed_errors() {
         Err(NumError::Dimension(_))
     ));
 }
+
+/// The zeros of a system of 240 states, on pools of one and of three threads (from
+/// `eom_num::linalg::PARALLEL_MIN` states the pencil's eigenvalues use faer's parallel
+/// kernels): with `D = I` they are the eigenvalues of `A − B C`, here chosen as those of 120
+/// distinct damped oscillators hidden by a random orthogonal change of coordinates, so the
+/// reference is the closed form `−ζω ± iω√(1 − ζ²)`.
+#[test]
+fn a_large_system_has_the_same_zeros_on_any_number_of_threads() {
+    let k = 120;
+    let (w, zeta) = (|i: usize| 1.0 + 0.25 * i as f64, 0.05);
+    let mut m = DMatrix::zeros(2 * k, 2 * k);
+    let mut want = Vec::new();
+    for i in 0..k {
+        m[(2 * i, 2 * i + 1)] = 1.0;
+        m[(2 * i + 1, 2 * i)] = -w(i) * w(i);
+        m[(2 * i + 1, 2 * i + 1)] = -2.0 * zeta * w(i);
+        let wd = w(i) * (1.0 - zeta * zeta).sqrt();
+        want.extend([c(-zeta * w(i), wd), c(-zeta * w(i), -wd)]);
+    }
+    let mut r = rng(240);
+    let q = rand_orth(&mut r, 2 * k);
+    let (b, cm) = (rand_mat(&mut r, 2 * k, 3), rand_mat(&mut r, 3, 2 * k));
+    let a = q.transpose() * m * &q + &b * &cm;
+    let sys = ss(a, b, cm, DMatrix::identity(3, 3));
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let z = pool.install(|| transmission_zeros(&sys)).unwrap();
+        let dist = set_distance(&z, &want).unwrap();
+        assert!(dist < 1e-10, "{threads} thread(s): {dist:e}");
+    }
+}

@@ -17,6 +17,7 @@
 
 use nalgebra::DMatrix;
 use num_complex::Complex64;
+use rayon::prelude::*;
 
 use crate::error::NumError;
 use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
@@ -281,10 +282,10 @@ fn deflate_clusters(
         return Ok(None);
     }
     let p = lower_bandwidth(&r.a);
+    let tests = cluster_tests(r, &targets, p)?;
     // Real basis vectors of the directions to remove: Re w, and Im w for a complex λ.
     let mut basis: Vec<Vec<f64>> = Vec::new();
-    for cl in &targets {
-        let (w, s) = cluster_pbh(&r.a, &r.b, cl.mean, cl.size, p)?;
+    for (cl, (w, s)) in targets.iter().zip(tests) {
         let below = s.iter().filter(|&&v| v <= tol).count();
         let d = below.min(s.len().saturating_sub(1));
         let step = r.decisions.len();
@@ -321,6 +322,42 @@ fn deflate_clusters(
     r.c = &r.c * &q1;
     Ok(Some(q1))
 }
+
+/// The PBH test ([`cluster_pbh`]) at each cluster, in order. The clusters are independent
+/// (each test starts from the same seed): on a large model they run on the threads of the
+/// current pool, as many at once as threads, and as the memory limit allows — each holds a
+/// complex `k × k` factor of `A − λI` ([`crate::budget`]).
+fn cluster_tests(
+    r: &Reduction,
+    targets: &[Cluster],
+    p: usize,
+) -> Result<Vec<ClusterTest>, NumError> {
+    let k = r.a.nrows();
+    let per_test = crate::budget::product(&[k, k, 16]);
+    let at_once = (crate::budget::limit() / per_test.max(1))
+        .min(rayon::current_num_threads())
+        .min(targets.len());
+    if k < crate::linalg::PARALLEL_MIN || at_once < 2 {
+        return targets
+            .iter()
+            .map(|cl| cluster_pbh(&r.a, &r.b, cl.mean, cl.size, p))
+            .collect();
+    }
+    let mut tests = Vec::with_capacity(targets.len());
+    for group in targets.chunks(at_once) {
+        let done: Vec<Result<ClusterTest, NumError>> = group
+            .par_iter()
+            .map(|cl| cluster_pbh(&r.a, &r.b, cl.mean, cl.size, p))
+            .collect();
+        for t in done {
+            tests.push(t?);
+        }
+    }
+    Ok(tests)
+}
+
+/// The directions of one cluster and their singular values (see [`cluster_pbh`]).
+type ClusterTest = (Vec<Vec<Complex64>>, Vec<f64>);
 
 /// The decision of the PBH pass at one cluster: the listed (smallest) singular values and
 /// how many of them were kept.
