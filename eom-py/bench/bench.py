@@ -71,10 +71,16 @@ def cpu_seconds(client):
     return own(), sum(client.run(own).values())
 
 
+#: Rows per block of the array that lives on the cluster: 125 000 rows of 27 parameters are
+#: 27 MB, within Dask's advice of blocks of tens to hundreds of MB (fewer, larger tasks keep
+#: the scheduler's share small).
+ON_CLUSTER_ROWS = 125_000
+
+
 def dask_sweeps(bike, pts, clients, args):
     """eom.distributed.stability on 1 and 2 workers, interleaved round by round: the points
     sent from the client (a NumPy array) and already on the cluster (a dask array persisted
-    there, 20 000 rows a block): wall time and the CPU seconds of the client's process (with
+    there, ON_CLUSTER_ROWS rows a block): wall time and the CPU seconds of the client's process (with
     the scheduler) and of the workers."""
     import dask.array as da
     import distributed
@@ -89,7 +95,7 @@ def dask_sweeps(bike, pts, clients, args):
         # warns of a large graph) and stays there.
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            on_cluster[w] = cl.persist(da.from_array(pts, chunks=(ed.DEFAULT_CHUNK, -1)))
+            on_cluster[w] = cl.persist(da.from_array(pts, chunks=(ON_CLUSTER_ROWS, -1)))
             distributed.wait(on_cluster[w])
     kinds = {"from the client": lambda w: pts, "on the cluster": lambda w: on_cluster[w]}
     runs = {(k, w): [] for k in kinds for w in clients}

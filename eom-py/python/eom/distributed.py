@@ -160,16 +160,16 @@ def _stability_of_dask_array(
         points = points.rechunk({1: -1})  # a task needs whole rows
     slots = _slots_per_host(client) if threads is None else {}
     remote_model = _broadcast(client, model)
-    # Each block computed on the cluster (or already there, if persisted), then its task
-    # scheduled where it lies: no point passes through the client.
-    blocks = client.compute(list(points.to_delayed().ravel()))
-    futures = [
-        client.submit(_chunk_stability, remote_model, b, threads, slots, names, pure=False)
-        for b in blocks
-    ]
-    if not futures:
+    # One graph for the whole sweep, each block's task beside its block (computed on the
+    # cluster, or already there if persisted): no point passes through the client, and the
+    # client and scheduler handle one submission, not one per block.
+    import dask
+
+    task = dask.delayed(_chunk_stability, pure=False)
+    parts = [task(remote_model, b, threads, slots, names) for b in points.to_delayed().ravel()]
+    if not parts:
         return model.stability(np.empty((0, len(model.parameters))), threads=threads)
-    return _joined(client.gather(futures, direct=direct))
+    return _joined(client.gather(client.compute(parts), direct=direct))
 
 
 def _broadcast(client: Any, model: Model) -> Any:
