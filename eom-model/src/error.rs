@@ -9,7 +9,7 @@ use eom_sym::SymError;
 #[non_exhaustive]
 pub enum ModelError {
     /// A model item or field is invalid.
-    #[error("{item}{}: {problem}", if field.is_empty() { String::new() } else { format!(", field `{field}`") })]
+    #[error("{item}{}: {problem}", field_part(field))]
     Model {
         /// The item, e.g. ``spring `front` ``.
         item: String,
@@ -18,9 +18,92 @@ pub enum ModelError {
         /// What is wrong.
         problem: String,
     },
-    /// The model is not in static equilibrium at its given geometry.
-    #[error("not in equilibrium: {0}")]
-    Equilibrium(String),
+    /// A field names a body that does not exist.
+    #[error("{item}, field `{field}`: unknown body `{body}`; bodies are: {}", known.join(", "))]
+    UnknownBody {
+        /// The item, e.g. ``spring `front` ``.
+        item: String,
+        /// The field.
+        field: String,
+        /// The name given.
+        body: String,
+        /// The bodies of the model (and the ground).
+        known: Vec<String>,
+    },
+    /// A field names an item that does not exist.
+    #[error("{item}, field `{field}`: unknown {kind} `{name}`; {kind}s are: {}", known.join(", "))]
+    UnknownItem {
+        /// The item whose field it is.
+        item: String,
+        /// The field.
+        field: String,
+        /// The kind of item it must name (`actuator`).
+        kind: String,
+        /// The name given.
+        name: String,
+        /// The items of that kind.
+        known: Vec<String>,
+    },
+    /// An item connects a body to itself.
+    #[error("{item}, field `bodies`: connects `{body}` to itself")]
+    SelfConnection {
+        /// The item.
+        item: String,
+        /// The body.
+        body: String,
+    },
+    /// A body with a negative mass.
+    #[error("{item}, field `mass`: negative mass {mass}")]
+    NegativeMass {
+        /// The body.
+        item: String,
+        /// The mass.
+        mass: f64,
+    },
+    /// A value given that is not finite (NaN or infinite).
+    #[error("{item}{}: value {value} is not finite", field_part(field))]
+    NotFinite {
+        /// The body or item.
+        item: String,
+        /// The field (may be empty).
+        field: String,
+        /// The value.
+        value: f64,
+    },
+    /// A field whose expression is not finite at the parameter values given.
+    #[error(
+        "{item}{}: evaluates to {value} at the given parameter values",
+        field_part(field)
+    )]
+    NotFiniteAt {
+        /// The body or item.
+        item: String,
+        /// The field (may be empty).
+        field: String,
+        /// The value.
+        value: f64,
+    },
+    /// The model is not in static equilibrium at its given geometry: the force or moment
+    /// equation with a residual beyond the tolerance.
+    #[error(
+        "not in equilibrium: {equation}: residual {residual:.6e} (of terms summing to \
+         {magnitude:.6e} in magnitude; {ratio:.1e} of the body's largest {}). The given geometry \
+         is not an equilibrium with these constraints (eom uses the given geometry as the loaded \
+         equilibrium: add a support, or give spring preloads that balance the loads)",
+        if *length == 1.0 { "force or moment" } else { "force, or moment over the model's length scale" }
+    )]
+    Equilibrium {
+        /// The equation (``body `frame` x force``, `known preload 2`).
+        equation: String,
+        /// Its residual.
+        residual: f64,
+        /// The sum of the magnitudes of its terms.
+        magnitude: f64,
+        /// The residual relative to the body's largest force or moment.
+        ratio: f64,
+        /// The model's length scale (moments are divided by it).
+        length: f64,
+    },
     /// A matrix that must be invertible is singular (at the nominal point, or at the point of
     /// evaluation).
     #[error("singular: {0}")]
@@ -38,6 +121,15 @@ pub enum ModelError {
     /// An error of the numeric layer.
     #[error(transparent)]
     Num(#[from] NumError),
+}
+
+/// `, field `NAME`` (nothing for an empty field name).
+fn field_part(field: &str) -> String {
+    if field.is_empty() {
+        String::new()
+    } else {
+        format!(", field `{field}`")
+    }
 }
 
 /// The label of an item in messages: ``spring `front` ``. Built directly rather than by

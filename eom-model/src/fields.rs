@@ -53,6 +53,17 @@ impl<S: ModelScalar> Model<S> {
 
     /// The error of field `k` (in the order of [`Model::map`]).
     pub(crate) fn field_error(&self, k: usize, problem: String) -> ModelError {
+        let (item, field) = self.field_at(k);
+        ModelError::Model {
+            item,
+            field,
+            problem,
+        }
+    }
+
+    /// The item (labelled) and the name of field `k` (in the order of [`Model::map`]); empty
+    /// when there is no such field.
+    pub(crate) fn field_at(&self, k: usize) -> (String, String) {
         let mut seen = 0;
         let mut at: Option<(String, Field)> = None;
         for item in self.all_items() {
@@ -66,12 +77,7 @@ impl<S: ModelScalar> Model<S> {
                 break;
             }
         }
-        let (item, field) = at.map_or((String::new(), String::new()), |(i, f)| (i, f.to_string()));
-        ModelError::Model {
-            item,
-            field,
-            problem,
-        }
+        at.map_or((String::new(), String::new()), |(i, f)| (i, f.to_string()))
     }
 }
 
@@ -116,13 +122,13 @@ mod tests {
         m.add(Body::new("b").mass(1.0));
         m.add(Spring::new("k").stiffness(f64::NAN));
         let e = m.validate().unwrap_err();
-        assert_eq!(
-            e,
-            ModelError::Model {
-                item: "spring `k`".into(),
-                field: "stiffness".into(),
-                problem: "value NaN is not finite".into(),
-            }
+        assert!(
+            matches!(
+                &e,
+                ModelError::NotFinite { item, field, value }
+                    if item == "spring `k`" && field == "stiffness" && value.is_nan()
+            ),
+            "{e:?}"
         );
     }
 }

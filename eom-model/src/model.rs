@@ -141,10 +141,12 @@ impl Model<Expr> {
         let mut work = vec![0.0; tape.work_len()];
         tape.eval_into(values, &mut vals, &mut work)?;
         if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
-            return Err(self.field_error(
-                k,
-                format!("evaluates to {} at the given parameter values", vals[k]),
-            ));
+            let (item, field) = self.field_at(k);
+            return Err(ModelError::NotFiniteAt {
+                item,
+                field,
+                value: vals[k],
+            });
         }
         let mut k = 0;
         Ok(self.map(&mut |_| {

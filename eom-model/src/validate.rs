@@ -91,10 +91,14 @@ impl<S: ModelScalar> Model<S> {
                     None => Place::Body(i),
                     Some(j) => Place::Item(j),
                 };
-                return Err((
-                    place,
-                    self.field_error(k, format!("value {v} is not finite")),
-                ));
+                return Err((place, {
+                    let (item, field) = self.field_at(k);
+                    ModelError::NotFinite {
+                        item,
+                        field,
+                        value: v,
+                    }
+                }));
             }
         }
         Ok(())

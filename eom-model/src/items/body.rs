@@ -38,12 +38,10 @@ impl<S: ModelScalar> Physics<S> for Body<S> {
     /// warning. (The name is checked with the other bodies' names.)
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if self.mass.nominal() < 0.0 {
-            return Err(field_error(
-                "body",
-                &self.name,
-                "mass",
-                format!("negative mass {}", self.mass.nominal()),
-            ));
+            return Err(ModelError::NegativeMass {
+                item: crate::error::label("body", &self.name),
+                mass: self.mass.nominal(),
+            });
         }
         check_inertia(self, cx)
     }

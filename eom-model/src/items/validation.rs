@@ -2,7 +2,7 @@
 //! refer to, and the warnings so far. The checks themselves run in [`crate::validate`].
 
 use super::{AnyItem, Body, Item, ModelScalar};
-use crate::error::{ModelError, field_error};
+use crate::error::{ModelError, label};
 use crate::geometry::GROUND;
 use crate::warning::Warning;
 use hashbrown::HashSet;
@@ -71,14 +71,14 @@ impl<S: ModelScalar> Validation<'_, S> {
         if self.is_body(body) {
             return Ok(());
         }
-        let mut names: Vec<&str> = self.bodies.iter().map(|b| &*b.name).collect();
-        names.push(GROUND);
-        Err(field_error(
-            kind,
-            item,
-            field,
-            format!("unknown body `{body}`; bodies are: {}", names.join(", ")),
-        ))
+        let mut known: Vec<String> = self.bodies.iter().map(|b| b.name.to_string()).collect();
+        known.push(GROUND.to_string());
+        Err(ModelError::UnknownBody {
+            item: label(kind, item),
+            field: field.to_string(),
+            body: body.to_string(),
+            known,
+        })
     }
 
     /// `field` of item `kind` `item` must name an item of kind `target_kind`.
@@ -94,16 +94,14 @@ impl<S: ModelScalar> Validation<'_, S> {
         if of_kind.clone().any(|x| &**x.name() == target) {
             return Ok(());
         }
-        let names: Vec<&str> = of_kind.by_ref().map(|x| &**x.name()).collect();
-        Err(field_error(
-            kind,
-            item,
-            field,
-            format!(
-                "unknown {target_kind} `{target}`; {target_kind}s are: {}",
-                names.join(", ")
-            ),
-        ))
+        let known: Vec<String> = of_kind.by_ref().map(|x| x.name().to_string()).collect();
+        Err(ModelError::UnknownItem {
+            item: label(kind, item),
+            field: field.to_string(),
+            kind: target_kind.to_string(),
+            name: target.to_string(),
+            known,
+        })
     }
 
     /// The bodies an item connects exist, and two of them differ.
@@ -120,12 +118,10 @@ impl<S: ModelScalar> Validation<'_, S> {
             }
         }
         if bs.len() == 2 && bs[0] == bs[1] {
-            return Err(field_error(
-                item.kind(),
-                item.name(),
-                "bodies",
-                format!("connects `{}` to itself", bs[0]),
-            ));
+            return Err(ModelError::SelfConnection {
+                item: label(item.kind(), item.name()),
+                body: bs[0].to_string(),
+            });
         }
         Ok(())
     }
