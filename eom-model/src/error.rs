@@ -1,62 +1,137 @@
 //! The error type of eom-model, and how its messages name an item.
 
+use std::fmt;
+
 use eom_num::NumError;
 use eom_sym::SymError;
 
+/// An item as errors and warnings name it: its kind (`"spring"`) and name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ItemRef {
+    /// The kind, as messages name it (`"flex point"`).
+    pub kind: String,
+    /// The item's name.
+    pub name: String,
+}
+
+impl ItemRef {
+    /// The item `name` of kind `kind`.
+    pub fn new(kind: &str, name: &str) -> Self {
+        ItemRef {
+            kind: kind.to_string(),
+            name: name.to_string(),
+        }
+    }
+}
+
+impl fmt::Display for ItemRef {
+    /// ``spring `front` `` (the name shown with [`eom_text::shown`]).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&label(&self.kind, &self.name))
+    }
+}
+
 /// Everything that can go wrong while building, assembling or reducing a model. Messages name
-/// the item, field or parameter at fault.
+/// the item, field or parameter at fault; each variant holds them, and the values at fault,
+/// as data (docs/diagnostics.md lists the variants).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ModelError {
-    /// A model item or field is invalid.
-    #[error("{item}{}: {problem}", field_part(field))]
-    Model {
-        /// The item, e.g. ``spring `front` ``.
-        item: String,
-        /// The field, e.g. `stiffness` (may be empty).
-        field: String,
-        /// What is wrong.
+    /// The model's own name is not a valid name.
+    #[error("the model, field `name`: {problem}")]
+    ModelName {
+        /// What is wrong with it (from [`eom_text::name_problem`]).
         problem: String,
+    },
+    /// A body's or item's name is missing, duplicated, reserved or not a valid name.
+    #[error("{item}, field `name`: {}", problem.describe(&item.kind))]
+    Name {
+        /// The body or item (its name as given).
+        item: ItemRef,
+        /// What is wrong with the name.
+        problem: NameProblem,
+    },
+    /// A model without bodies.
+    #[error("model `{model}`, field `bodies`: the model has no bodies")]
+    NoBodies {
+        /// The model's name.
+        model: String,
+    },
+    /// A body that no joint, spring, link or beam attaches to.
+    #[error(
+        "{body}: nothing constrains or supports it (no joint, spring, link or beam attaches to it)"
+    )]
+    Unattached {
+        /// The body.
+        body: ItemRef,
     },
     /// A field names a body that does not exist.
     #[error("{item}, field `{field}`: unknown body `{body}`; bodies are: {}", known.join(", "))]
     UnknownBody {
-        /// The item, e.g. ``spring `front` ``.
-        item: String,
+        /// The item.
+        item: ItemRef,
         /// The field.
         field: String,
         /// The name given.
         body: String,
         /// The bodies of the model (and the ground).
-        known: Vec<String>,
+        known: Box<[String]>,
     },
     /// A field names an item that does not exist.
-    #[error("{item}, field `{field}`: unknown {kind} `{name}`; {kind}s are: {}", known.join(", "))]
+    #[error("{item}, field `{field}`: unknown {kind} `{name}`{}", known_items(kind, known))]
     UnknownItem {
         /// The item whose field it is.
-        item: String,
+        item: ItemRef,
         /// The field.
         field: String,
         /// The kind of item it must name (`actuator`).
         kind: String,
         /// The name given.
         name: String,
-        /// The items of that kind.
-        known: Vec<String>,
+        /// The items of that kind (`None` where the message does not list them).
+        known: Option<Box<[String]>>,
+    },
+    /// A wing's derivative that is not one of the known derivatives.
+    #[error(
+        "{item}, field `derivatives`: unknown derivative `{name}`; the derivatives are (AVL's \
+         body-axis names): {}",
+        known.iter().map(|r| r.join(" ")).collect::<Vec<_>>().join(", ")
+    )]
+    UnknownDerivative {
+        /// The wing.
+        item: ItemRef,
+        /// The name given.
+        name: String,
+        /// The known derivatives, by row.
+        known: &'static [[&'static str; 6]],
     },
     /// An item connects a body to itself.
     #[error("{item}, field `bodies`: connects `{body}` to itself")]
     SelfConnection {
         /// The item.
-        item: String,
+        item: ItemRef,
         /// The body.
+        body: String,
+    },
+    /// A surface (wing, strip) placed on the ground.
+    #[error("{item}, field `body`: a {} must be on a body, not on the ground", item.kind)]
+    OnGround {
+        /// The surface.
+        item: ItemRef,
+    },
+    /// A wing whose body is not among the bodies of the state space it is evaluated with.
+    #[error("{item}, field `body`: body `{body}` is not among the state space's bodies")]
+    NotInStateSpace {
+        /// The wing.
+        item: ItemRef,
+        /// Its body.
         body: String,
     },
     /// A body with a negative mass.
     #[error("{item}, field `mass`: negative mass {mass}")]
     NegativeMass {
         /// The body.
-        item: String,
+        item: ItemRef,
         /// The mass.
         mass: f64,
     },
@@ -64,7 +139,7 @@ pub enum ModelError {
     #[error("{item}{}: value {value} is not finite", field_part(field))]
     NotFinite {
         /// The body or item.
-        item: String,
+        item: ItemRef,
         /// The field (may be empty).
         field: String,
         /// The value.
@@ -77,11 +152,157 @@ pub enum ModelError {
     )]
     NotFiniteAt {
         /// The body or item.
-        item: String,
+        item: ItemRef,
         /// The field (may be empty).
         field: String,
         /// The value.
         value: f64,
+    },
+    /// A field whose expression is invalid (the expression layer's error).
+    #[error("{item}{}: {source}", field_part(field))]
+    Expression {
+        /// The body or item.
+        item: ItemRef,
+        /// The field (may be empty).
+        field: String,
+        /// What is wrong with the expression.
+        #[source]
+        source: SymError,
+    },
+    /// A quantity that must be positive is not (at the nominal point).
+    #[error("{item}, field `{field}`: the {quantity} must be positive (nominal value {value})")]
+    NotPositive {
+        /// The item.
+        item: ItemRef,
+        /// The field.
+        field: String,
+        /// What the field is (`reference area`).
+        quantity: &'static str,
+        /// Its nominal value.
+        value: f64,
+    },
+    /// A surface without an airspeed whose body's nominal velocity along its forward axis is
+    /// not positive.
+    #[error(
+        "{item}, field `airspeed`: not given, and the nominal velocity of body `{body}` along \
+         the {}'s forward axis is {along}: give the airspeed (positive)",
+        item.kind
+    )]
+    NoAirspeed {
+        /// The surface.
+        item: ItemRef,
+        /// Its body.
+        body: String,
+        /// The body's nominal velocity along the forward axis.
+        along: f64,
+    },
+    /// A count outside its range (a point's `forces`, `moments`).
+    #[error("{item}, field `{field}`: {value} is out of range {min}..={max}")]
+    OutOfRange {
+        /// The item.
+        item: ItemRef,
+        /// The field.
+        field: String,
+        /// The value given.
+        value: i64,
+        /// The smallest allowed.
+        min: i64,
+        /// The largest allowed.
+        max: i64,
+    },
+    /// Geometry without a defined direction or frame (coinciding ends, a zero axis, axes that
+    /// are not orthonormal).
+    #[error("{item}, field `{field}`: {shape}")]
+    Degenerate {
+        /// The item.
+        item: ItemRef,
+        /// The field.
+        field: String,
+        /// What is degenerate.
+        shape: Degeneracy,
+    },
+    /// A matrix field of the wrong size.
+    #[error("{item}, field `{field}`: must be {n}×{n} (forces + moments)")]
+    MatrixSize {
+        /// The item.
+        item: ItemRef,
+        /// The field.
+        field: String,
+        /// The size it must have.
+        n: usize,
+    },
+    /// A body's inertia tensor with a non-finite entry.
+    #[error("{item}, field `{field}`: inertia tensor {tensor:?} is not finite")]
+    InertiaNotFinite {
+        /// The body.
+        item: ItemRef,
+        /// The field at fault (`moments` or `products`).
+        field: String,
+        /// The tensor.
+        tensor: Box<nalgebra::Matrix3<f64>>,
+    },
+    /// A body's inertia tensor (with products) that is not positive semidefinite.
+    #[error(
+        "{item}, field `{field}`: the inertia tensor (moments {moments:?}, products {products:?}) \
+         is not positive semidefinite: its principal moments are {principal:.6?}, one negative; \
+         no body has this inertia"
+    )]
+    IndefiniteInertia {
+        /// The body.
+        item: ItemRef,
+        /// The field at fault (`moments` or `products`).
+        field: String,
+        /// The moments (x, y, z).
+        moments: Box<[f64]>,
+        /// The products (xy, yz, zx).
+        products: Box<[f64]>,
+        /// The principal moments, ascending.
+        principal: Box<[f64]>,
+    },
+    /// A spinning body whose spin axis is not a principal axis of inertia.
+    #[error(
+        "{item}, field `angular_velocity`: the spin axis is not a principal axis of inertia: the \
+         linearization about a steady spin does not exist"
+    )]
+    SpinNotPrincipal {
+        /// The body.
+        item: ItemRef,
+    },
+    /// A spinning body whose spin axis is a principal axis but not an axis of symmetry.
+    #[error(
+        "{item}, field `angular_velocity`: spins about a principal axis that is not an axis of \
+         symmetry (unequal transverse inertias): the gyroscopic terms would be periodic, not \
+         constant"
+    )]
+    SpinNotSymmetric {
+        /// The body.
+        item: ItemRef,
+    },
+    /// A wing derivative whose damping (ρVS/2 times the derivative) overflows the analysis.
+    #[error(
+        "{item}, field `derivatives`: `{derivative}` = {value:e} gives a damping of {damping:e} \
+         (ρVS/2 times the derivative, with the reference lengths), beyond {limit:e}: the \
+         analysis would overflow (check the derivative and its units)"
+    )]
+    DampingOverflow {
+        /// The wing.
+        item: ItemRef,
+        /// The derivative (`Clp`).
+        derivative: &'static str,
+        /// Its value.
+        value: f64,
+        /// The damping it gives.
+        damping: f64,
+        /// The largest entry the analysis accepts.
+        limit: f64,
+    },
+    /// A parameter override of a derived parameter.
+    #[error("parameter `{name}`: is derived (= {definition}); set the parameters it is made of")]
+    DerivedParameter {
+        /// The parameter.
+        name: String,
+        /// Its definition.
+        definition: String,
     },
     /// The model is not in static equilibrium at its given geometry: the force or moment
     /// equation with a residual beyond the tolerance.
@@ -123,12 +344,138 @@ pub enum ModelError {
     Num(#[from] NumError),
 }
 
+impl ModelError {
+    /// The body or item the error is about, where it is about one.
+    pub fn item(&self) -> Option<&ItemRef> {
+        use ModelError::*;
+        match self {
+            Name { item, .. }
+            | UnknownBody { item, .. }
+            | UnknownItem { item, .. }
+            | UnknownDerivative { item, .. }
+            | SelfConnection { item, .. }
+            | OnGround { item }
+            | NotInStateSpace { item, .. }
+            | NegativeMass { item, .. }
+            | NotFinite { item, .. }
+            | NotFiniteAt { item, .. }
+            | Expression { item, .. }
+            | NotPositive { item, .. }
+            | NoAirspeed { item, .. }
+            | OutOfRange { item, .. }
+            | Degenerate { item, .. }
+            | MatrixSize { item, .. }
+            | InertiaNotFinite { item, .. }
+            | IndefiniteInertia { item, .. }
+            | SpinNotPrincipal { item }
+            | SpinNotSymmetric { item }
+            | DampingOverflow { item, .. } => Some(item),
+            Unattached { body } => Some(body),
+            _ => None,
+        }
+    }
+}
+
+/// What is wrong with a body's or item's name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NameProblem {
+    /// No name given.
+    Missing,
+    /// The name of another body (for a body) or item (for an item).
+    Duplicate,
+    /// `ground`, reserved for the fixed frame (bodies only).
+    Reserved,
+    /// Not a valid name (from [`eom_text::name_problem`]).
+    Invalid(String),
+}
+
+impl NameProblem {
+    /// The message, for a body (`kind` `"body"`) or another item.
+    fn describe(&self, kind: &str) -> String {
+        let what = if kind == "body" { "body" } else { "item" };
+        match self {
+            NameProblem::Missing if what == "body" => "a body needs a name".into(),
+            NameProblem::Missing => "an item needs a name".into(),
+            NameProblem::Duplicate => format!("duplicate {what} name"),
+            NameProblem::Reserved => "`ground` is reserved for the fixed frame".into(),
+            NameProblem::Invalid(p) => p.clone(),
+        }
+    }
+}
+
+/// What is degenerate about an item's geometry.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Degeneracy {
+    /// The two ends of a line or beam coincide; `direction`: the item needs the line's
+    /// direction (the message says it is undefined).
+    CoincidentEnds {
+        /// Whether the item uses the direction.
+        direction: bool,
+    },
+    /// A beam's bending-plane vector is zero or parallel to its axis.
+    ParallelPerp,
+    /// A point's axis is zero, but its forces / moments (1 or 2) need a direction.
+    ZeroAxis {
+        /// The point's `forces`.
+        forces: u8,
+        /// The point's `moments`.
+        moments: u8,
+    },
+    /// An axis that is not a unit vector.
+    NotUnit {
+        /// Its length at the nominal point.
+        length: f64,
+    },
+    /// A `down` axis not perpendicular to `forward`.
+    NotPerpendicular {
+        /// Their dot product at the nominal point.
+        dot: f64,
+    },
+}
+
+impl fmt::Display for Degeneracy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Degeneracy::CoincidentEnds { direction } => {
+                f.write_str("the two ends coincide: zero length")?;
+                if *direction {
+                    f.write_str(" (the direction is undefined)")?;
+                }
+                Ok(())
+            }
+            Degeneracy::ParallelPerp => f.write_str("zero or parallel to the beam axis"),
+            Degeneracy::ZeroAxis { forces, moments } => write!(
+                f,
+                "is zero, but forces = {forces} / moments = {moments} need a direction"
+            ),
+            Degeneracy::NotUnit { length } => write!(
+                f,
+                "must be a unit vector; its length is {length} at the nominal point"
+            ),
+            Degeneracy::NotPerpendicular { dot } => write!(
+                f,
+                "must be perpendicular to `forward`; their dot product is {dot}"
+            ),
+        }
+    }
+}
+
 /// `, field `NAME`` (nothing for an empty field name).
 fn field_part(field: &str) -> String {
     if field.is_empty() {
         String::new()
     } else {
         format!(", field `{field}`")
+    }
+}
+
+/// `; actuators are: a, b` (nothing when the message does not list them).
+fn known_items(kind: &str, known: &Option<Box<[String]>>) -> String {
+    match known {
+        Some(k) => format!("; {kind}s are: {}", k.join(", ")),
+        None => String::new(),
     }
 }
 
@@ -144,11 +491,14 @@ pub(crate) fn label(kind: &str, name: &str) -> String {
     s
 }
 
-/// The error of a bad field of an item.
-pub(crate) fn field_error(kind: &str, name: &str, field: &str, problem: String) -> ModelError {
-    ModelError::Model {
-        item: label(kind, name),
-        field: field.to_string(),
-        problem,
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Small enough that `Result<_, ModelError>` stays cheap (clippy's `result_large_err`
+    /// limit is 128 bytes).
+    #[test]
+    fn error_is_small() {
+        assert!(std::mem::size_of::<ModelError>() <= 128);
     }
 }

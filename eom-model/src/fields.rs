@@ -3,7 +3,7 @@
 //! named in errors.
 
 use crate::Model;
-use crate::error::ModelError;
+use crate::error::ItemRef;
 #[cfg(doc)]
 use crate::items::KINDS;
 use crate::items::{Field, Item, ModelScalar, label};
@@ -51,25 +51,15 @@ impl<S: ModelScalar> Model<S> {
         out
     }
 
-    /// The error of field `k` (in the order of [`Model::map`]).
-    pub(crate) fn field_error(&self, k: usize, problem: String) -> ModelError {
-        let (item, field) = self.field_at(k);
-        ModelError::Model {
-            item,
-            field,
-            problem,
-        }
-    }
-
-    /// The item (labelled) and the name of field `k` (in the order of [`Model::map`]); empty
-    /// when there is no such field.
-    pub(crate) fn field_at(&self, k: usize) -> (String, String) {
+    /// The item and the name of field `k` (in the order of [`Model::map`]); the model and no
+    /// field when there is no such field.
+    pub(crate) fn field_at(&self, k: usize) -> (ItemRef, String) {
         let mut seen = 0;
-        let mut at: Option<(String, Field)> = None;
+        let mut at: Option<(ItemRef, Field)> = None;
         for item in self.all_items() {
             item.fields(&mut |fd, _| {
                 if seen == k {
-                    at = Some((label(item.kind(), item.name()), fd));
+                    at = Some((ItemRef::new(item.kind(), item.name()), fd));
                 }
                 seen += 1;
             });
@@ -77,7 +67,9 @@ impl<S: ModelScalar> Model<S> {
                 break;
             }
         }
-        at.map_or((String::new(), String::new()), |(i, f)| (i, f.to_string()))
+        at.map_or((ItemRef::new("model", &self.name), String::new()), |(i, f)| {
+            (i, f.to_string())
+        })
     }
 }
 
@@ -126,7 +118,7 @@ mod tests {
             matches!(
                 &e,
                 ModelError::NotFinite { item, field, value }
-                    if item == "spring `k`" && field == "stiffness" && value.is_nan()
+                    if item.kind == "spring" && item.name == "k" && field == "stiffness" && value.is_nan()
             ),
             "{e:?}"
         );

@@ -134,7 +134,14 @@ impl Model<Expr> {
     pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, ModelError> {
         let fields = self.field_values();
         for (k, e) in fields.iter().enumerate() {
-            e.check().map_err(|x| self.field_error(k, x.to_string()))?;
+            e.check().map_err(|source| {
+                let (item, field) = self.field_at(k);
+                ModelError::Expression {
+                    item,
+                    field,
+                    source,
+                }
+            })?;
         }
         let tape = Tape::new(&fields, &self.scope.params())?;
         let mut vals = vec![0.0; fields.len()];

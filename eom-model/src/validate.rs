@@ -14,7 +14,7 @@
 //! 5. **Support**: every body is attached to an item that [`Item::supports`] it.
 //! 6. The model has a body.
 
-use crate::error::{ModelError, field_error, label};
+use crate::error::{ItemRef, ModelError, NameProblem};
 use crate::geometry::{GROUND, Name};
 use crate::items::{Body, Item, ModelScalar};
 use crate::model::{Model, Place};
@@ -34,11 +34,7 @@ impl<S: ModelScalar> Model<S> {
     /// [`Model::validate`], an error with the place of the body or item at fault.
     pub(crate) fn validate_at(&self) -> Result<Vec<Warning>, (Place, ModelError)> {
         if let Some(p) = eom_text::name_problem(&self.name) {
-            let e = ModelError::Model {
-                item: "the model".into(),
-                field: "name".into(),
-                problem: p,
-            };
+            let e = ModelError::ModelName { problem: p };
             return Err((Place::Model, e));
         }
         self.check_values()?;
@@ -52,10 +48,8 @@ impl<S: ModelScalar> Model<S> {
         }
         self.check_support()?;
         if self.bodies.is_empty() {
-            let e = ModelError::Model {
-                item: format!("model `{}`", self.name),
-                field: "bodies".into(),
-                problem: "the model has no bodies".into(),
+            let e = ModelError::NoBodies {
+                model: self.name.to_string(),
             };
             return Err((Place::Model, e));
         }
@@ -111,14 +105,15 @@ impl<S: ModelScalar> Model<S> {
         for (k, item) in self.items().iter().enumerate() {
             let (kind, n) = (item.kind(), item.name());
             let problem = if n.is_empty() {
-                Some("an item needs a name".to_string())
+                Some(NameProblem::Missing)
             } else if !names.insert(n) {
-                Some("duplicate item name".to_string())
+                Some(NameProblem::Duplicate)
             } else {
-                eom_text::name_problem(n)
+                eom_text::name_problem(n).map(NameProblem::Invalid)
             };
-            if let Some(p) = problem {
-                return Err((Place::Item(k), field_error(kind, n, "name", p)));
+            if let Some(problem) = problem {
+                let item = ItemRef::new(kind, n);
+                return Err((Place::Item(k), ModelError::Name { item, problem }));
             }
         }
         Ok(())
@@ -132,12 +127,8 @@ impl<S: ModelScalar> Model<S> {
         }
         for (k, b) in self.bodies.iter().enumerate() {
             if !supported.contains(&*b.name) {
-                return Err((Place::Body(k), field_error(
-                    "body",
-                    &b.name,
-                    "",
-                    "nothing constrains or supports it (no joint, spring, link or beam attaches to it)".into(),
-                )));
+                let body = ItemRef::new("body", &b.name);
+                return Err((Place::Body(k), ModelError::Unattached { body }));
             }
         }
         Ok(())
@@ -149,21 +140,17 @@ fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), (P
     let bodies: &'m [Body<S>] = cx.bodies();
     for (k, b) in bodies.iter().enumerate() {
         let problem = if b.name.is_empty() {
-            Some("a body needs a name".to_string())
+            Some(NameProblem::Missing)
         } else if &*b.name == GROUND {
-            Some("`ground` is reserved for the fixed frame".to_string())
+            Some(NameProblem::Reserved)
         } else if !cx.insert_body(&b.name) {
-            Some("duplicate body name".to_string())
+            Some(NameProblem::Duplicate)
         } else {
-            eom_text::name_problem(&b.name)
+            eom_text::name_problem(&b.name).map(NameProblem::Invalid)
         };
-        if let Some(p) = problem {
-            let e = ModelError::Model {
-                item: label("body", &b.name),
-                field: "name".into(),
-                problem: p,
-            };
-            return Err((Place::Body(k), e));
+        if let Some(problem) = problem {
+            let item = ItemRef::new("body", &b.name);
+            return Err((Place::Body(k), ModelError::Name { item, problem }));
         }
         b.validate(cx).map_err(|e| (Place::Body(k), e))?;
     }

@@ -1,7 +1,7 @@
 //! [`Body`]: a rigid body, with the nominal motion about which the equations are linearized.
 
 use super::Validation;
-use super::{ModelScalar, Physics, Vec3, field_error, item, zero3};
+use super::{ModelScalar, Physics, Vec3, item, zero3};
 use crate::assemble::{Assembly, Term};
 use crate::error::ModelError;
 use crate::geometry::{self, Mat3, scale, skew};
@@ -39,7 +39,7 @@ impl<S: ModelScalar> Physics<S> for Body<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if self.mass.nominal() < 0.0 {
             return Err(ModelError::NegativeMass {
-                item: crate::error::label("body", &self.name),
+                item: ItemRef::new("body", &self.name),
                 mass: self.mass.nominal(),
             });
         }
@@ -91,12 +91,11 @@ fn check_inertia<S: Scalar>(b: &Body<S>, cx: &mut Validation<'_, S>) -> Result<(
     let has_products = b.products.iter().any(|p| p.nominal() != 0.0);
     let diag: Vec<f64> = b.moments.iter().map(|x| x.nominal()).collect();
     if m.iter().any(|x| !x.is_finite()) {
-        return Err(field_error(
-            "body",
-            &b.name,
-            if has_products { "products" } else { "moments" },
-            format!("inertia tensor {m:?} is not finite"),
-        ));
+        return Err(ModelError::InertiaNotFinite {
+            item: ItemRef::new("body", &b.name),
+            field: if has_products { "products" } else { "moments" }.into(),
+            tensor: Box::new(m),
+        });
     }
     let mut e: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
     e.sort_by(f64::total_cmp);
@@ -120,15 +119,13 @@ fn check_inertia<S: Scalar>(b: &Body<S>, cx: &mut Validation<'_, S>) -> Result<(
             });
             return Ok(());
         }
-        return Err(field_error(
-            "body",
-            &b.name,
-            field,
-            format!(
-                "the inertia tensor (moments {diag:?}, products {:?}) is not positive semidefinite: its principal moments are {e:.6?}, one negative; no body has this inertia",
-                b.products.iter().map(|p| p.nominal()).collect::<Vec<_>>()
-            ),
-        ));
+        return Err(ModelError::IndefiniteInertia {
+            item: ItemRef::new("body", &b.name),
+            field: field.into(),
+            moments: diag.into(),
+            products: b.products.iter().map(|p| p.nominal()).collect(),
+            principal: e.into(),
+        });
     }
     // Principal moments that violate a triangle inequality stay a warning: planar models
     // and randomised tests use such values (e.g. only a yaw inertia), and they do not break
@@ -183,13 +180,9 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), ModelErro
         a[0] * ia[1] - a[1] * ia[0],
     ];
     let cn = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-    let item = format!("body `{}`", b.name);
+    let item = ItemRef::new("body", &b.name);
     if cn > 1e-9 * scale {
-        return Err(ModelError::Model {
-            item,
-            field: "angular_velocity".into(),
-            problem: "the spin axis is not a principal axis of inertia: the linearization about a steady spin does not exist".into(),
-        });
+        return Err(ModelError::SpinNotPrincipal { item });
     }
     // Transverse inertia: I projected on the plane ⊥ a must be isotropic.
     let axial = a.iter().zip(&ia).map(|(x, y)| x * y).sum::<f64>();
@@ -212,11 +205,7 @@ fn check_spin<S: Scalar>(b: &Body<S>, inertia: &Mat3<S>) -> Result<(), ModelErro
         .map(|r| (0..3).map(|c| v1[r] * i[r][c] * v1[c]).sum::<f64>())
         .sum();
     if (q - half).abs() > 1e-9 * scale {
-        return Err(ModelError::Model {
-            item,
-            field: "angular_velocity".into(),
-            problem: "spins about a principal axis that is not an axis of symmetry (unequal transverse inertias): the gyroscopic terms would be periodic, not constant".into(),
-        });
+        return Err(ModelError::SpinNotSymmetric { item });
     }
     Ok(())
 }

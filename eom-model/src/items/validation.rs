@@ -2,7 +2,7 @@
 //! refer to, and the warnings so far. The checks themselves run in [`crate::validate`].
 
 use super::{AnyItem, Body, Item, ModelScalar};
-use crate::error::{ModelError, label};
+use crate::error::{ItemRef, ModelError};
 use crate::geometry::GROUND;
 use crate::warning::Warning;
 use hashbrown::HashSet;
@@ -74,10 +74,10 @@ impl<S: ModelScalar> Validation<'_, S> {
         let mut known: Vec<String> = self.bodies.iter().map(|b| b.name.to_string()).collect();
         known.push(GROUND.to_string());
         Err(ModelError::UnknownBody {
-            item: label(kind, item),
+            item: ItemRef::new(kind, item),
             field: field.to_string(),
             body: body.to_string(),
-            known,
+            known: known.into(),
         })
     }
 
@@ -96,11 +96,11 @@ impl<S: ModelScalar> Validation<'_, S> {
         }
         let known: Vec<String> = of_kind.by_ref().map(|x| x.name().to_string()).collect();
         Err(ModelError::UnknownItem {
-            item: label(kind, item),
+            item: ItemRef::new(kind, item),
             field: field.to_string(),
             kind: target_kind.to_string(),
             name: target.to_string(),
-            known,
+            known: Some(known.into()),
         })
     }
 
@@ -119,7 +119,7 @@ impl<S: ModelScalar> Validation<'_, S> {
         }
         if bs.len() == 2 && bs[0] == bs[1] {
             return Err(ModelError::SelfConnection {
-                item: label(item.kind(), item.name()),
+                item: ItemRef::new(item.kind(), item.name()),
                 body: bs[0].to_string(),
             });
         }

@@ -43,7 +43,7 @@ use super::Validation;
 use super::surface::{self, Surface};
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::zero3;
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -75,14 +75,6 @@ pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
 pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] =
     ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
 
-/// The list of the 36 names, for messages.
-pub(crate) fn derivative_list() -> String {
-    WING_DERIVATIVES
-        .iter()
-        .map(|r| r.join(" "))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
 
 item! {
     /// A wing: quasi-steady aerodynamic damping at a point of a body, from stability
@@ -336,19 +328,13 @@ impl<S: ModelScalar> Wing<S> {
             for (j, d) in row.iter().enumerate() {
                 let value = q * d.nominal();
                 if value.is_nan() || value.abs() > eom_num::MAX_ENTRY {
-                    return Err(field_error(
-                        "wing",
-                        &self.name,
-                        "derivatives",
-                        format!(
-                            "`{}` = {:e} gives a damping of {value:e} (ρVS/2 times the \
-                             derivative, with the reference lengths), beyond {:e}: the analysis \
-                             would overflow (check the derivative and its units)",
-                            WING_DERIVATIVES[i][j],
-                            self.derivatives[i][j].nominal(),
-                            eom_num::MAX_ENTRY
-                        ),
-                    ));
+                    return Err(ModelError::DampingOverflow {
+                        item: ItemRef::new("wing", &self.name),
+                        derivative: WING_DERIVATIVES[i][j],
+                        value: self.derivatives[i][j].nominal(),
+                        damping: value,
+                        limit: eom_num::MAX_ENTRY,
+                    });
                 }
             }
         }
@@ -359,15 +345,11 @@ impl<S: ModelScalar> Wing<S> {
 impl<S: ModelScalar> Physics<S> for Wing<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if let Some(n) = self.unknown.first() {
-            return Err(field_error(
-                "wing",
-                &self.name,
-                "derivatives",
-                format!(
-                    "unknown derivative `{n}`; the derivatives are (AVL's body-axis names): {}",
-                    derivative_list()
-                ),
-            ));
+            return Err(ModelError::UnknownDerivative {
+                item: ItemRef::new("wing", &self.name),
+                name: n.to_string(),
+                known: &WING_DERIVATIVES,
+            });
         }
         let positive = [
             ("area", &self.area, "reference area"),
