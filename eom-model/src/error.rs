@@ -85,7 +85,7 @@ pub enum ModelError {
         /// The field.
         field: String,
         /// The kind of item it must name (`actuator`).
-        kind: String,
+        kind: &'static str,
         /// The name given.
         name: String,
         /// The items of that kind (`None` where the message does not list them).
@@ -165,9 +165,9 @@ pub enum ModelError {
         item: ItemRef,
         /// The field (may be empty).
         field: String,
-        /// What is wrong with the expression.
+        /// What is wrong with the expression (boxed: the error stays small).
         #[source]
-        source: SymError,
+        source: Box<SymError>,
     },
     /// A quantity that must be positive is not (at the nominal point).
     #[error("{item}, field `{field}`: the {quantity} must be positive (nominal value {value})")]
@@ -499,6 +499,131 @@ mod tests {
     /// limit is 128 bytes).
     #[test]
     fn error_is_small() {
-        assert!(std::mem::size_of::<ModelError>() <= 128);
+        let size = std::mem::size_of::<ModelError>();
+        assert!(size <= 128, "{size} bytes");
+    }
+
+    /// The messages read as they did when they were built from strings (formatting only:
+    /// what users see is checked by the CLI's and the Python package's tests).
+    #[test]
+    fn display_gives_the_messages() {
+        let it = |k: &str, n: &str| ItemRef::new(k, n);
+        let cases = [
+            (
+                ModelError::Name {
+                    item: it("body", ""),
+                    problem: NameProblem::Missing,
+                },
+                "body ``, field `name`: a body needs a name",
+            ),
+            (
+                ModelError::Name {
+                    item: it("spring", "k"),
+                    problem: NameProblem::Duplicate,
+                },
+                "spring `k`, field `name`: duplicate item name",
+            ),
+            (
+                ModelError::Unattached {
+                    body: it("body", "b"),
+                },
+                "body `b`: nothing constrains or supports it (no joint, spring, link or beam \
+                 attaches to it)",
+            ),
+            (
+                ModelError::UnknownItem {
+                    item: it("sensor", "s"),
+                    field: "actuator".into(),
+                    kind: "actuator",
+                    name: "a".into(),
+                    known: None,
+                },
+                "sensor `s`, field `actuator`: unknown actuator `a`",
+            ),
+            (
+                ModelError::UnknownItem {
+                    item: it("sensor", "s"),
+                    field: "actuator".into(),
+                    kind: "actuator",
+                    name: "a".into(),
+                    known: Some(vec!["u".into(), "v".into()].into()),
+                },
+                "sensor `s`, field `actuator`: unknown actuator `a`; actuators are: u, v",
+            ),
+            (
+                ModelError::UnknownDerivative {
+                    item: it("wing", "w"),
+                    name: "CLa".into(),
+                    known: &[["a", "b", "c", "d", "e", "f"], ["g", "h", "i", "j", "k", "l"]],
+                },
+                "wing `w`, field `derivatives`: unknown derivative `CLa`; the derivatives are \
+                 (AVL's body-axis names): a b c d e f, g h i j k l",
+            ),
+            (
+                ModelError::OutOfRange {
+                    item: it("rigid point", "p"),
+                    field: "forces".into(),
+                    value: 4,
+                    min: 0,
+                    max: 3,
+                },
+                "rigid point `p`, field `forces`: 4 is out of range 0..=3",
+            ),
+            (
+                ModelError::Degenerate {
+                    item: it("link", "l"),
+                    field: "ends".into(),
+                    shape: Degeneracy::CoincidentEnds { direction: true },
+                },
+                "link `l`, field `ends`: the two ends coincide: zero length (the direction is \
+                 undefined)",
+            ),
+            (
+                ModelError::Degenerate {
+                    item: it("rigid point", "p"),
+                    field: "axis".into(),
+                    shape: Degeneracy::ZeroAxis {
+                        forces: 1,
+                        moments: 0,
+                    },
+                },
+                "rigid point `p`, field `axis`: is zero, but forces = 1 / moments = 0 need a \
+                 direction",
+            ),
+            (
+                ModelError::IndefiniteInertia {
+                    item: it("body", "b"),
+                    field: "products".into(),
+                    moments: vec![1.0, 1.0, 1.0].into(),
+                    products: vec![2.0, 0.0, 0.0].into(),
+                    principal: vec![-1.0, 1.0, 3.0].into(),
+                },
+                "body `b`, field `products`: the inertia tensor (moments [1.0, 1.0, 1.0], \
+                 products [2.0, 0.0, 0.0]) is not positive semidefinite: its principal moments \
+                 are [-1.000000, 1.000000, 3.000000], one negative; no body has this inertia",
+            ),
+            (
+                ModelError::DampingOverflow {
+                    item: it("wing", "w"),
+                    derivative: "Clp",
+                    value: -0.5,
+                    damping: 2e300,
+                    limit: 1e300,
+                },
+                "wing `w`, field `derivatives`: `Clp` = -5e-1 gives a damping of 2e300 (ρVS/2 \
+                 times the derivative, with the reference lengths), beyond 1e300: the analysis \
+                 would overflow (check the derivative and its units)",
+            ),
+            (
+                ModelError::DerivedParameter {
+                    name: "b".into(),
+                    definition: "l - a".into(),
+                },
+                "parameter `b`: is derived (= l - a); set the parameters it is made of",
+            ),
+        ];
+        for (e, want) in cases {
+            assert_eq!(e.to_string(), want, "{e:?}");
+        }
     }
 }

@@ -139,7 +139,7 @@ impl Model<Expr> {
                 ModelError::Expression {
                     item,
                     field,
-                    source,
+                    source: Box::new(source),
                 }
             })?;
         }

@@ -152,7 +152,7 @@ impl<S: ModelScalar> Physics<S> for Sensor<S> {
                 ModelError::UnknownItem {
                     item: ItemRef::new("sensor", &self.name),
                     field: "actuator".into(),
-                    kind: "actuator".into(),
+                    kind: "actuator",
                     name: a.to_string(),
                     known: None,
                 }

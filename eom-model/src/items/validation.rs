@@ -87,7 +87,7 @@ impl<S: ModelScalar> Validation<'_, S> {
         kind: &str,
         item: &str,
         field: &str,
-        target_kind: &str,
+        target_kind: &'static str,
         target: &str,
     ) -> Result<(), ModelError> {
         let mut of_kind = self.items.iter().filter(|x| x.kind() == target_kind);
@@ -98,7 +98,7 @@ impl<S: ModelScalar> Validation<'_, S> {
         Err(ModelError::UnknownItem {
             item: ItemRef::new(kind, item),
             field: field.to_string(),
-            kind: target_kind.to_string(),
+            kind: target_kind,
             name: target.to_string(),
             known: Some(known.into()),
         })
