@@ -78,7 +78,10 @@ pub enum ModelError {
         known: Box<[String]>,
     },
     /// A field names an item that does not exist.
-    #[error("{item}, field `{field}`: unknown {kind} `{name}`{}", known_items(kind, known))]
+    #[error(
+        "{item}, field `{field}`: unknown {kind} `{name}`{}",
+        known_items(kind, known)
+    )]
     UnknownItem {
         /// The item whose field it is.
         item: ItemRef,
@@ -554,7 +557,10 @@ mod tests {
                 ModelError::UnknownDerivative {
                     item: it("wing", "w"),
                     name: "CLa".into(),
-                    known: &[["a", "b", "c", "d", "e", "f"], ["g", "h", "i", "j", "k", "l"]],
+                    known: &[
+                        ["a", "b", "c", "d", "e", "f"],
+                        ["g", "h", "i", "j", "k", "l"],
+                    ],
                 },
                 "wing `w`, field `derivatives`: unknown derivative `CLa`; the derivatives are \
                  (AVL's body-axis names): a b c d e f, g h i j k l",

@@ -67,9 +67,10 @@ impl<S: ModelScalar> Model<S> {
                 break;
             }
         }
-        at.map_or((ItemRef::new("model", &self.name), String::new()), |(i, f)| {
-            (i, f.to_string())
-        })
+        at.map_or(
+            (ItemRef::new("model", &self.name), String::new()),
+            |(i, f)| (i, f.to_string()),
+        )
     }
 }
 

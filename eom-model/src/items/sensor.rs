@@ -148,14 +148,12 @@ impl<S: ModelScalar> Physics<S> for Sensor<S> {
             cx.add_output(output, j, -(self.gain * v));
         }
         if let Some(a) = &self.actuator {
-            let input = cx.input_index(a).ok_or_else(|| {
-                ModelError::UnknownItem {
-                    item: ItemRef::new("sensor", &self.name),
-                    field: "actuator".into(),
-                    kind: "actuator",
-                    name: a.to_string(),
-                    known: None,
-                }
+            let input = cx.input_index(a).ok_or_else(|| ModelError::UnknownItem {
+                item: ItemRef::new("sensor", &self.name),
+                field: "actuator".into(),
+                kind: "actuator",
+                name: a.to_string(),
+                known: None,
             })?;
             cx.add_feedthrough(output, input, self.actuator_gain);
         }

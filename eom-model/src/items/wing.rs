@@ -75,7 +75,6 @@ pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
 pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] =
     ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
 
-
 item! {
     /// A wing: quasi-steady aerodynamic damping at a point of a body, from stability
     /// derivatives.
@@ -488,8 +487,8 @@ impl<S: ModelScalar> Wing<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::error::Degeneracy;
     use crate::Model;
+    use crate::error::Degeneracy;
     use crate::items::tests::Counter;
 
     /// A body on a slider moving at `speed` with `wing` on it.
@@ -519,7 +518,8 @@ mod tests {
     /// The field of a [`ModelError::NotPositive`] or [`ModelError::Degenerate`] of wing `fin`.
     fn fin_field(e: &ModelError) -> Option<&str> {
         match e {
-            ModelError::NotPositive { item, field, .. } | ModelError::Degenerate { item, field, .. }
+            ModelError::NotPositive { item, field, .. }
+            | ModelError::Degenerate { item, field, .. }
                 if item.kind == "wing" && item.name == "fin" =>
             {
                 Some(field)
@@ -567,8 +567,13 @@ mod tests {
         );
         let e = error(w().airspeed(0.0), 10.0);
         assert!(
-            matches!(e, ModelError::NotPositive { quantity: "airspeed", .. })
-                && fin_field(&e) == Some("airspeed"),
+            matches!(
+                e,
+                ModelError::NotPositive {
+                    quantity: "airspeed",
+                    ..
+                }
+            ) && fin_field(&e) == Some("airspeed"),
             "{e:?}"
         );
         let e = error(w().axes([1.0, 0.0, 0.0], [0.6, 0.0, -0.8]), 10.0);
