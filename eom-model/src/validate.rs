@@ -21,6 +21,9 @@ use crate::model::{Model, Place};
 use crate::warning::Warning;
 use hashbrown::HashSet;
 
+/// An error with the place of the body or item at fault (boxed: the result stays small).
+pub(crate) type Located = Box<(Place, ModelError)>;
+
 pub use crate::items::Validation;
 
 impl<S: ModelScalar> Model<S> {
@@ -28,21 +31,21 @@ impl<S: ModelScalar> Model<S> {
     /// Errors name the item and field. Warnings (physically dubious but computable input) are
     /// returned.
     pub fn validate(&self) -> Result<Vec<Warning>, ModelError> {
-        self.validate_at().map_err(|(_, e)| e)
+        self.validate_at().map_err(|e| e.1)
     }
 
     /// [`Model::validate`], an error with the place of the body or item at fault.
-    pub(crate) fn validate_at(&self) -> Result<Vec<Warning>, (Place, ModelError)> {
+    pub(crate) fn validate_at(&self) -> Result<Vec<Warning>, Located> {
         if let Some(p) = eom_text::name_problem(&self.name) {
             let e = ModelError::ModelName { problem: p };
-            return Err((Place::Model, e));
+            return Err(Box::new((Place::Model, e)));
         }
         self.check_values()?;
         let mut cx = Validation::new(&self.bodies, self.items());
         check_bodies(&mut cx)?;
         self.check_item_names()?;
         for (k, item) in self.items().iter().enumerate() {
-            let at = |e| (Place::Item(k), e);
+            let at = |e| Box::new((Place::Item(k), e));
             cx.check_connected(item).map_err(at)?;
             item.validate(&mut cx).map_err(at)?;
         }
@@ -51,14 +54,14 @@ impl<S: ModelScalar> Model<S> {
             let e = ModelError::NoBodies {
                 model: self.name.to_string(),
             };
-            return Err((Place::Model, e));
+            return Err(Box::new((Place::Model, e)));
         }
         Ok(cx.into_warnings())
     }
 
     /// Step 1: every field is finite at the nominal point (a cheap pass; the first bad field
     /// is located, and labelled, only when there is one).
-    fn check_values(&self) -> Result<(), (Place, ModelError)> {
+    fn check_values(&self) -> Result<(), Located> {
         let bodies = self.bodies.iter().map(|b| b as &dyn Item<S>);
         let items = || {
             let items = self.items().iter().map(|x| x as &dyn Item<S>);
@@ -85,21 +88,21 @@ impl<S: ModelScalar> Model<S> {
                     None => Place::Body(i),
                     Some(j) => Place::Item(j),
                 };
-                return Err((place, {
+                return Err(Box::new((place, {
                     let (item, field) = self.field_at(k);
                     ModelError::NotFinite {
                         item,
                         field,
                         value: v,
                     }
-                }));
+                })));
             }
         }
         Ok(())
     }
 
     /// Step 3: every item has a name, unique among the items.
-    fn check_item_names(&self) -> Result<(), (Place, ModelError)> {
+    fn check_item_names(&self) -> Result<(), Located> {
         // Borrowed names, sized up front: no reference counting, no rehashing.
         let mut names: HashSet<&str> = HashSet::with_capacity(self.items().len());
         for (k, item) in self.items().iter().enumerate() {
@@ -113,14 +116,17 @@ impl<S: ModelScalar> Model<S> {
             };
             if let Some(problem) = problem {
                 let item = ItemRef::new(kind, n);
-                return Err((Place::Item(k), ModelError::Name { item, problem }));
+                return Err(Box::new((
+                    Place::Item(k),
+                    ModelError::Name { item, problem },
+                )));
             }
         }
         Ok(())
     }
 
     /// Step 5: every body is attached to an item that supports it.
-    fn check_support(&self) -> Result<(), (Place, ModelError)> {
+    fn check_support(&self) -> Result<(), Located> {
         let mut supported: HashSet<&str> = HashSet::new();
         for item in self.items().iter().filter(|x| x.supports()) {
             supported.extend(item.bodies().iter().map(|b: &Name| &**b));
@@ -128,7 +134,7 @@ impl<S: ModelScalar> Model<S> {
         for (k, b) in self.bodies.iter().enumerate() {
             if !supported.contains(&*b.name) {
                 let body = ItemRef::new("body", &b.name);
-                return Err((Place::Body(k), ModelError::Unattached { body }));
+                return Err(Box::new((Place::Body(k), ModelError::Unattached { body })));
             }
         }
         Ok(())
@@ -136,7 +142,7 @@ impl<S: ModelScalar> Model<S> {
 }
 
 /// Step 2: the bodies' names, and each body's own checks.
-fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), (Place, ModelError)> {
+fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), Located> {
     let bodies: &'m [Body<S>] = cx.bodies();
     for (k, b) in bodies.iter().enumerate() {
         let problem = if b.name.is_empty() {
@@ -150,9 +156,12 @@ fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), (P
         };
         if let Some(problem) = problem {
             let item = ItemRef::new("body", &b.name);
-            return Err((Place::Body(k), ModelError::Name { item, problem }));
+            return Err(Box::new((
+                Place::Body(k),
+                ModelError::Name { item, problem },
+            )));
         }
-        b.validate(cx).map_err(|e| (Place::Body(k), e))?;
+        b.validate(cx).map_err(|e| Box::new((Place::Body(k), e)))?;
     }
     Ok(())
 }

@@ -35,7 +35,7 @@ impl<S: Scalar> Line<S> {
     }
 
     /// The two ends must not coincide (the direction would be undefined).
-    pub(crate) fn validate(&self, kind: &str, item: &str) -> Result<(), ModelError> {
+    pub(crate) fn validate(&self, kind: &'static str, item: &str) -> Result<(), ModelError> {
         let t = super::sub(&self.ends[1], &self.ends[0]);
         let len2: f64 = t.iter().map(|x| x.nominal() * x.nominal()).sum();
         if len2 == 0.0 {

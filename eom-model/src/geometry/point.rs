@@ -57,7 +57,7 @@ impl<S: Scalar> Point<S> {
     /// nothing is a warning, given to `warn`.
     pub(crate) fn validate(
         &self,
-        kind: &str,
+        kind: &'static str,
         item: &str,
         warn: &mut dyn FnMut(Warning),
     ) -> Result<(), ModelError> {

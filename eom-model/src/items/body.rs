@@ -3,7 +3,7 @@
 use super::Validation;
 use super::{ModelScalar, Physics, Vec3, item, zero3};
 use crate::assemble::{Assembly, Term};
-use crate::error::ModelError;
+use crate::error::{Inertia, ModelError};
 use crate::geometry::{self, Mat3, scale, skew};
 use crate::warning::{ItemRef, Warning};
 use eom_sym::scalar::Scalar;
@@ -122,9 +122,11 @@ fn check_inertia<S: Scalar>(b: &Body<S>, cx: &mut Validation<'_, S>) -> Result<(
         return Err(ModelError::IndefiniteInertia {
             item: ItemRef::new("body", &b.name),
             field: field.into(),
-            moments: diag.into(),
-            products: b.products.iter().map(|p| p.nominal()).collect(),
-            principal: e.into(),
+            inertia: Box::new(Inertia {
+                moments: [diag[0], diag[1], diag[2]],
+                products: b.products.map(|p| p.nominal()),
+                principal: [e[0], e[1], e[2]],
+            }),
         });
     }
     // Principal moments that violate a triangle inequality stay a warning: planar models

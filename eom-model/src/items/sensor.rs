@@ -150,7 +150,7 @@ impl<S: ModelScalar> Physics<S> for Sensor<S> {
         if let Some(a) = &self.actuator {
             let input = cx.input_index(a).ok_or_else(|| ModelError::UnknownItem {
                 item: ItemRef::new("sensor", &self.name),
-                field: "actuator".into(),
+                field: "actuator",
                 kind: "actuator",
                 name: a.to_string(),
                 known: None,

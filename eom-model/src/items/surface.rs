@@ -59,7 +59,7 @@ pub(crate) fn airspeed_with<S: Scalar>(
 
 /// A positive quantity.
 fn check_positive<S: Scalar>(
-    kind: &str,
+    kind: &'static str,
     item: &str,
     field: &str,
     x: &S,
@@ -79,7 +79,7 @@ fn check_positive<S: Scalar>(
 
 /// Forward and down are unit vectors, perpendicular, at the nominal point.
 fn check_axes<S: Scalar>(
-    kind: &str,
+    kind: &'static str,
     item: &str,
     forward: &Vec3<S>,
     down: &Vec3<S>,
@@ -111,7 +111,7 @@ fn check_axes<S: Scalar>(
 /// A given airspeed is positive; without one, the nominal velocity of `body` along the
 /// forward axis (`along`) must be.
 fn check_airspeed<S: Scalar>(
-    kind: &str,
+    kind: &'static str,
     item: &str,
     airspeed: Option<&S>,
     body: &Name,

@@ -63,7 +63,7 @@ impl<S: ModelScalar> Validation<'_, S> {
     /// `field` of item `kind` `item` must name a body (or the ground).
     pub fn check_body(
         &self,
-        kind: &str,
+        kind: &'static str,
         item: &str,
         field: &str,
         body: &str,
@@ -84,9 +84,9 @@ impl<S: ModelScalar> Validation<'_, S> {
     /// `field` of item `kind` `item` must name an item of kind `target_kind`.
     pub fn check_item(
         &self,
-        kind: &str,
+        kind: &'static str,
         item: &str,
-        field: &str,
+        field: &'static str,
         target_kind: &'static str,
         target: &str,
     ) -> Result<(), ModelError> {
@@ -97,7 +97,7 @@ impl<S: ModelScalar> Validation<'_, S> {
         let known: Vec<String> = of_kind.by_ref().map(|x| x.name().to_string()).collect();
         Err(ModelError::UnknownItem {
             item: ItemRef::new(kind, item),
-            field: field.to_string(),
+            field,
             kind: target_kind,
             name: target.to_string(),
             known: Some(known.into()),
