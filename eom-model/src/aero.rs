@@ -143,10 +143,9 @@ pub fn response_rates(
     let mut out = Vec::new();
     for w in model.wings() {
         let Some(k) = ss.names.bodies.iter().position(|b| **b == *w.body) else {
-            return Err(ModelError::Model {
-                item: format!("wing `{}`", w.name),
-                field: "body".into(),
-                problem: format!("body `{}` is not among the state space's bodies", w.body),
+            return Err(ModelError::NotInStateSpace {
+                item: ItemRef::new("wing", &w.name),
+                body: w.body.to_string(),
             });
         };
         let omega = ss.phys.rows(6 * k + 3, 3) * &xdot;

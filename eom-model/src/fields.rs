@@ -3,7 +3,7 @@
 //! named in errors.
 
 use crate::Model;
-use crate::error::ModelError;
+use crate::error::ItemRef;
 #[cfg(doc)]
 use crate::items::KINDS;
 use crate::items::{Field, Item, ModelScalar, label};
@@ -51,14 +51,15 @@ impl<S: ModelScalar> Model<S> {
         out
     }
 
-    /// The error of field `k` (in the order of [`Model::map`]).
-    pub(crate) fn field_error(&self, k: usize, problem: String) -> ModelError {
+    /// The item and the name of field `k` (in the order of [`Model::map`]); the model and no
+    /// field when there is no such field.
+    pub(crate) fn field_at(&self, k: usize) -> (ItemRef, String) {
         let mut seen = 0;
-        let mut at: Option<(String, Field)> = None;
+        let mut at: Option<(ItemRef, Field)> = None;
         for item in self.all_items() {
             item.fields(&mut |fd, _| {
                 if seen == k {
-                    at = Some((label(item.kind(), item.name()), fd));
+                    at = Some((ItemRef::new(item.kind(), item.name()), fd));
                 }
                 seen += 1;
             });
@@ -66,12 +67,10 @@ impl<S: ModelScalar> Model<S> {
                 break;
             }
         }
-        let (item, field) = at.map_or((String::new(), String::new()), |(i, f)| (i, f.to_string()));
-        ModelError::Model {
-            item,
-            field,
-            problem,
-        }
+        at.map_or(
+            (ItemRef::new("model", &self.name), String::new()),
+            |(i, f)| (i, f.to_string()),
+        )
     }
 }
 
@@ -116,13 +115,13 @@ mod tests {
         m.add(Body::new("b").mass(1.0));
         m.add(Spring::new("k").stiffness(f64::NAN));
         let e = m.validate().unwrap_err();
-        assert_eq!(
-            e,
-            ModelError::Model {
-                item: "spring `k`".into(),
-                field: "stiffness".into(),
-                problem: "value NaN is not finite".into(),
-            }
+        assert!(
+            matches!(
+                &e,
+                ModelError::NotFinite { item, field, value }
+                    if item.kind == "spring" && item.name == "k" && field == "stiffness" && value.is_nan()
+            ),
+            "{e:?}"
         );
     }
 }

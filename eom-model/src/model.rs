@@ -134,17 +134,26 @@ impl Model<Expr> {
     pub fn evaluate(&self, values: &[f64]) -> Result<Model<f64>, ModelError> {
         let fields = self.field_values();
         for (k, e) in fields.iter().enumerate() {
-            e.check().map_err(|x| self.field_error(k, x.to_string()))?;
+            e.check().map_err(|source| {
+                let (item, field) = self.field_at(k);
+                ModelError::Expression {
+                    item,
+                    field,
+                    source: Box::new(source),
+                }
+            })?;
         }
         let tape = Tape::new(&fields, &self.scope.params())?;
         let mut vals = vec![0.0; fields.len()];
         let mut work = vec![0.0; tape.work_len()];
         tape.eval_into(values, &mut vals, &mut work)?;
         if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
-            return Err(self.field_error(
-                k,
-                format!("evaluates to {} at the given parameter values", vals[k]),
-            ));
+            let (item, field) = self.field_at(k);
+            return Err(ModelError::NotFiniteAt {
+                item,
+                field,
+                value: vals[k],
+            });
         }
         let mut k = 0;
         Ok(self.map(&mut |_| {

@@ -14,12 +14,15 @@
 //! 5. **Support**: every body is attached to an item that [`Item::supports`] it.
 //! 6. The model has a body.
 
-use crate::error::{ModelError, field_error, label};
+use crate::error::{ItemRef, ModelError, NameProblem};
 use crate::geometry::{GROUND, Name};
 use crate::items::{Body, Item, ModelScalar};
 use crate::model::{Model, Place};
 use crate::warning::Warning;
 use hashbrown::HashSet;
+
+/// An error with the place of the body or item at fault (boxed: the result stays small).
+pub(crate) type Located = Box<(Place, ModelError)>;
 
 pub use crate::items::Validation;
 
@@ -28,43 +31,37 @@ impl<S: ModelScalar> Model<S> {
     /// Errors name the item and field. Warnings (physically dubious but computable input) are
     /// returned.
     pub fn validate(&self) -> Result<Vec<Warning>, ModelError> {
-        self.validate_at().map_err(|(_, e)| e)
+        self.validate_at().map_err(|e| e.1)
     }
 
     /// [`Model::validate`], an error with the place of the body or item at fault.
-    pub(crate) fn validate_at(&self) -> Result<Vec<Warning>, (Place, ModelError)> {
+    pub(crate) fn validate_at(&self) -> Result<Vec<Warning>, Located> {
         if let Some(p) = eom_text::name_problem(&self.name) {
-            let e = ModelError::Model {
-                item: "the model".into(),
-                field: "name".into(),
-                problem: p,
-            };
-            return Err((Place::Model, e));
+            let e = ModelError::ModelName { problem: p };
+            return Err(Box::new((Place::Model, e)));
         }
         self.check_values()?;
         let mut cx = Validation::new(&self.bodies, self.items());
         check_bodies(&mut cx)?;
         self.check_item_names()?;
         for (k, item) in self.items().iter().enumerate() {
-            let at = |e| (Place::Item(k), e);
+            let at = |e| Box::new((Place::Item(k), e));
             cx.check_connected(item).map_err(at)?;
             item.validate(&mut cx).map_err(at)?;
         }
         self.check_support()?;
         if self.bodies.is_empty() {
-            let e = ModelError::Model {
-                item: format!("model `{}`", self.name),
-                field: "bodies".into(),
-                problem: "the model has no bodies".into(),
+            let e = ModelError::NoBodies {
+                model: self.name.to_string(),
             };
-            return Err((Place::Model, e));
+            return Err(Box::new((Place::Model, e)));
         }
         Ok(cx.into_warnings())
     }
 
     /// Step 1: every field is finite at the nominal point (a cheap pass; the first bad field
     /// is located, and labelled, only when there is one).
-    fn check_values(&self) -> Result<(), (Place, ModelError)> {
+    fn check_values(&self) -> Result<(), Located> {
         let bodies = self.bodies.iter().map(|b| b as &dyn Item<S>);
         let items = || {
             let items = self.items().iter().map(|x| x as &dyn Item<S>);
@@ -91,49 +88,53 @@ impl<S: ModelScalar> Model<S> {
                     None => Place::Body(i),
                     Some(j) => Place::Item(j),
                 };
-                return Err((
-                    place,
-                    self.field_error(k, format!("value {v} is not finite")),
-                ));
+                return Err(Box::new((place, {
+                    let (item, field) = self.field_at(k);
+                    ModelError::NotFinite {
+                        item,
+                        field,
+                        value: v,
+                    }
+                })));
             }
         }
         Ok(())
     }
 
     /// Step 3: every item has a name, unique among the items.
-    fn check_item_names(&self) -> Result<(), (Place, ModelError)> {
+    fn check_item_names(&self) -> Result<(), Located> {
         // Borrowed names, sized up front: no reference counting, no rehashing.
         let mut names: HashSet<&str> = HashSet::with_capacity(self.items().len());
         for (k, item) in self.items().iter().enumerate() {
             let (kind, n) = (item.kind(), item.name());
             let problem = if n.is_empty() {
-                Some("an item needs a name".to_string())
+                Some(NameProblem::Missing)
             } else if !names.insert(n) {
-                Some("duplicate item name".to_string())
+                Some(NameProblem::Duplicate)
             } else {
-                eom_text::name_problem(n)
+                eom_text::name_problem(n).map(NameProblem::Invalid)
             };
-            if let Some(p) = problem {
-                return Err((Place::Item(k), field_error(kind, n, "name", p)));
+            if let Some(problem) = problem {
+                let item = ItemRef::new(kind, n);
+                return Err(Box::new((
+                    Place::Item(k),
+                    ModelError::Name { item, problem },
+                )));
             }
         }
         Ok(())
     }
 
     /// Step 5: every body is attached to an item that supports it.
-    fn check_support(&self) -> Result<(), (Place, ModelError)> {
+    fn check_support(&self) -> Result<(), Located> {
         let mut supported: HashSet<&str> = HashSet::new();
         for item in self.items().iter().filter(|x| x.supports()) {
             supported.extend(item.bodies().iter().map(|b: &Name| &**b));
         }
         for (k, b) in self.bodies.iter().enumerate() {
             if !supported.contains(&*b.name) {
-                return Err((Place::Body(k), field_error(
-                    "body",
-                    &b.name,
-                    "",
-                    "nothing constrains or supports it (no joint, spring, link or beam attaches to it)".into(),
-                )));
+                let body = ItemRef::new("body", &b.name);
+                return Err(Box::new((Place::Body(k), ModelError::Unattached { body })));
             }
         }
         Ok(())
@@ -141,27 +142,26 @@ impl<S: ModelScalar> Model<S> {
 }
 
 /// Step 2: the bodies' names, and each body's own checks.
-fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), (Place, ModelError)> {
+fn check_bodies<'m, S: ModelScalar>(cx: &mut Validation<'m, S>) -> Result<(), Located> {
     let bodies: &'m [Body<S>] = cx.bodies();
     for (k, b) in bodies.iter().enumerate() {
         let problem = if b.name.is_empty() {
-            Some("a body needs a name".to_string())
+            Some(NameProblem::Missing)
         } else if &*b.name == GROUND {
-            Some("`ground` is reserved for the fixed frame".to_string())
+            Some(NameProblem::Reserved)
         } else if !cx.insert_body(&b.name) {
-            Some("duplicate body name".to_string())
+            Some(NameProblem::Duplicate)
         } else {
-            eom_text::name_problem(&b.name)
+            eom_text::name_problem(&b.name).map(NameProblem::Invalid)
         };
-        if let Some(p) = problem {
-            let e = ModelError::Model {
-                item: label("body", &b.name),
-                field: "name".into(),
-                problem: p,
-            };
-            return Err((Place::Body(k), e));
+        if let Some(problem) = problem {
+            let item = ItemRef::new("body", &b.name);
+            return Err(Box::new((
+                Place::Body(k),
+                ModelError::Name { item, problem },
+            )));
         }
-        b.validate(cx).map_err(|e| (Place::Body(k), e))?;
+        b.validate(cx).map_err(|e| Box::new((Place::Body(k), e)))?;
     }
     Ok(())
 }

@@ -6,33 +6,7 @@ use std::fmt;
 use eom_num::NumWarning;
 use num_complex::Complex64;
 
-use crate::error::label;
-
-/// An item as a warning names it: its kind (`"spring"`) and name.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ItemRef {
-    /// The kind, as messages name it (`"flex point"`).
-    pub kind: String,
-    /// The item's name.
-    pub name: String,
-}
-
-impl ItemRef {
-    /// The item `name` of kind `kind`.
-    pub fn new(kind: &str, name: &str) -> Self {
-        ItemRef {
-            kind: kind.to_string(),
-            name: name.to_string(),
-        }
-    }
-}
-
-impl fmt::Display for ItemRef {
-    /// ``spring `front` `` (the name shown with [`eom_text::shown`]).
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&label(&self.kind, &self.name))
-    }
-}
+pub use crate::error::ItemRef;
 
 /// A warning of reading, checking, assembling, reducing or linearizing a model.
 #[derive(Debug, Clone, PartialEq)]

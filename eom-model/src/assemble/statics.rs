@@ -482,15 +482,13 @@ fn check_equilibrium<S: Scalar>(
         let ratio = (res.abs() * w(i)) / body_scale[i / 6];
         let ratio = if res.abs() <= 1e-300 { 0.0 } else { ratio };
         if res.is_nan() || ratio.is_nan() || ratio > NEAR_EQUILIBRIUM {
-            return Err(ModelError::Equilibrium(format!(
-                "{}: residual {res:.6e} (of terms summing to {mag:.6e} in magnitude; {ratio:.1e} of the body's largest {}). The given geometry is not an equilibrium with these constraints (eom uses the given geometry as the loaded equilibrium: add a support, or give spring preloads that balance the loads)",
-                coordinate_label(p, i),
-                if length == 1.0 {
-                    "force or moment"
-                } else {
-                    "force, or moment over the model's length scale"
-                }
-            )));
+            return Err(ModelError::Equilibrium {
+                equation: coordinate_label(p, i),
+                residual: res,
+                magnitude: mag,
+                ratio,
+                length,
+            });
         }
         if ratio > EQUILIBRIUM_TOLERANCE && worst.is_none_or(|(_, r)| ratio > r) {
             worst = Some((i, ratio));

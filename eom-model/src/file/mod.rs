@@ -133,15 +133,16 @@ fn load_in(
         let g = params::vector(&ctx, &scope, &decl, g, "[model] gravity")?;
         add_weights(&mut model, g, &mut spans);
     }
-    model
-        .validate_at()
-        .map_err(|(place, error)| FileError::Model {
+    model.validate_at().map_err(|located| {
+        let (place, error) = *located;
+        FileError::Model {
             position: match spans.of(place) {
                 Some(span) => ctx.position(span.start),
                 None => FilePosition::whole(ctx.origin),
             },
             error: Box::new(error),
-        })?;
+        }
+    })?;
     Ok(LoadedModel {
         model,
         description,

@@ -221,11 +221,12 @@ pub(crate) fn declare(
     for (k, _) in overrides {
         if derived.iter().any(|d| d.0 == *k) {
             let d = derived.iter().find(|d| d.0 == *k).expect("found");
-            return Err(FileError::Override(Box::new(ModelError::Model {
-                item: format!("parameter `{k}`"),
-                field: String::new(),
-                problem: format!("is derived (= {}); set the parameters it is made of", d.1),
-            })));
+            return Err(FileError::Override(Box::new(
+                ModelError::DerivedParameter {
+                    name: k.to_string(),
+                    definition: d.1.clone(),
+                },
+            )));
         }
         if !specs.iter().any(|s| s.0.name == *k) {
             let known: Vec<&str> = specs.iter().map(|s| s.0.name.as_str()).collect();

@@ -2,7 +2,7 @@
 //! bodies and an end on each; with its builders and checks.
 
 use super::{GROUND, Name, Vec3, map3, name, zero3};
-use crate::error::{ModelError, field_error};
+use crate::error::{Degeneracy, ItemRef, ModelError};
 use eom_sym::scalar::Scalar;
 
 /// Fields shared by the two-point ("line") items: links, springs, actuators and sensors.
@@ -35,16 +35,15 @@ impl<S: Scalar> Line<S> {
     }
 
     /// The two ends must not coincide (the direction would be undefined).
-    pub(crate) fn validate(&self, kind: &str, item: &str) -> Result<(), ModelError> {
+    pub(crate) fn validate(&self, kind: &'static str, item: &str) -> Result<(), ModelError> {
         let t = super::sub(&self.ends[1], &self.ends[0]);
         let len2: f64 = t.iter().map(|x| x.nominal() * x.nominal()).sum();
         if len2 == 0.0 {
-            return Err(field_error(
-                kind,
-                item,
-                "ends",
-                "the two ends coincide: zero length (the direction is undefined)".into(),
-            ));
+            return Err(ModelError::Degenerate {
+                item: ItemRef::new(kind, item),
+                field: "ends".into(),
+                shape: Degeneracy::CoincidentEnds { direction: true },
+            });
         }
         Ok(())
     }

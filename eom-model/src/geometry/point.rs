@@ -2,7 +2,7 @@
 //! bodies, a location, the constrained directions; with its builders and checks.
 
 use super::{GROUND, Name, Vec3, map3, name, zero3};
-use crate::error::{ModelError, field_error};
+use crate::error::{Degeneracy, ModelError};
 use crate::warning::{ItemRef, Warning};
 use eom_sym::scalar::Scalar;
 
@@ -57,31 +57,31 @@ impl<S: Scalar> Point<S> {
     /// nothing is a warning, given to `warn`.
     pub(crate) fn validate(
         &self,
-        kind: &str,
+        kind: &'static str,
         item: &str,
         warn: &mut dyn FnMut(Warning),
     ) -> Result<(), ModelError> {
         for (field, v) in [("forces", self.forces), ("moments", self.moments)] {
             if v > 3 {
-                return Err(field_error(
-                    kind,
-                    item,
-                    field,
-                    format!("{v} is out of range 0..=3"),
-                ));
+                return Err(ModelError::OutOfRange {
+                    item: ItemRef::new(kind, item),
+                    field: field.into(),
+                    value: v.into(),
+                    min: 0,
+                    max: 3,
+                });
             }
         }
         let axis_zero = self.axis.iter().all(|x| x.nominal() == 0.0);
         if axis_zero && (matches!(self.forces, 1 | 2) || matches!(self.moments, 1 | 2)) {
-            return Err(field_error(
-                kind,
-                item,
-                "axis",
-                format!(
-                    "is zero, but forces = {} / moments = {} need a direction",
-                    self.forces, self.moments
-                ),
-            ));
+            return Err(ModelError::Degenerate {
+                item: ItemRef::new(kind, item),
+                field: "axis".into(),
+                shape: Degeneracy::ZeroAxis {
+                    forces: self.forces,
+                    moments: self.moments,
+                },
+            });
         }
         if !self.constrains() {
             warn(Warning::ConstrainsNothing {

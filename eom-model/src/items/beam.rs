@@ -1,10 +1,10 @@
 //! [`Beam`]: an Euler–Bernoulli beam between two bodies, bending in two planes.
 
 use super::Validation;
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name, zero3};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name, zero3};
 use crate::assemble::RowLabel;
 use crate::assemble::{Assembly, ItemRow, Reaction, Rows, Term};
-use crate::error::ModelError;
+use crate::error::{Degeneracy, ItemRef, ModelError};
 use crate::geometry::{self, cross, scale, sub, unit};
 use eom_sym::scalar::Scalar;
 
@@ -35,12 +35,11 @@ impl<S: ModelScalar> Physics<S> for Beam<S> {
         let t = geometry::sub(&self.ends[1], &self.ends[0]);
         let tn: Vec<f64> = t.iter().map(|x| x.nominal()).collect();
         if tn.iter().all(|&x| x == 0.0) {
-            return Err(field_error(
-                "beam",
-                &self.name,
-                "ends",
-                "the two ends coincide: zero length".into(),
-            ));
+            return Err(ModelError::Degenerate {
+                item: ItemRef::new("beam", &self.name),
+                field: "ends".into(),
+                shape: Degeneracy::CoincidentEnds { direction: false },
+            });
         }
         let p: Vec<f64> = self.perp.iter().map(|x| x.nominal()).collect();
         let c = [
@@ -53,12 +52,11 @@ impl<S: ModelScalar> Physics<S> for Beam<S> {
                 * tn.iter().map(|x| x * x).sum::<f64>()
                 * p.iter().map(|x| x * x).sum::<f64>().max(1e-300)
         {
-            return Err(field_error(
-                "beam",
-                &self.name,
-                "perp",
-                "zero or parallel to the beam axis".into(),
-            ));
+            return Err(ModelError::Degenerate {
+                item: ItemRef::new("beam", &self.name),
+                field: "perp".into(),
+                shape: Degeneracy::ParallelPerp,
+            });
         }
         Ok(())
     }

@@ -3,7 +3,7 @@
 use super::Validation;
 use super::{ModelScalar, Physics, item};
 use crate::assemble::{Assembly, Reaction, Term};
-use crate::error::ModelError;
+use crate::error::{ItemRef, ModelError};
 use crate::geometry::Point;
 use eom_sym::scalar::Scalar;
 
@@ -40,12 +40,11 @@ impl<S: ModelScalar> Physics<S> for FlexPoint<S> {
             if let Some(m) = m
                 && (m.len() != n || m.iter().any(|r| r.len() != n))
             {
-                return Err(super::field_error(
-                    "flex point",
-                    &self.name,
-                    field,
-                    format!("must be {n}×{n} (forces + moments)"),
-                ));
+                return Err(ModelError::MatrixSize {
+                    item: ItemRef::new("flex point", &self.name),
+                    field: field.into(),
+                    n,
+                });
             }
         }
         Ok(())

@@ -55,7 +55,7 @@ pub use crate::geometry::{GROUND, Line, Name, Point, Vec3, vec3, x_axis, y_axis,
 
 use crate::assemble::Assembly;
 use crate::error::ModelError;
-pub(crate) use crate::error::{field_error, label};
+pub(crate) use crate::error::label;
 pub(crate) use crate::geometry::name;
 use crate::warning::Warning;
 use eom_sym::scalar::Scalar;

@@ -3,7 +3,7 @@
 use super::Validation;
 use super::{Choice, ModelScalar, Name, Physics, item, name};
 use crate::assemble::{Assembly, OutputFrame, OutputKind, OutputOrder};
-use crate::error::ModelError;
+use crate::error::{ItemRef, ModelError};
 use crate::geometry::Line;
 use eom_sym::scalar::Scalar;
 
@@ -148,13 +148,12 @@ impl<S: ModelScalar> Physics<S> for Sensor<S> {
             cx.add_output(output, j, -(self.gain * v));
         }
         if let Some(a) = &self.actuator {
-            let input = cx.input_index(a).ok_or_else(|| {
-                super::field_error(
-                    "sensor",
-                    &self.name,
-                    "actuator",
-                    format!("unknown actuator `{a}`"),
-                )
+            let input = cx.input_index(a).ok_or_else(|| ModelError::UnknownItem {
+                item: ItemRef::new("sensor", &self.name),
+                field: "actuator",
+                kind: "actuator",
+                name: a.to_string(),
+                known: None,
             })?;
             cx.add_feedthrough(output, input, self.actuator_gain);
         }

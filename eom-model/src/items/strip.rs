@@ -247,6 +247,7 @@ impl<S: ModelScalar> Strip<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Degeneracy;
 
     fn model_with(strip: Strip<f64>) -> crate::Model<f64> {
         let mut m = crate::Model::new("m");
@@ -258,32 +259,33 @@ mod tests {
     #[test]
     fn bad_input_is_an_error_naming_the_strip_and_field() {
         let s = || Strip::new("root").on("b").airspeed(10.0);
-        let cases: [(Strip<f64>, &str); 6] = [
-            (
-                s().semichord(0.0),
-                "strip `root`, field `semichord`: the semichord must be positive",
-            ),
-            (
-                s().width(-1.0),
-                "field `width`: the span width must be positive",
-            ),
-            (s().lift_slope(0.0), "field `lift_slope`"),
-            (s().on("ground"), "field `body`: a strip must be on a body"),
-            (
-                Strip::new("root").on("b"),
-                "field `airspeed`: not given, and the nominal velocity of body `b`",
-            ),
-            (
-                s().axes([1.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
-                "field `down`: must be perpendicular to `forward`",
-            ),
-        ];
-        for (strip, want) in cases {
-            let e = model_with(strip)
-                .validate()
-                .expect_err("invalid")
-                .to_string();
-            assert!(e.contains(want), "{e}\nshould contain: {want}");
+        let error = |strip| model_with(strip).validate().expect_err("invalid");
+        for (strip, want, quantity) in [
+            (s().semichord(0.0), "semichord", "semichord"),
+            (s().width(-1.0), "width", "span width"),
+            (s().lift_slope(0.0), "lift_slope", "lift slope"),
+        ] {
+            let e = error(strip);
+            assert!(
+                matches!(&e, ModelError::NotPositive { item, field, quantity: q, .. }
+                    if item.kind == "strip" && item.name == "root" && field == want && *q == quantity),
+                "{e:?}"
+            );
         }
+        let e = error(s().on("ground"));
+        assert!(
+            matches!(&e, ModelError::OnGround { item } if item.kind == "strip"),
+            "{e:?}"
+        );
+        let e = error(Strip::new("root").on("b"));
+        assert!(
+            matches!(&e, ModelError::NoAirspeed { body, .. } if body == "b"),
+            "{e:?}"
+        );
+        let e = error(s().axes([1.0, 0.0, 0.0], [1.0, 0.0, 0.0]));
+        assert!(
+            matches!(&e, ModelError::Degenerate { field, shape: Degeneracy::NotPerpendicular { .. }, .. } if field == "down"),
+            "{e:?}"
+        );
     }
 }

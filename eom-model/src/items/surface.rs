@@ -1,8 +1,8 @@
 //! The checks a lifting surface (a [`Wing`](super::Wing) or [`Strip`](super::Strip)) shares:
 //! its axes, its positive quantities and its airspeed.
 
-use super::{GROUND, ModelScalar, Name, Validation, Vec3, field_error, zero3};
-use crate::error::ModelError;
+use super::{GROUND, ModelScalar, Name, Validation, Vec3, zero3};
+use crate::error::{Degeneracy, ItemRef, ModelError};
 use crate::geometry::dot;
 use eom_sym::scalar::Scalar;
 
@@ -25,17 +25,14 @@ impl<S: ModelScalar> Surface<'_, S> {
     /// the axes orthonormal; the airspeed positive, given or not.
     pub(crate) fn check(
         &self,
-        positive: &[(&str, &S, &str)],
+        positive: &[(&str, &S, &'static str)],
         cx: &Validation<'_, S>,
     ) -> Result<(), ModelError> {
         let (kind, item) = (self.kind, self.item);
         if &**self.body == GROUND {
-            return Err(field_error(
-                kind,
-                item,
-                "body",
-                format!("a {kind} must be on a body, not on the ground"),
-            ));
+            return Err(ModelError::OnGround {
+                item: ItemRef::new(kind, item),
+            });
         }
         for (field, x, what) in positive {
             check_positive(kind, item, field, *x, what)?;
@@ -62,27 +59,27 @@ pub(crate) fn airspeed_with<S: Scalar>(
 
 /// A positive quantity.
 fn check_positive<S: Scalar>(
-    kind: &str,
+    kind: &'static str,
     item: &str,
     field: &str,
     x: &S,
-    what: &str,
+    what: &'static str,
 ) -> Result<(), ModelError> {
     let v = x.nominal();
     if v > 0.0 {
         return Ok(());
     }
-    Err(field_error(
-        kind,
-        item,
-        field,
-        format!("the {what} must be positive (nominal value {v})"),
-    ))
+    Err(ModelError::NotPositive {
+        item: ItemRef::new(kind, item),
+        field: field.into(),
+        quantity: what,
+        value: v,
+    })
 }
 
 /// Forward and down are unit vectors, perpendicular, at the nominal point.
 fn check_axes<S: Scalar>(
-    kind: &str,
+    kind: &'static str,
     item: &str,
     forward: &Vec3<S>,
     down: &Vec3<S>,
@@ -93,22 +90,20 @@ fn check_axes<S: Scalar>(
     for (field, v) in [("forward", f), ("down", d)] {
         let len = dotf(v, v).sqrt();
         if (len - 1.0).abs() > AXES_TOLERANCE {
-            return Err(field_error(
-                kind,
-                item,
-                field,
-                format!("must be a unit vector; its length is {len} at the nominal point"),
-            ));
+            return Err(ModelError::Degenerate {
+                item: ItemRef::new(kind, item),
+                field: field.into(),
+                shape: Degeneracy::NotUnit { length: len },
+            });
         }
     }
     let c = dotf(f, d);
     if c.abs() > AXES_TOLERANCE {
-        return Err(field_error(
-            kind,
-            item,
-            "down",
-            format!("must be perpendicular to `forward`; their dot product is {c}"),
-        ));
+        return Err(ModelError::Degenerate {
+            item: ItemRef::new(kind, item),
+            field: "down".into(),
+            shape: Degeneracy::NotPerpendicular { dot: c },
+        });
     }
     Ok(())
 }
@@ -116,7 +111,7 @@ fn check_axes<S: Scalar>(
 /// A given airspeed is positive; without one, the nominal velocity of `body` along the
 /// forward axis (`along`) must be.
 fn check_airspeed<S: Scalar>(
-    kind: &str,
+    kind: &'static str,
     item: &str,
     airspeed: Option<&S>,
     body: &Name,
@@ -128,15 +123,11 @@ fn check_airspeed<S: Scalar>(
             let v = along.nominal();
             // finite: the fields were checked before the items
             if v <= 0.0 {
-                return Err(field_error(
-                    kind,
-                    item,
-                    "airspeed",
-                    format!(
-                        "not given, and the nominal velocity of body `{body}` along the {kind}'s \
-                         forward axis is {v}: give the airspeed (positive)"
-                    ),
-                ));
+                return Err(ModelError::NoAirspeed {
+                    item: ItemRef::new(kind, item),
+                    body: body.to_string(),
+                    along: v,
+                });
             }
             Ok(())
         }

@@ -88,7 +88,7 @@ pub fn jones_c(s: (f64, f64)) -> (f64, f64) {
 pub const AUTO_REDUCED_FREQUENCY: f64 = 0.05;
 
 /// The warning of a surface whose `auto` is assembled without a linearization to decide it.
-pub(crate) fn auto_assembled(kind: &str, name: &str) -> Warning {
+pub(crate) fn auto_assembled(kind: &'static str, name: &str) -> Warning {
     Warning::AutoAssembled {
         item: ItemRef::new(kind, name),
     }

@@ -2,7 +2,7 @@
 //! refer to, and the warnings so far. The checks themselves run in [`crate::validate`].
 
 use super::{AnyItem, Body, Item, ModelScalar};
-use crate::error::{ModelError, field_error};
+use crate::error::{ItemRef, ModelError};
 use crate::geometry::GROUND;
 use crate::warning::Warning;
 use hashbrown::HashSet;
@@ -63,7 +63,7 @@ impl<S: ModelScalar> Validation<'_, S> {
     /// `field` of item `kind` `item` must name a body (or the ground).
     pub fn check_body(
         &self,
-        kind: &str,
+        kind: &'static str,
         item: &str,
         field: &str,
         body: &str,
@@ -71,39 +71,37 @@ impl<S: ModelScalar> Validation<'_, S> {
         if self.is_body(body) {
             return Ok(());
         }
-        let mut names: Vec<&str> = self.bodies.iter().map(|b| &*b.name).collect();
-        names.push(GROUND);
-        Err(field_error(
-            kind,
-            item,
-            field,
-            format!("unknown body `{body}`; bodies are: {}", names.join(", ")),
-        ))
+        let mut known: Vec<String> = self.bodies.iter().map(|b| b.name.to_string()).collect();
+        known.push(GROUND.to_string());
+        Err(ModelError::UnknownBody {
+            item: ItemRef::new(kind, item),
+            field: field.to_string(),
+            body: body.to_string(),
+            known: known.into(),
+        })
     }
 
     /// `field` of item `kind` `item` must name an item of kind `target_kind`.
     pub fn check_item(
         &self,
-        kind: &str,
+        kind: &'static str,
         item: &str,
-        field: &str,
-        target_kind: &str,
+        field: &'static str,
+        target_kind: &'static str,
         target: &str,
     ) -> Result<(), ModelError> {
         let mut of_kind = self.items.iter().filter(|x| x.kind() == target_kind);
         if of_kind.clone().any(|x| &**x.name() == target) {
             return Ok(());
         }
-        let names: Vec<&str> = of_kind.by_ref().map(|x| &**x.name()).collect();
-        Err(field_error(
-            kind,
-            item,
+        let known: Vec<String> = of_kind.by_ref().map(|x| x.name().to_string()).collect();
+        Err(ModelError::UnknownItem {
+            item: ItemRef::new(kind, item),
             field,
-            format!(
-                "unknown {target_kind} `{target}`; {target_kind}s are: {}",
-                names.join(", ")
-            ),
-        ))
+            kind: target_kind,
+            name: target.to_string(),
+            known: Some(known.into()),
+        })
     }
 
     /// The bodies an item connects exist, and two of them differ.
@@ -120,12 +118,10 @@ impl<S: ModelScalar> Validation<'_, S> {
             }
         }
         if bs.len() == 2 && bs[0] == bs[1] {
-            return Err(field_error(
-                item.kind(),
-                item.name(),
-                "bodies",
-                format!("connects `{}` to itself", bs[0]),
-            ));
+            return Err(ModelError::SelfConnection {
+                item: ItemRef::new(item.kind(), item.name()),
+                body: bs[0].to_string(),
+            });
         }
         Ok(())
     }

@@ -43,7 +43,7 @@ use super::Validation;
 use super::surface::{self, Surface};
 use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
 use super::zero3;
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, field_error, item, name};
+use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -74,15 +74,6 @@ pub fn wing_derivative_index(name: &str) -> Option<(usize, usize)> {
 /// α̇ = ẇ/V), the aerodynamic mass of the w column.
 pub const WING_ACCELERATION_DERIVATIVES: [&str; 6] =
     ["CXwd", "CYwd", "CZwd", "Clwd", "Cmwd", "Cnwd"];
-
-/// The list of the 36 names, for messages.
-pub(crate) fn derivative_list() -> String {
-    WING_DERIVATIVES
-        .iter()
-        .map(|r| r.join(" "))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
 
 item! {
     /// A wing: quasi-steady aerodynamic damping at a point of a body, from stability
@@ -336,19 +327,13 @@ impl<S: ModelScalar> Wing<S> {
             for (j, d) in row.iter().enumerate() {
                 let value = q * d.nominal();
                 if value.is_nan() || value.abs() > eom_num::MAX_ENTRY {
-                    return Err(field_error(
-                        "wing",
-                        &self.name,
-                        "derivatives",
-                        format!(
-                            "`{}` = {:e} gives a damping of {value:e} (ρVS/2 times the \
-                             derivative, with the reference lengths), beyond {:e}: the analysis \
-                             would overflow (check the derivative and its units)",
-                            WING_DERIVATIVES[i][j],
-                            self.derivatives[i][j].nominal(),
-                            eom_num::MAX_ENTRY
-                        ),
-                    ));
+                    return Err(ModelError::DampingOverflow {
+                        item: ItemRef::new("wing", &self.name),
+                        derivative: WING_DERIVATIVES[i][j],
+                        value: self.derivatives[i][j].nominal(),
+                        damping: value,
+                        limit: eom_num::MAX_ENTRY,
+                    });
                 }
             }
         }
@@ -359,15 +344,11 @@ impl<S: ModelScalar> Wing<S> {
 impl<S: ModelScalar> Physics<S> for Wing<S> {
     fn validate(&self, cx: &mut Validation<'_, S>) -> Result<(), ModelError> {
         if let Some(n) = self.unknown.first() {
-            return Err(field_error(
-                "wing",
-                &self.name,
-                "derivatives",
-                format!(
-                    "unknown derivative `{n}`; the derivatives are (AVL's body-axis names): {}",
-                    derivative_list()
-                ),
-            ));
+            return Err(ModelError::UnknownDerivative {
+                item: ItemRef::new("wing", &self.name),
+                name: n.to_string(),
+                known: &WING_DERIVATIVES,
+            });
         }
         let positive = [
             ("area", &self.area, "reference area"),
@@ -507,6 +488,7 @@ impl<S: ModelScalar> Wing<S> {
 mod tests {
     use super::*;
     use crate::Model;
+    use crate::error::Degeneracy;
     use crate::items::tests::Counter;
 
     /// A body on a slider moving at `speed` with `wing` on it.
@@ -529,60 +511,82 @@ mod tests {
         m
     }
 
-    fn error(wing: Wing<f64>, speed: f64) -> String {
-        model_with(wing, speed)
-            .validate()
-            .expect_err("invalid")
-            .to_string()
+    fn error(wing: Wing<f64>, speed: f64) -> ModelError {
+        model_with(wing, speed).validate().expect_err("invalid")
+    }
+
+    /// The field of a [`ModelError::NotPositive`] or [`ModelError::Degenerate`] of wing `fin`.
+    fn fin_field(e: &ModelError) -> Option<&str> {
+        match e {
+            ModelError::NotPositive { item, field, .. }
+            | ModelError::Degenerate { item, field, .. }
+                if item.kind == "wing" && item.name == "fin" =>
+            {
+                Some(field)
+            }
+            _ => None,
+        }
     }
 
     #[test]
     fn bad_input_is_an_error_naming_the_wing_and_field() {
         let w = || Wing::new("fin").on("b").derivative("CZw", -2.0);
         assert!(model_with(w(), 10.0).validate().is_ok());
-        let cases: [(Wing<f64>, f64, &str); 9] = [
-            (
-                w().area(0.0),
-                10.0,
-                "wing `fin`, field `area`: the reference area must be positive",
-            ),
-            (w().chord(-1.0), 10.0, "field `chord`"),
-            (w().span(0.0), 10.0, "field `span`"),
-            (
-                w().derivative("CLa", 1.0),
-                10.0,
-                "field `derivatives`: unknown derivative `CLa`; the derivatives are (AVL's body-axis names): CXu CXv CXw",
-            ),
-            (w().on("nobody"), 10.0, "unknown body `nobody`"),
-            (
-                w().on("ground"),
-                10.0,
-                "field `body`: a wing must be on a body",
-            ),
-            (
-                w(),
-                0.0,
-                "field `airspeed`: not given, and the nominal velocity of body `b` along the wing's forward axis is 0",
-            ),
-            (
-                w().airspeed(0.0),
-                10.0,
-                "field `airspeed`: the airspeed must be positive",
-            ),
-            (
-                w().axes([1.0, 0.0, 0.0], [0.6, 0.0, -0.8]),
-                10.0,
-                "field `down`: must be perpendicular to `forward`",
-            ),
-        ];
-        for (wing, speed, want) in cases {
-            let e = error(wing, speed);
-            assert!(e.contains(want), "{e}\nshould contain: {want}");
+        let e = error(w().area(0.0), 10.0);
+        assert!(
+            matches!(&e, ModelError::NotPositive { quantity: "reference area", value, .. } if *value == 0.0)
+                && fin_field(&e) == Some("area"),
+            "{e:?}"
+        );
+        for (wing, field) in [(w().chord(-1.0), "chord"), (w().span(0.0), "span")] {
+            let e = error(wing, 10.0);
+            assert!(
+                matches!(e, ModelError::NotPositive { .. }) && fin_field(&e) == Some(field),
+                "{e:?}"
+            );
         }
+        let e = error(w().derivative("CLa", 1.0), 10.0);
+        assert!(
+            matches!(&e, ModelError::UnknownDerivative { name, known, .. } if name == "CLa" && known[0][0] == "CXu"),
+            "{e:?}"
+        );
+        let e = error(w().on("nobody"), 10.0);
+        assert!(
+            matches!(&e, ModelError::UnknownBody { item, field, body, .. } if item.name == "fin" && field == "body" && body == "nobody"),
+            "{e:?}"
+        );
+        let e = error(w().on("ground"), 10.0);
+        assert!(
+            matches!(&e, ModelError::OnGround { item } if item.kind == "wing"),
+            "{e:?}"
+        );
+        let e = error(w(), 0.0);
+        assert!(
+            matches!(&e, ModelError::NoAirspeed { body, along, .. } if body == "b" && *along == 0.0),
+            "{e:?}"
+        );
+        let e = error(w().airspeed(0.0), 10.0);
+        assert!(
+            matches!(
+                e,
+                ModelError::NotPositive {
+                    quantity: "airspeed",
+                    ..
+                }
+            ) && fin_field(&e) == Some("airspeed"),
+            "{e:?}"
+        );
+        let e = error(w().axes([1.0, 0.0, 0.0], [0.6, 0.0, -0.8]), 10.0);
+        assert!(
+            matches!(&e, ModelError::Degenerate { shape: Degeneracy::NotPerpendicular { dot }, .. } if (*dot - 0.6).abs() < 1e-15)
+                && fin_field(&e) == Some("down"),
+            "{e:?}"
+        );
         let e = error(w().axes([2.0, 0.0, 0.0], [0.0, 0.0, -1.0]), 10.0);
         assert!(
-            e.contains("field `forward`: must be a unit vector; its length is 2"),
-            "{e}"
+            matches!(&e, ModelError::Degenerate { shape: Degeneracy::NotUnit { length }, .. } if *length == 2.0)
+                && fin_field(&e) == Some("forward"),
+            "{e:?}"
         );
     }
 
