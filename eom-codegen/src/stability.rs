@@ -18,7 +18,7 @@
 //! exceeds its bound has the sign computed, whatever the rounding.
 
 use crate::CodegenError;
-use crate::render::{BoundedCode, Ctx, render_bounded};
+use crate::render::{BoundedCode, Ctx, FilterCode, render_bounded, render_filter};
 use eom_model::SymbolicStateSpace;
 use eom_sym::closed::{ClosedForms, hurwitz_minor};
 use eom_sym::lower::{Rounding, lower};
@@ -111,6 +111,7 @@ pub(crate) fn render(
     let d = form.degree;
     let k = form.zero_roots;
     let scalar = raw_body(ctx, &lowered)?;
+    let quick = quick_items(ctx, &lowered)?;
     let labels = form.labels.iter().map(|(l, _)| l.as_str());
     let degrees = form.labels.iter().map(|(_, g)| *g);
     let lead = d;
@@ -229,20 +230,118 @@ pub(crate) fn render(
         /// the bounds infinite, and the verdict undecided).
         pub fn stability(p: &[f64; N_PARAMS]) -> Result<Verdict, Error> {
             #check
+            Ok(stability_unchecked(p))
+        }
+
+        /// The verdict, the validity region not tested: the cheap stage first, the running
+        /// bound where it leaves the point open.
+        #[inline(always)]
+        fn stability_unchecked(p: &[f64; N_PARAMS]) -> Verdict {
+            match stability_quick(p) {
+                Some(v) => v,
+                None => stability_running(p),
+            }
+        }
+
+        /// The verdict by the running error bound alone.
+        #[inline(never)]
+        #[cold]
+        fn stability_running(p: &[f64; N_PARAMS]) -> Verdict {
             let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
             stability_raw(p, &mut c, &mut e);
-            Ok(verdict_of(&mut c, &e))
+            verdict_of(&mut c, &e)
+        }
+
+        #quick
+    })
+}
+
+/// The cheap first stage: `stability_quick_raw` (the conditions and their a-priori bounds,
+/// see `render/filter.rs`), the public `stability_conditions_quick`, and `stability_quick`,
+/// which decides a point only where every condition is clear of its bound (or one is
+/// certainly negative). Without a filter (a function with no magnitude form),
+/// `stability_quick` decides nothing.
+fn quick_items(
+    ctx: &Ctx,
+    lowered: &eom_sym::lower::Lowered,
+) -> Result<TokenStream, CodegenError> {
+    let Some(FilterCode { body, tests, roots }) = render_filter(ctx, lowered)? else {
+        return Ok(quote! {
+            #[inline(always)]
+            fn stability_quick(_p: &[f64; N_PARAMS]) -> Option<Verdict> {
+                None
+            }
+        });
+    };
+    let params = param_locals(ctx);
+    let stores = roots
+        .iter()
+        .enumerate()
+        .map(|(i, (v, e))| quote!(c[#i] = #v; e[#i] = #e;));
+    let tests = if tests.is_empty() {
+        quote!(true)
+    } else {
+        quote!(#(#tests)&*)
+    };
+    Ok(quote! {
+        /// The conditions (as computed, not normalised) and their a-priori bounds; `false`
+        /// when a divisor has cancelled too much for the bounds to hold.
+        #[inline(always)]
+        fn stability_quick_raw(p: &[f64; N_PARAMS], c: &mut [f64; N_CONDITIONS], e: &mut [f64; N_CONDITIONS]) -> bool {
+            #(#params)*
+            #body
+            #(#stores)*
+            #tests
+        }
+
+        /// The Liénard–Chipart conditions as [`stability_conditions`] computes them (not
+        /// normalised), with the cheaper a-priori bounds of the verdict's first stage
+        /// (`|c[k] − exact| ≤ e[k]`); `false` when they do not apply at `p` (a divisor
+        /// within a factor 2 of cancelling), and then `c` and `e` mean nothing.
+        pub fn stability_conditions_quick(
+            p: &[f64; N_PARAMS],
+            c: &mut [f64; N_CONDITIONS],
+            e: &mut [f64; N_CONDITIONS],
+        ) -> bool {
+            stability_quick_raw(p, c, e)
+        }
+
+        /// The verdict of the first stage: `None` where it is not clear.
+        #[inline(always)]
+        fn stability_quick(p: &[f64; N_PARAMS]) -> Option<Verdict> {
+            let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
+            if !stability_quick_raw(p, &mut c, &mut e) {
+                return None;
+            }
+            // Infinite or NaN bounds decide nothing.
+            if !c.iter().zip(&e).all(|(x, b)| (x.abs() + b) < f64::INFINITY) {
+                return None;
+            }
+            match verdict_of(&mut c, &e) {
+                Verdict::Undecided => None,
+                v => Some(v),
+            }
         }
     })
+}
+
+/// The parameters' locals.
+fn param_locals(ctx: &Ctx) -> Vec<TokenStream> {
+    ctx.problem
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let local = format_ident!("{}", p.local);
+            quote!(let #local: f64 = p[#i];)
+        })
+        .collect()
 }
 
 /// The body of `stability_raw`: the parameters' locals, the bounded code, the stores.
 fn raw_body(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
     let BoundedCode { body, roots } = render_bounded(ctx, lowered)?;
-    let params = ctx.problem.params.iter().enumerate().map(|(i, p)| {
-        let local = format_ident!("{}", p.local);
-        quote!(let #local: f64 = p[#i];)
-    });
+    let params = param_locals(ctx);
     let stores = roots
         .iter()
         .enumerate()

@@ -56,7 +56,7 @@ struct Renderer<'a> {
 /// Whether a literal is exactly the constant it stands for: a dyadic rational of at most 30
 /// fractional bits (the model's constants are short rationals, and those with a power-of-two
 /// denominator are exact in binary).
-fn exact_literal(x: f64) -> bool {
+pub(super) fn exact_literal(x: f64) -> bool {
     let scaled = x * 1073741824.0; // 2^30
     scaled.is_finite() && scaled == scaled.trunc()
 }
