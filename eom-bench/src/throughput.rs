@@ -361,11 +361,9 @@ fn verdict_chunk(s: &mut Scratch, opts: &Options, c: usize) -> VerdictChunk {
         .extend((start..end).map(|k| point(opts.seed, opts.spread, k as u64)));
     let (t0, c0) = (Instant::now(), thread_cpu_time());
     s.verdicts.clear();
-    s.verdicts.extend(
-        s.params
-            .iter()
-            .map(|p| model::stability(std::hint::black_box(p))),
-    );
+    s.verdicts
+        .resize(s.params.len(), Ok(model::Verdict::Undecided));
+    model::stability_many(std::hint::black_box(&s.params), &mut s.verdicts);
     let (wall, c1) = (t0.elapsed(), thread_cpu_time());
     let cpu = cpu_phases::<1, 2>([c0, c1]).map(|[d]| d);
     (wall, cpu, s.verdicts.clone())

@@ -61,6 +61,9 @@ pub(crate) struct FilterCode {
 
 struct Renderer<'a> {
     ctx: &'a Ctx<'a>,
+    /// Whether every value is an array of `LANES` points (`[f64; LANES]`, operations through
+    /// the module's `l_*` helpers) instead of one `f64`.
+    lanes: bool,
     out: TokenStream,
     tests: Vec<TokenStream>,
     fresh: usize,
@@ -77,6 +80,50 @@ fn mul_rho(a: f64, b: f64) -> f64 {
 }
 
 impl Renderer<'_> {
+    /// The type of a value.
+    fn ty(&self) -> TokenStream {
+        if self.lanes {
+            quote!([f64; LANES])
+        } else {
+            quote!(f64)
+        }
+    }
+
+    /// A literal (or literal code) as a value.
+    fn lit(&self, x: TokenStream) -> TokenStream {
+        if self.lanes { quote!([#x; LANES]) } else { x }
+    }
+
+    /// `a ∘ b` for `∘` one of `+ - * /`.
+    fn op(&self, op: char, a: &TokenStream, b: &TokenStream) -> TokenStream {
+        match (self.lanes, op) {
+            (false, '+') => quote!(#a + #b),
+            (false, '-') => quote!(#a - #b),
+            (false, '*') => quote!(#a * #b),
+            (false, _) => quote!(#a / #b),
+            (true, '+') => quote!(l_add(#a, #b)),
+            (true, '-') => quote!(l_sub(#a, #b)),
+            (true, '*') => quote!(l_mul(#a, #b)),
+            (true, _) => quote!(l_div(#a, #b)),
+        }
+    }
+
+    fn abs(&self, a: &TokenStream) -> TokenStream {
+        if self.lanes {
+            quote!(l_abs(#a))
+        } else {
+            quote!(#a.abs())
+        }
+    }
+
+    fn neg(&self, a: &TokenStream) -> TokenStream {
+        if self.lanes {
+            quote!(l_neg(#a))
+        } else {
+            quote!((-#a))
+        }
+    }
+
     fn name(&mut self) -> (Ident, Ident) {
         self.fresh += 1;
         (
@@ -88,8 +135,9 @@ impl Renderer<'_> {
     /// Binds a value and its magnitude to fresh names.
     fn bind(&mut self, val: TokenStream, mag: TokenStream, rho: f64) -> V {
         let (v, m) = self.name();
+        let ty = self.ty();
         self.out
-            .extend(quote!(let #v: f64 = #val; let #m: f64 = #mag;));
+            .extend(quote!(let #v: #ty = #val; let #m: #ty = #mag;));
         V {
             val: quote!(#v),
             mag: quote!(#m),
@@ -111,15 +159,15 @@ impl Renderer<'_> {
                 let p = self.ctx.param_local(k);
                 V {
                     val: quote!(#p),
-                    mag: quote!(#p.abs()),
+                    mag: self.abs(&quote!(#p)),
                     rho: 0.0,
                 }
             }
             Operand::Lit(x) => {
                 let exact = super::bounded::exact_literal(x);
                 V {
-                    val: self.ctx.operand(o)?,
-                    mag: self.ctx.num.lit(x.abs(), "literal")?,
+                    val: self.lit(self.ctx.operand(o)?),
+                    mag: self.lit(self.ctx.num.lit(x.abs(), "literal")?),
                     rho: if exact { 0.0 } else { U },
                 }
             }
@@ -128,17 +176,15 @@ impl Renderer<'_> {
 
     fn add(&mut self, a: &V, b: &V, negate: bool) -> V {
         let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
-        let val = if negate {
-            quote!(#av - #bv)
-        } else {
-            quote!(#av + #bv)
-        };
-        self.bind(val, quote!(#am + #bm), add_rho(a.rho, b.rho))
+        let val = self.op(if negate { '-' } else { '+' }, av, bv);
+        let mag = self.op('+', am, bm);
+        self.bind(val, mag, add_rho(a.rho, b.rho))
     }
 
     fn mul(&mut self, a: &V, b: &V) -> V {
         let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
-        self.bind(quote!(#av * #bv), quote!(#am * #bm), mul_rho(a.rho, b.rho))
+        let (val, mag) = (self.op('*', av, bv), self.op('*', am, bm));
+        self.bind(val, mag, mul_rho(a.rho, b.rho))
     }
 
     /// `c·a` for a literal `c` (as `bounded.rs` renders it).
@@ -149,16 +195,13 @@ impl Renderer<'_> {
         let av = &a.val;
         if c == -1.0 {
             return Ok(V {
-                val: quote!((-#av)),
+                val: self.neg(av),
                 ..a.clone()
             });
         }
-        let lit = self.ctx.num.lit(c.abs(), "coefficient")?;
-        let val = if c < 0.0 {
-            quote!(-(#lit * #av))
-        } else {
-            quote!(#lit * #av)
-        };
+        let lit = self.lit(self.ctx.num.lit(c.abs(), "coefficient")?);
+        let val = self.op('*', &lit, av);
+        let val = if c < 0.0 { self.neg(&val) } else { val };
         let am = &a.mag;
         let rho = if c.abs().log2().fract() == 0.0 {
             a.rho
@@ -170,17 +213,23 @@ impl Renderer<'_> {
             };
             mul_rho(a.rho, rc)
         };
-        Ok(self.bind(val, quote!(#lit * #am), rho))
+        let mag = self.op('*', &lit, am);
+        Ok(self.bind(val, mag, rho))
     }
 
     fn div(&mut self, a: &V, b: &V) -> V {
         let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
         if b.rho > 0.0 {
-            self.tests.push(quote!((#bv.abs() >= 0.5 * #bm)));
+            self.tests.push(if self.lanes {
+                quote!(l_ge_half(#bv, #bm))
+            } else {
+                quote!((#bv.abs() >= 0.5 * #bm))
+            });
         }
         let (ra, rb) = (a.rho, b.rho);
         let rho = (1.0 + U) * (U + ra + 2.0 * (1.0 + ra) * rb / (1.0 - 2.0 * rb));
-        self.bind(quote!(#av / #bv), quote!(#am / #bv.abs()), rho)
+        let (val, mag) = (self.op('/', av, bv), self.op('/', am, &self.abs(bv)));
+        self.bind(val, mag, rho)
     }
 
     fn sum(&mut self, c0: f64, terms: &[(Operand, f64)]) -> Result<V, CodegenError> {
@@ -203,8 +252,8 @@ impl Renderer<'_> {
             });
         }
         Ok(acc.unwrap_or(V {
-            val: quote!(0.0),
-            mag: quote!(0.0),
+            val: self.lit(quote!(0.0)),
+            mag: self.lit(quote!(0.0)),
             rho: 0.0,
         }))
     }
@@ -238,9 +287,9 @@ impl Renderer<'_> {
 
     fn set(&mut self, t: u32, v: V) {
         let (ti, mi) = (format_ident!("t{}", t), format_ident!("m{}_", t));
-        let (val, mag) = (v.val, v.mag);
+        let (val, mag, ty) = (v.val, v.mag, self.ty());
         self.out
-            .extend(quote!(let #ti: f64 = #val; let #mi: f64 = #mag;));
+            .extend(quote!(let #ti: #ty = #val; let #mi: #ty = #mag;));
         self.rho[t as usize] = Some(v.rho);
     }
 
@@ -258,23 +307,30 @@ impl Renderer<'_> {
             Rhs::SinCos(x) => {
                 let xv = self.operand(*x)?;
                 let code = self.ctx.call(rhs)?;
+                let code = if self.lanes {
+                    let x = &xv.val;
+                    quote!(l_sincos(#x))
+                } else {
+                    code
+                };
                 let (s, c) = (format_ident!("t{}", def), format_ident!("t{}", def + 1));
-                self.out.extend(quote!(let (#s, #c): (f64, f64) = #code;));
+                let ty = self.ty();
+                self.out.extend(quote!(let (#s, #c): (#ty, #ty) = #code;));
                 for t in [def, def + 1] {
                     let (ti, mi) = (format_ident!("t{}", t), format_ident!("m{}_", t));
+                    let ta = self.abs(&quote!(#ti));
                     let (mag, rho) = if xv.rho == 0.0 {
-                        (quote!(#ti.abs()), 2.0 * U)
+                        (ta, 2.0 * U)
                     } else {
-                        let xm = &xv.mag;
-                        (quote!(#ti.abs() + #xm), xv.rho.max(2.0 * U) * (1.0 + U))
+                        (self.op('+', &ta, &xv.mag), xv.rho.max(2.0 * U) * (1.0 + U))
                     };
-                    self.out.extend(quote!(let #mi: f64 = #mag;));
+                    self.out.extend(quote!(let #mi: #ty = #mag;));
                     self.rho[t as usize] = Some(rho);
                 }
             }
             Rhs::Call1(Call::Func(Func::Abs), x) => {
                 let xv = self.operand(*x)?;
-                let code = self.ctx.call(rhs)?;
+                let code = self.abs(&xv.val);
                 self.set(
                     def,
                     V {
@@ -292,9 +348,14 @@ impl Renderer<'_> {
 
 /// The filter of a lowered program (`f64` only), or `None` when the program calls a function
 /// that has no magnitude form here.
-pub(crate) fn render_filter(ctx: &Ctx, l: &Lowered) -> Result<Option<FilterCode>, CodegenError> {
+pub(crate) fn render_filter(
+    ctx: &Ctx,
+    l: &Lowered,
+    lanes: bool,
+) -> Result<Option<FilterCode>, CodegenError> {
     let mut r = Renderer {
         ctx,
+        lanes,
         out: TokenStream::new(),
         tests: Vec::new(),
         fresh: 0,
@@ -308,14 +369,12 @@ pub(crate) fn render_filter(ctx: &Ctx, l: &Lowered) -> Result<Option<FilterCode>
     let mut roots = Vec::with_capacity(l.roots.len());
     for &(op, negated) in &l.roots {
         let v = r.operand(op)?;
-        let val = v.val;
-        let val = if negated { quote!(-#val) } else { val };
-        let mag = v.mag;
+        let val = if negated { r.neg(&v.val) } else { v.val };
         let bound = if v.rho == 0.0 {
-            quote!(0.0)
+            r.lit(quote!(0.0))
         } else {
-            let k = ctx.num.lit(v.rho * 1.001, "relative bound")?;
-            quote!(#k * #mag)
+            let k = r.lit(ctx.num.lit(v.rho * 1.001, "relative bound")?);
+            r.op('*', &k, &v.mag)
         };
         roots.push((val, bound));
     }
