@@ -5,10 +5,11 @@
 //! stack kernel `eom_num::small_eigen` with the structural zeros found once, at the nominal
 //! point, and checked and deflated at every point (`eigenvalues_small_known`).
 //!
-//! The same points also go through the generated `stability` (eom-codegen's `--stability`:
-//! the Liénard–Chipart conditions of the closed-form characteristic polynomial with their
-//! rounding-error bounds, no eigenvalues), timed on its own, and its verdict is compared
-//! with the eigenvalues': the undecided points and any disagreement are counted.
+//! The same points also go through the generated batch verdict `stability_many` (eom-codegen's
+//! `--stability`: the Liénard–Chipart conditions of the closed-form characteristic polynomial
+//! with their rounding-error bounds, no eigenvalues; its first stage four points at a time),
+//! timed on its own, and its verdict is compared with the eigenvalues': the undecided points
+//! and any disagreement are counted.
 //!
 //! The points: every one of the 27 parameters drawn uniformly within nominal × (1 ± spread)
 //! (the speed too, so that with the default ±20 % the sweep crosses the weave and the capsize
@@ -472,7 +473,7 @@ pub fn to_text(t: &Throughput) -> String {
          eigenvalue failures: {}\n\
          stable points: {} of {} ({:.2} %)\n\
          largest real part of the non-zero eigenvalues: from {:.6e} to {:.6e} 1/s\n\
-         stability verdict without eigenvalues (generated `stability`): {:.1} ns per point, \
+         stability verdict without eigenvalues (generated `stability_many`): {:.1} ns per point, \
          {:.0} verdicts/s per thread\n\
          verdicts: {} stable, {} unstable, {} undecided (a condition within its rounding \
          bound of zero), {} failed; {} of the {} decided differ from the eigenvalues' verdict\n",

@@ -302,10 +302,7 @@ pub(crate) fn render(
 /// which decides a point only where every condition is clear of its bound (or one is
 /// certainly negative). Without a filter (a function with no magnitude form),
 /// `stability_quick` decides nothing.
-fn quick_items(
-    ctx: &Ctx,
-    lowered: &eom_sym::lower::Lowered,
-) -> Result<TokenStream, CodegenError> {
+fn quick_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
     let Some(FilterCode { body, tests, roots }) = render_filter(ctx, lowered, false)? else {
         return Ok(quote! {
             #[inline(always)]

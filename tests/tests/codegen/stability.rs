@@ -178,7 +178,11 @@ fn bounds_hold_against_double_double() {
                 );
                 // Never tighter than it can be: at least the rounding of the value itself
                 // (a zero bound only for an exact value).
-                assert!(quick_err[k] > 0.0 || err == 0.0, "{} condition {k}", g.model);
+                assert!(
+                    quick_err[k] > 0.0 || err == 0.0,
+                    "{} condition {k}",
+                    g.model
+                );
             }
             let d = coef.len() - 1;
             let sign = if exact[d].to_f64() < 0.0 { -1.0 } else { 1.0 };
