@@ -5,10 +5,11 @@
 //! stack kernel `eom_num::small_eigen` with the structural zeros found once, at the nominal
 //! point, and checked and deflated at every point (`eigenvalues_small_known`).
 //!
-//! The same points also go through the generated `stability` (eom-codegen's `--stability`:
-//! the Liénard–Chipart conditions of the closed-form characteristic polynomial with their
-//! rounding-error bounds, no eigenvalues), timed on its own, and its verdict is compared
-//! with the eigenvalues': the undecided points and any disagreement are counted.
+//! The same points also go through the generated batch verdict `stability_many` (eom-codegen's
+//! `--stability`: the Liénard–Chipart conditions of the closed-form characteristic polynomial
+//! with their rounding-error bounds, no eigenvalues; its first stage four points at a time),
+//! timed on its own, and its verdict is compared with the eigenvalues': the undecided points
+//! and any disagreement are counted.
 //!
 //! The points: every one of the 27 parameters drawn uniformly within nominal × (1 ± spread)
 //! (the speed too, so that with the default ±20 % the sweep crosses the weave and the capsize
@@ -361,11 +362,9 @@ fn verdict_chunk(s: &mut Scratch, opts: &Options, c: usize) -> VerdictChunk {
         .extend((start..end).map(|k| point(opts.seed, opts.spread, k as u64)));
     let (t0, c0) = (Instant::now(), thread_cpu_time());
     s.verdicts.clear();
-    s.verdicts.extend(
-        s.params
-            .iter()
-            .map(|p| model::stability(std::hint::black_box(p))),
-    );
+    s.verdicts
+        .resize(s.params.len(), Ok(model::Verdict::Undecided));
+    model::stability_many(std::hint::black_box(&s.params), &mut s.verdicts);
     let (wall, c1) = (t0.elapsed(), thread_cpu_time());
     let cpu = cpu_phases::<1, 2>([c0, c1]).map(|[d]| d);
     (wall, cpu, s.verdicts.clone())
@@ -474,7 +473,7 @@ pub fn to_text(t: &Throughput) -> String {
          eigenvalue failures: {}\n\
          stable points: {} of {} ({:.2} %)\n\
          largest real part of the non-zero eigenvalues: from {:.6e} to {:.6e} 1/s\n\
-         stability verdict without eigenvalues (generated `stability`): {:.1} ns per point, \
+         stability verdict without eigenvalues (generated `stability_many`): {:.1} ns per point, \
          {:.0} verdicts/s per thread\n\
          verdicts: {} stable, {} unstable, {} undecided (a condition within its rounding \
          bound of zero), {} failed; {} of the {} decided differ from the eigenvalues' verdict\n",

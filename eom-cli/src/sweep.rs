@@ -90,11 +90,17 @@ fn verdict_check(
         .map(|n| names.iter().position(|m| m == n))
         .collect::<Option<_>>()?;
     let mut out = VerdictCheck::default();
-    for pt in &result.points {
-        let mut v = base.to_vec();
-        v[k] = pt.value;
-        let p: Vec<f64> = order.iter().map(|&i| v[i]).collect();
-        match (gv.verdict)(&p) {
+    let points: Vec<Vec<f64>> = result
+        .points
+        .iter()
+        .map(|pt| {
+            let mut v = base.to_vec();
+            v[k] = pt.value;
+            order.iter().map(|&i| v[i]).collect()
+        })
+        .collect();
+    for (pt, verdict) in result.points.iter().zip((gv.many)(&points)) {
+        match verdict {
             None => out.failed.push(pt.value),
             Some(0) => out.undecided.push(pt.value),
             Some(x) => {

@@ -18,7 +18,7 @@
 //! exceeds its bound has the sign computed, whatever the rounding.
 
 use crate::CodegenError;
-use crate::render::{BoundedCode, Ctx, render_bounded};
+use crate::render::{BoundedCode, Ctx, FilterCode, render_bounded, render_filter};
 use eom_model::SymbolicStateSpace;
 use eom_sym::closed::{ClosedForms, hurwitz_minor};
 use eom_sym::lower::{Rounding, lower};
@@ -111,6 +111,7 @@ pub(crate) fn render(
     let d = form.degree;
     let k = form.zero_roots;
     let scalar = raw_body(ctx, &lowered)?;
+    let quick = quick_items(ctx, &lowered)?;
     let labels = form.labels.iter().map(|(l, _)| l.as_str());
     let degrees = form.labels.iter().map(|(_, g)| *g);
     let lead = d;
@@ -228,21 +229,264 @@ pub(crate) fn render(
         /// reduction's rank decisions (pivots need no check here: a divisor near zero makes
         /// the bounds infinite, and the verdict undecided).
         pub fn stability(p: &[f64; N_PARAMS]) -> Result<Verdict, Error> {
+            stability_valid(p)?;
+            Ok(stability_unchecked(p))
+        }
+
+        /// The points the batch verdict [`stability_many`] takes at once.
+        pub const LANES: usize = 4;
+
+        /// The stability verdicts of many points, as [`stability`] gives them one by one:
+        /// `verdicts[k]` for `points[k]`, for the first `n` points, `n` the shorter length
+        /// (returned). The first stage runs on [`LANES`] points at a time (packed
+        /// arithmetic), so the verdict costs less per point than one call of [`stability`].
+        pub fn stability_many(
+            points: &[[f64; N_PARAMS]],
+            verdicts: &mut [Result<Verdict, Error>],
+        ) -> usize {
+            let n = points.len().min(verdicts.len());
+            let (points, verdicts) = (&points[..n], &mut verdicts[..n]);
+            let mut blocks = points.chunks_exact(LANES);
+            let mut out = verdicts.chunks_exact_mut(LANES);
+            for (block, out) in (&mut blocks).zip(&mut out) {
+                let Ok(block) = <&[[f64; N_PARAMS]; LANES]>::try_from(block) else {
+                    continue;
+                };
+                let quick = stability_quick_lanes(block);
+                for ((p, q), v) in block.iter().zip(quick).zip(out.iter_mut()) {
+                    *v = stability_valid(p).map(|()| match q {
+                        Some(q) => q,
+                        None => stability_running(p),
+                    });
+                }
+            }
+            for (p, v) in blocks.remainder().iter().zip(out.into_remainder()) {
+                *v = stability(p);
+            }
+            n
+        }
+
+        /// `Ok` when `p` is inside the validity region of the reduction's rank decisions.
+        #[inline(always)]
+        fn stability_valid(p: &[f64; N_PARAMS]) -> Result<(), Error> {
+            let _ = p;
             #check
+            Ok(())
+        }
+
+        /// The verdict, the validity region not tested: the cheap stage first, the running
+        /// bound where it leaves the point open.
+        #[inline(always)]
+        fn stability_unchecked(p: &[f64; N_PARAMS]) -> Verdict {
+            match stability_quick(p) {
+                Some(v) => v,
+                None => stability_running(p),
+            }
+        }
+
+        /// The verdict by the running error bound alone.
+        #[inline(never)]
+        #[cold]
+        fn stability_running(p: &[f64; N_PARAMS]) -> Verdict {
             let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
             stability_raw(p, &mut c, &mut e);
-            Ok(verdict_of(&mut c, &e))
+            verdict_of(&mut c, &e)
+        }
+
+        #quick
+    })
+}
+
+/// The cheap first stage: `stability_quick_raw` (the conditions and their a-priori bounds,
+/// see `render/filter.rs`), the public `stability_conditions_quick`, and `stability_quick`,
+/// which decides a point only where every condition is clear of its bound (or one is
+/// certainly negative). Without a filter (a function with no magnitude form),
+/// `stability_quick` decides nothing.
+fn quick_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
+    let Some(FilterCode { body, tests, roots }) = render_filter(ctx, lowered, false)? else {
+        return Ok(quote! {
+            #[inline(always)]
+            fn stability_quick(_p: &[f64; N_PARAMS]) -> Option<Verdict> {
+                None
+            }
+
+            #[inline(always)]
+            fn stability_quick_lanes(_p: &[[f64; N_PARAMS]; LANES]) -> [Option<Verdict>; LANES] {
+                [None; LANES]
+            }
+        });
+    };
+    let lanes = lane_items(ctx, lowered)?;
+    let params = param_locals(ctx);
+    let stores = roots
+        .iter()
+        .enumerate()
+        .map(|(i, (v, e))| quote!(c[#i] = #v; e[#i] = #e;));
+    let tests = if tests.is_empty() {
+        quote!(true)
+    } else {
+        quote!(#(#tests)&*)
+    };
+    Ok(quote! {
+        /// The conditions (as computed, not normalised) and their a-priori bounds; `false`
+        /// when a divisor has cancelled too much for the bounds to hold.
+        #[inline(always)]
+        fn stability_quick_raw(p: &[f64; N_PARAMS], c: &mut [f64; N_CONDITIONS], e: &mut [f64; N_CONDITIONS]) -> bool {
+            #(#params)*
+            #body
+            #(#stores)*
+            #tests
+        }
+
+        /// The Liénard–Chipart conditions as [`stability_conditions`] computes them (not
+        /// normalised), with the cheaper a-priori bounds of the verdict's first stage
+        /// (`|c[k] − exact| ≤ e[k]`); `false` when they do not apply at `p` (a divisor
+        /// within a factor 2 of cancelling), and then `c` and `e` mean nothing.
+        pub fn stability_conditions_quick(
+            p: &[f64; N_PARAMS],
+            c: &mut [f64; N_CONDITIONS],
+            e: &mut [f64; N_CONDITIONS],
+        ) -> bool {
+            stability_quick_raw(p, c, e)
+        }
+
+        /// The verdict of the first stage: `None` where it is not clear.
+        #[inline(always)]
+        fn stability_quick(p: &[f64; N_PARAMS]) -> Option<Verdict> {
+            let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
+            if !stability_quick_raw(p, &mut c, &mut e) {
+                return None;
+            }
+            // Infinite or NaN bounds decide nothing.
+            if !c.iter().zip(&e).all(|(x, b)| (x.abs() + b) < f64::INFINITY) {
+                return None;
+            }
+            quick_verdict(&mut c, &e)
+        }
+
+        /// The first stage's verdict from its conditions and bounds.
+        #[inline(always)]
+        fn quick_verdict(c: &mut [f64; N_CONDITIONS], e: &[f64; N_CONDITIONS]) -> Option<Verdict> {
+            // Infinite or NaN bounds decide nothing.
+            if !c.iter().zip(e).all(|(x, b)| (x.abs() + b) < f64::INFINITY) {
+                return None;
+            }
+            match verdict_of(c, e) {
+                Verdict::Undecided => None,
+                v => Some(v),
+            }
+        }
+
+        #lanes
+    })
+}
+
+/// The first stage over `LANES` points at once: every value a `[f64; LANES]`, every
+/// operation a loop over the lanes that the compiler turns into packed instructions.
+fn lane_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
+    let FilterCode { body, tests, roots } =
+        render_filter(ctx, lowered, true)?.expect("the scalar filter exists");
+    let params = ctx.problem.params.iter().enumerate().map(|(i, p)| {
+        let local = format_ident!("{}", p.local);
+        quote!(let #local: [f64; LANES] = core::array::from_fn(|l| p[l][#i]);)
+    });
+    let stores = roots
+        .iter()
+        .enumerate()
+        .map(|(i, (v, e))| quote!(c[#i] = #v; e[#i] = #e;));
+    let tests = if tests.is_empty() {
+        quote!([true; LANES])
+    } else {
+        let mut it = tests.into_iter();
+        let first = it.next().expect("a test");
+        it.fold(first, |acc, t| quote!(l_and(#acc, #t)))
+    };
+    let has_sincos = lowered
+        .insts
+        .iter()
+        .any(|i| matches!(i.rhs, eom_sym::lower::Rhs::SinCos(_)));
+    let sincos = has_sincos.then(|| {
+        quote! {
+            #[inline(always)]
+            fn l_sincos(x: [f64; LANES]) -> ([f64; LANES], [f64; LANES]) {
+                let sc: [(f64, f64); LANES] = core::array::from_fn(|l| sincos(x[l]));
+                (core::array::from_fn(|l| sc[l].0), core::array::from_fn(|l| sc[l].1))
+            }
+        }
+    });
+    Ok(quote! {
+        #[inline(always)]
+        fn l_add(a: [f64; LANES], b: [f64; LANES]) -> [f64; LANES] {
+            core::array::from_fn(|l| a[l] + b[l])
+        }
+        #[inline(always)]
+        fn l_sub(a: [f64; LANES], b: [f64; LANES]) -> [f64; LANES] {
+            core::array::from_fn(|l| a[l] - b[l])
+        }
+        #[inline(always)]
+        fn l_mul(a: [f64; LANES], b: [f64; LANES]) -> [f64; LANES] {
+            core::array::from_fn(|l| a[l] * b[l])
+        }
+        #[inline(always)]
+        fn l_div(a: [f64; LANES], b: [f64; LANES]) -> [f64; LANES] {
+            core::array::from_fn(|l| a[l] / b[l])
+        }
+        #[inline(always)]
+        fn l_abs(a: [f64; LANES]) -> [f64; LANES] {
+            core::array::from_fn(|l| a[l].abs())
+        }
+        #[inline(always)]
+        fn l_neg(a: [f64; LANES]) -> [f64; LANES] {
+            core::array::from_fn(|l| -a[l])
+        }
+        #[inline(always)]
+        fn l_ge_half(b: [f64; LANES], m: [f64; LANES]) -> [bool; LANES] {
+            core::array::from_fn(|l| b[l].abs() >= 0.5 * m[l])
+        }
+        #[inline(always)]
+        fn l_and(a: [bool; LANES], b: [bool; LANES]) -> [bool; LANES] {
+            core::array::from_fn(|l| a[l] & b[l])
+        }
+        #sincos
+
+        /// The first stage at `LANES` points.
+        #[inline(never)]
+        fn stability_quick_lanes(p: &[[f64; N_PARAMS]; LANES]) -> [Option<Verdict>; LANES] {
+            let mut c = [[0.0; LANES]; N_CONDITIONS];
+            let mut e = [[0.0; LANES]; N_CONDITIONS];
+            #(#params)*
+            #body
+            #(#stores)*
+            let ok: [bool; LANES] = #tests;
+            core::array::from_fn(|l| {
+                if !ok[l] {
+                    return None;
+                }
+                let mut cl: [f64; N_CONDITIONS] = core::array::from_fn(|k| c[k][l]);
+                let el: [f64; N_CONDITIONS] = core::array::from_fn(|k| e[k][l]);
+                quick_verdict(&mut cl, &el)
+            })
         }
     })
+}
+
+/// The parameters' locals.
+fn param_locals(ctx: &Ctx) -> Vec<TokenStream> {
+    ctx.problem
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let local = format_ident!("{}", p.local);
+            quote!(let #local: f64 = p[#i];)
+        })
+        .collect()
 }
 
 /// The body of `stability_raw`: the parameters' locals, the bounded code, the stores.
 fn raw_body(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
     let BoundedCode { body, roots } = render_bounded(ctx, lowered)?;
-    let params = ctx.problem.params.iter().enumerate().map(|(i, p)| {
-        let local = format_ident!("{}", p.local);
-        quote!(let #local: f64 = p[#i];)
-    });
+    let params = param_locals(ctx);
     let stores = roots
         .iter()
         .enumerate()

@@ -22,6 +22,9 @@ pub struct GenVerdict {
     /// `stability(p)`: `1` stable, `-1` unstable (or marginal), `0` undecided; `None` outside
     /// the validity region of the reduction's rank decisions.
     pub verdict: fn(&[f64]) -> Option<i8>,
+    /// The verdicts of many points at once (`stability_many`: the first stage in packed
+    /// lanes), as `verdict` gives them one by one; a point of the wrong length gets `None`.
+    pub many: fn(&[Vec<f64>]) -> Vec<Option<i8>>,
 }
 
 macro_rules! verdict {
@@ -31,9 +34,24 @@ macro_rules! verdict {
             let p: &[f64; g::N_PARAMS] = p.try_into().ok()?;
             g::stability(p).ok().map(|v| v as i8)
         }
+        fn many(points: &[Vec<f64>]) -> Vec<Option<i8>> {
+            let arrays: Vec<Option<[f64; g::N_PARAMS]>> = points
+                .iter()
+                .map(|p| p.as_slice().try_into().ok())
+                .collect();
+            let valid: Vec<[f64; g::N_PARAMS]> = arrays.iter().flatten().copied().collect();
+            let mut out = vec![Ok(g::Verdict::Undecided); valid.len()];
+            g::stability_many(&valid, &mut out);
+            let mut verdicts = out.into_iter().map(|v| v.ok().map(|v| v as i8));
+            arrays
+                .iter()
+                .map(|a| a.and_then(|_| verdicts.next().flatten()))
+                .collect()
+        }
         GenVerdict {
             names: &g::PARAM_NAMES,
             verdict,
+            many,
         }
     }};
 }

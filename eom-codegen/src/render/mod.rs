@@ -12,11 +12,13 @@ use std::str::FromStr;
 
 mod bounded;
 mod checks;
+mod filter;
 mod finite;
 mod function;
 mod ready;
 
 pub(crate) use bounded::{BoundedCode, render_bounded};
+pub(crate) use filter::{FilterCode, render_filter};
 pub(crate) use function::{render_fn, sincos_item};
 use ready::{Part, by_ready, latency};
 

@@ -26,6 +26,10 @@ struct Stab {
     conditions: fn(&[f64]) -> (bool, WithBounds),
     /// `characteristic_polynomial`: values, bounds.
     polynomial: fn(&[f64]) -> WithBounds,
+    /// `stability_conditions_quick`: whether the bounds apply, values, a-priori bounds.
+    quick: fn(&[f64]) -> (bool, WithBounds),
+    /// `stability_many`: the verdicts of many points (`None` on an error).
+    many: fn(&[Vec<f64>]) -> Vec<Option<i8>>,
     degrees: &'static [usize],
     zero_roots: usize,
 }
@@ -49,11 +53,24 @@ macro_rules! stab {
             g::characteristic_polynomial(&arr(p), &mut c, &mut e);
             (c.to_vec(), e.to_vec())
         }
+        fn quick(p: &[f64]) -> (bool, WithBounds) {
+            let (mut c, mut e) = ([0.0; g::N_CONDITIONS], [0.0; g::N_CONDITIONS]);
+            let ok = g::stability_conditions_quick(&arr(p), &mut c, &mut e);
+            (ok, (c.to_vec(), e.to_vec()))
+        }
+        fn many(points: &[Vec<f64>]) -> Vec<Option<i8>> {
+            let points: Vec<[f64; g::N_PARAMS]> = points.iter().map(|p| arr(p)).collect();
+            let mut out = vec![Ok(g::Verdict::Undecided); points.len()];
+            assert_eq!(g::stability_many(&points, &mut out), points.len());
+            out.into_iter().map(|v| v.ok().map(|v| v as i8)).collect()
+        }
         Stab {
             model: $model,
             verdict,
             conditions,
             polynomial,
+            quick,
+            many,
             degrees: &g::CONDITION_DEGREES,
             zero_roots: g::ZERO_ROOTS,
         }
@@ -146,6 +163,27 @@ fn bounds_hold_against_double_double() {
                     .expect("double-double");
             let (coef, coef_err) = (g.polynomial)(&values);
             let (ok, (cond, cond_err)) = (g.conditions)(&values);
+            // The first stage's a-priori bounds, where they apply.
+            let (applies, (quick, quick_err)) = (g.quick)(&values);
+            let checked = if applies { exact.len() } else { 0 };
+            for k in 0..checked {
+                let err = (Dd::from_f64(quick[k]) - exact[k]).to_f64().abs();
+                assert!(
+                    err <= quick_err[k],
+                    "{} condition {k}, first stage: {:e} vs exact {:e}: error {err:e} above its bound {:e}",
+                    g.model,
+                    quick[k],
+                    exact[k].to_f64(),
+                    quick_err[k]
+                );
+                // Never tighter than it can be: at least the rounding of the value itself
+                // (a zero bound only for an exact value).
+                assert!(
+                    quick_err[k] > 0.0 || err == 0.0,
+                    "{} condition {k}",
+                    g.model
+                );
+            }
             let d = coef.len() - 1;
             let sign = if exact[d].to_f64() < 0.0 { -1.0 } else { 1.0 };
             for k in 0..exact.len() {
@@ -189,6 +227,9 @@ fn verdict_is_the_eigenvalues_where_decided() {
         let nominal = r.model.scope.nominal_values();
         let mut rng = StdRng::seed_from_u64(20261121);
         let (mut undecided, mut stable, mut marginal, mut points) = (0, 0, 0, 0);
+        // Points whose every condition is clear of its first-stage (a-priori) bound.
+        let mut clear = 0;
+        let mut drawn = Vec::new();
         for _ in 0..2000 {
             let values = random_point(&mut rng, &nominal, 0.3);
             let Ok(ss) = r.sym.evaluate(&values) else {
@@ -196,6 +237,9 @@ fn verdict_is_the_eigenvalues_where_decided() {
             };
             points += 1;
             let verdict = (g.verdict)(&values).expect("inside the validity region");
+            drawn.push((values.clone(), Some(verdict)));
+            let (applies, (q, qe)) = (g.quick)(&values);
+            clear += usize::from(applies && q.iter().zip(&qe).all(|(x, e)| x.abs() > *e));
             let Some(want) = eigen_stable(&ss.a) else {
                 // Marginal: not asymptotically stable, whatever the verdict decides.
                 assert_ne!(verdict, 1, "{}: a marginal point called stable", g.model);
@@ -216,8 +260,14 @@ fn verdict_is_the_eigenvalues_where_decided() {
                 }
             }
         }
+        // The batch verdict (first stage in lanes) is the one-point verdict, point by point
+        // (an odd count, so that the remainder after the lanes is used too).
+        drawn.truncate(drawn.len() / 2 * 2 - 1);
+        let (points_only, want): (Vec<Vec<f64>>, Vec<Option<i8>>) = drawn.into_iter().unzip();
+        assert_eq!((g.many)(&points_only), want, "{}: stability_many", g.model);
         report.push_str(&format!(
-            "{}: {points} points, {stable} stable, {marginal} marginal, {undecided} undecided\n",
+            "{}: {points} points, {stable} stable, {marginal} marginal, {undecided} undecided, \
+             {clear} clear of the first stage's bounds\n",
             g.model
         ));
         assert!(points >= 1000, "{}: {points} points evaluated", g.model);
@@ -266,6 +316,63 @@ fn bicycle_at_the_published_speeds() {
     }
     // Zero roots: heading and lateral position; the rest a quartic.
     assert_eq!((g::ZERO_ROOTS, g::POLY_DEGREE), (2, 4));
+}
+
+/// At the weave speed the bicycle's verdict changes; at the two neighbouring speeds (adjacent
+/// doubles) where the computed condition changes sign, the condition is within its rounding
+/// bound of zero: the verdict is undecided, in one call and in the batch, and the first
+/// stage's bound does not decide it either.
+#[test]
+fn bicycle_undecided_at_the_weave_speed() {
+    use stab::bicycle as g;
+    let iv = g::PARAM_NAMES
+        .iter()
+        .position(|n| *n == "v")
+        .expect("speed");
+    let at = |v: f64| {
+        let mut p = g::NOMINAL;
+        p[iv] = v;
+        p
+    };
+    let stable = |v: f64| g::stability(&at(v)) == Ok(g::Verdict::Stable);
+    let (mut lo, mut hi) = (4.28, 4.30);
+    assert!(!stable(lo) && stable(hi));
+    // Bisect on the running-bound conditions: the last condition that fails at `lo`.
+    let failing = |v: f64| {
+        let (mut c, mut e) = ([0.0; g::N_CONDITIONS], [0.0; g::N_CONDITIONS]);
+        assert!(g::stability_conditions(&at(v), &mut c, &mut e));
+        c.iter().position(|&x| x <= 0.0)
+    };
+    let k = failing(lo).expect("a failing condition below the weave speed");
+    while hi - lo > 0.0 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if failing(mid) == Some(k) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let mut undecided = 0;
+    for v in [lo, hi] {
+        let p = at(v);
+        let (mut c, mut e) = ([0.0; g::N_CONDITIONS], [0.0; g::N_CONDITIONS]);
+        assert!(g::stability_conditions(&p, &mut c, &mut e));
+        if c[k].abs() <= e[k] {
+            undecided += 1;
+            assert_eq!(g::stability(&p), Ok(g::Verdict::Undecided), "v = {v}");
+            let mut out = [Ok(g::Verdict::Stable); 5];
+            g::stability_many(&[p; 5], &mut out);
+            assert!(out.iter().all(|v| *v == Ok(g::Verdict::Undecided)));
+            let (mut q, mut qe) = ([0.0; g::N_CONDITIONS], [0.0; g::N_CONDITIONS]);
+            if g::stability_conditions_quick(&p, &mut q, &mut qe) {
+                assert!(q[k].abs() <= qe[k], "the first stage decides v = {v}");
+            }
+        }
+    }
+    assert!(undecided >= 1, "condition {k} at {lo}, {hi}: both decided");
 }
 
 #[test]
