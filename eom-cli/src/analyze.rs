@@ -930,7 +930,7 @@ fn gain_entries(
     warnings.extend(
         gain.warnings
             .iter()
-            .map(|w| ShownWarning::new("steady_state_gain", format!("steady-state gain: {w}"))),
+            .map(|w| ShownWarning::of_num(w, "steady-state gain: ")),
     );
     let mut out = Vec::with_capacity(inputs.len() * outputs.len());
     for (i, o) in outputs.iter().enumerate() {

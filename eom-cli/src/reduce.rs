@@ -161,11 +161,7 @@ pub fn report_of(
     )?;
     let modes = kept_modes(&red, &full, &reduced, ss);
     let mut warnings = ShownWarning::all_of_model(&lin.warnings, "");
-    warnings.extend(
-        red.warnings
-            .iter()
-            .map(|w| ShownWarning::new("model_reduction", w.clone())),
-    );
+    warnings.extend(red.warnings.iter().map(|w| ShownWarning::of_num(w, "")));
     let parameters = choice
         .params
         .iter()

@@ -48,6 +48,11 @@ impl ShownWarning {
         }
     }
 
+    /// A warning of a numeric analysis, its message prefixed by `prefix`.
+    pub fn of_num(w: &eom_num::NumWarning, prefix: &str) -> Self {
+        ShownWarning::new(w.kind(), format!("{prefix}{w}"))
+    }
+
     /// Model warnings, each prefixed by `prefix`.
     pub fn all_of_model(ws: &[eom_model::Warning], prefix: &str) -> Vec<Self> {
         ws.iter().map(|w| Self::of_model(w, prefix)).collect()
