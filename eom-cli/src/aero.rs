@@ -6,6 +6,7 @@
 use crate::analyze::SIG;
 use crate::error::CliError;
 use crate::format::{g, table};
+use crate::shown_warning::ShownWarning;
 use eom_aero::{Derivatives, WingFileKind};
 use serde::{Serialize, Serializer};
 use std::path::Path;
@@ -47,8 +48,8 @@ pub struct AeroReport {
     /// ∂F/∂x in SI (= (ρVS/2)·M; the wing item's damping is its negative), AVL's standard
     /// axes: rows X, Y, Z, L, M, N; columns u, v, w, p, q, r.
     pub dimensional: [[f64; 6]; 6],
-    /// What the reader or solver had to say.
-    pub warnings: Vec<String>,
+    /// What the reader or solver had to say (JSON: objects with `kind`, `item` and `message`).
+    pub warnings: Vec<ShownWarning>,
 }
 
 fn ordered_map<S: Serializer>(v: &[(String, f64)], s: S) -> Result<S::Ok, S::Error> {
@@ -110,7 +111,11 @@ pub fn aero(file: &str, req: &AeroRequest) -> Result<AeroReport, CliError> {
         density: req.density,
         speed: req.speed,
         dimensional: d.dimensional(req.density, req.speed)?,
-        warnings: w.warnings,
+        warnings: w
+            .warnings
+            .into_iter()
+            .map(|m| ShownWarning::new("aero", m))
+            .collect(),
     })
 }
 

@@ -11,6 +11,7 @@
 use crate::error::CliError;
 use crate::format::{ReIm, eigenvalue, g, re_im};
 use crate::params::ModelChoice;
+use crate::shown_warning::ShownWarning;
 use crate::timing::step;
 use eom_model::ModelError;
 use eom_model::{Linearizer, Method};
@@ -98,8 +99,9 @@ pub struct Analysis {
     /// Transmission zeros of the minimal realization, sorted by (re, im); `null` when not
     /// defined (no inputs or no outputs) or not computable (see `warnings`).
     pub zeros: Option<Vec<ReIm>>,
-    /// Warnings of the linearization and of the analyses.
-    pub warnings: Vec<String>,
+    /// Warnings of the linearization and of the analyses (JSON: objects with `kind`, `item`
+    /// and `message`).
+    pub warnings: Vec<ShownWarning>,
     /// The frequency response (only with `--freq`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frequency_response: Option<FreqReport>,
@@ -549,11 +551,7 @@ pub fn analyze_linearized(
     lin: &eom_model::Linearization,
 ) -> Result<Analysis, CliError> {
     let at_point = choice.build(overrides)?;
-    let warnings = lin
-        .warnings
-        .iter()
-        .map(|w| format!("linearization: {w}"))
-        .collect();
+    let warnings = ShownWarning::all_of_model(&lin.warnings, "linearization: ");
     let mut r = analyze_state_space(
         &lin.state_space,
         warnings,
@@ -581,8 +579,10 @@ pub fn analyze_linearized(
     r.preloads = match eom_model::assemble(&numeric) {
         Ok(a) => Some(eom_model::preloads::Preloads::of(&numeric, &a)),
         Err(e) => {
-            r.warnings
-                .push(format!("static preloads not computed: {e}"));
+            r.warnings.push(ShownWarning::new(
+                "not_computed",
+                format!("static preloads not computed: {e}"),
+            ));
             None
         }
     };
@@ -631,7 +631,7 @@ fn mode_options() -> ModeOptions {
 /// The analyses of a state-space model (model name, method and parameters left empty).
 fn analyze_state_space(
     ss: &StateSpace<f64>,
-    mut warnings: Vec<String>,
+    mut warnings: Vec<ShownWarning>,
     freq: Option<&FreqRequest>,
     structural_zeros: usize,
 ) -> Result<Analysis, CliError> {
@@ -723,7 +723,10 @@ fn analyze_state_space(
         None => None,
         Some(Ok(m)) => Some(m),
         Some(Err(e)) => {
-            warnings.push(format!("minimal realization not computed: {e}"));
+            warnings.push(ShownWarning::new(
+                "not_computed",
+                format!("minimal realization not computed: {e}"),
+            ));
             None
         }
     };
@@ -733,7 +736,10 @@ fn analyze_state_space(
     {
         Ok(g) => Some(g),
         Err(e) => {
-            warnings.push(format!("steady-state gains not computed: {e}"));
+            warnings.push(ShownWarning::new(
+                "not_computed",
+                format!("steady-state gains not computed: {e}"),
+            ));
             None
         }
     };
@@ -741,7 +747,10 @@ fn analyze_state_space(
         None => None,
         Some(Ok(z)) => Some(re_im(&z)),
         Some(Err(e)) => {
-            warnings.push(format!("transmission zeros not computed: {e}"));
+            warnings.push(ShownWarning::new(
+                "not_computed",
+                format!("transmission zeros not computed: {e}"),
+            ));
             None
         }
     };
@@ -798,18 +807,19 @@ pub const ACCURACY_WARNING: f64 = 1e-6;
 
 /// A warning per eigenvalue (one of each conjugate pair) that the rounding of A's entries
 /// alone makes uncertain beyond [`ACCURACY_WARNING`] of itself.
-fn accuracy_warnings(modes: &Modes) -> Vec<String> {
+fn accuracy_warnings(modes: &Modes) -> Vec<ShownWarning> {
     modes
         .distinct()
         .filter(|m| m.accuracy > ACCURACY_WARNING)
         .map(|m| {
-            format!(
+            let message = format!(
                 "eigenvalue {}: accurate to only about {} of itself: rounding the state \
                  matrix's entries alone moves it that much (scales differing widely, e.g. one \
                  element far stiffer or softer than the others)",
                 eigenvalue(m.eigenvalue, 6, m.eigenvalue.im != 0.0),
                 g(m.accuracy, 2)
-            )
+            );
+            ShownWarning::new("eigenvalue_accuracy", message)
         })
         .collect()
 }
@@ -818,7 +828,7 @@ fn minimal_view(
     ssm: &StateSpace<f64>,
     rep: &MinrealReport,
     modes: &Modes,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ShownWarning>,
 ) -> Result<MinimalReport, CliError> {
     for d in rep.fragile_decisions(100.0) {
         let stage = match d.stage {
@@ -828,7 +838,7 @@ fn minimal_view(
             RankStage::ObservabilityPbh => "observability (PBH test at repeated eigenvalues)",
             _ => "rank",
         };
-        warnings.push(format!(
+        let message = format!(
             "minimal realization: the {stage} rank decision at step {} is within a factor 100 of \
              its tolerance {} (singular values {}): another choice of units could change which \
              modes count as removed",
@@ -839,7 +849,8 @@ fn minimal_view(
                 .map(|s| g(*s, 3))
                 .collect::<Vec<_>>()
                 .join(", ")
-        ));
+        );
+        warnings.push(ShownWarning::new("fragile_minimal_realization", message));
     }
     // Nothing removed: the same model, the same modes.
     let mmodes = if rep.states_out == rep.states_in {
@@ -933,12 +944,12 @@ fn gain_entries(
     gain: &SteadyStateGain,
     inputs: &[Signal],
     outputs: &[Signal],
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ShownWarning>,
 ) -> Vec<GainEntry> {
     warnings.extend(
         gain.warnings
             .iter()
-            .map(|w| format!("steady-state gain: {w}")),
+            .map(|w| ShownWarning::of_num(w, "steady-state gain: ")),
     );
     let mut out = Vec::with_capacity(inputs.len() * outputs.len());
     for (i, o) in outputs.iter().enumerate() {

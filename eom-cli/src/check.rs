@@ -3,6 +3,7 @@
 
 use crate::error::CliError;
 use crate::params::ModelChoice;
+use crate::shown_warning::ShownWarning;
 use eom_model::{Linearizer, Method, assemble, reduce_report};
 use serde::Serialize;
 
@@ -32,8 +33,9 @@ pub struct CheckReport {
     /// What each input and output is, in words: the sign conventions of the actuators (a
     /// force extending the line from end 2 to end 1) and sensors (end 1 relative to end 2).
     pub signals: Vec<String>,
-    /// Warnings of the loading and of the linearization.
-    pub warnings: Vec<String>,
+    /// Warnings of the loading and of the linearization (JSON: objects with `kind`, `item` and
+    /// `message`).
+    pub warnings: Vec<ShownWarning>,
 }
 
 /// Builds, assembles and reduces the model at its defaults (the numeric elimination with all
@@ -67,11 +69,14 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
             );
             match Linearizer::new(&model).method(Method::Robust).run() {
                 Ok(lin) => {
-                    warnings.push(format!(
-                        "the default reduction fails ({}); the robust one reduces the model: \
-                         analyse it with `eom analyze {} --method robust`",
-                        numeric,
-                        eom_text::shown(&choice.name)
+                    warnings.push(ShownWarning::new(
+                        "robust_reduction_needed",
+                        format!(
+                            "the default reduction fails ({}); the robust one reduces the \
+                             model: analyse it with `eom analyze {} --method robust`",
+                            numeric,
+                            eom_text::shown(&choice.name)
+                        ),
                     ));
                     warnings.extend(shown(&lin.warnings));
                     lin.state_space.states()
@@ -306,7 +311,7 @@ units = "m"
     ))
 }
 
-/// The messages of the model's warnings.
-fn shown(warnings: &[eom_model::Warning]) -> Vec<String> {
-    warnings.iter().map(ToString::to_string).collect()
+/// The model's warnings, as the command shows them.
+fn shown(warnings: &[eom_model::Warning]) -> Vec<ShownWarning> {
+    ShownWarning::all_of_model(warnings, "")
 }

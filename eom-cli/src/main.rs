@@ -27,6 +27,7 @@ mod preloads;
 mod progress;
 mod reduce;
 mod report;
+mod shown_warning;
 mod sweep;
 mod symbolic;
 mod timing;

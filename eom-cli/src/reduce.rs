@@ -7,6 +7,7 @@ use crate::analyze::{Matrices, SIG, kind_name, linearize, stability_name};
 use crate::error::CliError;
 use crate::format::{ReIm, eigenvalue, g, table};
 use crate::params::ModelChoice;
+use crate::shown_warning::ShownWarning;
 use eom_model::Method;
 use eom_num::NumError;
 use eom_num::model_reduction::{MeasuredError, ReducedModel, Reducer, ReductionMethod};
@@ -90,8 +91,9 @@ pub struct ReduceReport {
     pub modes: Vec<KeptMode>,
     /// The reduced model's A, B, C, D with the state, input and output names.
     pub matrices: Matrices,
-    /// Warnings of the linearization and the reduction.
-    pub warnings: Vec<String>,
+    /// Warnings of the linearization and the reduction (JSON: objects with `kind`, `item` and
+    /// `message`).
+    pub warnings: Vec<ShownWarning>,
 }
 
 /// Maps the reducer's option errors onto the command line's options.
@@ -158,8 +160,8 @@ pub fn report_of(
         },
     )?;
     let modes = kept_modes(&red, &full, &reduced, ss);
-    let mut warnings: Vec<String> = lin.warnings.iter().map(ToString::to_string).collect();
-    warnings.extend(red.warnings.iter().cloned());
+    let mut warnings = ShownWarning::all_of_model(&lin.warnings, "");
+    warnings.extend(red.warnings.iter().map(|w| ShownWarning::of_num(w, "")));
     let parameters = choice
         .params
         .iter()

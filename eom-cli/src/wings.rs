@@ -51,7 +51,7 @@ pub struct ReducedFrequencyReport {
 pub fn wing_reports(
     model: &Model<f64>,
     eigenvalues: &[Complex64],
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<crate::shown_warning::ShownWarning>,
 ) -> Option<Vec<WingReport>> {
     let wings: Vec<_> = model.wings().collect();
     if wings.is_empty() {
@@ -62,7 +62,7 @@ pub fn wing_reports(
         betas
             .iter()
             .filter_map(|b| b.warning())
-            .map(|w| w.to_string()),
+            .map(|w| crate::shown_warning::ShownWarning::of_model(&w, "")),
     );
     let reports = wings
         .iter()

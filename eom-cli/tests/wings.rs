@@ -80,16 +80,13 @@ fn reduced_frequency_warnings_at_low_speed_only() {
             "{beta}"
         );
         assert_eq!(b["too_high"], warned);
-        let warnings: Vec<&str> = j["warnings"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|w| w.as_str().unwrap())
-            .collect();
+        let warnings = j["warnings"].as_array().unwrap();
         assert_eq!(
-            warnings
-                .iter()
-                .any(|w| w.contains("wing `fin`") && w.contains("reduced frequency")),
+            warnings.iter().any(|w| {
+                w["kind"] == "reduced_frequency_beyond_limit"
+                    && w["item"]["kind"] == "wing"
+                    && w["item"]["name"] == "fin"
+            }),
             warned,
             "{u}: {warnings:?}"
         );

@@ -38,11 +38,11 @@ use faer::MatRef;
 use nalgebra::DMatrix;
 use std::borrow::Cow;
 
-use crate::NumError;
 use crate::linalg::{
     Rank, RankTolerance, balance_in_place, decide, faer_view, nullspace, singular_values,
 };
 use crate::statespace::StateSpace;
+use crate::{NumError, NumWarning};
 
 /// The steady-state gain of one input/output pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -114,7 +114,7 @@ pub struct SteadyStateGain {
     /// Every nullspace decision of the chains (right then left), with gaps.
     pub decisions: Vec<Rank>,
     /// Warnings (near-tolerance decisions, ill-conditioning).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<NumWarning>,
     /// When A was decided regular by the certificate of its inverse instead of by its
     /// singular values (see the module documentation): the bounds. Then
     /// [`SteadyStateGain::a_rank`] has no singular values (its margin is a lower bound) and
@@ -204,12 +204,12 @@ pub fn steady_state_gain_with(
     }
     if too_few && second.zero_dimension >= opts.structural_zeros {
         let mut out = second;
-        out.warnings.push(format!(
-            "A was decided to have {} zero eigenvalue(s) at the default tolerance, fewer than \
-             the {} its structure proves (a defective zero pair split by rounding); decided at \
-             a tolerance {AMBIGUITY_FACTOR} times larger, which finds {}",
-            first.zero_dimension, opts.structural_zeros, out.zero_dimension
-        ));
+        out.warnings.push(NumWarning::GainZerosRedecided {
+            found: first.zero_dimension,
+            structural: opts.structural_zeros,
+            factor: AMBIGUITY_FACTOR,
+            redecided: out.zero_dimension,
+        });
         return Ok(out);
     }
     Err(NumError::AmbiguousRank(format!(
@@ -286,10 +286,11 @@ fn gain_at_tolerance(
     let thr = factor * opts.rank_tol.threshold(smax, n, n);
     let a_rank = decide(sv.clone(), thr);
     if a_rank.is_near_tolerance(100.0) {
-        warnings.push(format!(
-            "rank of A ({}) decided within a factor {:.3} of the threshold {thr:.3e}",
-            a_rank.rank, a_rank.margin
-        ));
+        warnings.push(NumWarning::GainFragileRank {
+            rank: a_rank.rank,
+            margin: a_rank.margin,
+            threshold: thr,
+        });
     }
 
     if a_rank.rank == n {
@@ -406,7 +407,7 @@ fn zero_split(
     a: &DMatrix<f64>,
     thr: f64,
     opts: &GainOptions,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<NumWarning>,
 ) -> Result<ZeroSplit, NumError> {
     let n = a.nrows();
     let mut decisions = Vec::new();
@@ -415,11 +416,10 @@ fn zero_split(
     let q = v0.ncols();
     for d in &decisions {
         if d.is_near_tolerance(100.0) {
-            warnings.push(format!(
-                "a nullspace decision of the zero-eigenvalue chain (rank {}) was within a \
-                 factor {:.3} of the threshold",
-                d.rank, d.margin
-            ));
+            warnings.push(NumWarning::GainFragileZeroChain {
+                rank: d.rank,
+                margin: d.margin,
+            });
         }
     }
     if l0.ncols() != q || nu_l != nu {
@@ -441,10 +441,9 @@ fn zero_split(
     let st = singular_values(&t)?;
     let separation_condition = st[0] / st[n - 1];
     if !separation_condition.is_finite() || separation_condition > opts.warn_condition {
-        warnings.push(format!(
-            "the zero modes are poorly separated from the others (cond [V₀ V₁] = \
-             {separation_condition:.3e})"
-        ));
+        warnings.push(NumWarning::GainZeroModesMixed {
+            condition: separation_condition,
+        });
     }
     let w = t.clone().lu().try_inverse().ok_or_else(|| {
         NumError::Singular(format!(
@@ -514,7 +513,7 @@ fn finite_part(
     c1: &DMatrix<f64>,
     d: &DMatrix<f64>,
     opts: &GainOptions,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<NumWarning>,
 ) -> Result<(DMatrix<f64>, DMatrix<f64>, f64, f64), NumError> {
     let s1 = singular_values(a1)?;
     let smallest = s1.last().copied().unwrap_or(0.0);
@@ -526,9 +525,7 @@ fn finite_part(
         f64::INFINITY
     };
     if condition > opts.warn_condition {
-        warnings.push(format!(
-            "A without its zero modes has condition number {condition:.3e}"
-        ));
+        warnings.push(NumWarning::GainReducedIllConditioned { condition });
     }
     let (fin, errors) = if a1.nrows() == 0 {
         (d.clone(), d.map(|v| f64::EPSILON * v.abs()))
@@ -740,16 +737,14 @@ fn regular(
     (a, b, c): (&DMatrix<f64>, &DMatrix<f64>, &DMatrix<f64>),
     reg: Regular,
     opts: &GainOptions,
-    mut warnings: Vec<String>,
+    mut warnings: Vec<NumWarning>,
 ) -> Result<SteadyStateGain, NumError> {
     let n = ss.states();
     if reg.condition > opts.warn_condition {
-        let at_most = if reg.bounds.is_some() { "at most " } else { "" };
-        warnings.push(format!(
-            "A has condition number {at_most}{:.3e}: the gains lose about {:.0} digits",
-            reg.condition,
-            reg.condition.log10()
-        ));
+        warnings.push(NumWarning::GainIllConditioned {
+            condition: reg.condition,
+            bound: reg.bounds.is_some(),
+        });
     }
     let (g, errors) = if n == 0 {
         (ss.d.clone(), ss.d.map(|v| f64::EPSILON * v.abs()))

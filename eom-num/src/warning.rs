@@ -1,8 +1,9 @@
-//! [`NumWarning`]: what a numeric reduction found doubtful but computed anyway.
+//! [`NumWarning`]: what a numeric reduction or analysis (the descriptor reduction, the
+//! steady-state gains, model reduction) found doubtful but computed anyway.
 
 use std::fmt;
 
-/// A warning of a numeric reduction (rank decisions close to their threshold,
+/// A warning of a numeric reduction or analysis (rank decisions close to their threshold,
 /// ill-conditioning, entries treated as rounding noise), with the values that triggered it.
 /// `Display` gives the message.
 #[derive(Debug, Clone, PartialEq)]
@@ -52,6 +53,67 @@ pub enum NumWarning {
         /// The rounding level of A.
         noise: f64,
     },
+    /// Steady-state gains: A was decided to have fewer zero eigenvalues than its structure
+    /// proves; decided again at a tolerance `factor` times larger.
+    GainZerosRedecided {
+        /// Zero eigenvalues found at the default tolerance.
+        found: usize,
+        /// Zero eigenvalues the structure proves.
+        structural: usize,
+        /// The factor the tolerance was raised by.
+        factor: f64,
+        /// Zero eigenvalues found at the larger tolerance.
+        redecided: usize,
+    },
+    /// Steady-state gains: the rank of A decided within a factor 100 of its threshold.
+    GainFragileRank {
+        /// The rank decided.
+        rank: usize,
+        /// How far the nearest singular value is from the threshold, as a factor.
+        margin: f64,
+        /// The threshold.
+        threshold: f64,
+    },
+    /// Steady-state gains: a nullspace decision of the zero-eigenvalue chain within a factor
+    /// 100 of its threshold.
+    GainFragileZeroChain {
+        /// The rank decided.
+        rank: usize,
+        /// How far the nearest singular value is from the threshold, as a factor.
+        margin: f64,
+    },
+    /// Steady-state gains: the zero modes are poorly separated from the others.
+    GainZeroModesMixed {
+        /// cond [V₀ V₁].
+        condition: f64,
+    },
+    /// Steady-state gains: A without its zero modes is ill-conditioned.
+    GainReducedIllConditioned {
+        /// Its condition number.
+        condition: f64,
+    },
+    /// Steady-state gains: A is ill-conditioned (regular A).
+    GainIllConditioned {
+        /// Its condition number (an upper bound when `bound`).
+        condition: f64,
+        /// Whether `condition` is an upper bound (A certified regular by its inverse).
+        bound: bool,
+    },
+    /// Model reduction: stable states that no balanced model keeps (Hankel singular value
+    /// below n·ε·σ₁).
+    HankelNegligible {
+        /// How many.
+        count: usize,
+        /// Of how many stable states.
+        stable: usize,
+    },
+    /// Model reduction: a stable mode nearly shares an eigenvalue with a kept one.
+    StableKeptCoupling {
+        /// The norm of the Sylvester solution that splits them (infinite when singular).
+        norm: f64,
+    },
+    /// Model reduction: a kept mode nearly shares its eigenvalue with a removed one.
+    ModalTruncationIllConditioned,
 }
 
 impl NumWarning {
@@ -63,6 +125,15 @@ impl NumWarning {
             NumWarning::StiffE { .. } => "stiff_e",
             NumWarning::IllConditionedA22 { .. } => "ill_conditioned_a22",
             NumWarning::A22NearNoise { .. } => "a22_near_noise",
+            NumWarning::GainZerosRedecided { .. } => "gain_zeros_redecided",
+            NumWarning::GainFragileRank { .. } => "gain_fragile_rank",
+            NumWarning::GainFragileZeroChain { .. } => "gain_fragile_zero_chain",
+            NumWarning::GainZeroModesMixed { .. } => "gain_zero_modes_mixed",
+            NumWarning::GainReducedIllConditioned { .. } => "gain_reduced_ill_conditioned",
+            NumWarning::GainIllConditioned { .. } => "gain_ill_conditioned",
+            NumWarning::HankelNegligible { .. } => "hankel_negligible",
+            NumWarning::StableKeptCoupling { .. } => "stable_kept_coupling",
+            NumWarning::ModalTruncationIllConditioned => "modal_truncation_ill_conditioned",
         }
     }
 }
@@ -106,6 +177,63 @@ impl fmt::Display for NumWarning {
                 f,
                 "A22 (σ_min {smallest:.3e}) is within a factor 100 of the rounding level of A \
                  ({noise:.3e}) and E's nullspace is not structural: the pencil may have index > 1"
+            ),
+            NumWarning::GainZerosRedecided {
+                found,
+                structural,
+                factor,
+                redecided,
+            } => write!(
+                f,
+                "A was decided to have {found} zero eigenvalue(s) at the default tolerance, \
+                 fewer than the {structural} its structure proves (a defective zero pair split \
+                 by rounding); decided at a tolerance {factor} times larger, which finds \
+                 {redecided}"
+            ),
+            NumWarning::GainFragileRank {
+                rank,
+                margin,
+                threshold,
+            } => write!(
+                f,
+                "rank of A ({rank}) decided within a factor {margin:.3} of the threshold \
+                 {threshold:.3e}"
+            ),
+            NumWarning::GainFragileZeroChain { rank, margin } => write!(
+                f,
+                "a nullspace decision of the zero-eigenvalue chain (rank {rank}) was within a \
+                 factor {margin:.3} of the threshold"
+            ),
+            NumWarning::GainZeroModesMixed { condition } => write!(
+                f,
+                "the zero modes are poorly separated from the others (cond [V₀ V₁] = \
+                 {condition:.3e})"
+            ),
+            NumWarning::GainReducedIllConditioned { condition } => write!(
+                f,
+                "A without its zero modes has condition number {condition:.3e}"
+            ),
+            NumWarning::GainIllConditioned { condition, bound } => write!(
+                f,
+                "A has condition number {}{condition:.3e}: the gains lose about {:.0} digits",
+                if *bound { "at most " } else { "" },
+                condition.log10()
+            ),
+            NumWarning::HankelNegligible { count, stable } => write!(
+                f,
+                "{count} of the {stable} stable states are uncontrollable or unobservable to \
+                 working precision (Hankel singular value below n·ε·σ₁): no balanced model \
+                 keeps them"
+            ),
+            NumWarning::StableKeptCoupling { norm } => write!(
+                f,
+                "a stable mode nearly shares an eigenvalue with a kept (zero, marginal or \
+                 unstable) one: the Sylvester solution that splits them has norm {norm:.3e}, \
+                 and the stable part carries that much amplified rounding"
+            ),
+            NumWarning::ModalTruncationIllConditioned => f.write_str(
+                "a kept mode nearly shares its eigenvalue with a removed one: modal truncation \
+                 is ill-conditioned there",
             ),
         }
     }

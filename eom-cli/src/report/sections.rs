@@ -504,6 +504,6 @@ pub fn warnings(p: &mut Page, cx: &Context<'_>) {
     }
     p.section("warnings", "Warnings");
     for w in &cx.analysis.warnings {
-        p.note(w);
+        p.note(&w.message);
     }
 }

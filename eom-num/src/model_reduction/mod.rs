@@ -62,8 +62,8 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::NumError;
 use crate::statespace::{SignalNames, StateSpace};
+use crate::{NumError, NumWarning};
 
 /// The reduction of the stable part.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -148,7 +148,7 @@ pub struct ReducedModel {
     /// nearly touches a kept one).
     pub coupling: f64,
     /// Numerical concerns, in words.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<NumWarning>,
 }
 
 impl ReducedModel {
@@ -229,30 +229,20 @@ impl<'a> Reducer<'a> {
         let numerical = hankel.as_ref().map_or(0, |h| h.numerical_order());
         let mut warnings = Vec::new();
         if numerical < ns && self.method != ReductionMethod::Modal {
-            warnings.push(format!(
-                "{} of the {ns} stable states are uncontrollable or unobservable to working \
-                 precision (Hankel singular value below n·ε·σ₁): no balanced model keeps them",
-                ns - numerical
-            ));
+            warnings.push(NumWarning::HankelNegligible {
+                count: ns - numerical,
+                stable: ns,
+            });
         }
         if sp.coupling_singular || sp.coupling > 1e8 {
-            warnings.push(format!(
-                "a stable mode nearly shares an eigenvalue with a kept (zero, marginal or \
-                 unstable) one: the Sylvester solution that splits them has norm {:.3e}, and \
-                 the stable part carries that much amplified rounding",
-                sp.coupling
-            ));
+            warnings.push(NumWarning::StableKeptCoupling { norm: sp.coupling });
         }
         let d = &ss.d;
         let (a_r, b_r, c_r, d_r, v_s, w_s, bound) = match self.method {
             ReductionMethod::Modal => {
                 let (v, w, t11, singular) = self.modal(&sp)?;
                 if singular {
-                    warnings.push(
-                        "a kept mode nearly shares its eigenvalue with a removed one: modal \
-                         truncation is ill-conditioned there"
-                            .into(),
-                    );
+                    warnings.push(NumWarning::ModalTruncationIllConditioned);
                 }
                 let b = w.transpose() * &sp.b_s;
                 let c = &sp.c_s * &v;
