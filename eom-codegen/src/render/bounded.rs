@@ -24,6 +24,7 @@
 //! decides every point whose conditions are clear of zero, and leaves the rest to it.
 
 use super::Ctx;
+use super::fold::Fold;
 use crate::CodegenError;
 use eom_sym::lower::{Lowered, Operand, Rhs};
 use eom_sym::{Call, Func};
@@ -82,31 +83,6 @@ impl Renderer<'_> {
         )
     }
 
-    fn operand(&self, o: Operand) -> Result<V, CodegenError> {
-        Ok(match o {
-            Operand::Temp(t) => {
-                let v = format_ident!("t{}", t);
-                let err = self.has_err[t as usize].then(|| self.var(&format_ident!("e{}", t)));
-                V {
-                    val: self.var(&v),
-                    err,
-                }
-            }
-            Operand::Param(k) => V {
-                val: self.var(&self.ctx.param_local(k)),
-                err: None,
-            },
-            Operand::Lit(x) => V {
-                val: self.ctx.operand(o)?,
-                err: if exact_literal(x) {
-                    None
-                } else {
-                    Some(self.ctx.num.lit(x.abs() * f64::EPSILON * 0.5, "literal")?)
-                },
-            },
-        })
-    }
-
     /// Binds a value and its bound to fresh names.
     fn bind(
         &mut self,
@@ -121,148 +97,6 @@ impl Renderer<'_> {
             self.var(&w)
         });
         V { val: vv, err }
-    }
-
-    /// `a + s·b` with `s = ±1`.
-    fn add(&mut self, a: &V, b: &V, negate: bool) -> Result<V, CodegenError> {
-        let (av, bv) = (&a.val, &b.val);
-        let val = if negate {
-            quote!(#av - #bv)
-        } else {
-            quote!(#av + #bv)
-        };
-        let u = self.eps(1.0)?;
-        let (ea, eb) = (a.err.clone(), b.err.clone());
-        Ok(self.bind(val, |v| {
-            let mut err = quote!(#u * #v.abs());
-            for e in [ea, eb].into_iter().flatten() {
-                err = quote!(#e + #err);
-            }
-            Some(err)
-        }))
-    }
-
-    /// `a·b`.
-    fn mul(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
-        let (av, bv) = (a.val.clone(), b.val.clone());
-        let u = self.eps(1.0)?;
-        let (ea, eb) = (a.err.clone(), b.err.clone());
-        Ok(self.bind(quote!(#av * #bv), |v| {
-            let own = quote!(#u * #v.abs());
-            Some(match (ea, eb) {
-                (None, None) => own,
-                (Some(ea), None) => quote!(#ea * #bv.abs() + #own),
-                (None, Some(eb)) => quote!(#eb * #av.abs() + #own),
-                (Some(ea), Some(eb)) => {
-                    quote!(#av.abs() * #eb + #ea * (#bv.abs() + #eb) + #own)
-                }
-            })
-        }))
-    }
-
-    /// `c·a` for a literal `c`.
-    fn scale(&mut self, a: &V, c: f64) -> Result<V, CodegenError> {
-        if c == 1.0 {
-            return Ok(a.clone());
-        }
-        let av = &a.val;
-        if c == -1.0 {
-            return Ok(V {
-                val: quote!((-#av)),
-                err: a.err.clone(),
-            });
-        }
-        let mag = self.ctx.num.lit(c.abs(), "coefficient")?;
-        let val = if c < 0.0 {
-            quote!(-(#mag * #av))
-        } else {
-            quote!(#mag * #av)
-        };
-        let ea = a.err.clone();
-        // A power of two scales exactly (underflow aside).
-        if c.abs().log2().fract() == 0.0 {
-            return Ok(self.bind(val, |_| ea.map(|e| quote!(#mag * #e))));
-        }
-        let u = self.eps(if exact_literal(c) { 1.0 } else { 1.5 })?;
-        Ok(self.bind(val, |v| {
-            let own = quote!(#u * #v.abs());
-            Some(match ea {
-                None => own,
-                Some(e) => quote!(#mag * #e + #own),
-            })
-        }))
-    }
-
-    /// `a/b`.
-    fn div(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
-        let (av, bv) = (a.val.clone(), b.val.clone());
-        let u = self.eps(1.0)?;
-        let (ea, eb) = (a.err.clone(), b.err.clone());
-        Ok(self.bind(quote!(#av / #bv), |v| {
-            Some(match (ea, eb) {
-                (None, None) => quote!(#u * #v.abs()),
-                (Some(ea), None) => quote!(#ea / #bv.abs() + #u * #v.abs()),
-                (ea, Some(eb)) => {
-                    let ea = ea.unwrap_or(quote!(0.0));
-                    quote!({
-                        let d: f64 = #bv.abs() - #eb;
-                        if d > 0.0 { (#ea + #v.abs() * #eb) / d + #u * #v.abs() } else { f64::INFINITY }
-                    })
-                }
-            })
-        }))
-    }
-
-    fn sum(&mut self, c0: f64, terms: &[(Operand, f64)]) -> Result<V, CodegenError> {
-        let mut acc: Option<V> = if c0 != 0.0 {
-            Some(self.operand(Operand::Lit(c0))?)
-        } else {
-            None
-        };
-        for &(x, c) in terms {
-            let xv = self.operand(x)?;
-            let term = if c.abs() == 1.0 {
-                xv
-            } else {
-                self.scale(&xv, c.abs())?
-            };
-            acc = Some(match acc {
-                None if c < 0.0 => self.scale(&term, -1.0)?,
-                None => term,
-                Some(a) => self.add(&a, &term, c < 0.0)?,
-            });
-        }
-        Ok(acc.unwrap_or(V {
-            val: quote!(0.0),
-            err: None,
-        }))
-    }
-
-    fn prod(&mut self, coef: f64, num: &[Operand], den: &[Operand]) -> Result<V, CodegenError> {
-        let mut acc: Option<V> = None;
-        for &x in num {
-            let xv = self.operand(x)?;
-            acc = Some(match acc {
-                None => xv,
-                Some(a) => self.mul(&a, &xv)?,
-            });
-        }
-        let mut n = match acc {
-            Some(a) => self.scale(&a, coef)?,
-            None => self.operand(Operand::Lit(coef))?,
-        };
-        if !den.is_empty() {
-            let mut d: Option<V> = None;
-            for &x in den {
-                let xv = self.operand(x)?;
-                d = Some(match d {
-                    None => xv,
-                    Some(a) => self.mul(&a, &xv)?,
-                });
-            }
-            n = self.div(&n, &d.expect("a divisor"))?;
-        }
-        Ok(n)
     }
 
     /// A function of the chosen math library.
@@ -397,6 +231,132 @@ impl Renderer<'_> {
             }
         }
         Ok(())
+    }
+}
+
+impl Fold for Renderer<'_> {
+    type V = V;
+
+    fn operand(&self, o: Operand) -> Result<V, CodegenError> {
+        Ok(match o {
+            Operand::Temp(t) => {
+                let v = format_ident!("t{}", t);
+                let err = self.has_err[t as usize].then(|| self.var(&format_ident!("e{}", t)));
+                V {
+                    val: self.var(&v),
+                    err,
+                }
+            }
+            Operand::Param(k) => V {
+                val: self.var(&self.ctx.param_local(k)),
+                err: None,
+            },
+            Operand::Lit(x) => V {
+                val: self.ctx.operand(o)?,
+                err: if exact_literal(x) {
+                    None
+                } else {
+                    Some(self.ctx.num.lit(x.abs() * f64::EPSILON * 0.5, "literal")?)
+                },
+            },
+        })
+    }
+
+    /// `a + s·b` with `s = ±1`.
+    fn add(&mut self, a: &V, b: &V, negate: bool) -> Result<V, CodegenError> {
+        let (av, bv) = (&a.val, &b.val);
+        let val = if negate {
+            quote!(#av - #bv)
+        } else {
+            quote!(#av + #bv)
+        };
+        let u = self.eps(1.0)?;
+        let (ea, eb) = (a.err.clone(), b.err.clone());
+        Ok(self.bind(val, |v| {
+            let mut err = quote!(#u * #v.abs());
+            for e in [ea, eb].into_iter().flatten() {
+                err = quote!(#e + #err);
+            }
+            Some(err)
+        }))
+    }
+
+    /// `a·b`.
+    fn mul(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
+        let (av, bv) = (a.val.clone(), b.val.clone());
+        let u = self.eps(1.0)?;
+        let (ea, eb) = (a.err.clone(), b.err.clone());
+        Ok(self.bind(quote!(#av * #bv), |v| {
+            let own = quote!(#u * #v.abs());
+            Some(match (ea, eb) {
+                (None, None) => own,
+                (Some(ea), None) => quote!(#ea * #bv.abs() + #own),
+                (None, Some(eb)) => quote!(#eb * #av.abs() + #own),
+                (Some(ea), Some(eb)) => {
+                    quote!(#av.abs() * #eb + #ea * (#bv.abs() + #eb) + #own)
+                }
+            })
+        }))
+    }
+
+    /// `c·a` for a literal `c`.
+    fn scale(&mut self, a: &V, c: f64) -> Result<V, CodegenError> {
+        if c == 1.0 {
+            return Ok(a.clone());
+        }
+        let av = &a.val;
+        if c == -1.0 {
+            return Ok(V {
+                val: quote!((-#av)),
+                err: a.err.clone(),
+            });
+        }
+        let mag = self.ctx.num.lit(c.abs(), "coefficient")?;
+        let val = if c < 0.0 {
+            quote!(-(#mag * #av))
+        } else {
+            quote!(#mag * #av)
+        };
+        let ea = a.err.clone();
+        // A power of two scales exactly (underflow aside).
+        if c.abs().log2().fract() == 0.0 {
+            return Ok(self.bind(val, |_| ea.map(|e| quote!(#mag * #e))));
+        }
+        let u = self.eps(if exact_literal(c) { 1.0 } else { 1.5 })?;
+        Ok(self.bind(val, |v| {
+            let own = quote!(#u * #v.abs());
+            Some(match ea {
+                None => own,
+                Some(e) => quote!(#mag * #e + #own),
+            })
+        }))
+    }
+
+    /// `a/b`.
+    fn div(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
+        let (av, bv) = (a.val.clone(), b.val.clone());
+        let u = self.eps(1.0)?;
+        let (ea, eb) = (a.err.clone(), b.err.clone());
+        Ok(self.bind(quote!(#av / #bv), |v| {
+            Some(match (ea, eb) {
+                (None, None) => quote!(#u * #v.abs()),
+                (Some(ea), None) => quote!(#ea / #bv.abs() + #u * #v.abs()),
+                (ea, Some(eb)) => {
+                    let ea = ea.unwrap_or(quote!(0.0));
+                    quote!({
+                        let d: f64 = #bv.abs() - #eb;
+                        if d > 0.0 { (#ea + #v.abs() * #eb) / d + #u * #v.abs() } else { f64::INFINITY }
+                    })
+                }
+            })
+        }))
+    }
+
+    fn zero(&mut self) -> V {
+        V {
+            val: quote!(0.0),
+            err: None,
+        }
     }
 }
 

@@ -34,6 +34,7 @@
 //! above the running one and the filter leaves the point to it.
 
 use super::Ctx;
+use super::fold::Fold;
 use crate::CodegenError;
 use eom_sym::lower::{Lowered, Operand, Rhs};
 use eom_sym::{Call, Func};
@@ -145,146 +146,6 @@ impl Renderer<'_> {
         }
     }
 
-    fn operand(&self, o: Operand) -> Result<V, CodegenError> {
-        Ok(match o {
-            Operand::Temp(t) => {
-                let (v, m) = (format_ident!("t{}", t), format_ident!("m{}_", t));
-                V {
-                    val: quote!(#v),
-                    mag: quote!(#m),
-                    rho: self.rho[t as usize].expect("defined before use"),
-                }
-            }
-            Operand::Param(k) => {
-                let p = self.ctx.param_local(k);
-                V {
-                    val: quote!(#p),
-                    mag: self.abs(&quote!(#p)),
-                    rho: 0.0,
-                }
-            }
-            Operand::Lit(x) => {
-                let exact = super::bounded::exact_literal(x);
-                V {
-                    val: self.lit(self.ctx.operand(o)?),
-                    mag: self.lit(self.ctx.num.lit(x.abs(), "literal")?),
-                    rho: if exact { 0.0 } else { U },
-                }
-            }
-        })
-    }
-
-    fn add(&mut self, a: &V, b: &V, negate: bool) -> V {
-        let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
-        let val = self.op(if negate { '-' } else { '+' }, av, bv);
-        let mag = self.op('+', am, bm);
-        self.bind(val, mag, add_rho(a.rho, b.rho))
-    }
-
-    fn mul(&mut self, a: &V, b: &V) -> V {
-        let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
-        let (val, mag) = (self.op('*', av, bv), self.op('*', am, bm));
-        self.bind(val, mag, mul_rho(a.rho, b.rho))
-    }
-
-    /// `c·a` for a literal `c` (as `bounded.rs` renders it).
-    fn scale(&mut self, a: &V, c: f64) -> Result<V, CodegenError> {
-        if c == 1.0 {
-            return Ok(a.clone());
-        }
-        let av = &a.val;
-        if c == -1.0 {
-            return Ok(V {
-                val: self.neg(av),
-                ..a.clone()
-            });
-        }
-        let lit = self.lit(self.ctx.num.lit(c.abs(), "coefficient")?);
-        let val = self.op('*', &lit, av);
-        let val = if c < 0.0 { self.neg(&val) } else { val };
-        let am = &a.mag;
-        let rho = if c.abs().log2().fract() == 0.0 {
-            a.rho
-        } else {
-            let rc = if super::bounded::exact_literal(c) {
-                0.0
-            } else {
-                U
-            };
-            mul_rho(a.rho, rc)
-        };
-        let mag = self.op('*', &lit, am);
-        Ok(self.bind(val, mag, rho))
-    }
-
-    fn div(&mut self, a: &V, b: &V) -> V {
-        let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
-        if b.rho > 0.0 {
-            self.tests.push(if self.lanes {
-                quote!(l_ge_half(#bv, #bm))
-            } else {
-                quote!((#bv.abs() >= 0.5 * #bm))
-            });
-        }
-        let (ra, rb) = (a.rho, b.rho);
-        let rho = (1.0 + U) * (U + ra + 2.0 * (1.0 + ra) * rb / (1.0 - 2.0 * rb));
-        let (val, mag) = (self.op('/', av, bv), self.op('/', am, &self.abs(bv)));
-        self.bind(val, mag, rho)
-    }
-
-    fn sum(&mut self, c0: f64, terms: &[(Operand, f64)]) -> Result<V, CodegenError> {
-        let mut acc: Option<V> = if c0 != 0.0 {
-            Some(self.operand(Operand::Lit(c0))?)
-        } else {
-            None
-        };
-        for &(x, c) in terms {
-            let xv = self.operand(x)?;
-            let term = if c.abs() == 1.0 {
-                xv
-            } else {
-                self.scale(&xv, c.abs())?
-            };
-            acc = Some(match acc {
-                None if c < 0.0 => self.scale(&term, -1.0)?,
-                None => term,
-                Some(a) => self.add(&a, &term, c < 0.0),
-            });
-        }
-        Ok(acc.unwrap_or(V {
-            val: self.lit(quote!(0.0)),
-            mag: self.lit(quote!(0.0)),
-            rho: 0.0,
-        }))
-    }
-
-    fn prod(&mut self, coef: f64, num: &[Operand], den: &[Operand]) -> Result<V, CodegenError> {
-        let mut acc: Option<V> = None;
-        for &x in num {
-            let xv = self.operand(x)?;
-            acc = Some(match acc {
-                None => xv,
-                Some(a) => self.mul(&a, &xv),
-            });
-        }
-        let mut n = match acc {
-            Some(a) => self.scale(&a, coef)?,
-            None => self.operand(Operand::Lit(coef))?,
-        };
-        if !den.is_empty() {
-            let mut d: Option<V> = None;
-            for &x in den {
-                let xv = self.operand(x)?;
-                d = Some(match d {
-                    None => xv,
-                    Some(a) => self.mul(&a, &xv),
-                });
-            }
-            n = self.div(&n, &d.expect("a divisor"));
-        }
-        Ok(n)
-    }
-
     fn set(&mut self, t: u32, v: V) {
         let (ti, mi) = (format_ident!("t{}", t), format_ident!("m{}_", t));
         let (val, mag, ty) = (v.val, v.mag, self.ty());
@@ -343,6 +204,105 @@ impl Renderer<'_> {
             Rhs::Call1(..) | Rhs::Call2(..) => return Ok(false),
         }
         Ok(true)
+    }
+}
+
+impl Fold for Renderer<'_> {
+    type V = V;
+
+    fn operand(&self, o: Operand) -> Result<V, CodegenError> {
+        Ok(match o {
+            Operand::Temp(t) => {
+                let (v, m) = (format_ident!("t{}", t), format_ident!("m{}_", t));
+                V {
+                    val: quote!(#v),
+                    mag: quote!(#m),
+                    rho: self.rho[t as usize].expect("defined before use"),
+                }
+            }
+            Operand::Param(k) => {
+                let p = self.ctx.param_local(k);
+                V {
+                    val: quote!(#p),
+                    mag: self.abs(&quote!(#p)),
+                    rho: 0.0,
+                }
+            }
+            Operand::Lit(x) => {
+                let exact = super::bounded::exact_literal(x);
+                V {
+                    val: self.lit(self.ctx.operand(o)?),
+                    mag: self.lit(self.ctx.num.lit(x.abs(), "literal")?),
+                    rho: if exact { 0.0 } else { U },
+                }
+            }
+        })
+    }
+
+    fn add(&mut self, a: &V, b: &V, negate: bool) -> Result<V, CodegenError> {
+        let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
+        let val = self.op(if negate { '-' } else { '+' }, av, bv);
+        let mag = self.op('+', am, bm);
+        Ok(self.bind(val, mag, add_rho(a.rho, b.rho)))
+    }
+
+    fn mul(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
+        let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
+        let (val, mag) = (self.op('*', av, bv), self.op('*', am, bm));
+        Ok(self.bind(val, mag, mul_rho(a.rho, b.rho)))
+    }
+
+    /// `c·a` for a literal `c` (as `bounded.rs` renders it).
+    fn scale(&mut self, a: &V, c: f64) -> Result<V, CodegenError> {
+        if c == 1.0 {
+            return Ok(a.clone());
+        }
+        let av = &a.val;
+        if c == -1.0 {
+            return Ok(V {
+                val: self.neg(av),
+                ..a.clone()
+            });
+        }
+        let lit = self.lit(self.ctx.num.lit(c.abs(), "coefficient")?);
+        let val = self.op('*', &lit, av);
+        let val = if c < 0.0 { self.neg(&val) } else { val };
+        let am = &a.mag;
+        let rho = if c.abs().log2().fract() == 0.0 {
+            a.rho
+        } else {
+            let rc = if super::bounded::exact_literal(c) {
+                0.0
+            } else {
+                U
+            };
+            mul_rho(a.rho, rc)
+        };
+        let mag = self.op('*', &lit, am);
+        Ok(self.bind(val, mag, rho))
+    }
+
+    fn div(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
+        let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
+        if b.rho > 0.0 {
+            self.tests.push(if self.lanes {
+                quote!(l_ge_half(#bv, #bm))
+            } else {
+                quote!((#bv.abs() >= 0.5 * #bm))
+            });
+        }
+        let (ra, rb) = (a.rho, b.rho);
+        let rho = (1.0 + U) * (U + ra + 2.0 * (1.0 + ra) * rb / (1.0 - 2.0 * rb));
+        let (val, mag) = (self.op('/', av, bv), self.op('/', am, &self.abs(bv)));
+        Ok(self.bind(val, mag, rho))
+    }
+
+    fn zero(&mut self) -> V {
+        V {
+            val: self.lit(quote!(0.0)),
+            mag: self.lit(quote!(0.0)),
+            rho: 0.0,
+        }
     }
 }
 

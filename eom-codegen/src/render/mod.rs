@@ -14,6 +14,7 @@ mod bounded;
 mod checks;
 mod filter;
 mod finite;
+mod fold;
 mod function;
 mod ready;
 
