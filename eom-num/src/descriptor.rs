@@ -55,7 +55,7 @@ use num_complex::Complex64;
 
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
-use crate::{NumError, NumWarning};
+use crate::{Bound, NumError, NumWarning, OptionError};
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
 /// are rounding noise and treated as exactly zero (the same scale as the default rank
@@ -298,10 +298,11 @@ fn check_arguments(
     d.validate()?;
     opts.rank_tol.validate()?;
     if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
-        return Err(NumError::InvalidOption(format!(
-            "DescriptorOptions::warn_condition = {}: must be > 0",
-            opts.warn_condition
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "DescriptorOptions::warn_condition",
+            value: opts.warn_condition,
+            must: Bound::Positive,
+        }));
     }
     let n = d.states();
     match opts.phys {
@@ -801,10 +802,11 @@ pub fn generalized_eigenvalues_with(
     d.validate()?;
     opts.rank_tol.validate()?;
     if !(opts.infinite_tol.is_finite() && opts.infinite_tol >= 0.0) {
-        return Err(NumError::InvalidOption(format!(
-            "GenEigOptions::infinite_tol = {}: must be finite and ≥ 0",
-            opts.infinite_tol
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "GenEigOptions::infinite_tol",
+            value: opts.infinite_tol,
+            must: Bound::FiniteNonNegative,
+        }));
     }
     let n = d.states();
     let (mut e, mut a) = (d.e.clone(), d.a.clone());

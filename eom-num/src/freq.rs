@@ -46,7 +46,7 @@ use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::NumError;
+use crate::{Bound, NumError, OptionError};
 use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
@@ -887,6 +887,15 @@ impl FrequencyResponse {
     }
 }
 
+/// The error for `FreqOptions::points_per_decade = 0`.
+fn no_points_per_decade() -> NumError {
+    NumError::InvalidOption(OptionError::Value {
+        option: "FreqOptions::points_per_decade",
+        value: 0.0,
+        must: Bound::AtLeastOne,
+    })
+}
+
 /// The frequency grid in rad/s.
 fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> {
     let ppd = opts.points_per_decade;
@@ -894,11 +903,12 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
         // lo, hi in log10(rad/s); inclusive, ppd points per decade.
         let steps = ((hi - lo) * ppd as f64).round().max(1.0);
         if steps > MAX_POINTS as f64 {
-            return Err(NumError::InvalidOption(format!(
-                "frequency grid of {steps:.3e} points ({:.1} decades at {ppd} per decade) \
-                 exceeds the limit of {MAX_POINTS}",
-                hi - lo
-            )));
+            return Err(NumError::InvalidOption(OptionError::FrequencyGridTooLarge {
+                points: steps,
+                decades: hi - lo,
+                per_decade: ppd,
+                limit: MAX_POINTS,
+            }));
         }
         let steps = steps as usize;
         Ok((0..=steps)
@@ -908,30 +918,25 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
     match &opts.range {
         FreqRange::Points { values, unit } => {
             if let Some(v) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
-                return Err(NumError::InvalidOption(format!(
-                    "FreqRange::Points contains {v}: frequencies must be finite and ≥ 0"
-                )));
+                return Err(NumError::InvalidOption(OptionError::FrequencyPoint { value: v }));
             }
             Ok(values.iter().map(|&f| unit.to_rad(f)).collect())
         }
         FreqRange::Range { low, high, unit } => {
             if ppd == 0 {
-                return Err(NumError::InvalidOption(
-                    "FreqOptions::points_per_decade = 0: must be ≥ 1".into(),
-                ));
+                return Err(no_points_per_decade());
             }
             if !(low.is_finite() && high.is_finite() && *low > 0.0 && high > low) {
-                return Err(NumError::InvalidOption(format!(
-                    "FreqRange::Range {{ low: {low}, high: {high} }}: need 0 < low < high, finite"
-                )));
+                return Err(NumError::InvalidOption(OptionError::FrequencyRange {
+                    low: *low,
+                    high: *high,
+                }));
             }
             log_grid(unit.to_rad(*low).log10(), unit.to_rad(*high).log10())
         }
         FreqRange::Auto => {
             if ppd == 0 {
-                return Err(NumError::InvalidOption(
-                    "FreqOptions::points_per_decade = 0: must be ≥ 1".into(),
-                ));
+                return Err(no_points_per_decade());
             }
             let (lo, hi) = auto_decades_hz(&ss.a)?;
             let to_w = (2.0 * PI).log10();

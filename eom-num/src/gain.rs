@@ -42,7 +42,7 @@ use crate::linalg::{
     Rank, RankTolerance, balance_in_place, decide, faer_view, nullspace, singular_values,
 };
 use crate::statespace::StateSpace;
-use crate::{NumError, NumWarning};
+use crate::{Bound, NumError, NumWarning, OptionError};
 
 /// The steady-state gain of one input/output pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,10 +171,11 @@ pub fn steady_state_gain_with(
     ss.validate()?;
     opts.rank_tol.validate()?;
     if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
-        return Err(NumError::InvalidOption(format!(
-            "GainOptions::warn_condition = {}: must be > 0",
-            opts.warn_condition
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "GainOptions::warn_condition",
+            value: opts.warn_condition,
+            must: Bound::Positive,
+        }));
     }
     let ss = &structural(ss);
     let first = gain_at_tolerance(ss, opts, 1.0)?;

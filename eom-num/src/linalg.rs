@@ -16,7 +16,7 @@ use faer::linalg::svd::ComputeSvdVectors;
 use faer::{Mat, MatRef, Par};
 use nalgebra::{DMatrix, DVector};
 
-use crate::NumError;
+use crate::{NumError, OptionError};
 use crate::statespace::check_finite;
 
 /// Copies an nalgebra matrix into a faer matrix.
@@ -79,9 +79,9 @@ impl RankTolerance {
                 if v.is_finite() && v >= 0.0 {
                     Ok(())
                 } else {
-                    Err(NumError::InvalidOption(format!(
-                        "rank tolerance {self:?}: must be finite and ≥ 0"
-                    )))
+                    Err(NumError::InvalidOption(OptionError::RankTolerance {
+                        tolerance: *self,
+                    }))
                 }
             }
         }

@@ -54,7 +54,7 @@ use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
-use crate::NumError;
+use crate::{Bound, NumError, OptionError};
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
@@ -406,10 +406,11 @@ impl Modes {
     /// plus those of [`Modes::compute`].
     pub fn compute_with(ss: &StateSpace<f64>, opts: &ModeOptions) -> Result<Modes, NumError> {
         if !(opts.tol_factor.is_finite() && opts.tol_factor > 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "ModeOptions::tol_factor = {}: must be finite and > 0",
-                opts.tol_factor
-            )));
+            return Err(NumError::InvalidOption(OptionError::Value {
+            option: "ModeOptions::tol_factor",
+            value: opts.tol_factor,
+            must: Bound::FinitePositive,
+        }));
         }
         ss.validate()?;
         let n = ss.states();

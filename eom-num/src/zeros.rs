@@ -37,7 +37,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::error::NumError;
+use crate::error::{Bound, NumError, OptionError};
 use crate::minreal::staircase::compress;
 use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
@@ -115,16 +115,18 @@ pub fn transmission_zeros_with(
 ) -> Result<ZerosReport, NumError> {
     ss.validate()?;
     for (v, name) in [
-        (opts.rtol, "rtol"),
-        (Some(opts.atol), "atol"),
-        (opts.infinite_rtol, "infinite_rtol"),
+        (opts.rtol, "ZerosOptions.rtol"),
+        (Some(opts.atol), "ZerosOptions.atol"),
+        (opts.infinite_rtol, "ZerosOptions.infinite_rtol"),
     ] {
         if let Some(v) = v
             && !(v.is_finite() && v >= 0.0)
         {
-            return Err(NumError::InvalidOption(format!(
-                "ZerosOptions.{name} = {v} (must be finite and ≥ 0)"
-            )));
+            return Err(NumError::InvalidOption(OptionError::Tolerance {
+                option: name,
+                value: v,
+                must: Bound::FiniteNonNegative,
+            }));
         }
     }
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());

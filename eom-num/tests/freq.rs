@@ -11,7 +11,7 @@ use eom_num::freq::{
     FreqOptions, FreqRange, FreqUnit, FrequencyResponse, HessenbergForm, LANES, SolveStatus,
     evaluate_at, freq_workspace_bytes,
 };
-use eom_num::{NumError, StateSpace};
+use eom_num::{Bound, NumError, OptionError, StateSpace};
 use nalgebra::{DMatrix, dmatrix};
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -338,7 +338,11 @@ fn freq_errors_name_the_problem() {
     };
     assert!(matches!(
         FrequencyResponse::compute(&ss, &zero_ppd),
-        Err(NumError::InvalidOption(msg)) if msg.contains("points_per_decade")
+        Err(NumError::InvalidOption(OptionError::Value {
+            option: "FreqOptions::points_per_decade",
+            must: Bound::AtLeastOne,
+            ..
+        }))
     ));
     let bad_range = FreqOptions {
         range: FreqRange::Range {
@@ -350,7 +354,7 @@ fn freq_errors_name_the_problem() {
     };
     assert!(matches!(
         FrequencyResponse::compute(&ss, &bad_range),
-        Err(NumError::InvalidOption(msg)) if msg.contains("low < high")
+        Err(NumError::InvalidOption(OptionError::FrequencyRange { .. }))
     ));
     let huge = FreqOptions {
         range: FreqRange::Range {
@@ -362,7 +366,10 @@ fn freq_errors_name_the_problem() {
     };
     assert!(matches!(
         FrequencyResponse::compute(&ss, &huge),
-        Err(NumError::InvalidOption(msg)) if msg.contains("exceeds the limit")
+        Err(NumError::InvalidOption(OptionError::FrequencyGridTooLarge {
+            per_decade: 1_000_000_000,
+            ..
+        }))
     ));
     let bad_points = FreqOptions {
         range: FreqRange::Points {
@@ -373,7 +380,7 @@ fn freq_errors_name_the_problem() {
     };
     assert!(matches!(
         FrequencyResponse::compute(&ss, &bad_points),
-        Err(NumError::InvalidOption(msg)) if msg.contains("-2")
+        Err(NumError::InvalidOption(OptionError::FrequencyPoint { value: -2.0 }))
     ));
     let form = HessenbergForm::new(&ss).unwrap();
     let mut ws = form.workspace();

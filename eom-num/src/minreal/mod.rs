@@ -122,7 +122,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::deflate::{combine_columns, structural_coordinates};
-use crate::error::NumError;
+use crate::error::{Bound, NumError, OptionError};
 use crate::minreal::pbh::{Reduction, kept_eigenvalues};
 use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
 use crate::minreal::staircase::{hessenberg, staircase};
@@ -193,27 +193,16 @@ impl MinrealOptions {
         if let Some(r) = self.rtol
             && !(r.is_finite() && r >= 0.0)
         {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.rtol = {r} (must be finite and ≥ 0)"
-            )));
+            return Err(tolerance_error("MinrealOptions.rtol", r));
         }
         if !(self.atol.is_finite() && self.atol >= 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.atol = {} (must be finite and ≥ 0)",
-                self.atol
-            )));
+            return Err(tolerance_error("MinrealOptions.atol", self.atol));
         }
         if !(self.stability_rtol.is_finite() && self.stability_rtol >= 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.stability_rtol = {} (must be finite and ≥ 0)",
-                self.stability_rtol
-            )));
+            return Err(tolerance_error("MinrealOptions.stability_rtol", self.stability_rtol));
         }
         if !(self.cluster_rtol.is_finite() && self.cluster_rtol >= 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.cluster_rtol = {} (must be finite and ≥ 0)",
-                self.cluster_rtol
-            )));
+            return Err(tolerance_error("MinrealOptions.cluster_rtol", self.cluster_rtol));
         }
         Ok(())
     }
@@ -442,11 +431,18 @@ pub struct Staircase {
     pub decisions: Vec<RankDecision>,
 }
 
+/// A tolerance that must be finite and ≥ 0 but is `value`.
+fn tolerance_error(option: &'static str, value: f64) -> NumError {
+    NumError::InvalidOption(OptionError::Tolerance {
+        option,
+        value,
+        must: Bound::FiniteNonNegative,
+    })
+}
+
 fn check_tol(tol: f64) -> Result<(), NumError> {
     if !(tol.is_finite() && tol >= 0.0) {
-        return Err(NumError::InvalidOption(format!(
-            "staircase tolerance = {tol} (must be finite and ≥ 0)"
-        )));
+        return Err(tolerance_error("staircase tolerance", tol));
     }
     Ok(())
 }
