@@ -55,7 +55,7 @@ use num_complex::Complex64;
 
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
-use crate::{Bound, NumError, NumWarning, OptionError};
+use crate::{Bound, DimensionError, NumError, NumWarning, OptionError};
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
 /// are rounding noise and treated as exactly zero (the same scale as the default rank
@@ -308,11 +308,12 @@ fn check_arguments(
     match opts.phys {
         Some(ph) => {
             if ph.ncols() != n {
-                return Err(NumError::Dimension(format!(
-                    "phys is {}×{}, expected one column per descriptor state ({n})",
-                    ph.nrows(),
-                    ph.ncols()
-                )));
+                return Err(NumError::Dimension(DimensionError::PhysColumns {
+                    rows: ph.nrows(),
+                    cols: ph.ncols(),
+                    states: n,
+                    descriptor: true,
+                }));
             }
             check_finite(ph, "phys")?;
             Ok(ph.clone())

@@ -20,7 +20,7 @@ use faer::{Mat, MatRef};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::NumError;
+use crate::{DimensionError, NumError};
 use crate::deflate;
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite;
@@ -84,11 +84,11 @@ pub(crate) fn eigen_full(
     keep_left: bool,
 ) -> Result<Eigen, NumError> {
     if a.nrows() != a.ncols() {
-        return Err(NumError::Dimension(format!(
-            "A is {}×{}, expected a square matrix",
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: "A",
+            rows: a.nrows(),
+            cols: a.ncols(),
+        }));
     }
     check_finite(a, "A")?;
     let n = a.nrows();

@@ -46,7 +46,7 @@ use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::{Bound, NumError, OptionError};
+use crate::{Bound, DimensionError, NumError, OptionError};
 use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
@@ -311,14 +311,16 @@ impl HessenbergForm {
     ) -> Result<SolveStatus, NumError> {
         let (n, m, p) = (self.n, self.m, self.p);
         if ws.n != n || ws.m != m || out.len() != p * m {
-            return Err(NumError::Dimension(format!(
-                "evaluate_in: model has n = {n}, m = {m}, p = {p}; workspace is for n = {}, \
-                 m = {}; output has length {} (expected {})",
-                ws.n,
-                ws.m,
-                out.len(),
-                p * m
-            )));
+            return Err(NumError::Dimension(DimensionError::FreqWorkspace {
+                function: "evaluate_in",
+                n,
+                m,
+                p,
+                workspace_n: ws.n,
+                workspace_m: ws.m,
+                out: out.len(),
+                expected: p * m,
+            }));
         }
         if !(s.re.is_finite() && s.im.is_finite()) {
             return Err(NumError::NonFinite(format!("evaluation point s = {s}")));
@@ -690,14 +692,16 @@ impl HessenbergForm {
     ) -> Result<(), NumError> {
         let (n, m, p) = (self.n, self.m, self.p);
         if ws.n != n || ws.m != m || out.len() != LANES * p * m {
-            return Err(NumError::Dimension(format!(
-                "evaluate_batch_in: model has n = {n}, m = {m}, p = {p}; workspace is for \
-                 n = {}, m = {}; output has length {} (expected {})",
-                ws.n,
-                ws.m,
-                out.len(),
-                LANES * p * m
-            )));
+            return Err(NumError::Dimension(DimensionError::FreqWorkspace {
+                function: "evaluate_batch_in",
+                n,
+                m,
+                p,
+                workspace_n: ws.n,
+                workspace_m: ws.m,
+                out: out.len(),
+                expected: LANES * p * m,
+            }));
         }
         if let Some(z) = s.iter().find(|z| !(z.re.is_finite() && z.im.is_finite())) {
             return Err(NumError::NonFinite(format!("evaluation point s = {z}")));

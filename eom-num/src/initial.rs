@@ -9,7 +9,7 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::NumError;
+use crate::{DimensionError, NumError};
 use crate::statespace::StateSpace;
 use crate::time::{TimeOptions, TimeResponse, grid, simulate};
 
@@ -41,11 +41,11 @@ pub fn initial(
 pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex64>, NumError> {
     let n = a.nrows();
     if a.ncols() != n {
-        return Err(NumError::Dimension(format!(
-            "A is {}×{}, expected square",
-            n,
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: "A",
+            rows: n,
+            cols: a.ncols(),
+        }));
     }
     if !(lambda.re.is_finite() && lambda.im.is_finite()) {
         return Err(NumError::NonFinite(format!("eigenvalue {lambda}")));

@@ -152,6 +152,6 @@ pub mod time;
 pub mod warning;
 pub mod zeros;
 
-pub use error::{Bound, MatrixEntry, NumError, OptionError};
+pub use error::{Bound, DimensionError, MatrixEntry, NumError, OptionError};
 pub use statespace::{Descriptor, SignalNames, StateSpace};
 pub use warning::NumWarning;

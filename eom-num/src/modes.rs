@@ -54,7 +54,7 @@ use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
-use crate::{Bound, NumError, OptionError};
+use crate::{Bound, DimensionError, NumError, OptionError};
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
@@ -65,13 +65,13 @@ fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
 }
 
-fn check_square(a: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
+fn check_square(a: &DMatrix<f64>, name: &'static str) -> Result<(), NumError> {
     if a.nrows() != a.ncols() {
-        return Err(NumError::Dimension(format!(
-            "{name} is {}×{}, expected a square matrix",
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: name,
+            rows: a.nrows(),
+            cols: a.ncols(),
+        }));
     }
     Ok(())
 }
@@ -200,12 +200,12 @@ fn check_eigenvalues_in(
 ) -> Result<(), NumError> {
     let n = ws.n;
     if a.nrows() != n || a.ncols() != n || out.len() != n {
-        return Err(NumError::Dimension(format!(
-            "eigenvalues_in: A is {}×{}, workspace is for {n}×{n}, output has length {}",
-            a.nrows(),
-            a.ncols(),
-            out.len()
-        )));
+        return Err(NumError::Dimension(DimensionError::EigenWorkspace {
+            rows: a.nrows(),
+            cols: a.ncols(),
+            workspace: n,
+            out: out.len(),
+        }));
     }
     if a.iter().any(|x| !in_range(*x)) {
         return check_finite(a, "A");

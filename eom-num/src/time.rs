@@ -32,7 +32,7 @@
 
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, DVector};
 
-use crate::{Bound, NumError, OptionError};
+use crate::{Bound, DimensionError, NumError, OptionError};
 use crate::linalg::max_abs;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::{StateSpace, check_finite};
@@ -488,19 +488,19 @@ pub fn simulate(
     ss.validate()?;
     let (n, p, m) = (ss.states(), ss.outputs(), ss.inputs());
     if u.nrows() != m {
-        return Err(NumError::Dimension(format!(
-            "input samples u have {} rows, expected one per input ({m})",
-            u.nrows()
-        )));
+        return Err(NumError::Dimension(DimensionError::InputSamples {
+            rows: u.nrows(),
+            inputs: m,
+        }));
     }
     check_finite(u, "input samples u")?;
     let x = match x0 {
         Some(v) => {
             if v.len() != n {
-                return Err(NumError::Dimension(format!(
-                    "x0 has length {}, expected one entry per state ({n})",
-                    v.len()
-                )));
+                return Err(NumError::Dimension(DimensionError::InitialState {
+                    len: v.len(),
+                    states: n,
+                }));
             }
             if v.iter().any(|z| !z.is_finite()) {
                 return Err(NumError::NonFinite("initial state x0".into()));

@@ -11,7 +11,7 @@ use eom_num::descriptor::{
 use eom_num::freq::evaluate_at;
 use eom_num::linalg::RankTolerance;
 use eom_num::modes::eigenvalues;
-use eom_num::{Descriptor, NumError, OptionError};
+use eom_num::{Descriptor, DimensionError, NumError, OptionError};
 use nalgebra::{DMatrix, dmatrix};
 use num_complex::Complex64;
 
@@ -266,7 +266,12 @@ fn descriptor_errors_name_the_problem() {
         ..Default::default()
     };
     match descriptor_to_state_space(&dss, &opts) {
-        Err(NumError::Dimension(msg)) => assert!(msg.contains("phys is 3×2"), "{msg}"),
+        Err(NumError::Dimension(DimensionError::PhysColumns {
+            rows: 3,
+            cols: 2,
+            descriptor: true,
+            ..
+        })) => {}
         other => panic!("expected Dimension, got {other:?}"),
     }
     let nan = DMatrix::from_element(1, 3, f64::NAN);
@@ -316,7 +321,12 @@ fn descriptor_errors_name_the_problem() {
         DMatrix::zeros(1, 3),
         DMatrix::zeros(1, 1),
     ) {
-        Err(NumError::Dimension(msg)) => assert!(msg.contains("E is 2×2"), "{msg}"),
+        Err(NumError::Dimension(DimensionError::Shape {
+            matrix: "E",
+            rows: 2,
+            cols: 2,
+            ..
+        })) => {}
         other => panic!("expected Dimension, got {other:?}"),
     }
     let mut bad = dss.clone();

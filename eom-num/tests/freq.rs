@@ -11,7 +11,7 @@ use eom_num::freq::{
     FreqOptions, FreqRange, FreqUnit, FrequencyResponse, HessenbergForm, LANES, SolveStatus,
     evaluate_at, freq_workspace_bytes,
 };
-use eom_num::{Bound, NumError, OptionError, StateSpace};
+use eom_num::{Bound, DimensionError, NumError, OptionError, StateSpace};
 use nalgebra::{DMatrix, dmatrix};
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -387,7 +387,11 @@ fn freq_errors_name_the_problem() {
     let mut short: [Complex64; 0] = [];
     assert!(matches!(
         form.evaluate_in(Complex64::new(0.0, 1.0), &mut ws, &mut short),
-        Err(NumError::Dimension(msg)) if msg.contains("output has length 0")
+        Err(NumError::Dimension(DimensionError::FreqWorkspace {
+            function: "evaluate_in",
+            out: 0,
+            ..
+        }))
     ));
     let mut bws = form.batch_workspace();
     let mut st = [SolveStatus::Regular; LANES];
@@ -397,7 +401,10 @@ fn freq_errors_name_the_problem() {
         .unwrap();
     assert!(matches!(
         form.evaluate_batch_in(&pts, &mut bws, &mut short, &mut st),
-        Err(NumError::Dimension(msg)) if msg.contains("evaluate_batch_in")
+        Err(NumError::Dimension(DimensionError::FreqWorkspace {
+            function: "evaluate_batch_in",
+            ..
+        }))
     ));
     let mut bad = pts;
     bad[2] = Complex64::new(0.0, f64::INFINITY);

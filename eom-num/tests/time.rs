@@ -4,7 +4,7 @@ mod closed_forms;
 
 use closed_forms::smd;
 use eom_num::time::{Horizon, SizeLimit, StopReason, TimeOptions, impulse, simulate, step, zoh};
-use eom_num::{NumError, OptionError, StateSpace};
+use eom_num::{DimensionError, NumError, OptionError, StateSpace};
 use nalgebra::{DMatrix, dmatrix, dvector};
 
 fn first_order(tau: f64) -> StateSpace<f64> {
@@ -322,11 +322,11 @@ fn time_errors_name_the_problem() {
     let o = TimeOptions::default();
     assert!(matches!(
         simulate(&ss, &DMatrix::zeros(2, 5), 0.1, None, &o),
-        Err(NumError::Dimension(msg)) if msg.contains("u have 2 rows")
+        Err(NumError::Dimension(DimensionError::InputSamples { rows: 2, .. }))
     ));
     assert!(matches!(
         simulate(&ss, &DMatrix::zeros(1, 5), 0.1, Some(&dvector![1.0, 2.0]), &o),
-        Err(NumError::Dimension(msg)) if msg.contains("x0 has length 2")
+        Err(NumError::Dimension(DimensionError::InitialState { len: 2, .. }))
     ));
     assert!(matches!(
         simulate(&ss, &DMatrix::from_element(1, 5, f64::NAN), 0.1, None, &o),

@@ -122,7 +122,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::deflate::{combine_columns, structural_coordinates};
-use crate::error::{Bound, NumError, OptionError};
+use crate::error::{Bound, DimensionError, NumError, OptionError};
 use crate::minreal::pbh::{Reduction, kept_eigenvalues};
 use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
 use crate::minreal::staircase::{hessenberg, staircase};
@@ -454,23 +454,27 @@ fn check_triple(
 ) -> Result<(usize, usize, usize), NumError> {
     let n = a.nrows();
     if a.ncols() != n {
-        return Err(NumError::Dimension(format!(
-            "A is {}×{}, must be square",
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: "A",
+            rows: a.nrows(),
+            cols: a.ncols(),
+        }));
     }
     if b.nrows() != n {
-        return Err(NumError::Dimension(format!(
-            "B has {} rows, expected {n} (one per state)",
-            b.nrows()
-        )));
+        return Err(NumError::Dimension(DimensionError::PerState {
+            matrix: "B",
+            axis: "rows",
+            len: b.nrows(),
+            states: n,
+        }));
     }
     if c.ncols() != n {
-        return Err(NumError::Dimension(format!(
-            "C has {} columns, expected {n} (one per state)",
-            c.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::PerState {
+            matrix: "C",
+            axis: "columns",
+            len: c.ncols(),
+            states: n,
+        }));
     }
     for (m, name) in [(a, "A"), (b, "B"), (c, "C")] {
         if m.iter().any(|v| !v.is_finite()) {

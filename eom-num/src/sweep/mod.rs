@@ -58,7 +58,7 @@ use serde::Serialize;
 mod assign;
 mod boundary;
 
-use crate::error::{Bound, NumError, OptionError};
+use crate::error::{Bound, DimensionError, NumError, OptionError};
 use crate::minreal::{cser, sort_complex};
 use crate::modes::{EigenvaluesWorkspace, Stability, eigenvalues_in, eigenvalues_with_errors};
 use assign::assign_pinned;
@@ -419,12 +419,12 @@ impl Sweep {
             if p.eig.len() != n {
                 return Err(ctx.numeric(
                     x,
-                    NumError::Dimension(format!(
-                        "A is {0}×{0} here but {n}×{n} at {1} = {2}",
-                        p.eig.len(),
-                        self.param,
-                        self.values[0]
-                    )),
+                    NumError::Dimension(DimensionError::SweepOrder {
+                        states: p.eig.len(),
+                        first: n,
+                        param: self.param.clone(),
+                        value: self.values[0],
+                    }),
                 ));
             }
         }
@@ -840,7 +840,11 @@ where
         if a.nrows() != a.ncols() {
             return Err(self.numeric(
                 x,
-                NumError::Dimension(format!("A is {}×{}, must be square", a.nrows(), a.ncols())),
+                NumError::Dimension(DimensionError::NotSquare {
+                    matrix: "A",
+                    rows: a.nrows(),
+                    cols: a.ncols(),
+                }),
             ));
         }
         let n = a.nrows();
@@ -849,7 +853,7 @@ where
         {
             return Err(self.numeric(
                 x,
-                NumError::Dimension(format!("A is {n}×{n} here but {e}×{e} on the sweep grid")),
+                NumError::Dimension(DimensionError::SweepGrid { states: n, grid: e }),
             ));
         }
         let (reduced, zeros) = deflate_zero_lines(&a);
