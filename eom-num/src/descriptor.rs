@@ -55,7 +55,7 @@ use num_complex::Complex64;
 
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
-use crate::{Bound, DimensionError, NumError, NumWarning, OptionError};
+use crate::{Bound, ConvergenceError, DimensionError, NumError, NumWarning, OptionError};
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
 /// are rounding noise and treated as exactly zero (the same scale as the default rank
@@ -848,7 +848,12 @@ pub fn generalized_eigenvalues_with(
             MemStack::new(&mut buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(format!("QZ of a {n}×{n} pencil")))?;
+        .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
+            step: "QZ",
+            rows: n,
+            cols: n,
+            object: "pencil",
+        }))?;
     }
     // Scaled (α̂, β̂) and the angle θ.
     let sa = if na > 0.0 { na } else { 1.0 };

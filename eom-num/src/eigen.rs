@@ -20,7 +20,7 @@ use faer::{Mat, MatRef};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::{DimensionError, NumError};
+use crate::{ConvergenceError, DimensionError, NumError};
 use crate::deflate;
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite;
@@ -145,7 +145,12 @@ fn eigen_packed(a: &DMatrix<f64>, balance: bool, keep_left: bool) -> Result<Eige
             Default::default(),
         )
         .map_err(|_| {
-            NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+            step: "eigenvalues and eigenvectors",
+            rows: n,
+            cols: n,
+            object: "matrix",
+        })
         })?;
     }
     let norm = crate::linalg::frobenius_norm(ab.as_slice());

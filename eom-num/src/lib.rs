@@ -152,6 +152,8 @@ pub mod time;
 pub mod warning;
 pub mod zeros;
 
-pub use error::{Bound, DimensionError, MatrixEntry, NumError, OptionError};
+pub use error::{
+    Bound, ConvergenceError, DimensionError, MatrixEntry, NumError, OptionError,
+};
 pub use statespace::{Descriptor, SignalNames, StateSpace};
 pub use warning::NumWarning;

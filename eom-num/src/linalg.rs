@@ -16,7 +16,7 @@ use faer::linalg::svd::ComputeSvdVectors;
 use faer::{Mat, MatRef, Par};
 use nalgebra::{DMatrix, DVector};
 
-use crate::{NumError, OptionError};
+use crate::{ConvergenceError, NumError, OptionError};
 use crate::statespace::check_finite;
 
 /// Copies an nalgebra matrix into a faer matrix.
@@ -145,7 +145,12 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             MemStack::new(&mut buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(format!("SVD of a {r}×{c} matrix")))?;
+        .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
+            step: "SVD",
+            rows: r,
+            cols: c,
+            object: "matrix",
+        }))?;
     } else {
         // Empty matrix: any orthogonal U, V will do.
         u = Mat::identity(r, r);
@@ -186,7 +191,12 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         MemStack::new(&mut buf),
         Default::default(),
     )
-    .map_err(|_| NumError::NoConvergence(format!("singular values of a {r}×{c} matrix")))?;
+    .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
+            step: "singular values",
+            rows: r,
+            cols: c,
+            object: "matrix",
+        }))?;
     Ok(s.column_vector().iter().copied().collect())
 }
 

@@ -54,7 +54,7 @@ use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
-use crate::{Bound, DimensionError, NumError, OptionError};
+use crate::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
@@ -252,7 +252,12 @@ pub fn eigenvalues_faer_in(
             MemStack::new(&mut ws.buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+        .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
+            step: "eigenvalues",
+            rows: n,
+            cols: n,
+            object: "matrix",
+        }))?;
     }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.

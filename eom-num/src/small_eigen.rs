@@ -25,7 +25,7 @@
 //! `+0.0`, structural zeros exactly `0`. Its accuracy against faer's solver and a
 //! double-double reference is charted by `eom bench accuracy` (docs/work-precision.md).
 
-use crate::{DimensionError, NumError};
+use crate::{ConvergenceError, DimensionError, NumError};
 use crate::deflate::{self, DeflationStep};
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite_slice;
@@ -162,9 +162,7 @@ fn solve(
         let mut scale = [1.0; MAX_N];
         balance_in_place(h, m, &mut scale[..m]);
         qr(h, m, &mut re, &mut im).map_err(|()| {
-            NumError::NoConvergence(format!(
-                "eigenvalues of a {n}×{n} matrix: the QR iteration did not converge"
-            ))
+            NumError::NoConvergence(ConvergenceError::QrIteration { n })
         })?;
     }
     for (k, o) in out.iter_mut().enumerate() {

@@ -26,7 +26,7 @@
 
 use num_complex::Complex64;
 
-use crate::NumError;
+use crate::{ConvergenceError, NumError};
 use crate::deflate;
 use crate::linalg::{balance_in_place, frobenius_norm};
 use crate::modes::{ModeOptions, error_estimate};
@@ -58,9 +58,7 @@ pub(crate) fn eigenvalues_with_errors_small(
     let (mut re, mut im) = ([0.0; MAX_N], [0.0; MAX_N]);
     if n > 0 {
         small_eigen::qr(h, n, &mut re, &mut im).map_err(|()| {
-            NumError::NoConvergence(format!(
-                "eigenvalues of a {n}×{n} matrix: the QR iteration did not converge"
-            ))
+            NumError::NoConvergence(ConvergenceError::QrIteration { n })
         })?;
     }
     let tol_factor = ModeOptions::default().tol_factor;

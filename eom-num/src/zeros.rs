@@ -37,7 +37,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::error::{Bound, NumError, OptionError};
+use crate::error::{Bound, ConvergenceError, NumError, OptionError};
 use crate::minreal::staircase::compress;
 use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
@@ -387,7 +387,10 @@ fn qz_eigenvalues(
         Spec::default(),
     )
     .map_err(|e| {
-        NumError::NoConvergence(format!("QZ of the {n}×{n} reduced zero pencil: {e:?}"))
+        NumError::NoConvergence(ConvergenceError::ZeroPencilQz {
+            n,
+            detail: format!("{e:?}"),
+        })
     })?;
     // A complex pair occupies two slots; as in faer's own high-level API, the first slot
     // defines it and the second is its conjugate.

@@ -122,7 +122,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::deflate::{combine_columns, structural_coordinates};
-use crate::error::{Bound, DimensionError, NumError, OptionError};
+use crate::error::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
 use crate::minreal::pbh::{Reduction, kept_eigenvalues};
 use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
 use crate::minreal::staircase::{hessenberg, staircase};
@@ -559,7 +559,11 @@ pub(crate) fn svd_full(m: &DMatrix<f64>) -> Result<FullSvd, NumError> {
     let view = faer::MatRef::from_column_major_slice(m.as_slice(), r, c);
     let svd = view
         .svd()
-        .map_err(|e| NumError::NoConvergence(format!("SVD of a {r}×{c} block: {e:?}")))?;
+        .map_err(|e| NumError::NoConvergence(ConvergenceError::BlockSvd {
+            rows: r,
+            cols: c,
+            detail: format!("{e:?}"),
+        }))?;
     let (fu, fs, fv) = (svd.U(), svd.S(), svd.V());
     let u = DMatrix::from_fn(r, r, |i, j| fu[(i, j)]);
     let v = DMatrix::from_fn(c, c, |i, j| fv[(i, j)]);
@@ -805,7 +809,11 @@ fn pbh_residual(
     // n singular values for both shapes (n × (n+k) or (n+k) × n).
     let sv = m
         .singular_values()
-        .map_err(|e| NumError::NoConvergence(format!("PBH test SVD at λ = {lam}: {e:?}")))?;
+        .map_err(|e| NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+            step: "PBH test SVD",
+            lambda: lam,
+            detail: Some(format!("{e:?}")),
+        }))?;
     Ok(sv.iter().copied().fold(f64::INFINITY, f64::min) / scale)
 }
 
