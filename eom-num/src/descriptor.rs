@@ -55,7 +55,9 @@ use num_complex::Complex64;
 
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
-use crate::{Bound, ConvergenceError, DimensionError, NumError, NumWarning, OptionError};
+use crate::{
+    Bound, ConvergenceError, DimensionError, NumError, NumWarning, OptionError, SingularError,
+};
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
 /// are rounding noise and treated as exactly zero (the same scale as the default rank
@@ -458,9 +460,12 @@ fn full_rank(
         rhs
     } else {
         p.e.clone().lu().solve(&rhs).ok_or_else(|| {
-            NumError::Singular(format!(
-                "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
-            ))
+            NumError::Singular(SingularError::LuFailed {
+                matrix: "E",
+                n,
+                passed: "has full numerical rank",
+                failed: "factorisation broke down",
+            })
         })?
     };
     let mut a_s = x.columns(0, n).into_owned();
@@ -632,9 +637,12 @@ fn schur_complement(
     rhs.columns_mut(r, m).copy_from(&b2);
     scale_rows(&mut rhs, &a22.scaling.rows);
     let mut x = lu.solve(&rhs).ok_or_else(|| {
-        NumError::Singular(format!(
-            "A22 ({k}×{k}) passed the rank test but its LU factorisation broke down"
-        ))
+        NumError::Singular(SingularError::LuFailed {
+            matrix: "A22",
+            n: k,
+            passed: "passed the rank test",
+            failed: "factorisation broke down",
+        })
     })?;
     scale_rows(&mut x, &a22.scaling.cols);
     let xa = x.columns(0, r);
@@ -647,9 +655,12 @@ fn schur_complement(
             rhs.columns_mut(0, r).copy_from(&a_s);
             rhs.columns_mut(r, m).copy_from(&b_s);
             let x = e11.clone().lu().solve(&rhs).ok_or_else(|| {
-                NumError::Singular(format!(
-                    "E11 ({r}×{r}) has full numerical rank but its LU factorisation broke down"
-                ))
+                NumError::Singular(SingularError::LuFailed {
+                    matrix: "E11",
+                    n: r,
+                    passed: "has full numerical rank",
+                    failed: "factorisation broke down",
+                })
             })?;
             a_s = x.columns(0, r).into_owned();
             b_s = x.columns(r, m).into_owned();

@@ -33,7 +33,7 @@ pub enum NumError {
     /// A matrix that must be inverted is singular to working precision (names the matrix and
     /// gives the decision margin).
     #[error("singular matrix: {0}")]
-    Singular(String),
+    Singular(SingularError),
     /// The descriptor pencil `s E − A` is singular (det(sE − A) ≡ 0): the model does not
     /// determine its own motion.
     #[error("singular pencil: {0}")]
@@ -632,9 +632,122 @@ fn detail_suffix(detail: &Option<String>) -> String {
     detail.as_ref().map(|d| format!(": {d}")).unwrap_or_default()
 }
 
+/// A matrix that must be inverted but is singular to working precision: the payload of
+/// [`NumError::Singular`].
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SingularError {
+    /// A matrix that passed its rank test but whose LU factorisation or solve then failed:
+    /// `A22 (3×3) passed the rank test but its LU factorisation broke down`.
+    #[error("{matrix} ({n}×{n}) {passed} but its LU {failed}")]
+    LuFailed {
+        /// The matrix (`A`, `E`, `A22`, `E11`).
+        matrix: &'static str,
+        /// Its order.
+        n: usize,
+        /// The test it passed (`passed the rank test`, `has full numerical rank`).
+        passed: &'static str,
+        /// What then failed (`factorisation broke down`, `solve is not finite`).
+        failed: &'static str,
+    },
+    /// `sI − A` at a point that is numerically an eigenvalue of A.
+    #[error("sI − A at s = {s} ({n}×{n} model): s is numerically an eigenvalue of A")]
+    Eigenvalue {
+        /// The point.
+        s: num_complex::Complex64,
+        /// The model's states.
+        n: usize,
+    },
+    /// A 2×2 diagonal block of a Gramian's Cholesky factor that is singular.
+    #[error(
+        "Lyapunov equation: the Gramian's 2×2 diagonal block at {block} is singular though its \
+         output is not zero"
+    )]
+    GramianBlock {
+        /// The block's first row (from 0).
+        block: usize,
+    },
+    /// The block A₂₂ that singular perturbation inverts.
+    #[error("the residualised block A₂₂ of the balanced realization")]
+    Residualised,
+    /// The error system of a model reduction with a pole on the imaginary axis.
+    #[error("the error system at ω = {omega} rad/s: a pole on the imaginary axis")]
+    ErrorSystemPole {
+        /// The frequency (rad/s).
+        omega: f64,
+    },
+    /// The reduced feedthrough of the zero pencil is not square.
+    #[error("reduced feedthrough of the zero pencil is {rows}×{cols} instead of square")]
+    FeedthroughNotSquare {
+        /// Its rows.
+        rows: usize,
+        /// Its columns.
+        cols: usize,
+    },
+    /// `[C D]` of the reduced zero pencil without full row rank.
+    #[error("[C D] of the reduced zero pencil has numerical rank {rank} < {rows}")]
+    ZeroPencilRank {
+        /// The numerical rank.
+        rank: usize,
+        /// The rows.
+        rows: usize,
+    },
+    /// The zero pencil's `B_f` passed the conditioning test but its LU solve is not finite.
+    #[error(
+        "the {n}×{n} zero pencil: B_f passed the conditioning test but its LU solve is not \
+         finite"
+    )]
+    ZeroPencilSolve {
+        /// The pencil's order.
+        n: usize,
+    },
+    /// A singular A whose zero-eigenvalue subspace the right and left chains disagree on.
+    #[error(
+        "A ({n}×{n}) is singular but its zero-eigenvalue subspace is ill-determined: the right \
+         chain gives dimension {right} (index {right_index}), the left chain {left} (index \
+         {left_index})"
+    )]
+    ZeroSubspace {
+        /// A's order.
+        n: usize,
+        /// The dimension from the right chain.
+        right: usize,
+        /// Its index.
+        right_index: usize,
+        /// The dimension from the left chain.
+        left: usize,
+        /// Its index.
+        left_index: usize,
+    },
+    /// The basis of the zero/nonzero eigenvalue split of A.
+    #[error("the basis [V₀ V₁] of the zero/nonzero eigenvalue split of A ({n}×{n}) is singular")]
+    SplitBasis {
+        /// A's order.
+        n: usize,
+    },
+    /// A restricted to its nonzero modes.
+    #[error("A restricted to its nonzero modes ({n}×{n}) is singular")]
+    NonzeroModes {
+        /// The restriction's order.
+        n: usize,
+    },
+    /// `A − λI` near an eigenvalue, in inverse iteration.
+    #[error("A − λI near λ = {lambda}")]
+    Shifted {
+        /// The eigenvalue.
+        lambda: num_complex::Complex64,
+    },
+    /// Inverse iteration that gave no vector.
+    #[error("inverse iteration for λ = {lambda} did not give a vector")]
+    InverseIteration {
+        /// The eigenvalue.
+        lambda: num_complex::Complex64,
+    },
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
+    use super::{Bound, ConvergenceError, DimensionError, NumError, OptionError, SingularError};
     use num_complex::Complex64;
     use crate::linalg::RankTolerance;
 
@@ -851,6 +964,42 @@ mod tests {
                  {first:?} and {second:?} would perturb them by {below:.3e} relative to \
                  {scale:.3e} (eigenvalues too close to separate)"
             )
+        );
+    }
+
+    /// The typed singular-matrix errors print the messages the string ones did.
+    #[test]
+    fn singular_errors_print_the_former_messages() {
+        let text = |e: SingularError| NumError::Singular(e).to_string();
+        let k = 3;
+        assert_eq!(
+            text(SingularError::LuFailed {
+                matrix: "A22",
+                n: k,
+                passed: "passed the rank test",
+                failed: "factorisation broke down"
+            }),
+            format!(
+                "singular matrix: A22 ({k}×{k}) passed the rank test but its LU factorisation \
+                 broke down"
+            )
+        );
+        let s = Complex64::new(0.0, 2.0);
+        assert_eq!(
+            text(SingularError::Eigenvalue { s, n: 2 }),
+            format!("singular matrix: sI − A at s = {s} (2×2 model): s is numerically an eigenvalue of A")
+        );
+        assert_eq!(
+            text(SingularError::ZeroSubspace {
+                n: 4,
+                right: 2,
+                right_index: 1,
+                left: 1,
+                left_index: 1
+            }),
+            "singular matrix: A (4×4) is singular but its zero-eigenvalue subspace is \
+             ill-determined: the right chain gives dimension 2 (index 1), the left chain 1 \
+             (index 1)"
         );
     }
 }

@@ -46,7 +46,7 @@ use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::{Bound, DimensionError, NumError, OptionError};
+use crate::{Bound, DimensionError, NumError, OptionError, SingularError};
 use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
@@ -743,11 +743,10 @@ pub fn evaluate_at(ss: &StateSpace<f64>, s: Complex64) -> Result<DMatrix<Complex
     let mut out = vec![Complex64::new(0.0, 0.0); p * m];
     match form.evaluate_in(s, &mut ws, &mut out)? {
         SolveStatus::Regular => Ok(DMatrix::from_vec(p, m, out)),
-        SolveStatus::Singular => Err(NumError::Singular(format!(
-            "sI − A at s = {s} ({}×{} model): s is numerically an eigenvalue of A",
-            ss.states(),
-            ss.states()
-        ))),
+        SolveStatus::Singular => Err(NumError::Singular(SingularError::Eigenvalue {
+            s,
+            n: ss.states(),
+        })),
     }
 }
 

@@ -42,7 +42,7 @@ use crate::linalg::{
     Rank, RankTolerance, balance_in_place, decide, faer_view, nullspace, singular_values,
 };
 use crate::statespace::StateSpace;
-use crate::{Bound, NumError, NumWarning, OptionError};
+use crate::{Bound, NumError, NumWarning, OptionError, SingularError};
 
 /// The steady-state gain of one input/output pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -424,11 +424,13 @@ fn zero_split(
         }
     }
     if l0.ncols() != q || nu_l != nu {
-        return Err(NumError::Singular(format!(
-            "A ({n}×{n}) is singular but its zero-eigenvalue subspace is ill-determined: the \
-             right chain gives dimension {q} (index {nu}), the left chain {} (index {nu_l})",
-            l0.ncols()
-        )));
+        return Err(NumError::Singular(SingularError::ZeroSubspace {
+            n,
+            right: q,
+            right_index: nu,
+            left: l0.ncols(),
+            left_index: nu_l,
+        }));
     }
     // V₁ = (ker (Aᵀ)^ν)⊥ = range(A^ν).
     let v1 = if q == 0 {
@@ -447,9 +449,7 @@ fn zero_split(
         });
     }
     let w = t.clone().lu().try_inverse().ok_or_else(|| {
-        NumError::Singular(format!(
-            "the basis [V₀ V₁] of the zero/nonzero eigenvalue split of A ({n}×{n}) is singular"
-        ))
+        NumError::Singular(SingularError::SplitBasis { n })
     })?;
     Ok(ZeroSplit {
         v0,
@@ -532,11 +532,7 @@ fn finite_part(
         (d.clone(), d.map(|v| f64::EPSILON * v.abs()))
     } else {
         let singular = || {
-            NumError::Singular(format!(
-                "A restricted to its nonzero modes ({}×{}) is singular",
-                a1.nrows(),
-                a1.nrows()
-            ))
+            NumError::Singular(SingularError::NonzeroModes { n: a1.nrows() })
         };
         let lu = a1.clone().lu();
         let x = lu.solve(b1).ok_or_else(singular)?;
@@ -757,9 +753,12 @@ fn regular(
         let y = reg.lu.solve_transpose(faer_view(&ct));
         let y = DMatrix::from_fn(n, c.nrows(), |i, j| y[(i, j)]);
         if x.iter().chain(y.iter()).any(|v| !v.is_finite()) {
-            return Err(NumError::Singular(format!(
-                "A ({n}×{n}) passed the rank test but its LU solve is not finite"
-            )));
+            return Err(NumError::Singular(SingularError::LuFailed {
+                matrix: "A",
+                n,
+                passed: "passed the rank test",
+                failed: "solve is not finite",
+            }));
         }
         let errors = solve_errors(a, c, &ss.d, &x, &y);
         (&ss.d - c * x, errors)

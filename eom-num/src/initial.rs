@@ -9,7 +9,7 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::{DimensionError, NumError};
+use crate::{DimensionError, NumError, SingularError};
 use crate::statespace::StateSpace;
 use crate::time::{TimeOptions, TimeResponse, grid, simulate};
 
@@ -63,12 +63,10 @@ pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex
     for _ in 0..2 {
         v = lu
             .solve(&v)
-            .ok_or_else(|| NumError::Singular(format!("A − λI near λ = {lambda}")))?;
+            .ok_or_else(|| NumError::Singular(SingularError::Shifted { lambda }))?;
         let big = v.iter().fold(0.0f64, |b, z| b.max(z.norm()));
         if !(big.is_finite() && big > 0.0) {
-            return Err(NumError::Singular(format!(
-                "inverse iteration for λ = {lambda} did not give a vector"
-            )));
+            return Err(NumError::Singular(SingularError::InverseIteration { lambda }));
         }
         v /= Complex64::new(big, 0.0);
     }

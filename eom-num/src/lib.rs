@@ -153,7 +153,7 @@ pub mod warning;
 pub mod zeros;
 
 pub use error::{
-    Bound, ConvergenceError, DimensionError, MatrixEntry, NumError, OptionError,
+    Bound, ConvergenceError, DimensionError, MatrixEntry, NumError, OptionError, SingularError,
 };
 pub use statespace::{Descriptor, SignalNames, StateSpace};
 pub use warning::NumWarning;

@@ -37,7 +37,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::error::{Bound, ConvergenceError, NumError, OptionError};
+use crate::error::{Bound, ConvergenceError, NumError, OptionError, SingularError};
 use crate::minreal::staircase::compress;
 use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
@@ -178,10 +178,10 @@ pub fn transmission_zeros_with(
     }
     if d.ncols() != r {
         // Cannot happen with consistent rank decisions (see the module documentation).
-        return Err(NumError::Singular(format!(
-            "reduced feedthrough of the zero pencil is {r}×{} instead of square",
-            d.ncols()
-        )));
+        return Err(NumError::Singular(SingularError::FeedthroughNotSquare {
+            rows: r,
+            cols: d.ncols(),
+        }));
     }
     let (af, bf, bf_sigma_min) = final_pencil(&a, &b, &c, &d, tol, &mut decisions)?;
     let bnorm = bf.norm();
@@ -250,9 +250,7 @@ fn final_pencil(
     let rank = dec.rank;
     decisions.push(dec);
     if rank != r {
-        return Err(NumError::Singular(format!(
-            "[C D] of the reduced zero pencil has numerical rank {rank} < {r}"
-        )));
+        return Err(NumError::Singular(SingularError::ZeroPencilRank { rank, rows: r }));
     }
     let mut ab = DMatrix::zeros(nf, nf + r);
     ab.columns_mut(0, nf).copy_from(a);
@@ -275,10 +273,7 @@ fn standard_eigenvalues(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<Vec<Comple
     let x = faer::linalg::solvers::Solve::solve(&lu, crate::linalg::faer_view(a));
     let m = DMatrix::from_fn(n, n, |i, j| x[(i, j)]);
     if m.iter().any(|v| !v.is_finite()) {
-        return Err(NumError::Singular(format!(
-            "the {n}×{n} zero pencil: B_f passed the conditioning test but its LU solve is \
-             not finite"
-        )));
+        return Err(NumError::Singular(SingularError::ZeroPencilSolve { n }));
     }
     crate::modes::eigenvalues(&m)
 }

@@ -11,7 +11,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use super::schur::eigenvalues;
-use crate::NumError;
+use crate::{NumError, SingularError};
 use crate::freq::{HessenbergForm, SolveStatus};
 use crate::statespace::StateSpace;
 
@@ -117,9 +117,7 @@ pub(crate) fn measure(
     };
     for &omega in &w {
         if form.evaluate_in(Complex64::new(0.0, omega), &mut ws, &mut g)? == SolveStatus::Singular {
-            return Err(NumError::Singular(format!(
-                "the error system at ω = {omega} rad/s: a pole on the imaginary axis"
-            )));
+            return Err(NumError::Singular(SingularError::ErrorSystemPole { omega }));
         }
         let s = sigma_max(&g, p, m);
         if omega == 0.0 {
