@@ -8,9 +8,10 @@ pub enum NumError {
     /// Matrix dimensions do not fit together (names the matrices, gives the sizes).
     #[error("dimension mismatch: {0}")]
     Dimension(DimensionError),
-    /// A matrix contains NaN or infinite entries.
+    /// A matrix, vector or point contains NaN or infinite entries (names it, and the entry
+    /// where known).
     #[error("non-finite entry in {0}")]
-    NonFinite(String),
+    NonFinite(NonFiniteError),
     /// A matrix entry so large (beyond `max`, [`crate::MAX_ENTRY`]) that the products inside
     /// the factorisations would overflow.
     #[error(
@@ -745,9 +746,42 @@ pub enum SingularError {
     },
 }
 
+/// What holds a NaN or infinite value: the payload of [`NumError::NonFinite`].
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum NonFiniteError {
+    /// An entry of a matrix: `A[1, 0] = NaN (3×3 matrix)`.
+    #[error("{0}")]
+    Entry(MatrixEntry),
+    /// A matrix (entry not located).
+    #[error("{matrix}")]
+    Matrix {
+        /// The matrix (`A`, `B`, `C`).
+        matrix: &'static str,
+    },
+    /// A point at which a frequency response is evaluated.
+    #[error("evaluation point s = {s}")]
+    EvaluationPoint {
+        /// The point.
+        s: num_complex::Complex64,
+    },
+    /// A simulation's initial state.
+    #[error("initial state x0")]
+    InitialState,
+    /// An eigenvalue whose mode shape is asked for.
+    #[error("eigenvalue {lambda}")]
+    Eigenvalue {
+        /// The eigenvalue.
+        lambda: num_complex::Complex64,
+    },
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{Bound, ConvergenceError, DimensionError, NumError, OptionError, SingularError};
+    use super::{
+        Bound, ConvergenceError, DimensionError, MatrixEntry, NonFiniteError, NumError, OptionError,
+        SingularError,
+    };
     use num_complex::Complex64;
     use crate::linalg::RankTolerance;
 
@@ -1000,6 +1034,37 @@ mod tests {
             "singular matrix: A (4×4) is singular but its zero-eigenvalue subspace is \
              ill-determined: the right chain gives dimension 2 (index 1), the left chain 1 \
              (index 1)"
+        );
+    }
+
+    /// The typed non-finite errors print the messages the string ones did.
+    #[test]
+    fn non_finite_errors_print_the_former_messages() {
+        let text = |e: NonFiniteError| NumError::NonFinite(e).to_string();
+        let entry = MatrixEntry {
+            matrix: "A".into(),
+            row: 1,
+            col: 0,
+            value: f64::NAN,
+            nrows: 3,
+            ncols: 3,
+        };
+        assert_eq!(
+            text(NonFiniteError::Entry(entry.clone())),
+            format!("non-finite entry in {entry}")
+        );
+        assert_eq!(
+            text(NonFiniteError::Entry(entry)),
+            "non-finite entry in A[1, 0] = NaN (3×3 matrix)"
+        );
+        let s = Complex64::new(f64::NAN, 1.0);
+        assert_eq!(
+            text(NonFiniteError::EvaluationPoint { s }),
+            format!("non-finite entry in evaluation point s = {s}")
+        );
+        assert_eq!(
+            text(NonFiniteError::Matrix { matrix: "B" }),
+            "non-finite entry in B"
         );
     }
 }

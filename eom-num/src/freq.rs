@@ -46,7 +46,7 @@ use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::{Bound, DimensionError, NumError, OptionError, SingularError};
+use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError, SingularError};
 use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
@@ -323,7 +323,7 @@ impl HessenbergForm {
             }));
         }
         if !(s.re.is_finite() && s.im.is_finite()) {
-            return Err(NumError::NonFinite(format!("evaluation point s = {s}")));
+            return Err(NumError::NonFinite(NonFiniteError::EvaluationPoint { s }));
         }
         let FreqWorkspace {
             ur,
@@ -704,7 +704,7 @@ impl HessenbergForm {
             }));
         }
         if let Some(z) = s.iter().find(|z| !(z.re.is_finite() && z.im.is_finite())) {
-            return Err(NumError::NonFinite(format!("evaluation point s = {z}")));
+            return Err(NumError::NonFinite(NonFiniteError::EvaluationPoint { s: *z }));
         }
         let mut singular = [false; LANES];
         #[cfg(target_arch = "x86_64")]

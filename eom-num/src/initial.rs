@@ -9,7 +9,7 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::{DimensionError, NumError, SingularError};
+use crate::{DimensionError, NonFiniteError, NumError, SingularError};
 use crate::statespace::StateSpace;
 use crate::time::{TimeOptions, TimeResponse, grid, simulate};
 
@@ -48,7 +48,7 @@ pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex
         }));
     }
     if !(lambda.re.is_finite() && lambda.im.is_finite()) {
-        return Err(NumError::NonFinite(format!("eigenvalue {lambda}")));
+        return Err(NumError::NonFinite(NonFiniteError::Eigenvalue { lambda }));
     }
     let scale = a.iter().fold(lambda.norm(), |m, x| m.max(x.abs())).max(1.0);
     let shift = lambda + Complex64::new(1e-10 * scale, 1e-10 * scale);

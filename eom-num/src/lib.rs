@@ -153,7 +153,8 @@ pub mod warning;
 pub mod zeros;
 
 pub use error::{
-    Bound, ConvergenceError, DimensionError, MatrixEntry, NumError, OptionError, SingularError,
+    Bound, ConvergenceError, DimensionError, MatrixEntry, NonFiniteError, NumError, OptionError,
+    SingularError,
 };
 pub use statespace::{Descriptor, SignalNames, StateSpace};
 pub use warning::NumWarning;

@@ -7,7 +7,7 @@
 use nalgebra::{DMatrix, Scalar};
 use serde::{Deserialize, Serialize};
 
-use crate::{DimensionError, NumError};
+use crate::{DimensionError, NonFiniteError, NumError};
 
 /// Names (and units) of the signals of a model, carried along so that tables, plots and JSON
 /// can say what each row and column is.
@@ -113,7 +113,7 @@ pub(crate) fn check_finite_slice(
                 max: crate::MAX_ENTRY,
             });
         }
-        return Err(NumError::NonFinite(entry.to_string()));
+        return Err(NumError::NonFinite(NonFiniteError::Entry(entry)));
     }
     Ok(())
 }

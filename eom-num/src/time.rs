@@ -32,7 +32,7 @@
 
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, DVector};
 
-use crate::{Bound, DimensionError, NumError, OptionError};
+use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError};
 use crate::linalg::max_abs;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::{StateSpace, check_finite};
@@ -503,7 +503,7 @@ pub fn simulate(
                 }));
             }
             if v.iter().any(|z| !z.is_finite()) {
-                return Err(NumError::NonFinite("initial state x0".into()));
+                return Err(NumError::NonFinite(NonFiniteError::InitialState));
             }
             v.clone()
         }

@@ -11,7 +11,9 @@ use eom_num::freq::{
     FreqOptions, FreqRange, FreqUnit, FrequencyResponse, HessenbergForm, LANES, SolveStatus,
     evaluate_at, freq_workspace_bytes,
 };
-use eom_num::{Bound, DimensionError, NumError, OptionError, SingularError, StateSpace};
+use eom_num::{
+    Bound, DimensionError, NonFiniteError, NumError, OptionError, SingularError, StateSpace,
+};
 use nalgebra::{DMatrix, dmatrix};
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -414,6 +416,6 @@ fn freq_errors_name_the_problem() {
     ));
     assert!(matches!(
         evaluate_at(&ss, Complex64::new(f64::NAN, 1.0)),
-        Err(NumError::NonFinite(msg)) if msg.contains("evaluation point")
+        Err(NumError::NonFinite(NonFiniteError::EvaluationPoint { .. }))
     ));
 }

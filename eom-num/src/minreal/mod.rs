@@ -122,7 +122,9 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::deflate::{combine_columns, structural_coordinates};
-use crate::error::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
+use crate::error::{
+    Bound, ConvergenceError, DimensionError, NonFiniteError, NumError, OptionError,
+};
 use crate::minreal::pbh::{Reduction, kept_eigenvalues};
 use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
 use crate::minreal::staircase::{hessenberg, staircase};
@@ -478,7 +480,7 @@ fn check_triple(
     }
     for (m, name) in [(a, "A"), (b, "B"), (c, "C")] {
         if m.iter().any(|v| !v.is_finite()) {
-            return Err(NumError::NonFinite(name.to_string()));
+            return Err(NumError::NonFinite(NonFiniteError::Matrix { matrix: name }));
         }
     }
     Ok((n, b.ncols(), c.nrows()))
