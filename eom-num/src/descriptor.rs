@@ -56,7 +56,8 @@ use num_complex::Complex64;
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
 use crate::{
-    Bound, ConvergenceError, DimensionError, NumError, NumWarning, OptionError, SingularError,
+    A22Rank, Bound, ConvergenceError, DimensionError, NumError, NumWarning, OptionError,
+    PencilError, SingularError,
 };
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
@@ -562,23 +563,18 @@ fn decide_a22(
     if a22_rank.rank < k {
         let singular = pencil_is_singular(&p.e, &p.a, opts.rank_tol)?;
         let smin = s22.last().copied().unwrap_or(0.0);
-        let detail = format!(
-            "E has rank {r} of {n}; the algebraic block A22 ({k}×{k}) has rank {} \
-             (smallest singular value of the equilibrated A22 {smin:.3e} ≤ threshold \
-             {thr22:.3e})",
-            a22_rank.rank
-        );
+        let decision = A22Rank {
+            e_rank: r,
+            n,
+            k,
+            a22_rank: a22_rank.rank,
+            smallest: smin,
+            threshold: thr22,
+        };
         return Err(if singular {
-            NumError::SingularPencil(format!(
-                "{detail}, and sE − A is rank deficient at generic s: the equations do not \
-                 determine the motion (missing equation or redundant coordinate)"
-            ))
+            NumError::SingularPencil(PencilError::RankDeficient(decision))
         } else {
-            NumError::HigherIndex(format!(
-                "{detail}; the pencil is regular, so its index is > 1 (e.g. a constraint on a \
-                 position without its derivative); reduce the index before calling \
-                 descriptor_to_state_space"
-            ))
+            NumError::HigherIndex(decision)
         });
     }
     let condition = s22[0] / s22[k - 1];
@@ -878,11 +874,13 @@ pub fn generalized_eigenvalues_with(
         let ah = alpha.norm() / sa;
         let bh = beta[j].abs() / se;
         if ah <= zero_tol && bh <= zero_tol {
-            return Err(NumError::SingularPencil(format!(
-                "QZ returned α ≈ β ≈ 0 (|α|/‖A‖ = {ah:.2e}, |β|/‖E‖ = {bh:.2e}) for eigenvalue \
-                 {j}: det(sE − A) vanishes identically ({n}×{n} pencil, rank E = {})",
-                e_rank.rank
-            )));
+            return Err(NumError::SingularPencil(PencilError::VanishingEigenvalue {
+                alpha: ah,
+                beta: bh,
+                index: j,
+                n,
+                e_rank: e_rank.rank,
+            }));
         }
         let theta = bh / (ah * ah + bh * bh).sqrt();
         let lambda = if beta[j] != 0.0 {

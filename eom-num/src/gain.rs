@@ -42,7 +42,7 @@ use crate::linalg::{
     Rank, RankTolerance, balance_in_place, decide, faer_view, nullspace, singular_values,
 };
 use crate::statespace::StateSpace;
-use crate::{Bound, NumError, NumWarning, OptionError, SingularError};
+use crate::{AmbiguousRankError, Bound, NumError, NumWarning, OptionError, SingularError};
 
 /// The steady-state gain of one input/output pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -190,15 +190,12 @@ pub fn steady_state_gain_with(
     if second.zero_dimension < opts.structural_zeros {
         // Both decisions contradict the structure: A's rounding hides zero eigenvalues that
         // exist, and `C A⁻¹ B` would amplify that rounding into the gains.
-        return Err(NumError::AmbiguousRank(format!(
-            "the structure of the model proves {} zero eigenvalue(s), but the rank decisions \
-             on A ({n}×{n}) find {} at the default threshold and {} at one {AMBIGUITY_FACTOR} \
-             times larger: the gains would amplify rounding",
-            opts.structural_zeros,
-            first.zero_dimension,
-            second.zero_dimension,
-            n = ss.states()
-        )));
+        return Err(NumError::AmbiguousRank(AmbiguousRankError::StructuralZeros {
+            structural: opts.structural_zeros,
+            n: ss.states(),
+            first: first.zero_dimension,
+            second: second.zero_dimension,
+        }));
     }
     if same_gains(&first.gains, &second.gains) {
         return Ok(first);
@@ -213,17 +210,14 @@ pub fn steady_state_gain_with(
         });
         return Ok(out);
     }
-    Err(NumError::AmbiguousRank(format!(
-        "the rank of A ({n}×{n}) was decided within a factor {:.3} of its threshold, and a \
-         threshold {AMBIGUITY_FACTOR} times larger ({} zero eigenvalue(s) instead of {}) gives \
-         other gains ({} instead of {})",
-        first.a_rank.margin,
-        second.zero_dimension,
-        first.zero_dimension,
-        describe(&second.gains),
-        describe(&first.gains),
-        n = ss.states()
-    )))
+    Err(NumError::AmbiguousRank(AmbiguousRankError::Gains {
+        n: ss.states(),
+        margin: first.a_rank.margin,
+        first: first.zero_dimension,
+        second: second.zero_dimension,
+        first_gains: first.gains.iter().copied().collect(),
+        second_gains: second.gains.iter().copied().collect(),
+    }))
 }
 
 /// A rank decision within this factor of its threshold is checked by deciding again at a
@@ -259,7 +253,7 @@ fn same_gains(x: &DMatrix<Gain>, y: &DMatrix<Gain>) -> bool {
 }
 
 /// The gains in one line, for messages.
-fn describe(g: &DMatrix<Gain>) -> String {
+pub(crate) fn describe(g: &[Gain]) -> String {
     let items: Vec<String> = g
         .iter()
         .map(|x| match x {

@@ -153,8 +153,8 @@ pub mod warning;
 pub mod zeros;
 
 pub use error::{
-    Bound, ConvergenceError, DimensionError, MatrixEntry, NonFiniteError, NumError, OptionError,
-    SingularError,
+    A22Rank, AmbiguousRankError, Bound, ConvergenceError, DimensionError, MatrixEntry,
+    NonFiniteError, NumError, OptionError, PencilError, SingularError,
 };
 pub use statespace::{Descriptor, SignalNames, StateSpace};
 pub use warning::NumWarning;

@@ -5,6 +5,7 @@ mod convergence;
 mod dimension;
 mod non_finite;
 mod option;
+mod pencil;
 mod singular;
 #[cfg(test)]
 mod tests;
@@ -13,6 +14,7 @@ pub use convergence::ConvergenceError;
 pub use dimension::DimensionError;
 pub use non_finite::NonFiniteError;
 pub use option::{Bound, OptionError};
+pub use pencil::{A22Rank, AmbiguousRankError, PencilError};
 pub use singular::SingularError;
 
 /// Everything that can go wrong in a numeric analysis. Messages name the matrix, signal or
@@ -53,16 +55,20 @@ pub enum NumError {
     /// The descriptor pencil `s E − A` is singular (det(sE − A) ≡ 0): the model does not
     /// determine its own motion.
     #[error("singular pencil: {0}")]
-    SingularPencil(String),
+    SingularPencil(PencilError),
     /// The descriptor pencil is regular but has index > 1 (the algebraic block A22 is
     /// singular); only index-1 pencils are reduced.
-    #[error("descriptor index > 1: {0}")]
-    HigherIndex(String),
+    #[error(
+        "descriptor index > 1: {0}; the pencil is regular, so its index is > 1 (e.g. a \
+         constraint on a position without its derivative); reduce the index before calling \
+         descriptor_to_state_space"
+    )]
+    HigherIndex(A22Rank),
     /// A rank decision that the result depends on lies so close to its tolerance that another
     /// admissible tolerance gives a different answer (the message gives both): the result
     /// cannot be trusted either way.
     #[error("ambiguous rank decision: {0}")]
-    AmbiguousRank(String),
+    AmbiguousRank(AmbiguousRankError),
     /// The analysis would need more memory than the limit ([`crate::budget`]); the message
     /// names the step, the predicted size, the limit and how to raise it.
     #[error(

@@ -1,9 +1,10 @@
 //! The typed errors print the messages the string ones did.
 
 use super::{
-    Bound, ConvergenceError, DimensionError, MatrixEntry, NonFiniteError, NumError, OptionError,
-    SingularError,
+    A22Rank, AmbiguousRankError, Bound, ConvergenceError, DimensionError, MatrixEntry,
+    NonFiniteError, NumError, OptionError, PencilError, SingularError,
 };
+use crate::gain::{AMBIGUITY_FACTOR, Gain};
 use num_complex::Complex64;
 use crate::linalg::RankTolerance;
 
@@ -287,5 +288,94 @@ fn non_finite_errors_print_the_former_messages() {
     assert_eq!(
         text(NonFiniteError::Matrix { matrix: "B" }),
         "non-finite entry in B"
+    );
+}
+
+/// The pencil and ambiguous-rank errors print the messages the string ones did.
+#[test]
+fn pencil_and_rank_errors_print_the_former_messages() {
+    let (r, n, k, rank, smin, thr22) = (1, 3, 2, 1, 1.5e-17, 2.2e-15);
+    let detail = format!(
+        "E has rank {r} of {n}; the algebraic block A22 ({k}×{k}) has rank {rank} (smallest \
+         singular value of the equilibrated A22 {smin:.3e} ≤ threshold {thr22:.3e})"
+    );
+    let decision = A22Rank {
+        e_rank: r,
+        n,
+        k,
+        a22_rank: rank,
+        smallest: smin,
+        threshold: thr22,
+    };
+    assert_eq!(
+        NumError::SingularPencil(PencilError::RankDeficient(decision.clone())).to_string(),
+        format!(
+            "singular pencil: {detail}, and sE − A is rank deficient at generic s: the equations \
+             do not determine the motion (missing equation or redundant coordinate)"
+        )
+    );
+    assert_eq!(
+        NumError::HigherIndex(decision).to_string(),
+        format!(
+            "descriptor index > 1: {detail}; the pencil is regular, so its index is > 1 (e.g. a \
+             constraint on a position without its derivative); reduce the index before calling \
+             descriptor_to_state_space"
+        )
+    );
+    let (ah, bh, j) = (1e-18, 3e-19, 2);
+    assert_eq!(
+        NumError::SingularPencil(PencilError::VanishingEigenvalue {
+            alpha: ah,
+            beta: bh,
+            index: j,
+            n,
+            e_rank: r
+        })
+        .to_string(),
+        format!(
+            "singular pencil: QZ returned α ≈ β ≈ 0 (|α|/‖A‖ = {ah:.2e}, |β|/‖E‖ = {bh:.2e}) for \
+             eigenvalue {j}: det(sE − A) vanishes identically ({n}×{n} pencil, rank E = {r})"
+        )
+    );
+    assert_eq!(
+        NumError::AmbiguousRank(AmbiguousRankError::StructuralZeros {
+            structural: 2,
+            n: 4,
+            first: 1,
+            second: 1
+        })
+        .to_string(),
+        format!(
+            "ambiguous rank decision: the structure of the model proves 2 zero eigenvalue(s), but \
+             the rank decisions on A (4×4) find 1 at the default threshold and 1 at one \
+             {AMBIGUITY_FACTOR} times larger: the gains would amplify rounding"
+        )
+    );
+    let margin = 3.25;
+    assert_eq!(
+        NumError::AmbiguousRank(AmbiguousRankError::Gains {
+            n: 4,
+            margin,
+            first: 0,
+            second: 1,
+            first_gains: vec![Gain::Finite(2.0), Gain::Finite(-0.5)],
+            second_gains: vec![
+                Gain::Integrating {
+                    order: 1,
+                    coefficient: 1.0
+                },
+                Gain::Finite(-0.5)
+            ],
+        })
+        .to_string(),
+        format!(
+            "ambiguous rank decision: the rank of A (4×4) was decided within a factor \
+             {margin:.3} of its threshold, and a threshold {AMBIGUITY_FACTOR} times larger (1 \
+             zero eigenvalue(s) instead of 0) gives other gains ([integrating (order 1), \
+             {:.6e}] instead of [{:.6e}, {:.6e}])",
+            -0.5,
+            2.0,
+            -0.5
+        )
     );
 }
