@@ -22,8 +22,8 @@ use eom_aero::validity::{
     PITCH_RATE_LIMIT, REDUCED_FREQUENCY_LIMIT, ROLL_RATE_LIMIT, YAW_RATE_LIMIT, check_rates,
     reduced_frequency,
 };
-use eom_num::{DimensionError, NumError};
 use eom_num::StateSpace;
+use eom_num::{DimensionError, NumError};
 use eom_sym::Expr;
 use nalgebra::DMatrix;
 use num_complex::Complex64;

@@ -855,12 +855,14 @@ pub fn generalized_eigenvalues_with(
             MemStack::new(&mut buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
-            step: "QZ",
-            rows: n,
-            cols: n,
-            object: "pencil",
-        }))?;
+        .map_err(|_| {
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "QZ",
+                rows: n,
+                cols: n,
+                object: "pencil",
+            })
+        })?;
     }
     // Scaled (α̂, β̂) and the angle θ.
     let sa = if na > 0.0 { na } else { 1.0 };

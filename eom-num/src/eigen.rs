@@ -20,10 +20,10 @@ use faer::{Mat, MatRef};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::{ConvergenceError, DimensionError, NumError};
 use crate::deflate;
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite;
+use crate::{ConvergenceError, DimensionError, NumError};
 
 /// Where the eigenvector of a sorted eigenvalue lives in the packed storage.
 #[derive(Clone, Copy, Debug)]
@@ -146,11 +146,11 @@ fn eigen_packed(a: &DMatrix<f64>, balance: bool, keep_left: bool) -> Result<Eige
         )
         .map_err(|_| {
             NumError::NoConvergence(ConvergenceError::Factorisation {
-            step: "eigenvalues and eigenvectors",
-            rows: n,
-            cols: n,
-            object: "matrix",
-        })
+                step: "eigenvalues and eigenvectors",
+                rows: n,
+                cols: n,
+                object: "matrix",
+            })
         })?;
     }
     let norm = crate::linalg::frobenius_norm(ab.as_slice());

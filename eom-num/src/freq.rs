@@ -46,10 +46,10 @@ use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError, SingularError};
 use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
+use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError, SingularError};
 
 /// Largest number of points of a generated grid (guards against gigabyte allocations from
 /// a mistyped range or density).
@@ -704,7 +704,9 @@ impl HessenbergForm {
             }));
         }
         if let Some(z) = s.iter().find(|z| !(z.re.is_finite() && z.im.is_finite())) {
-            return Err(NumError::NonFinite(NonFiniteError::EvaluationPoint { s: *z }));
+            return Err(NumError::NonFinite(NonFiniteError::EvaluationPoint {
+                s: *z,
+            }));
         }
         let mut singular = [false; LANES];
         #[cfg(target_arch = "x86_64")]
@@ -906,12 +908,14 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
         // lo, hi in log10(rad/s); inclusive, ppd points per decade.
         let steps = ((hi - lo) * ppd as f64).round().max(1.0);
         if steps > MAX_POINTS as f64 {
-            return Err(NumError::InvalidOption(OptionError::FrequencyGridTooLarge {
-                points: steps,
-                decades: hi - lo,
-                per_decade: ppd,
-                limit: MAX_POINTS,
-            }));
+            return Err(NumError::InvalidOption(
+                OptionError::FrequencyGridTooLarge {
+                    points: steps,
+                    decades: hi - lo,
+                    per_decade: ppd,
+                    limit: MAX_POINTS,
+                },
+            ));
         }
         let steps = steps as usize;
         Ok((0..=steps)
@@ -921,7 +925,9 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
     match &opts.range {
         FreqRange::Points { values, unit } => {
             if let Some(v) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
-                return Err(NumError::InvalidOption(OptionError::FrequencyPoint { value: v }));
+                return Err(NumError::InvalidOption(OptionError::FrequencyPoint {
+                    value: v,
+                }));
             }
             Ok(values.iter().map(|&f| unit.to_rad(f)).collect())
         }

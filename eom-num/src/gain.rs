@@ -190,12 +190,14 @@ pub fn steady_state_gain_with(
     if second.zero_dimension < opts.structural_zeros {
         // Both decisions contradict the structure: A's rounding hides zero eigenvalues that
         // exist, and `C A⁻¹ B` would amplify that rounding into the gains.
-        return Err(NumError::AmbiguousRank(AmbiguousRankError::StructuralZeros {
-            structural: opts.structural_zeros,
-            n: ss.states(),
-            first: first.zero_dimension,
-            second: second.zero_dimension,
-        }));
+        return Err(NumError::AmbiguousRank(
+            AmbiguousRankError::StructuralZeros {
+                structural: opts.structural_zeros,
+                n: ss.states(),
+                first: first.zero_dimension,
+                second: second.zero_dimension,
+            },
+        ));
     }
     if same_gains(&first.gains, &second.gains) {
         return Ok(first);
@@ -442,9 +444,11 @@ fn zero_split(
             condition: separation_condition,
         });
     }
-    let w = t.clone().lu().try_inverse().ok_or_else(|| {
-        NumError::Singular(SingularError::SplitBasis { n })
-    })?;
+    let w = t
+        .clone()
+        .lu()
+        .try_inverse()
+        .ok_or_else(|| NumError::Singular(SingularError::SplitBasis { n }))?;
     Ok(ZeroSplit {
         v0,
         v1,
@@ -525,9 +529,7 @@ fn finite_part(
     let (fin, errors) = if a1.nrows() == 0 {
         (d.clone(), d.map(|v| f64::EPSILON * v.abs()))
     } else {
-        let singular = || {
-            NumError::Singular(SingularError::NonzeroModes { n: a1.nrows() })
-        };
+        let singular = || NumError::Singular(SingularError::NonzeroModes { n: a1.nrows() });
         let lu = a1.clone().lu();
         let x = lu.solve(b1).ok_or_else(singular)?;
         let y = a1

@@ -9,9 +9,9 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::{DimensionError, NonFiniteError, NumError, SingularError};
 use crate::statespace::StateSpace;
 use crate::time::{TimeOptions, TimeResponse, grid, simulate};
+use crate::{DimensionError, NonFiniteError, NumError, SingularError};
 
 /// Free response from `x0` (no input), on the grid of `opts` (automatic: from the modes).
 ///
@@ -66,7 +66,9 @@ pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex
             .ok_or_else(|| NumError::Singular(SingularError::Shifted { lambda }))?;
         let big = v.iter().fold(0.0f64, |b, z| b.max(z.norm()));
         if !(big.is_finite() && big > 0.0) {
-            return Err(NumError::Singular(SingularError::InverseIteration { lambda }));
+            return Err(NumError::Singular(SingularError::InverseIteration {
+                lambda,
+            }));
         }
         v /= Complex64::new(big, 0.0);
     }

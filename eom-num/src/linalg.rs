@@ -16,8 +16,8 @@ use faer::linalg::svd::ComputeSvdVectors;
 use faer::{Mat, MatRef, Par};
 use nalgebra::{DMatrix, DVector};
 
-use crate::{ConvergenceError, NumError, OptionError};
 use crate::statespace::check_finite;
+use crate::{ConvergenceError, NumError, OptionError};
 
 /// Copies an nalgebra matrix into a faer matrix.
 pub fn to_faer(m: &DMatrix<f64>) -> Mat<f64> {
@@ -145,12 +145,14 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             MemStack::new(&mut buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
-            step: "SVD",
-            rows: r,
-            cols: c,
-            object: "matrix",
-        }))?;
+        .map_err(|_| {
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "SVD",
+                rows: r,
+                cols: c,
+                object: "matrix",
+            })
+        })?;
     } else {
         // Empty matrix: any orthogonal U, V will do.
         u = Mat::identity(r, r);
@@ -191,12 +193,14 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         MemStack::new(&mut buf),
         Default::default(),
     )
-    .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
+    .map_err(|_| {
+        NumError::NoConvergence(ConvergenceError::Factorisation {
             step: "singular values",
             rows: r,
             cols: c,
             object: "matrix",
-        }))?;
+        })
+    })?;
     Ok(s.column_vector().iter().copied().collect())
 }
 

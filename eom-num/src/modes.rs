@@ -54,12 +54,12 @@ use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
-use crate::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
 use crate::small_eigen;
 use crate::statespace::{StateSpace, check_finite, in_range};
+use crate::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
 
 fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
@@ -252,12 +252,14 @@ pub fn eigenvalues_faer_in(
             MemStack::new(&mut ws.buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(ConvergenceError::Factorisation {
-            step: "eigenvalues",
-            rows: n,
-            cols: n,
-            object: "matrix",
-        }))?;
+        .map_err(|_| {
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "eigenvalues",
+                rows: n,
+                cols: n,
+                object: "matrix",
+            })
+        })?;
     }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.
@@ -412,10 +414,10 @@ impl Modes {
     pub fn compute_with(ss: &StateSpace<f64>, opts: &ModeOptions) -> Result<Modes, NumError> {
         if !(opts.tol_factor.is_finite() && opts.tol_factor > 0.0) {
             return Err(NumError::InvalidOption(OptionError::Value {
-            option: "ModeOptions::tol_factor",
-            value: opts.tol_factor,
-            must: Bound::FinitePositive,
-        }));
+                option: "ModeOptions::tol_factor",
+                value: opts.tol_factor,
+                must: Bound::FinitePositive,
+            }));
         }
         ss.validate()?;
         let n = ss.states();

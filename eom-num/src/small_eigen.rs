@@ -25,10 +25,10 @@
 //! `+0.0`, structural zeros exactly `0`. Its accuracy against faer's solver and a
 //! double-double reference is charted by `eom bench accuracy` (docs/work-precision.md).
 
-use crate::{ConvergenceError, DimensionError, NumError};
 use crate::deflate::{self, DeflationStep};
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite_slice;
+use crate::{ConvergenceError, DimensionError, NumError};
 use num_complex::Complex64;
 
 /// The largest matrix the kernel takes.
@@ -108,7 +108,10 @@ pub fn eigenvalues_small_known(
     out: &mut [Complex64],
 ) -> Result<usize, NumError> {
     if known.n != n {
-        return Err(NumError::Dimension(DimensionError::KnownZeros { n, known: known.n }));
+        return Err(NumError::Dimension(DimensionError::KnownZeros {
+            n,
+            known: known.n,
+        }));
     }
     solve(a, n, Some(known), out)
 }
@@ -161,9 +164,8 @@ fn solve(
         let h = &mut w[..m * m];
         let mut scale = [1.0; MAX_N];
         balance_in_place(h, m, &mut scale[..m]);
-        qr(h, m, &mut re, &mut im).map_err(|()| {
-            NumError::NoConvergence(ConvergenceError::QrIteration { n })
-        })?;
+        qr(h, m, &mut re, &mut im)
+            .map_err(|()| NumError::NoConvergence(ConvergenceError::QrIteration { n }))?;
     }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.

@@ -32,10 +32,10 @@
 
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, DVector};
 
-use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError};
 use crate::linalg::max_abs;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::{StateSpace, check_finite};
+use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError};
 
 /// Largest number of samples of a time grid ([`Horizon::Given`], [`TimeOptions::max_steps`]):
 /// guards against a typo such as a step in ms given as s allocating gigabytes.
@@ -257,17 +257,17 @@ pub(crate) fn grid(
         Horizon::Given { t_end, dt } => {
             if !(t_end.is_finite() && t_end > 0.0) {
                 return Err(NumError::InvalidOption(OptionError::Value {
-            option: "Horizon::Given t_end",
-            value: t_end,
-            must: Bound::FinitePositive,
-        }));
+                    option: "Horizon::Given t_end",
+                    value: t_end,
+                    must: Bound::FinitePositive,
+                }));
             }
             if !(dt.is_finite() && dt > 0.0) {
                 return Err(NumError::InvalidOption(OptionError::Value {
-            option: "Horizon::Given dt",
-            value: dt,
-            must: Bound::FinitePositive,
-        }));
+                    option: "Horizon::Given dt",
+                    value: dt,
+                    must: Bound::FinitePositive,
+                }));
             }
             let steps = (t_end / dt).round();
             if steps > MAX_SAMPLES as f64 {

@@ -250,7 +250,10 @@ fn final_pencil(
     let rank = dec.rank;
     decisions.push(dec);
     if rank != r {
-        return Err(NumError::Singular(SingularError::ZeroPencilRank { rank, rows: r }));
+        return Err(NumError::Singular(SingularError::ZeroPencilRank {
+            rank,
+            rows: r,
+        }));
     }
     let mut ab = DMatrix::zeros(nf, nf + r);
     ab.columns_mut(0, nf).copy_from(a);

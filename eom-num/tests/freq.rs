@@ -368,10 +368,12 @@ fn freq_errors_name_the_problem() {
     };
     assert!(matches!(
         FrequencyResponse::compute(&ss, &huge),
-        Err(NumError::InvalidOption(OptionError::FrequencyGridTooLarge {
-            per_decade: 1_000_000_000,
-            ..
-        }))
+        Err(NumError::InvalidOption(
+            OptionError::FrequencyGridTooLarge {
+                per_decade: 1_000_000_000,
+                ..
+            }
+        ))
     ));
     let bad_points = FreqOptions {
         range: FreqRange::Points {
@@ -382,7 +384,9 @@ fn freq_errors_name_the_problem() {
     };
     assert!(matches!(
         FrequencyResponse::compute(&ss, &bad_points),
-        Err(NumError::InvalidOption(OptionError::FrequencyPoint { value: -2.0 }))
+        Err(NumError::InvalidOption(OptionError::FrequencyPoint {
+            value: -2.0
+        }))
     ));
     let form = HessenbergForm::new(&ss).unwrap();
     let mut ws = form.workspace();

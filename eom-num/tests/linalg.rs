@@ -3,11 +3,11 @@
 
 mod closed_forms;
 
-use eom_num::{MatrixEntry, NonFiniteError, NumError, OptionError};
 use eom_num::linalg::{
     Equilibrate, RankTolerance, balance_in_place, condition_number, equilibrate, faer_view,
     from_faer, nullspace, nullspace_equilibrated, rank, rank_equilibrated, svd, to_faer,
 };
+use eom_num::{MatrixEntry, NonFiniteError, NumError, OptionError};
 use nalgebra::{DMatrix, dmatrix};
 
 /// Projector onto the column space of an orthonormal basis.

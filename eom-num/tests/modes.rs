@@ -388,7 +388,12 @@ fn mode_errors_name_the_problem() {
     }
     // StateSpace constructors.
     assert!(matches!(
-        StateSpace::new(DMatrix::zeros(2, 2), DMatrix::zeros(3, 1), DMatrix::zeros(1, 2), DMatrix::zeros(1, 1)),
+        StateSpace::new(
+            DMatrix::zeros(2, 2),
+            DMatrix::zeros(3, 1),
+            DMatrix::zeros(1, 2),
+            DMatrix::zeros(1, 1)
+        ),
         Err(NumError::Dimension(DimensionError::Shape {
             matrix: "B",
             rows: 3,

@@ -267,7 +267,13 @@ fn time_errors_name_the_problem() {
         ..Default::default()
     };
     assert!(matches!(
-        step(&ss, &bad(Horizon::Given { t_end: 1.0, dt: 0.0 })),
+        step(
+            &ss,
+            &bad(Horizon::Given {
+                t_end: 1.0,
+                dt: 0.0
+            })
+        ),
         Err(NumError::InvalidOption(OptionError::Value {
             option: "Horizon::Given dt",
             value: 0.0,
@@ -275,14 +281,26 @@ fn time_errors_name_the_problem() {
         }))
     ));
     assert!(matches!(
-        impulse(&ss, &bad(Horizon::Given { t_end: f64::NAN, dt: 0.1 })),
+        impulse(
+            &ss,
+            &bad(Horizon::Given {
+                t_end: f64::NAN,
+                dt: 0.1
+            })
+        ),
         Err(NumError::InvalidOption(OptionError::Value {
             option: "Horizon::Given t_end",
             ..
         }))
     ));
     assert!(matches!(
-        step(&ss, &bad(Horizon::Given { t_end: 1e6, dt: 1e-6 })),
+        step(
+            &ss,
+            &bad(Horizon::Given {
+                t_end: 1e6,
+                dt: 1e-6
+            })
+        ),
         Err(NumError::InvalidOption(OptionError::TooManySamples { .. }))
     ));
     let few = TimeOptions {
@@ -322,18 +340,36 @@ fn time_errors_name_the_problem() {
     let o = TimeOptions::default();
     assert!(matches!(
         simulate(&ss, &DMatrix::zeros(2, 5), 0.1, None, &o),
-        Err(NumError::Dimension(DimensionError::InputSamples { rows: 2, .. }))
+        Err(NumError::Dimension(DimensionError::InputSamples {
+            rows: 2,
+            ..
+        }))
     ));
     assert!(matches!(
-        simulate(&ss, &DMatrix::zeros(1, 5), 0.1, Some(&dvector![1.0, 2.0]), &o),
-        Err(NumError::Dimension(DimensionError::InitialState { len: 2, .. }))
+        simulate(
+            &ss,
+            &DMatrix::zeros(1, 5),
+            0.1,
+            Some(&dvector![1.0, 2.0]),
+            &o
+        ),
+        Err(NumError::Dimension(DimensionError::InitialState {
+            len: 2,
+            ..
+        }))
     ));
     assert!(matches!(
         simulate(&ss, &DMatrix::from_element(1, 5, f64::NAN), 0.1, None, &o),
         Err(NumError::NonFinite(NonFiniteError::Entry(MatrixEntry { ref matrix, .. }))) if matrix == "input samples u"
     ));
     assert!(matches!(
-        simulate(&ss, &DMatrix::zeros(1, 5), 0.1, Some(&dvector![f64::INFINITY]), &o),
+        simulate(
+            &ss,
+            &DMatrix::zeros(1, 5),
+            0.1,
+            Some(&dvector![f64::INFINITY]),
+            &o
+        ),
         Err(NumError::NonFinite(NonFiniteError::InitialState))
     ));
     assert!(matches!(

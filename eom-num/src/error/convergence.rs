@@ -77,5 +77,8 @@ pub enum ConvergenceError {
 
 /// `: detail` where a factorisation gave its own report.
 fn detail_suffix(detail: &Option<String>) -> String {
-    detail.as_ref().map(|d| format!(": {d}")).unwrap_or_default()
+    detail
+        .as_ref()
+        .map(|d| format!(": {d}"))
+        .unwrap_or_default()
 }

@@ -5,8 +5,8 @@ use super::{
     NonFiniteError, NumError, OptionError, PencilError, SingularError,
 };
 use crate::gain::{AMBIGUITY_FACTOR, Gain};
-use num_complex::Complex64;
 use crate::linalg::RankTolerance;
+use num_complex::Complex64;
 
 fn text(e: OptionError) -> String {
     NumError::InvalidOption(e).to_string()
@@ -244,7 +244,9 @@ fn singular_errors_print_the_former_messages() {
     let s = Complex64::new(0.0, 2.0);
     assert_eq!(
         text(SingularError::Eigenvalue { s, n: 2 }),
-        format!("singular matrix: sI − A at s = {s} (2×2 model): s is numerically an eigenvalue of A")
+        format!(
+            "singular matrix: sI − A at s = {s} (2×2 model): s is numerically an eigenvalue of A"
+        )
     );
     assert_eq!(
         text(SingularError::ZeroSubspace {
@@ -373,9 +375,7 @@ fn pencil_and_rank_errors_print_the_former_messages() {
              {margin:.3} of its threshold, and a threshold {AMBIGUITY_FACTOR} times larger (1 \
              zero eigenvalue(s) instead of 0) gives other gains ([integrating (order 1), \
              {:.6e}] instead of [{:.6e}, {:.6e}])",
-            -0.5,
-            2.0,
-            -0.5
+            -0.5, 2.0, -0.5
         )
     );
 }

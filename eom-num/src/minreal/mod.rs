@@ -201,10 +201,16 @@ impl MinrealOptions {
             return Err(tolerance_error("MinrealOptions.atol", self.atol));
         }
         if !(self.stability_rtol.is_finite() && self.stability_rtol >= 0.0) {
-            return Err(tolerance_error("MinrealOptions.stability_rtol", self.stability_rtol));
+            return Err(tolerance_error(
+                "MinrealOptions.stability_rtol",
+                self.stability_rtol,
+            ));
         }
         if !(self.cluster_rtol.is_finite() && self.cluster_rtol >= 0.0) {
-            return Err(tolerance_error("MinrealOptions.cluster_rtol", self.cluster_rtol));
+            return Err(tolerance_error(
+                "MinrealOptions.cluster_rtol",
+                self.cluster_rtol,
+            ));
         }
         Ok(())
     }
@@ -559,13 +565,13 @@ pub(crate) fn svd_full(m: &DMatrix<f64>) -> Result<FullSvd, NumError> {
         return Ok((DMatrix::identity(r, r), Vec::new(), DMatrix::identity(c, c)));
     }
     let view = faer::MatRef::from_column_major_slice(m.as_slice(), r, c);
-    let svd = view
-        .svd()
-        .map_err(|e| NumError::NoConvergence(ConvergenceError::BlockSvd {
+    let svd = view.svd().map_err(|e| {
+        NumError::NoConvergence(ConvergenceError::BlockSvd {
             rows: r,
             cols: c,
             detail: format!("{e:?}"),
-        }))?;
+        })
+    })?;
     let (fu, fs, fv) = (svd.U(), svd.S(), svd.V());
     let u = DMatrix::from_fn(r, r, |i, j| fu[(i, j)]);
     let v = DMatrix::from_fn(c, c, |i, j| fv[(i, j)]);
@@ -809,13 +815,13 @@ fn pbh_residual(
         }
     };
     // n singular values for both shapes (n × (n+k) or (n+k) × n).
-    let sv = m
-        .singular_values()
-        .map_err(|e| NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+    let sv = m.singular_values().map_err(|e| {
+        NumError::NoConvergence(ConvergenceError::AtEigenvalue {
             step: "PBH test SVD",
             lambda: lam,
             detail: Some(format!("{e:?}")),
-        }))?;
+        })
+    })?;
     Ok(sv.iter().copied().fold(f64::INFINITY, f64::min) / scale)
 }
 

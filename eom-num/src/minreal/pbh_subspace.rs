@@ -250,24 +250,24 @@ pub(crate) fn cluster_pbh(
     // directions real, where a complex one could rotate them by a phase.
     let (u, sigma) = if lam.im == 0.0 {
         let gr = faer::Mat::<f64>::from_fn(s, k + m, |i, j| g[(i, j)].re);
-        let svd = gr
-            .thin_svd()
-            .map_err(|e| NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+        let svd = gr.thin_svd().map_err(|e| {
+            NumError::NoConvergence(ConvergenceError::AtEigenvalue {
                 step: "PBH SVD",
                 lambda: lam,
                 detail: Some(format!("{e:?}")),
-            }))?;
+            })
+        })?;
         let u = svd.U();
         let u = DMatrix::from_fn(s, s, |i, j| Complex64::new(u[(i, j)], 0.0));
         (u, (0..s).map(|i| svd.S()[i]).collect::<Vec<f64>>())
     } else {
-        let svd = g
-            .thin_svd()
-            .map_err(|e| NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+        let svd = g.thin_svd().map_err(|e| {
+            NumError::NoConvergence(ConvergenceError::AtEigenvalue {
                 step: "PBH SVD",
                 lambda: lam,
                 detail: Some(format!("{e:?}")),
-            }))?;
+            })
+        })?;
         let u = svd.U();
         let u = DMatrix::from_fn(s, s, |i, j| u[(i, j)]);
         (u, (0..s).map(|i| svd.S()[i].re).collect::<Vec<f64>>())

@@ -7,8 +7,8 @@
 use nalgebra::DMatrix;
 
 use super::lyapunov::{controllability_factor, observability_factor};
-use crate::{NumError, SingularError};
 use crate::linalg::svd;
+use crate::{NumError, SingularError};
 
 /// The Hankel singular values and what the projections are made of.
 #[derive(Clone, Debug)]

@@ -94,10 +94,12 @@ pub(crate) fn observability_factor(
             0.5 * (a11[(0, 0)] + a11[(1, 1)])
         };
         if lam_re.is_nan() || lam_re >= 0.0 {
-            return Err(NumError::InvalidOption(OptionError::UnstableLyapunovBlock {
-                block: i,
-                real_part: lam_re,
-            }));
+            return Err(NumError::InvalidOption(
+                OptionError::UnstableLyapunovBlock {
+                    block: i,
+                    real_part: lam_re,
+                },
+            ));
         }
         if r11.iter().all(|v| *v == 0.0) {
             // Nothing of this block is seen yet: U₁₁ = U₁₂ = 0, C' = [R₂₂; R₁₂].

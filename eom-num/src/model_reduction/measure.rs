@@ -11,9 +11,9 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use super::schur::eigenvalues;
-use crate::{NumError, SingularError};
 use crate::freq::{HessenbergForm, SolveStatus};
 use crate::statespace::StateSpace;
+use crate::{NumError, SingularError};
 
 /// The measured error of a reduction.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

@@ -333,7 +333,9 @@ impl<'a> Reducer<'a> {
             OrderChoice::Tolerance(t) if !(t.is_finite() && t > 0.0) => {
                 Err(invalid(OptionError::ReductionTolerance { tolerance: t }))
             }
-            OrderChoice::Tolerance(_) if self.method == ReductionMethod::Modal => Err(invalid(OptionError::ModalTolerance)),
+            OrderChoice::Tolerance(_) if self.method == ReductionMethod::Modal => {
+                Err(invalid(OptionError::ModalTolerance))
+            }
             OrderChoice::Default
                 if self.method == ReductionMethod::Modal && self.band_hz.is_none() =>
             {
