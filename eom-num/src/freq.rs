@@ -926,7 +926,7 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
         FreqRange::Points { values, unit } => {
             if let Some(v) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
                 return Err(NumError::InvalidOption(OptionError::FrequencyPoint {
-                    value: v,
+                    value: *v,
                 }));
             }
             Ok(values.iter().map(|&f| unit.to_rad(f)).collect())
