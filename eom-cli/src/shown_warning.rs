@@ -41,7 +41,7 @@ impl ShownWarning {
         ShownWarning {
             kind: w.kind().to_string(),
             item: w.item().map(|i| WarnedItem {
-                kind: i.kind.clone(),
+                kind: i.kind.to_string(),
                 name: i.name.clone(),
             }),
             message: format!("{prefix}{w}"),
