@@ -460,14 +460,15 @@ fn full_rank(
     let x = if n == 0 {
         rhs
     } else {
-        p.e.clone().lu().solve(&rhs).ok_or_else(|| {
-            NumError::Singular(SingularError::LuFailed {
+        p.e.clone()
+            .lu()
+            .solve(&rhs)
+            .ok_or(NumError::Singular(SingularError::LuFailed {
                 matrix: "E",
                 n,
                 passed: "has full numerical rank",
                 failed: "factorisation broke down",
-            })
-        })?
+            }))?
     };
     let mut a_s = x.columns(0, n).into_owned();
     let mut b_s = x.columns(n, m).into_owned();
@@ -632,14 +633,14 @@ fn schur_complement(
     rhs.columns_mut(0, r).copy_from(&a21);
     rhs.columns_mut(r, m).copy_from(&b2);
     scale_rows(&mut rhs, &a22.scaling.rows);
-    let mut x = lu.solve(&rhs).ok_or_else(|| {
-        NumError::Singular(SingularError::LuFailed {
+    let mut x = lu
+        .solve(&rhs)
+        .ok_or(NumError::Singular(SingularError::LuFailed {
             matrix: "A22",
             n: k,
             passed: "passed the rank test",
             failed: "factorisation broke down",
-        })
-    })?;
+        }))?;
     scale_rows(&mut x, &a22.scaling.cols);
     let xa = x.columns(0, r);
     let xb = x.columns(r, m);
@@ -650,14 +651,14 @@ fn schur_complement(
             let mut rhs = DMatrix::zeros(r, r + m);
             rhs.columns_mut(0, r).copy_from(&a_s);
             rhs.columns_mut(r, m).copy_from(&b_s);
-            let x = e11.clone().lu().solve(&rhs).ok_or_else(|| {
-                NumError::Singular(SingularError::LuFailed {
+            let x = e11.clone().lu().solve(&rhs).ok_or(NumError::Singular(
+                SingularError::LuFailed {
                     matrix: "E11",
                     n: r,
                     passed: "has full numerical rank",
                     failed: "factorisation broke down",
-                })
-            })?;
+                },
+            ))?;
             a_s = x.columns(0, r).into_owned();
             b_s = x.columns(r, m).into_owned();
         }

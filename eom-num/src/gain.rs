@@ -448,7 +448,7 @@ fn zero_split(
         .clone()
         .lu()
         .try_inverse()
-        .ok_or_else(|| NumError::Singular(SingularError::SplitBasis { n }))?;
+        .ok_or(NumError::Singular(SingularError::SplitBasis { n }))?;
     Ok(ZeroSplit {
         v0,
         v1,

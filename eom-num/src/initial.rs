@@ -63,7 +63,7 @@ pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex
     for _ in 0..2 {
         v = lu
             .solve(&v)
-            .ok_or_else(|| NumError::Singular(SingularError::Shifted { lambda }))?;
+            .ok_or(NumError::Singular(SingularError::Shifted { lambda }))?;
         let big = v.iter().fold(0.0f64, |b, z| b.max(z.norm()));
         if !(big.is_finite() && big > 0.0) {
             return Err(NumError::Singular(SingularError::InverseIteration {
