@@ -75,7 +75,7 @@ pub fn codegen(
                     eom_codegen::CodegenError::Num(eom_num::NumError::InvalidOption(problem)) => {
                         CliError::BadArgument {
                             argument: format!("--reduce {r}"),
-                            problem,
+                            problem: problem.to_string(),
                         }
                     }
                     e => e.into(),

@@ -101,7 +101,7 @@ fn option_error(e: NumError) -> CliError {
     match e {
         NumError::InvalidOption(problem) => CliError::BadArgument {
             argument: "--order/--tol/--band/--method".into(),
-            problem,
+            problem: problem.to_string(),
         },
         e => e.into(),
     }

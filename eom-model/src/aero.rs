@@ -22,8 +22,8 @@ use eom_aero::validity::{
     PITCH_RATE_LIMIT, REDUCED_FREQUENCY_LIMIT, ROLL_RATE_LIMIT, YAW_RATE_LIMIT, check_rates,
     reduced_frequency,
 };
-use eom_num::NumError;
 use eom_num::StateSpace;
+use eom_num::{DimensionError, NumError};
 use eom_sym::Expr;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -120,22 +120,21 @@ pub fn response_rates(
 ) -> Result<Vec<WingRates>, ModelError> {
     let n = ss.states();
     if states.nrows() != n {
-        return Err(NumError::Dimension(format!(
-            "the states have {} rows, the model {n} states",
-            states.nrows()
-        ))
+        return Err(NumError::Dimension(DimensionError::ResponseStates {
+            rows: states.nrows(),
+            states: n,
+        })
         .into());
     }
     let mut xdot = &ss.a * states;
     if let Some(u) = inputs {
         if u.nrows() != ss.inputs() || u.ncols() != states.ncols() {
-            return Err(NumError::Dimension(format!(
-                "the inputs are {}×{}, expected {}×{}",
-                u.nrows(),
-                u.ncols(),
-                ss.inputs(),
-                states.ncols()
-            ))
+            return Err(NumError::Dimension(DimensionError::ResponseInputs {
+                rows: u.nrows(),
+                cols: u.ncols(),
+                expected_rows: ss.inputs(),
+                expected_cols: states.ncols(),
+            })
             .into());
         }
         xdot += &ss.b * u;

@@ -55,7 +55,10 @@ use num_complex::Complex64;
 
 use crate::linalg::{Equilibrate, Rank, RankTolerance, Scaling, equilibrate, rank, svd};
 use crate::statespace::{Descriptor, SignalNames, StateSpace, check_finite};
-use crate::{NumError, NumWarning};
+use crate::{
+    A22Rank, Bound, ConvergenceError, DimensionError, NumError, NumWarning, OptionError,
+    PencilError, SingularError,
+};
 
 /// Rows or columns of E whose largest entry is at most `RANK_NOISE_FACTOR · n · ε · max|E|`
 /// are rounding noise and treated as exactly zero (the same scale as the default rank
@@ -298,20 +301,22 @@ fn check_arguments(
     d.validate()?;
     opts.rank_tol.validate()?;
     if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
-        return Err(NumError::InvalidOption(format!(
-            "DescriptorOptions::warn_condition = {}: must be > 0",
-            opts.warn_condition
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "DescriptorOptions::warn_condition",
+            value: opts.warn_condition,
+            must: Bound::Positive,
+        }));
     }
     let n = d.states();
     match opts.phys {
         Some(ph) => {
             if ph.ncols() != n {
-                return Err(NumError::Dimension(format!(
-                    "phys is {}×{}, expected one column per descriptor state ({n})",
-                    ph.nrows(),
-                    ph.ncols()
-                )));
+                return Err(NumError::Dimension(DimensionError::PhysColumns {
+                    rows: ph.nrows(),
+                    cols: ph.ncols(),
+                    states: n,
+                    descriptor: true,
+                }));
             }
             check_finite(ph, "phys")?;
             Ok(ph.clone())
@@ -455,11 +460,15 @@ fn full_rank(
     let x = if n == 0 {
         rhs
     } else {
-        p.e.clone().lu().solve(&rhs).ok_or_else(|| {
-            NumError::Singular(format!(
-                "E ({n}×{n}) has full numerical rank but its LU factorisation broke down"
-            ))
-        })?
+        p.e.clone()
+            .lu()
+            .solve(&rhs)
+            .ok_or(NumError::Singular(SingularError::LuFailed {
+                matrix: "E",
+                n,
+                passed: "has full numerical rank",
+                failed: "factorisation broke down",
+            }))?
     };
     let mut a_s = x.columns(0, n).into_owned();
     let mut b_s = x.columns(n, m).into_owned();
@@ -555,23 +564,18 @@ fn decide_a22(
     if a22_rank.rank < k {
         let singular = pencil_is_singular(&p.e, &p.a, opts.rank_tol)?;
         let smin = s22.last().copied().unwrap_or(0.0);
-        let detail = format!(
-            "E has rank {r} of {n}; the algebraic block A22 ({k}×{k}) has rank {} \
-             (smallest singular value of the equilibrated A22 {smin:.3e} ≤ threshold \
-             {thr22:.3e})",
-            a22_rank.rank
-        );
+        let decision = A22Rank {
+            e_rank: r,
+            n,
+            k,
+            a22_rank: a22_rank.rank,
+            smallest: smin,
+            threshold: thr22,
+        };
         return Err(if singular {
-            NumError::SingularPencil(format!(
-                "{detail}, and sE − A is rank deficient at generic s: the equations do not \
-                 determine the motion (missing equation or redundant coordinate)"
-            ))
+            NumError::SingularPencil(PencilError::RankDeficient(decision))
         } else {
-            NumError::HigherIndex(format!(
-                "{detail}; the pencil is regular, so its index is > 1 (e.g. a constraint on a \
-                 position without its derivative); reduce the index before calling \
-                 descriptor_to_state_space"
-            ))
+            NumError::HigherIndex(decision)
         });
     }
     let condition = s22[0] / s22[k - 1];
@@ -629,11 +633,14 @@ fn schur_complement(
     rhs.columns_mut(0, r).copy_from(&a21);
     rhs.columns_mut(r, m).copy_from(&b2);
     scale_rows(&mut rhs, &a22.scaling.rows);
-    let mut x = lu.solve(&rhs).ok_or_else(|| {
-        NumError::Singular(format!(
-            "A22 ({k}×{k}) passed the rank test but its LU factorisation broke down"
-        ))
-    })?;
+    let mut x = lu
+        .solve(&rhs)
+        .ok_or(NumError::Singular(SingularError::LuFailed {
+            matrix: "A22",
+            n: k,
+            passed: "passed the rank test",
+            failed: "factorisation broke down",
+        }))?;
     scale_rows(&mut x, &a22.scaling.cols);
     let xa = x.columns(0, r);
     let xb = x.columns(r, m);
@@ -644,11 +651,14 @@ fn schur_complement(
             let mut rhs = DMatrix::zeros(r, r + m);
             rhs.columns_mut(0, r).copy_from(&a_s);
             rhs.columns_mut(r, m).copy_from(&b_s);
-            let x = e11.clone().lu().solve(&rhs).ok_or_else(|| {
-                NumError::Singular(format!(
-                    "E11 ({r}×{r}) has full numerical rank but its LU factorisation broke down"
-                ))
-            })?;
+            let x = e11.clone().lu().solve(&rhs).ok_or(NumError::Singular(
+                SingularError::LuFailed {
+                    matrix: "E11",
+                    n: r,
+                    passed: "has full numerical rank",
+                    failed: "factorisation broke down",
+                },
+            ))?;
             a_s = x.columns(0, r).into_owned();
             b_s = x.columns(r, m).into_owned();
         }
@@ -801,10 +811,11 @@ pub fn generalized_eigenvalues_with(
     d.validate()?;
     opts.rank_tol.validate()?;
     if !(opts.infinite_tol.is_finite() && opts.infinite_tol >= 0.0) {
-        return Err(NumError::InvalidOption(format!(
-            "GenEigOptions::infinite_tol = {}: must be finite and ≥ 0",
-            opts.infinite_tol
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "GenEigOptions::infinite_tol",
+            value: opts.infinite_tol,
+            must: Bound::FiniteNonNegative,
+        }));
     }
     let n = d.states();
     let (mut e, mut a) = (d.e.clone(), d.a.clone());
@@ -845,7 +856,14 @@ pub fn generalized_eigenvalues_with(
             MemStack::new(&mut buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(format!("QZ of a {n}×{n} pencil")))?;
+        .map_err(|_| {
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "QZ",
+                rows: n,
+                cols: n,
+                object: "pencil",
+            })
+        })?;
     }
     // Scaled (α̂, β̂) and the angle θ.
     let sa = if na > 0.0 { na } else { 1.0 };
@@ -859,11 +877,13 @@ pub fn generalized_eigenvalues_with(
         let ah = alpha.norm() / sa;
         let bh = beta[j].abs() / se;
         if ah <= zero_tol && bh <= zero_tol {
-            return Err(NumError::SingularPencil(format!(
-                "QZ returned α ≈ β ≈ 0 (|α|/‖A‖ = {ah:.2e}, |β|/‖E‖ = {bh:.2e}) for eigenvalue \
-                 {j}: det(sE − A) vanishes identically ({n}×{n} pencil, rank E = {})",
-                e_rank.rank
-            )));
+            return Err(NumError::SingularPencil(PencilError::VanishingEigenvalue {
+                alpha: ah,
+                beta: bh,
+                index: j,
+                n,
+                e_rank: e_rank.rank,
+            }));
         }
         let theta = bh / (ah * ah + bh * bh).sqrt();
         let lambda = if beta[j] != 0.0 {

@@ -20,10 +20,10 @@ use faer::{Mat, MatRef};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::NumError;
 use crate::deflate;
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite;
+use crate::{ConvergenceError, DimensionError, NumError};
 
 /// Where the eigenvector of a sorted eigenvalue lives in the packed storage.
 #[derive(Clone, Copy, Debug)]
@@ -84,11 +84,11 @@ pub(crate) fn eigen_full(
     keep_left: bool,
 ) -> Result<Eigen, NumError> {
     if a.nrows() != a.ncols() {
-        return Err(NumError::Dimension(format!(
-            "A is {}×{}, expected a square matrix",
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: "A",
+            rows: a.nrows(),
+            cols: a.ncols(),
+        }));
     }
     check_finite(a, "A")?;
     let n = a.nrows();
@@ -145,7 +145,12 @@ fn eigen_packed(a: &DMatrix<f64>, balance: bool, keep_left: bool) -> Result<Eige
             Default::default(),
         )
         .map_err(|_| {
-            NumError::NoConvergence(format!("eigenvalues and eigenvectors of a {n}×{n} matrix"))
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "eigenvalues and eigenvectors",
+                rows: n,
+                cols: n,
+                object: "matrix",
+            })
         })?;
     }
     let norm = crate::linalg::frobenius_norm(ab.as_slice());

@@ -46,10 +46,10 @@ use faer::{Conj, Mat};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::NumError;
 use crate::linalg::balance_in_place;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::StateSpace;
+use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError, SingularError};
 
 /// Largest number of points of a generated grid (guards against gigabyte allocations from
 /// a mistyped range or density).
@@ -311,17 +311,19 @@ impl HessenbergForm {
     ) -> Result<SolveStatus, NumError> {
         let (n, m, p) = (self.n, self.m, self.p);
         if ws.n != n || ws.m != m || out.len() != p * m {
-            return Err(NumError::Dimension(format!(
-                "evaluate_in: model has n = {n}, m = {m}, p = {p}; workspace is for n = {}, \
-                 m = {}; output has length {} (expected {})",
-                ws.n,
-                ws.m,
-                out.len(),
-                p * m
-            )));
+            return Err(NumError::Dimension(DimensionError::FreqWorkspace {
+                function: "evaluate_in",
+                n,
+                m,
+                p,
+                workspace_n: ws.n,
+                workspace_m: ws.m,
+                out: out.len(),
+                expected: p * m,
+            }));
         }
         if !(s.re.is_finite() && s.im.is_finite()) {
-            return Err(NumError::NonFinite(format!("evaluation point s = {s}")));
+            return Err(NumError::NonFinite(NonFiniteError::EvaluationPoint { s }));
         }
         let FreqWorkspace {
             ur,
@@ -690,17 +692,21 @@ impl HessenbergForm {
     ) -> Result<(), NumError> {
         let (n, m, p) = (self.n, self.m, self.p);
         if ws.n != n || ws.m != m || out.len() != LANES * p * m {
-            return Err(NumError::Dimension(format!(
-                "evaluate_batch_in: model has n = {n}, m = {m}, p = {p}; workspace is for \
-                 n = {}, m = {}; output has length {} (expected {})",
-                ws.n,
-                ws.m,
-                out.len(),
-                LANES * p * m
-            )));
+            return Err(NumError::Dimension(DimensionError::FreqWorkspace {
+                function: "evaluate_batch_in",
+                n,
+                m,
+                p,
+                workspace_n: ws.n,
+                workspace_m: ws.m,
+                out: out.len(),
+                expected: LANES * p * m,
+            }));
         }
         if let Some(z) = s.iter().find(|z| !(z.re.is_finite() && z.im.is_finite())) {
-            return Err(NumError::NonFinite(format!("evaluation point s = {z}")));
+            return Err(NumError::NonFinite(NonFiniteError::EvaluationPoint {
+                s: *z,
+            }));
         }
         let mut singular = [false; LANES];
         #[cfg(target_arch = "x86_64")]
@@ -739,11 +745,10 @@ pub fn evaluate_at(ss: &StateSpace<f64>, s: Complex64) -> Result<DMatrix<Complex
     let mut out = vec![Complex64::new(0.0, 0.0); p * m];
     match form.evaluate_in(s, &mut ws, &mut out)? {
         SolveStatus::Regular => Ok(DMatrix::from_vec(p, m, out)),
-        SolveStatus::Singular => Err(NumError::Singular(format!(
-            "sI − A at s = {s} ({}×{} model): s is numerically an eigenvalue of A",
-            ss.states(),
-            ss.states()
-        ))),
+        SolveStatus::Singular => Err(NumError::Singular(SingularError::Eigenvalue {
+            s,
+            n: ss.states(),
+        })),
     }
 }
 
@@ -887,6 +892,15 @@ impl FrequencyResponse {
     }
 }
 
+/// The error for `FreqOptions::points_per_decade = 0`.
+fn no_points_per_decade() -> NumError {
+    NumError::InvalidOption(OptionError::Value {
+        option: "FreqOptions::points_per_decade",
+        value: 0.0,
+        must: Bound::AtLeastOne,
+    })
+}
+
 /// The frequency grid in rad/s.
 fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> {
     let ppd = opts.points_per_decade;
@@ -894,11 +908,14 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
         // lo, hi in log10(rad/s); inclusive, ppd points per decade.
         let steps = ((hi - lo) * ppd as f64).round().max(1.0);
         if steps > MAX_POINTS as f64 {
-            return Err(NumError::InvalidOption(format!(
-                "frequency grid of {steps:.3e} points ({:.1} decades at {ppd} per decade) \
-                 exceeds the limit of {MAX_POINTS}",
-                hi - lo
-            )));
+            return Err(NumError::InvalidOption(
+                OptionError::FrequencyGridTooLarge {
+                    points: steps,
+                    decades: hi - lo,
+                    per_decade: ppd,
+                    limit: MAX_POINTS,
+                },
+            ));
         }
         let steps = steps as usize;
         Ok((0..=steps)
@@ -908,30 +925,27 @@ fn grid(ss: &StateSpace<f64>, opts: &FreqOptions) -> Result<Vec<f64>, NumError> 
     match &opts.range {
         FreqRange::Points { values, unit } => {
             if let Some(v) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
-                return Err(NumError::InvalidOption(format!(
-                    "FreqRange::Points contains {v}: frequencies must be finite and ≥ 0"
-                )));
+                return Err(NumError::InvalidOption(OptionError::FrequencyPoint {
+                    value: *v,
+                }));
             }
             Ok(values.iter().map(|&f| unit.to_rad(f)).collect())
         }
         FreqRange::Range { low, high, unit } => {
             if ppd == 0 {
-                return Err(NumError::InvalidOption(
-                    "FreqOptions::points_per_decade = 0: must be ≥ 1".into(),
-                ));
+                return Err(no_points_per_decade());
             }
             if !(low.is_finite() && high.is_finite() && *low > 0.0 && high > low) {
-                return Err(NumError::InvalidOption(format!(
-                    "FreqRange::Range {{ low: {low}, high: {high} }}: need 0 < low < high, finite"
-                )));
+                return Err(NumError::InvalidOption(OptionError::FrequencyRange {
+                    low: *low,
+                    high: *high,
+                }));
             }
             log_grid(unit.to_rad(*low).log10(), unit.to_rad(*high).log10())
         }
         FreqRange::Auto => {
             if ppd == 0 {
-                return Err(NumError::InvalidOption(
-                    "FreqOptions::points_per_decade = 0: must be ≥ 1".into(),
-                ));
+                return Err(no_points_per_decade());
             }
             let (lo, hi) = auto_decades_hz(&ss.a)?;
             let to_w = (2.0 * PI).log10();

@@ -42,7 +42,7 @@ use crate::linalg::{
     Rank, RankTolerance, balance_in_place, decide, faer_view, nullspace, singular_values,
 };
 use crate::statespace::StateSpace;
-use crate::{NumError, NumWarning};
+use crate::{AmbiguousRankError, Bound, NumError, NumWarning, OptionError, SingularError};
 
 /// The steady-state gain of one input/output pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -171,10 +171,11 @@ pub fn steady_state_gain_with(
     ss.validate()?;
     opts.rank_tol.validate()?;
     if opts.warn_condition.is_nan() || opts.warn_condition <= 0.0 {
-        return Err(NumError::InvalidOption(format!(
-            "GainOptions::warn_condition = {}: must be > 0",
-            opts.warn_condition
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "GainOptions::warn_condition",
+            value: opts.warn_condition,
+            must: Bound::Positive,
+        }));
     }
     let ss = &structural(ss);
     let first = gain_at_tolerance(ss, opts, 1.0)?;
@@ -189,15 +190,14 @@ pub fn steady_state_gain_with(
     if second.zero_dimension < opts.structural_zeros {
         // Both decisions contradict the structure: A's rounding hides zero eigenvalues that
         // exist, and `C A⁻¹ B` would amplify that rounding into the gains.
-        return Err(NumError::AmbiguousRank(format!(
-            "the structure of the model proves {} zero eigenvalue(s), but the rank decisions \
-             on A ({n}×{n}) find {} at the default threshold and {} at one {AMBIGUITY_FACTOR} \
-             times larger: the gains would amplify rounding",
-            opts.structural_zeros,
-            first.zero_dimension,
-            second.zero_dimension,
-            n = ss.states()
-        )));
+        return Err(NumError::AmbiguousRank(
+            AmbiguousRankError::StructuralZeros {
+                structural: opts.structural_zeros,
+                n: ss.states(),
+                first: first.zero_dimension,
+                second: second.zero_dimension,
+            },
+        ));
     }
     if same_gains(&first.gains, &second.gains) {
         return Ok(first);
@@ -212,17 +212,14 @@ pub fn steady_state_gain_with(
         });
         return Ok(out);
     }
-    Err(NumError::AmbiguousRank(format!(
-        "the rank of A ({n}×{n}) was decided within a factor {:.3} of its threshold, and a \
-         threshold {AMBIGUITY_FACTOR} times larger ({} zero eigenvalue(s) instead of {}) gives \
-         other gains ({} instead of {})",
-        first.a_rank.margin,
-        second.zero_dimension,
-        first.zero_dimension,
-        describe(&second.gains),
-        describe(&first.gains),
-        n = ss.states()
-    )))
+    Err(NumError::AmbiguousRank(AmbiguousRankError::Gains {
+        n: ss.states(),
+        margin: first.a_rank.margin,
+        first: first.zero_dimension,
+        second: second.zero_dimension,
+        first_gains: first.gains.iter().copied().collect(),
+        second_gains: second.gains.iter().copied().collect(),
+    }))
 }
 
 /// A rank decision within this factor of its threshold is checked by deciding again at a
@@ -258,7 +255,7 @@ fn same_gains(x: &DMatrix<Gain>, y: &DMatrix<Gain>) -> bool {
 }
 
 /// The gains in one line, for messages.
-fn describe(g: &DMatrix<Gain>) -> String {
+pub(crate) fn describe(g: &[Gain]) -> String {
     let items: Vec<String> = g
         .iter()
         .map(|x| match x {
@@ -423,11 +420,13 @@ fn zero_split(
         }
     }
     if l0.ncols() != q || nu_l != nu {
-        return Err(NumError::Singular(format!(
-            "A ({n}×{n}) is singular but its zero-eigenvalue subspace is ill-determined: the \
-             right chain gives dimension {q} (index {nu}), the left chain {} (index {nu_l})",
-            l0.ncols()
-        )));
+        return Err(NumError::Singular(SingularError::ZeroSubspace {
+            n,
+            right: q,
+            right_index: nu,
+            left: l0.ncols(),
+            left_index: nu_l,
+        }));
     }
     // V₁ = (ker (Aᵀ)^ν)⊥ = range(A^ν).
     let v1 = if q == 0 {
@@ -445,11 +444,11 @@ fn zero_split(
             condition: separation_condition,
         });
     }
-    let w = t.clone().lu().try_inverse().ok_or_else(|| {
-        NumError::Singular(format!(
-            "the basis [V₀ V₁] of the zero/nonzero eigenvalue split of A ({n}×{n}) is singular"
-        ))
-    })?;
+    let w = t
+        .clone()
+        .lu()
+        .try_inverse()
+        .ok_or(NumError::Singular(SingularError::SplitBasis { n }))?;
     Ok(ZeroSplit {
         v0,
         v1,
@@ -530,13 +529,7 @@ fn finite_part(
     let (fin, errors) = if a1.nrows() == 0 {
         (d.clone(), d.map(|v| f64::EPSILON * v.abs()))
     } else {
-        let singular = || {
-            NumError::Singular(format!(
-                "A restricted to its nonzero modes ({}×{}) is singular",
-                a1.nrows(),
-                a1.nrows()
-            ))
-        };
+        let singular = || NumError::Singular(SingularError::NonzeroModes { n: a1.nrows() });
         let lu = a1.clone().lu();
         let x = lu.solve(b1).ok_or_else(singular)?;
         let y = a1
@@ -756,9 +749,12 @@ fn regular(
         let y = reg.lu.solve_transpose(faer_view(&ct));
         let y = DMatrix::from_fn(n, c.nrows(), |i, j| y[(i, j)]);
         if x.iter().chain(y.iter()).any(|v| !v.is_finite()) {
-            return Err(NumError::Singular(format!(
-                "A ({n}×{n}) passed the rank test but its LU solve is not finite"
-            )));
+            return Err(NumError::Singular(SingularError::LuFailed {
+                matrix: "A",
+                n,
+                passed: "passed the rank test",
+                failed: "solve is not finite",
+            }));
         }
         let errors = solve_errors(a, c, &ss.d, &x, &y);
         (&ss.d - c * x, errors)

@@ -9,9 +9,9 @@
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
-use crate::NumError;
 use crate::statespace::StateSpace;
 use crate::time::{TimeOptions, TimeResponse, grid, simulate};
+use crate::{DimensionError, NonFiniteError, NumError, SingularError};
 
 /// Free response from `x0` (no input), on the grid of `opts` (automatic: from the modes).
 ///
@@ -41,14 +41,14 @@ pub fn initial(
 pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex64>, NumError> {
     let n = a.nrows();
     if a.ncols() != n {
-        return Err(NumError::Dimension(format!(
-            "A is {}×{}, expected square",
-            n,
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: "A",
+            rows: n,
+            cols: a.ncols(),
+        }));
     }
     if !(lambda.re.is_finite() && lambda.im.is_finite()) {
-        return Err(NumError::NonFinite(format!("eigenvalue {lambda}")));
+        return Err(NumError::NonFinite(NonFiniteError::Eigenvalue { lambda }));
     }
     let scale = a.iter().fold(lambda.norm(), |m, x| m.max(x.abs())).max(1.0);
     let shift = lambda + Complex64::new(1e-10 * scale, 1e-10 * scale);
@@ -63,12 +63,12 @@ pub fn mode_state(a: &DMatrix<f64>, lambda: Complex64) -> Result<DVector<Complex
     for _ in 0..2 {
         v = lu
             .solve(&v)
-            .ok_or_else(|| NumError::Singular(format!("A − λI near λ = {lambda}")))?;
+            .ok_or(NumError::Singular(SingularError::Shifted { lambda }))?;
         let big = v.iter().fold(0.0f64, |b, z| b.max(z.norm()));
         if !(big.is_finite() && big > 0.0) {
-            return Err(NumError::Singular(format!(
-                "inverse iteration for λ = {lambda} did not give a vector"
-            )));
+            return Err(NumError::Singular(SingularError::InverseIteration {
+                lambda,
+            }));
         }
         v /= Complex64::new(big, 0.0);
     }

@@ -152,6 +152,9 @@ pub mod time;
 pub mod warning;
 pub mod zeros;
 
-pub use error::{MatrixEntry, NumError};
+pub use error::{
+    A22Rank, AmbiguousRankError, Bound, ConvergenceError, DimensionError, MatrixEntry,
+    NonFiniteError, NumError, OptionError, PencilError, SingularError,
+};
 pub use statespace::{Descriptor, SignalNames, StateSpace};
 pub use warning::NumWarning;

@@ -16,8 +16,8 @@ use faer::linalg::svd::ComputeSvdVectors;
 use faer::{Mat, MatRef, Par};
 use nalgebra::{DMatrix, DVector};
 
-use crate::NumError;
 use crate::statespace::check_finite;
+use crate::{ConvergenceError, NumError, OptionError};
 
 /// Copies an nalgebra matrix into a faer matrix.
 pub fn to_faer(m: &DMatrix<f64>) -> Mat<f64> {
@@ -79,9 +79,9 @@ impl RankTolerance {
                 if v.is_finite() && v >= 0.0 {
                     Ok(())
                 } else {
-                    Err(NumError::InvalidOption(format!(
-                        "rank tolerance {self:?}: must be finite and ≥ 0"
-                    )))
+                    Err(NumError::InvalidOption(OptionError::RankTolerance {
+                        tolerance: *self,
+                    }))
                 }
             }
         }
@@ -145,7 +145,14 @@ pub fn svd(m: &DMatrix<f64>) -> Result<Svd, NumError> {
             MemStack::new(&mut buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(format!("SVD of a {r}×{c} matrix")))?;
+        .map_err(|_| {
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "SVD",
+                rows: r,
+                cols: c,
+                object: "matrix",
+            })
+        })?;
     } else {
         // Empty matrix: any orthogonal U, V will do.
         u = Mat::identity(r, r);
@@ -186,7 +193,14 @@ pub fn singular_values(m: &DMatrix<f64>) -> Result<Vec<f64>, NumError> {
         MemStack::new(&mut buf),
         Default::default(),
     )
-    .map_err(|_| NumError::NoConvergence(format!("singular values of a {r}×{c} matrix")))?;
+    .map_err(|_| {
+        NumError::NoConvergence(ConvergenceError::Factorisation {
+            step: "singular values",
+            rows: r,
+            cols: c,
+            object: "matrix",
+        })
+    })?;
     Ok(s.column_vector().iter().copied().collect())
 }
 

@@ -54,24 +54,24 @@ use faer::{MatRef, Par};
 use nalgebra::{DMatrix, DVector, Vector3};
 use num_complex::Complex64;
 
-use crate::NumError;
 use crate::deflate;
 use crate::eigen::eigen_full;
 use crate::linalg::balance_in_place;
 use crate::small_eigen;
 use crate::statespace::{StateSpace, check_finite, in_range};
+use crate::{Bound, ConvergenceError, DimensionError, NumError, OptionError};
 
 fn cmp_re_im(a: &Complex64, b: &Complex64) -> std::cmp::Ordering {
     a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
 }
 
-fn check_square(a: &DMatrix<f64>, name: &str) -> Result<(), NumError> {
+fn check_square(a: &DMatrix<f64>, name: &'static str) -> Result<(), NumError> {
     if a.nrows() != a.ncols() {
-        return Err(NumError::Dimension(format!(
-            "{name} is {}×{}, expected a square matrix",
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: name,
+            rows: a.nrows(),
+            cols: a.ncols(),
+        }));
     }
     Ok(())
 }
@@ -200,12 +200,12 @@ fn check_eigenvalues_in(
 ) -> Result<(), NumError> {
     let n = ws.n;
     if a.nrows() != n || a.ncols() != n || out.len() != n {
-        return Err(NumError::Dimension(format!(
-            "eigenvalues_in: A is {}×{}, workspace is for {n}×{n}, output has length {}",
-            a.nrows(),
-            a.ncols(),
-            out.len()
-        )));
+        return Err(NumError::Dimension(DimensionError::EigenWorkspace {
+            rows: a.nrows(),
+            cols: a.ncols(),
+            workspace: n,
+            out: out.len(),
+        }));
     }
     if a.iter().any(|x| !in_range(*x)) {
         return check_finite(a, "A");
@@ -252,7 +252,14 @@ pub fn eigenvalues_faer_in(
             MemStack::new(&mut ws.buf),
             Default::default(),
         )
-        .map_err(|_| NumError::NoConvergence(format!("eigenvalues of a {n}×{n} matrix")))?;
+        .map_err(|_| {
+            NumError::NoConvergence(ConvergenceError::Factorisation {
+                step: "eigenvalues",
+                rows: n,
+                cols: n,
+                object: "matrix",
+            })
+        })?;
     }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.
@@ -406,10 +413,11 @@ impl Modes {
     /// plus those of [`Modes::compute`].
     pub fn compute_with(ss: &StateSpace<f64>, opts: &ModeOptions) -> Result<Modes, NumError> {
         if !(opts.tol_factor.is_finite() && opts.tol_factor > 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "ModeOptions::tol_factor = {}: must be finite and > 0",
-                opts.tol_factor
-            )));
+            return Err(NumError::InvalidOption(OptionError::Value {
+                option: "ModeOptions::tol_factor",
+                value: opts.tol_factor,
+                must: Bound::FinitePositive,
+            }));
         }
         ss.validate()?;
         let n = ss.states();

@@ -7,7 +7,7 @@
 //! [`DEFECTIVE_CONDITION`] no number is given.
 
 use crate::eigen::eigen_full;
-use crate::error::NumError;
+use crate::error::{DimensionError, NumError};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
@@ -35,13 +35,13 @@ pub fn eigenvalue_sensitivities(
     da: &[DMatrix<f64>],
 ) -> Result<Vec<EigenSensitivity>, NumError> {
     if let Some(k) = da.iter().position(|d| d.shape() != a.shape()) {
-        return Err(NumError::Dimension(format!(
-            "∂A/∂p of parameter {k} is {}×{}, A is {}×{}",
-            da[k].nrows(),
-            da[k].ncols(),
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::Derivative {
+            parameter: k,
+            rows: da[k].nrows(),
+            cols: da[k].ncols(),
+            a_rows: a.nrows(),
+            a_cols: a.ncols(),
+        }));
     }
     let e = eigen_full(a, true, true)?;
     let (right, left) = (e.right(), e.left());

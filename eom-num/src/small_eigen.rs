@@ -25,10 +25,10 @@
 //! `+0.0`, structural zeros exactly `0`. Its accuracy against faer's solver and a
 //! double-double reference is charted by `eom bench accuracy` (docs/work-precision.md).
 
-use crate::NumError;
 use crate::deflate::{self, DeflationStep};
 use crate::linalg::balance_in_place;
 use crate::statespace::check_finite_slice;
+use crate::{ConvergenceError, DimensionError, NumError};
 use num_complex::Complex64;
 
 /// The largest matrix the kernel takes.
@@ -108,10 +108,10 @@ pub fn eigenvalues_small_known(
     out: &mut [Complex64],
 ) -> Result<usize, NumError> {
     if known.n != n {
-        return Err(NumError::Dimension(format!(
-            "eigenvalues_small_known: a {n}×{n} matrix, structural zeros found on a {0}×{0} one",
-            known.n
-        )));
+        return Err(NumError::Dimension(DimensionError::KnownZeros {
+            n,
+            known: known.n,
+        }));
     }
     solve(a, n, Some(known), out)
 }
@@ -119,11 +119,12 @@ pub fn eigenvalues_small_known(
 /// Checks the size and entries of the input.
 pub(crate) fn check(a: &[f64], n: usize, out: usize) -> Result<(), NumError> {
     if n > MAX_N || a.len() != n * n || out != n {
-        return Err(NumError::Dimension(format!(
-            "eigenvalues_small: a {n}×{n} matrix (at most {MAX_N}×{MAX_N}) given {} entries \
-             and an output of length {out}",
-            a.len(),
-        )));
+        return Err(NumError::Dimension(DimensionError::SmallEigen {
+            n,
+            max: MAX_N,
+            entries: a.len(),
+            out,
+        }));
     }
     // One pass without a branch per entry (NaN fails the comparison); the message, naming
     // the entry, only when something is wrong.
@@ -163,11 +164,8 @@ fn solve(
         let h = &mut w[..m * m];
         let mut scale = [1.0; MAX_N];
         balance_in_place(h, m, &mut scale[..m]);
-        qr(h, m, &mut re, &mut im).map_err(|()| {
-            NumError::NoConvergence(format!(
-                "eigenvalues of a {n}×{n} matrix: the QR iteration did not converge"
-            ))
-        })?;
+        qr(h, m, &mut re, &mut im)
+            .map_err(|()| NumError::NoConvergence(ConvergenceError::QrIteration { n }))?;
     }
     for (k, o) in out.iter_mut().enumerate() {
         // `+ 0.0` turns a −0.0 imaginary part into +0.0 so that sorting is by value.

@@ -26,11 +26,11 @@
 
 use num_complex::Complex64;
 
-use crate::NumError;
 use crate::deflate;
 use crate::linalg::{balance_in_place, frobenius_norm};
 use crate::modes::{ModeOptions, error_estimate};
 use crate::small_eigen::{self, MAX_N};
+use crate::{ConvergenceError, NumError};
 
 /// Every eigenvalue of the n × n matrix `a` (column-major, n ≤ [`MAX_N`]) with its error
 /// estimate, sorted as [`crate::small_eigen::eigenvalues_small`] sorts them, written to
@@ -57,11 +57,8 @@ pub(crate) fn eigenvalues_with_errors_small(
     let norm = frobenius_norm(h);
     let (mut re, mut im) = ([0.0; MAX_N], [0.0; MAX_N]);
     if n > 0 {
-        small_eigen::qr(h, n, &mut re, &mut im).map_err(|()| {
-            NumError::NoConvergence(format!(
-                "eigenvalues of a {n}×{n} matrix: the QR iteration did not converge"
-            ))
-        })?;
+        small_eigen::qr(h, n, &mut re, &mut im)
+            .map_err(|()| NumError::NoConvergence(ConvergenceError::QrIteration { n }))?;
     }
     let tol_factor = ModeOptions::default().tol_factor;
     let mut k = 0;

@@ -7,7 +7,7 @@
 use nalgebra::{DMatrix, Scalar};
 use serde::{Deserialize, Serialize};
 
-use crate::NumError;
+use crate::{DimensionError, NonFiniteError, NumError};
 
 /// Names (and units) of the signals of a model, carried along so that tables, plots and JSON
 /// can say what each row and column is.
@@ -113,34 +113,38 @@ pub(crate) fn check_finite_slice(
                 max: crate::MAX_ENTRY,
             });
         }
-        return Err(NumError::NonFinite(entry.to_string()));
+        return Err(NumError::NonFinite(NonFiniteError::Entry(entry)));
     }
     Ok(())
 }
 
 fn check_shape(
     m: &DMatrix<f64>,
-    name: &str,
+    matrix: &'static str,
     rows: usize,
     cols: usize,
-    why: &str,
+    why: &'static str,
 ) -> Result<(), NumError> {
     if m.nrows() != rows || m.ncols() != cols {
-        return Err(NumError::Dimension(format!(
-            "{name} is {}×{}, expected {rows}×{cols} ({why})",
-            m.nrows(),
-            m.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::Shape {
+            matrix,
+            rows: m.nrows(),
+            cols: m.ncols(),
+            expected_rows: rows,
+            expected_cols: cols,
+            why,
+        }));
     }
     Ok(())
 }
 
-fn check_names(names: &[String], len: usize, what: &str) -> Result<(), NumError> {
+fn check_names(names: &[String], len: usize, field: &'static str) -> Result<(), NumError> {
     if !names.is_empty() && names.len() != len {
-        return Err(NumError::Dimension(format!(
-            "names.{what} has {} entries, expected {len} (or none)",
-            names.len()
-        )));
+        return Err(NumError::Dimension(DimensionError::NamesLength {
+            field,
+            len: names.len(),
+            expected: len,
+        }));
     }
     Ok(())
 }
@@ -198,11 +202,12 @@ impl StateSpace<f64> {
         check_shape(&self.c, "C", p, n, "C has one column per state")?;
         check_shape(&self.d, "D", p, m, "D is outputs × inputs")?;
         if self.phys.ncols() != n {
-            return Err(NumError::Dimension(format!(
-                "phys is {}×{}, expected one column per state ({n})",
-                self.phys.nrows(),
-                self.phys.ncols()
-            )));
+            return Err(NumError::Dimension(DimensionError::PhysColumns {
+                rows: self.phys.nrows(),
+                cols: self.phys.ncols(),
+                states: n,
+                descriptor: false,
+            }));
         }
         check_finite(&self.a, "A")?;
         check_finite(&self.b, "B")?;
@@ -215,11 +220,10 @@ impl StateSpace<f64> {
         check_names(&self.names.outputs, p, "outputs")?;
         check_names(&self.names.output_units, p, "output_units")?;
         if !self.names.bodies.is_empty() && self.names.bodies.len() * 6 != self.phys.nrows() {
-            return Err(NumError::Dimension(format!(
-                "names.bodies has {} entries but phys has {} rows (six per body expected)",
-                self.names.bodies.len(),
-                self.phys.nrows()
-            )));
+            return Err(NumError::Dimension(DimensionError::BodyRows {
+                bodies: self.names.bodies.len(),
+                rows: self.phys.nrows(),
+            }));
         }
         Ok(())
     }

@@ -32,10 +32,10 @@
 
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut, DVector};
 
-use crate::NumError;
 use crate::linalg::max_abs;
 use crate::modes::{ModeKind, classify_matrix};
 use crate::statespace::{StateSpace, check_finite};
+use crate::{Bound, DimensionError, NonFiniteError, NumError, OptionError};
 
 /// Largest number of samples of a time grid ([`Horizon::Given`], [`TimeOptions::max_steps`]):
 /// guards against a typo such as a step in ms given as s allocating gigabytes.
@@ -181,9 +181,11 @@ pub struct Discretization {
 pub fn zoh(ss: &StateSpace<f64>, dt: f64) -> Result<Discretization, NumError> {
     ss.validate()?;
     if !(dt.is_finite() && dt > 0.0) {
-        return Err(NumError::InvalidOption(format!(
-            "time step dt = {dt}: must be finite and > 0"
-        )));
+        return Err(NumError::InvalidOption(OptionError::Value {
+            option: "time step dt",
+            value: dt,
+            must: Bound::FinitePositive,
+        }));
     }
     let (n, m) = (ss.states(), ss.inputs());
     let mut aug = DMatrix::<f64>::zeros(n + m, n + m);
@@ -254,30 +256,37 @@ pub(crate) fn grid(
     match opts.horizon {
         Horizon::Given { t_end, dt } => {
             if !(t_end.is_finite() && t_end > 0.0) {
-                return Err(NumError::InvalidOption(format!(
-                    "Horizon::Given t_end = {t_end}: must be finite and > 0"
-                )));
+                return Err(NumError::InvalidOption(OptionError::Value {
+                    option: "Horizon::Given t_end",
+                    value: t_end,
+                    must: Bound::FinitePositive,
+                }));
             }
             if !(dt.is_finite() && dt > 0.0) {
-                return Err(NumError::InvalidOption(format!(
-                    "Horizon::Given dt = {dt}: must be finite and > 0"
-                )));
+                return Err(NumError::InvalidOption(OptionError::Value {
+                    option: "Horizon::Given dt",
+                    value: dt,
+                    must: Bound::FinitePositive,
+                }));
             }
             let steps = (t_end / dt).round();
             if steps > MAX_SAMPLES as f64 {
-                return Err(NumError::InvalidOption(format!(
-                    "Horizon::Given t_end = {t_end}, dt = {dt}: {steps:.3e} samples exceed the \
-                     limit of {MAX_SAMPLES}"
-                )));
+                return Err(NumError::InvalidOption(OptionError::TooManySamples {
+                    t_end,
+                    dt,
+                    samples: steps,
+                    limit: MAX_SAMPLES,
+                }));
             }
             Ok(((steps as usize + 1).max(2), dt, None))
         }
         Horizon::Auto => {
             if opts.max_steps < 2 || opts.max_steps > MAX_SAMPLES {
-                return Err(NumError::InvalidOption(format!(
-                    "TimeOptions::max_steps = {}: must be in 2..={MAX_SAMPLES}",
-                    opts.max_steps
-                )));
+                return Err(NumError::InvalidOption(OptionError::Value {
+                    option: "TimeOptions::max_steps",
+                    value: opts.max_steps as f64,
+                    must: Bound::Between(2, MAX_SAMPLES),
+                }));
             }
             let (t_end, dt, note) = auto_horizon(&ss.a, opts.max_steps)?;
             let nt = ((t_end / dt).round() as usize + 1).min(opts.max_steps);
@@ -290,9 +299,11 @@ fn limit_of(opts: &TimeOptions, reference: f64) -> Result<f64, NumError> {
     match opts.size_limit {
         SizeLimit::Relative(f) => {
             if !(f.is_finite() && f > 0.0) {
-                return Err(NumError::InvalidOption(format!(
-                    "SizeLimit::Relative({f}): must be finite and > 0"
-                )));
+                return Err(NumError::InvalidOption(OptionError::SizeLimit {
+                    kind: "Relative",
+                    value: f,
+                    must: Bound::FinitePositive,
+                }));
             }
             // A zero reference means y ≡ 0 (C = 0 or no input path): nothing to limit.
             Ok(if reference > 0.0 {
@@ -303,9 +314,11 @@ fn limit_of(opts: &TimeOptions, reference: f64) -> Result<f64, NumError> {
         }
         SizeLimit::Absolute(v) => {
             if v.is_nan() || v <= 0.0 {
-                return Err(NumError::InvalidOption(format!(
-                    "SizeLimit::Absolute({v}): must be > 0"
-                )));
+                return Err(NumError::InvalidOption(OptionError::SizeLimit {
+                    kind: "Absolute",
+                    value: v,
+                    must: Bound::Positive,
+                }));
             }
             Ok(v)
         }
@@ -475,22 +488,22 @@ pub fn simulate(
     ss.validate()?;
     let (n, p, m) = (ss.states(), ss.outputs(), ss.inputs());
     if u.nrows() != m {
-        return Err(NumError::Dimension(format!(
-            "input samples u have {} rows, expected one per input ({m})",
-            u.nrows()
-        )));
+        return Err(NumError::Dimension(DimensionError::InputSamples {
+            rows: u.nrows(),
+            inputs: m,
+        }));
     }
     check_finite(u, "input samples u")?;
     let x = match x0 {
         Some(v) => {
             if v.len() != n {
-                return Err(NumError::Dimension(format!(
-                    "x0 has length {}, expected one entry per state ({n})",
-                    v.len()
-                )));
+                return Err(NumError::Dimension(DimensionError::InitialState {
+                    len: v.len(),
+                    states: n,
+                }));
             }
             if v.iter().any(|z| !z.is_finite()) {
-                return Err(NumError::NonFinite("initial state x0".into()));
+                return Err(NumError::NonFinite(NonFiniteError::InitialState));
             }
             v.clone()
         }

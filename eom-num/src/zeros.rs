@@ -37,7 +37,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::error::NumError;
+use crate::error::{Bound, ConvergenceError, NumError, OptionError, SingularError};
 use crate::minreal::staircase::compress;
 use crate::minreal::{
     MinrealOptions, RankDecision, RankStage, apply_scaling, balance_states, cser, sort_complex,
@@ -115,16 +115,18 @@ pub fn transmission_zeros_with(
 ) -> Result<ZerosReport, NumError> {
     ss.validate()?;
     for (v, name) in [
-        (opts.rtol, "rtol"),
-        (Some(opts.atol), "atol"),
-        (opts.infinite_rtol, "infinite_rtol"),
+        (opts.rtol, "ZerosOptions.rtol"),
+        (Some(opts.atol), "ZerosOptions.atol"),
+        (opts.infinite_rtol, "ZerosOptions.infinite_rtol"),
     ] {
         if let Some(v) = v
             && !(v.is_finite() && v >= 0.0)
         {
-            return Err(NumError::InvalidOption(format!(
-                "ZerosOptions.{name} = {v} (must be finite and ≥ 0)"
-            )));
+            return Err(NumError::InvalidOption(OptionError::Tolerance {
+                option: name,
+                value: v,
+                must: Bound::FiniteNonNegative,
+            }));
         }
     }
     let (n, m, p) = (ss.states(), ss.inputs(), ss.outputs());
@@ -176,10 +178,10 @@ pub fn transmission_zeros_with(
     }
     if d.ncols() != r {
         // Cannot happen with consistent rank decisions (see the module documentation).
-        return Err(NumError::Singular(format!(
-            "reduced feedthrough of the zero pencil is {r}×{} instead of square",
-            d.ncols()
-        )));
+        return Err(NumError::Singular(SingularError::FeedthroughNotSquare {
+            rows: r,
+            cols: d.ncols(),
+        }));
     }
     let (af, bf, bf_sigma_min) = final_pencil(&a, &b, &c, &d, tol, &mut decisions)?;
     let bnorm = bf.norm();
@@ -248,9 +250,10 @@ fn final_pencil(
     let rank = dec.rank;
     decisions.push(dec);
     if rank != r {
-        return Err(NumError::Singular(format!(
-            "[C D] of the reduced zero pencil has numerical rank {rank} < {r}"
-        )));
+        return Err(NumError::Singular(SingularError::ZeroPencilRank {
+            rank,
+            rows: r,
+        }));
     }
     let mut ab = DMatrix::zeros(nf, nf + r);
     ab.columns_mut(0, nf).copy_from(a);
@@ -273,10 +276,7 @@ fn standard_eigenvalues(a: &DMatrix<f64>, b: &DMatrix<f64>) -> Result<Vec<Comple
     let x = faer::linalg::solvers::Solve::solve(&lu, crate::linalg::faer_view(a));
     let m = DMatrix::from_fn(n, n, |i, j| x[(i, j)]);
     if m.iter().any(|v| !v.is_finite()) {
-        return Err(NumError::Singular(format!(
-            "the {n}×{n} zero pencil: B_f passed the conditioning test but its LU solve is \
-             not finite"
-        )));
+        return Err(NumError::Singular(SingularError::ZeroPencilSolve { n }));
     }
     crate::modes::eigenvalues(&m)
 }
@@ -385,7 +385,10 @@ fn qz_eigenvalues(
         Spec::default(),
     )
     .map_err(|e| {
-        NumError::NoConvergence(format!("QZ of the {n}×{n} reduced zero pencil: {e:?}"))
+        NumError::NoConvergence(ConvergenceError::ZeroPencilQz {
+            n,
+            detail: format!("{e:?}"),
+        })
     })?;
     // A complex pair occupies two slots; as in faer's own high-level API, the first slot
     // defines it and the second is its conjugate.

@@ -6,7 +6,7 @@ mod closed_forms;
 use closed_forms::{random_similarity, rng, smd};
 use eom_num::gain::{Gain, GainOptions, steady_state_gain, steady_state_gain_with};
 use eom_num::linalg::RankTolerance;
-use eom_num::{NumError, StateSpace};
+use eom_num::{DimensionError, NumError, OptionError, StateSpace};
 use nalgebra::{DMatrix, dmatrix};
 
 fn close(g: Gain, want: f64) -> bool {
@@ -213,7 +213,10 @@ fn gain_errors_name_the_problem() {
     };
     assert!(matches!(
         steady_state_gain_with(&ss, &bad),
-        Err(NumError::InvalidOption(msg)) if msg.contains("warn_condition")
+        Err(NumError::InvalidOption(OptionError::Value {
+            option: "GainOptions::warn_condition",
+            ..
+        }))
     ));
     let bad = GainOptions {
         rank_tol: RankTolerance::Absolute(-1.0),
@@ -221,13 +224,18 @@ fn gain_errors_name_the_problem() {
     };
     assert!(matches!(
         steady_state_gain_with(&ss, &bad),
-        Err(NumError::InvalidOption(msg)) if msg.contains("rank tolerance")
+        Err(NumError::InvalidOption(OptionError::RankTolerance { .. }))
     ));
     let mut broken = ss;
     broken.d = DMatrix::zeros(2, 2);
     assert!(matches!(
         steady_state_gain(&broken),
-        Err(NumError::Dimension(msg)) if msg.contains("D is 2×2")
+        Err(NumError::Dimension(DimensionError::Shape {
+            matrix: "D",
+            rows: 2,
+            cols: 2,
+            ..
+        }))
     ));
 }
 

@@ -4,7 +4,7 @@ mod closed_forms;
 
 use closed_forms::smd;
 use eom_num::time::{Horizon, SizeLimit, StopReason, TimeOptions, impulse, simulate, step, zoh};
-use eom_num::{NumError, StateSpace};
+use eom_num::{DimensionError, MatrixEntry, NonFiniteError, NumError, OptionError, StateSpace};
 use nalgebra::{DMatrix, dmatrix, dvector};
 
 fn first_order(tau: f64) -> StateSpace<f64> {
@@ -267,16 +267,41 @@ fn time_errors_name_the_problem() {
         ..Default::default()
     };
     assert!(matches!(
-        step(&ss, &bad(Horizon::Given { t_end: 1.0, dt: 0.0 })),
-        Err(NumError::InvalidOption(msg)) if msg.contains("dt = 0")
+        step(
+            &ss,
+            &bad(Horizon::Given {
+                t_end: 1.0,
+                dt: 0.0
+            })
+        ),
+        Err(NumError::InvalidOption(OptionError::Value {
+            option: "Horizon::Given dt",
+            value: 0.0,
+            ..
+        }))
     ));
     assert!(matches!(
-        impulse(&ss, &bad(Horizon::Given { t_end: f64::NAN, dt: 0.1 })),
-        Err(NumError::InvalidOption(msg)) if msg.contains("t_end")
+        impulse(
+            &ss,
+            &bad(Horizon::Given {
+                t_end: f64::NAN,
+                dt: 0.1
+            })
+        ),
+        Err(NumError::InvalidOption(OptionError::Value {
+            option: "Horizon::Given t_end",
+            ..
+        }))
     ));
     assert!(matches!(
-        step(&ss, &bad(Horizon::Given { t_end: 1e6, dt: 1e-6 })),
-        Err(NumError::InvalidOption(msg)) if msg.contains("exceed the limit")
+        step(
+            &ss,
+            &bad(Horizon::Given {
+                t_end: 1e6,
+                dt: 1e-6
+            })
+        ),
+        Err(NumError::InvalidOption(OptionError::TooManySamples { .. }))
     ));
     let few = TimeOptions {
         max_steps: 1,
@@ -284,7 +309,11 @@ fn time_errors_name_the_problem() {
     };
     assert!(matches!(
         step(&ss, &few),
-        Err(NumError::InvalidOption(msg)) if msg.contains("max_steps")
+        Err(NumError::InvalidOption(OptionError::Value {
+            option: "TimeOptions::max_steps",
+            value: 1.0,
+            ..
+        }))
     ));
     let lim = TimeOptions {
         size_limit: SizeLimit::Relative(-1.0),
@@ -292,7 +321,10 @@ fn time_errors_name_the_problem() {
     };
     assert!(matches!(
         step(&ss, &lim),
-        Err(NumError::InvalidOption(msg)) if msg.contains("SizeLimit::Relative")
+        Err(NumError::InvalidOption(OptionError::SizeLimit {
+            kind: "Relative",
+            ..
+        }))
     ));
     let lim = TimeOptions {
         size_limit: SizeLimit::Absolute(0.0),
@@ -300,33 +332,58 @@ fn time_errors_name_the_problem() {
     };
     assert!(matches!(
         impulse(&ss, &lim),
-        Err(NumError::InvalidOption(msg)) if msg.contains("SizeLimit::Absolute")
+        Err(NumError::InvalidOption(OptionError::SizeLimit {
+            kind: "Absolute",
+            ..
+        }))
     ));
     let o = TimeOptions::default();
     assert!(matches!(
         simulate(&ss, &DMatrix::zeros(2, 5), 0.1, None, &o),
-        Err(NumError::Dimension(msg)) if msg.contains("u have 2 rows")
+        Err(NumError::Dimension(DimensionError::InputSamples {
+            rows: 2,
+            ..
+        }))
     ));
     assert!(matches!(
-        simulate(&ss, &DMatrix::zeros(1, 5), 0.1, Some(&dvector![1.0, 2.0]), &o),
-        Err(NumError::Dimension(msg)) if msg.contains("x0 has length 2")
+        simulate(
+            &ss,
+            &DMatrix::zeros(1, 5),
+            0.1,
+            Some(&dvector![1.0, 2.0]),
+            &o
+        ),
+        Err(NumError::Dimension(DimensionError::InitialState {
+            len: 2,
+            ..
+        }))
     ));
     assert!(matches!(
         simulate(&ss, &DMatrix::from_element(1, 5, f64::NAN), 0.1, None, &o),
-        Err(NumError::NonFinite(msg)) if msg.contains("input samples")
+        Err(NumError::NonFinite(NonFiniteError::Entry(MatrixEntry { ref matrix, .. }))) if matrix == "input samples u"
     ));
     assert!(matches!(
-        simulate(&ss, &DMatrix::zeros(1, 5), 0.1, Some(&dvector![f64::INFINITY]), &o),
-        Err(NumError::NonFinite(msg)) if msg.contains("x0")
+        simulate(
+            &ss,
+            &DMatrix::zeros(1, 5),
+            0.1,
+            Some(&dvector![f64::INFINITY]),
+            &o
+        ),
+        Err(NumError::NonFinite(NonFiniteError::InitialState))
     ));
     assert!(matches!(
         zoh(&ss, -1.0),
-        Err(NumError::InvalidOption(msg)) if msg.contains("dt = -1")
+        Err(NumError::InvalidOption(OptionError::Value {
+            option: "time step dt",
+            value: -1.0,
+            ..
+        }))
     ));
     // exp(A dt) overflows.
     let fast = StateSpace::new(dmatrix![1e3], dmatrix![1.0], dmatrix![1.0], dmatrix![0.0]).unwrap();
     assert!(matches!(
         zoh(&fast, 10.0),
-        Err(NumError::NonFinite(msg)) if msg.contains("Φ")
+        Err(NumError::NonFinite(NonFiniteError::Entry(MatrixEntry { ref matrix, .. }))) if matrix.contains("Φ")
     ));
 }

@@ -122,7 +122,9 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::deflate::{combine_columns, structural_coordinates};
-use crate::error::NumError;
+use crate::error::{
+    Bound, ConvergenceError, DimensionError, NonFiniteError, NumError, OptionError,
+};
 use crate::minreal::pbh::{Reduction, kept_eigenvalues};
 use crate::minreal::pbh_subspace::{cluster_pbh, lower_bandwidth};
 use crate::minreal::staircase::{hessenberg, staircase};
@@ -193,27 +195,22 @@ impl MinrealOptions {
         if let Some(r) = self.rtol
             && !(r.is_finite() && r >= 0.0)
         {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.rtol = {r} (must be finite and ≥ 0)"
-            )));
+            return Err(tolerance_error("MinrealOptions.rtol", r));
         }
         if !(self.atol.is_finite() && self.atol >= 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.atol = {} (must be finite and ≥ 0)",
-                self.atol
-            )));
+            return Err(tolerance_error("MinrealOptions.atol", self.atol));
         }
         if !(self.stability_rtol.is_finite() && self.stability_rtol >= 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.stability_rtol = {} (must be finite and ≥ 0)",
-                self.stability_rtol
-            )));
+            return Err(tolerance_error(
+                "MinrealOptions.stability_rtol",
+                self.stability_rtol,
+            ));
         }
         if !(self.cluster_rtol.is_finite() && self.cluster_rtol >= 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "MinrealOptions.cluster_rtol = {} (must be finite and ≥ 0)",
-                self.cluster_rtol
-            )));
+            return Err(tolerance_error(
+                "MinrealOptions.cluster_rtol",
+                self.cluster_rtol,
+            ));
         }
         Ok(())
     }
@@ -442,11 +439,18 @@ pub struct Staircase {
     pub decisions: Vec<RankDecision>,
 }
 
+/// A tolerance that must be finite and ≥ 0 but is `value`.
+fn tolerance_error(option: &'static str, value: f64) -> NumError {
+    NumError::InvalidOption(OptionError::Tolerance {
+        option,
+        value,
+        must: Bound::FiniteNonNegative,
+    })
+}
+
 fn check_tol(tol: f64) -> Result<(), NumError> {
     if !(tol.is_finite() && tol >= 0.0) {
-        return Err(NumError::InvalidOption(format!(
-            "staircase tolerance = {tol} (must be finite and ≥ 0)"
-        )));
+        return Err(tolerance_error("staircase tolerance", tol));
     }
     Ok(())
 }
@@ -458,27 +462,31 @@ fn check_triple(
 ) -> Result<(usize, usize, usize), NumError> {
     let n = a.nrows();
     if a.ncols() != n {
-        return Err(NumError::Dimension(format!(
-            "A is {}×{}, must be square",
-            a.nrows(),
-            a.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::NotSquare {
+            matrix: "A",
+            rows: a.nrows(),
+            cols: a.ncols(),
+        }));
     }
     if b.nrows() != n {
-        return Err(NumError::Dimension(format!(
-            "B has {} rows, expected {n} (one per state)",
-            b.nrows()
-        )));
+        return Err(NumError::Dimension(DimensionError::PerState {
+            matrix: "B",
+            axis: "rows",
+            len: b.nrows(),
+            states: n,
+        }));
     }
     if c.ncols() != n {
-        return Err(NumError::Dimension(format!(
-            "C has {} columns, expected {n} (one per state)",
-            c.ncols()
-        )));
+        return Err(NumError::Dimension(DimensionError::PerState {
+            matrix: "C",
+            axis: "columns",
+            len: c.ncols(),
+            states: n,
+        }));
     }
     for (m, name) in [(a, "A"), (b, "B"), (c, "C")] {
         if m.iter().any(|v| !v.is_finite()) {
-            return Err(NumError::NonFinite(name.to_string()));
+            return Err(NumError::NonFinite(NonFiniteError::Matrix { matrix: name }));
         }
     }
     Ok((n, b.ncols(), c.nrows()))
@@ -557,9 +565,13 @@ pub(crate) fn svd_full(m: &DMatrix<f64>) -> Result<FullSvd, NumError> {
         return Ok((DMatrix::identity(r, r), Vec::new(), DMatrix::identity(c, c)));
     }
     let view = faer::MatRef::from_column_major_slice(m.as_slice(), r, c);
-    let svd = view
-        .svd()
-        .map_err(|e| NumError::NoConvergence(format!("SVD of a {r}×{c} block: {e:?}")))?;
+    let svd = view.svd().map_err(|e| {
+        NumError::NoConvergence(ConvergenceError::BlockSvd {
+            rows: r,
+            cols: c,
+            detail: format!("{e:?}"),
+        })
+    })?;
     let (fu, fs, fv) = (svd.U(), svd.S(), svd.V());
     let u = DMatrix::from_fn(r, r, |i, j| fu[(i, j)]);
     let v = DMatrix::from_fn(c, c, |i, j| fv[(i, j)]);
@@ -803,9 +815,13 @@ fn pbh_residual(
         }
     };
     // n singular values for both shapes (n × (n+k) or (n+k) × n).
-    let sv = m
-        .singular_values()
-        .map_err(|e| NumError::NoConvergence(format!("PBH test SVD at λ = {lam}: {e:?}")))?;
+    let sv = m.singular_values().map_err(|e| {
+        NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+            step: "PBH test SVD",
+            lambda: lam,
+            detail: Some(format!("{e:?}")),
+        })
+    })?;
     Ok(sv.iter().copied().fold(f64::INFINITY, f64::min) / scale)
 }
 

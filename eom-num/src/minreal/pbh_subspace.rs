@@ -17,7 +17,7 @@
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 
-use crate::error::NumError;
+use crate::error::{ConvergenceError, NumError};
 
 /// Iterations of the block inverse iteration. The components outside the cluster shrink by
 /// the ratio of the cluster's distance to `λ` and the next eigenvalue's, per iteration: for
@@ -228,9 +228,11 @@ pub(crate) fn cluster_pbh(
             .flatten()
             .any(|v| !v.re.is_finite() || !v.im.is_finite())
         {
-            return Err(NumError::NoConvergence(format!(
-                "inverse iteration of the PBH test at λ = {lam}"
-            )));
+            return Err(NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+                step: "inverse iteration of the PBH test",
+                lambda: lam,
+                detail: None,
+            }));
         }
         orthonormalize(&mut x, &mut rng);
     }
@@ -248,16 +250,24 @@ pub(crate) fn cluster_pbh(
     // directions real, where a complex one could rotate them by a phase.
     let (u, sigma) = if lam.im == 0.0 {
         let gr = faer::Mat::<f64>::from_fn(s, k + m, |i, j| g[(i, j)].re);
-        let svd = gr
-            .thin_svd()
-            .map_err(|e| NumError::NoConvergence(format!("PBH SVD at λ = {lam}: {e:?}")))?;
+        let svd = gr.thin_svd().map_err(|e| {
+            NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+                step: "PBH SVD",
+                lambda: lam,
+                detail: Some(format!("{e:?}")),
+            })
+        })?;
         let u = svd.U();
         let u = DMatrix::from_fn(s, s, |i, j| Complex64::new(u[(i, j)], 0.0));
         (u, (0..s).map(|i| svd.S()[i]).collect::<Vec<f64>>())
     } else {
-        let svd = g
-            .thin_svd()
-            .map_err(|e| NumError::NoConvergence(format!("PBH SVD at λ = {lam}: {e:?}")))?;
+        let svd = g.thin_svd().map_err(|e| {
+            NumError::NoConvergence(ConvergenceError::AtEigenvalue {
+                step: "PBH SVD",
+                lambda: lam,
+                detail: Some(format!("{e:?}")),
+            })
+        })?;
         let u = svd.U();
         let u = DMatrix::from_fn(s, s, |i, j| u[(i, j)]);
         (u, (0..s).map(|i| svd.S()[i].re).collect::<Vec<f64>>())

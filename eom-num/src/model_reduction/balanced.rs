@@ -7,8 +7,8 @@
 use nalgebra::DMatrix;
 
 use super::lyapunov::{controllability_factor, observability_factor};
-use crate::NumError;
 use crate::linalg::svd;
+use crate::{NumError, SingularError};
 
 /// The Hankel singular values and what the projections are made of.
 #[derive(Clone, Debug)]
@@ -96,8 +96,7 @@ pub(crate) fn singular_perturbation(
     let c1 = cb.columns(0, r);
     let c2 = cb.columns(r, f);
     let lu = a22.lu();
-    let singular =
-        || NumError::Singular("the residualised block A₂₂ of the balanced realization".into());
+    let singular = || NumError::Singular(SingularError::Residualised);
     let x = lu.solve(&a21.clone_owned()).ok_or_else(singular)?;
     let y = lu.solve(&b2.clone_owned()).ok_or_else(singular)?;
     Ok([a11 - a12 * &x, b1 - a12 * &y, c1 - c2 * &x, d - c2 * &y])

@@ -24,7 +24,7 @@ use nalgebra::DMatrix;
 use super::schur::blocks;
 use super::small::solve_small;
 use super::sylvester;
-use crate::NumError;
+use crate::{NumError, OptionError, SingularError};
 
 /// Adds the rows of `rows` (each of length n) to the upper triangular `r` (n × n, acting on the
 /// columns from `from`) by Givens rotations: afterwards `rᵀr` has grown by `rowsᵀrows`.
@@ -94,10 +94,12 @@ pub(crate) fn observability_factor(
             0.5 * (a11[(0, 0)] + a11[(1, 1)])
         };
         if lam_re.is_nan() || lam_re >= 0.0 {
-            return Err(NumError::InvalidOption(format!(
-                "Lyapunov equation: the diagonal block at {i} has an eigenvalue with real part \
-                 {lam_re:e}, not in the open left half-plane"
-            )));
+            return Err(NumError::InvalidOption(
+                OptionError::UnstableLyapunovBlock {
+                    block: i,
+                    real_part: lam_re,
+                },
+            ));
         }
         if r11.iter().all(|v| *v == 0.0) {
             // Nothing of this block is seen yet: U₁₁ = U₁₂ = 0, C' = [R₂₂; R₁₂].
@@ -127,10 +129,7 @@ pub(crate) fn observability_factor(
             let u11v = (x[1][1] - u01 * u01).max(0.0).sqrt();
             let u11 = DMatrix::from_row_slice(2, 2, &[u00, u01, 0.0, u11v]);
             let Some(inv) = u11.clone().try_inverse() else {
-                return Err(NumError::Singular(format!(
-                    "Lyapunov equation: the Gramian's 2×2 diagonal block at {i} is singular \
-                     though its output is not zero"
-                )));
+                return Err(NumError::Singular(SingularError::GramianBlock { block: i }));
             };
             let w = inv.transpose() * r11.transpose();
             let m = &u11 * &a11 * &inv;

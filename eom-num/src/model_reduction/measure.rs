@@ -11,9 +11,9 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use super::schur::eigenvalues;
-use crate::NumError;
 use crate::freq::{HessenbergForm, SolveStatus};
 use crate::statespace::StateSpace;
+use crate::{NumError, SingularError};
 
 /// The measured error of a reduction.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -117,9 +117,7 @@ pub(crate) fn measure(
     };
     for &omega in &w {
         if form.evaluate_in(Complex64::new(0.0, omega), &mut ws, &mut g)? == SolveStatus::Singular {
-            return Err(NumError::Singular(format!(
-                "the error system at ω = {omega} rad/s: a pole on the imaginary axis"
-            )));
+            return Err(NumError::Singular(SingularError::ErrorSystemPole { omega }));
         }
         let s = sigma_max(&g, p, m);
         if omega == 0.0 {

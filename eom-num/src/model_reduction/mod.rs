@@ -63,7 +63,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::statespace::{SignalNames, StateSpace};
-use crate::{NumError, NumWarning};
+use crate::{NumError, NumWarning, OptionError};
 
 /// The reduction of the stable part.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -166,8 +166,8 @@ impl ReducedModel {
     }
 }
 
-fn invalid(msg: String) -> NumError {
-    NumError::InvalidOption(msg)
+fn invalid(problem: OptionError) -> NumError {
+    NumError::InvalidOption(problem)
 }
 
 impl<'a> Reducer<'a> {
@@ -320,37 +320,26 @@ impl<'a> Reducer<'a> {
     fn check_options(&self) -> Result<(), NumError> {
         if let Some((lo, hi)) = self.band_hz {
             if self.method != ReductionMethod::Modal {
-                return Err(invalid(
-                    "a frequency band chooses the modes of modal truncation: use the modal method"
-                        .into(),
-                ));
+                return Err(invalid(OptionError::BandNeedsModal));
             }
             if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && lo <= hi) {
-                return Err(invalid(format!(
-                    "band {lo}:{hi} Hz: needs 0 ≤ low ≤ high, both finite"
-                )));
+                return Err(invalid(OptionError::Band { low: lo, high: hi }));
             }
             if self.order != OrderChoice::Default {
-                return Err(invalid(
-                    "modal truncation takes a band or an order, not both".into(),
-                ));
+                return Err(invalid(OptionError::BandAndOrder));
             }
         }
         match self.order {
             OrderChoice::Tolerance(t) if !(t.is_finite() && t > 0.0) => {
-                Err(invalid(format!("tolerance {t}: must be finite and > 0")))
+                Err(invalid(OptionError::ReductionTolerance { tolerance: t }))
             }
-            OrderChoice::Tolerance(_) if self.method == ReductionMethod::Modal => Err(invalid(
-                "modal truncation has no a-priori error bound to meet a tolerance: give an \
-                 order or a band"
-                    .into(),
-            )),
+            OrderChoice::Tolerance(_) if self.method == ReductionMethod::Modal => {
+                Err(invalid(OptionError::ModalTolerance))
+            }
             OrderChoice::Default
                 if self.method == ReductionMethod::Modal && self.band_hz.is_none() =>
             {
-                Err(invalid(
-                    "modal truncation needs an order or a frequency band".into(),
-                ))
+                Err(invalid(OptionError::ModalWithoutOrder))
             }
             _ => Ok(()),
         }
@@ -372,22 +361,15 @@ impl<'a> Reducer<'a> {
         match self.order {
             OrderChoice::States(r) => {
                 if r < nu {
-                    return Err(invalid(format!(
-                        "order {r}: the model has {nu} states that are kept whole (zero, \
-                         marginal or unstable modes), so at least {nu}"
-                    )));
+                    return Err(invalid(OptionError::OrderBelowKept { order: r, kept: nu }));
                 }
                 if r - nu > numerical {
-                    return Err(invalid(format!(
-                        "order {r}: at most {} ({nu} kept whole and {numerical} stable states \
-                         above rounding{})",
-                        nu + numerical,
-                        if numerical < ns {
-                            format!("; {} are uncontrollable or unobservable", ns - numerical)
-                        } else {
-                            String::new()
-                        }
-                    )));
+                    return Err(invalid(OptionError::OrderAboveReducible {
+                        order: r,
+                        kept: nu,
+                        reducible: numerical,
+                        hidden: ns.saturating_sub(numerical),
+                    }));
                 }
                 Ok(r - nu)
             }
@@ -410,10 +392,11 @@ impl<'a> Reducer<'a> {
             unreachable!("checked: modal has an order or a band")
         };
         if r < nu || r - nu > ns {
-            return Err(invalid(format!(
-                "order {r}: between {nu} (the states kept whole) and {} (all)",
-                nu + ns
-            )));
+            return Err(invalid(OptionError::ModalOrder {
+                order: r,
+                kept: nu,
+                all: nu + ns,
+            }));
         }
         let k = r - nu;
         let mut mags: Vec<f64> = schur::eigenvalues(&sp.a_s)
@@ -426,13 +409,10 @@ impl<'a> Reducer<'a> {
         }
         let limit = mags[k - 1];
         if k < ns && mags[k] <= limit {
-            return Err(invalid(format!(
-                "order {r} would split the modes at {:.6} Hz (a complex pair or equal \
-                 frequencies): use {} or {}",
-                limit / (2.0 * std::f64::consts::PI),
-                r - 1,
-                r + 1
-            )));
+            return Err(invalid(OptionError::OrderSplitsModes {
+                order: r,
+                hz: limit / (2.0 * std::f64::consts::PI),
+            }));
         }
         modal::modal_bases(&sp.a_s, |z| z.norm() <= limit)
     }

@@ -11,7 +11,7 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 use super::small::sylvester_small;
-use crate::NumError;
+use crate::{ConvergenceError, NumError};
 
 /// `A = Z T Zᵀ` with Z orthogonal and T upper quasi-triangular in the form the block
 /// algorithms expect: a 2 × 2 diagonal block (nonzero subdiagonal entry) has a complex pair
@@ -122,9 +122,7 @@ impl RealSchur {
             its += 1;
             total += 1;
             if total > 30 * n.max(10) {
-                return Err(NumError::NoConvergence(format!(
-                    "the real Schur form of the {n}×{n} state matrix (QR iteration)"
-                )));
+                return Err(NumError::NoConvergence(ConvergenceError::Schur { n }));
             }
             let (trace, det) = if its == 10 || its == 20 {
                 let (k, base) = if its == 10 { (l, l) } else { (m - 1, m) };
@@ -317,13 +315,12 @@ impl RealSchur {
         let scale = block.norm().max(f64::MIN_POSITIVE);
         let below = swapped.view((q, 0), (p, q)).norm();
         if below > 100.0 * f64::EPSILON * scale {
-            return Err(NumError::NoConvergence(format!(
-                "reordering the real Schur form: swapping the blocks of {:?} and {:?} would \
-                 perturb them by {below:.3e} relative to {scale:.3e} (eigenvalues too close \
-                 to separate)",
-                block_eigenvalues(&self.t, j, p),
-                block_eigenvalues(&self.t, j + p, q)
-            )));
+            return Err(NumError::NoConvergence(ConvergenceError::SchurSwap {
+                first: block_eigenvalues(&self.t, j, p),
+                second: block_eigenvalues(&self.t, j + p, q),
+                perturbation: below,
+                scale,
+            }));
         }
         self.apply(j, &g);
         for c in j..j + q {

@@ -58,7 +58,7 @@ use serde::Serialize;
 mod assign;
 mod boundary;
 
-use crate::error::NumError;
+use crate::error::{Bound, DimensionError, NumError, OptionError};
 use crate::minreal::{cser, sort_complex};
 use crate::modes::{EigenvaluesWorkspace, Stability, eigenvalues_in, eigenvalues_with_errors};
 use assign::assign_pinned;
@@ -298,53 +298,52 @@ impl Sweep {
     fn validate(&self) -> Result<(), NumError> {
         let v = &self.values;
         if v.is_empty() {
-            return Err(NumError::InvalidOption(format!(
-                "sweep of {} has no values",
-                self.param
-            )));
+            return Err(NumError::InvalidOption(OptionError::EmptySweep {
+                param: self.param.clone(),
+            }));
         }
         if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-            return Err(NumError::InvalidOption(format!(
-                "sweep value {i} of {} is {x}",
-                self.param
-            )));
+            return Err(NumError::InvalidOption(OptionError::SweepValue {
+                param: self.param.clone(),
+                index: i,
+                value: *x,
+            }));
         }
         if v.len() > 1 {
             let inc = v[1] > v[0];
             for (i, w) in v.windows(2).enumerate() {
                 if (inc && w[1] <= w[0]) || (!inc && w[1] >= w[0]) {
-                    return Err(NumError::InvalidOption(format!(
-                        "sweep values of {} must be strictly monotone (values {i} and {}: {} and {})",
-                        self.param,
-                        i + 1,
-                        w[0],
-                        w[1]
-                    )));
+                    return Err(NumError::InvalidOption(OptionError::SweepNotMonotone {
+                        param: self.param.clone(),
+                        index: i,
+                        values: [w[0], w[1]],
+                    }));
                 }
             }
         }
         if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
-            return Err(NumError::InvalidOption(format!(
-                "sweep tolerance = {} (must be finite and > 0)",
-                self.tolerance
-            )));
+            return Err(NumError::InvalidOption(OptionError::Tolerance {
+                option: "sweep tolerance",
+                value: self.tolerance,
+                must: Bound::FinitePositive,
+            }));
         }
         for (r, what) in [
-            (Some(self.neutral_rtol), "neutral_rtol"),
-            (self.marginal_rtol, "marginal_rtol"),
+            (Some(self.neutral_rtol), "sweep neutral_rtol"),
+            (self.marginal_rtol, "sweep marginal_rtol"),
         ] {
             if let Some(r) = r
                 && !(r.is_finite() && r >= 0.0)
             {
-                return Err(NumError::InvalidOption(format!(
-                    "sweep {what} = {r} (must be finite and ≥ 0)"
-                )));
+                return Err(NumError::InvalidOption(OptionError::Tolerance {
+                    option: what,
+                    value: r,
+                    must: Bound::FiniteNonNegative,
+                }));
             }
         }
         if self.max_evaluations == 0 {
-            return Err(NumError::InvalidOption(
-                "sweep max_evaluations must be ≥ 1".into(),
-            ));
+            return Err(NumError::InvalidOption(OptionError::SweepMaxEvaluations));
         }
         Ok(())
     }
@@ -420,12 +419,12 @@ impl Sweep {
             if p.eig.len() != n {
                 return Err(ctx.numeric(
                     x,
-                    NumError::Dimension(format!(
-                        "A is {0}×{0} here but {n}×{n} at {1} = {2}",
-                        p.eig.len(),
-                        self.param,
-                        self.values[0]
-                    )),
+                    NumError::Dimension(DimensionError::SweepOrder {
+                        states: p.eig.len(),
+                        first: n,
+                        param: self.param.clone(),
+                        value: self.values[0],
+                    }),
                 ));
             }
         }
@@ -841,7 +840,11 @@ where
         if a.nrows() != a.ncols() {
             return Err(self.numeric(
                 x,
-                NumError::Dimension(format!("A is {}×{}, must be square", a.nrows(), a.ncols())),
+                NumError::Dimension(DimensionError::NotSquare {
+                    matrix: "A",
+                    rows: a.nrows(),
+                    cols: a.ncols(),
+                }),
             ));
         }
         let n = a.nrows();
@@ -850,7 +853,7 @@ where
         {
             return Err(self.numeric(
                 x,
-                NumError::Dimension(format!("A is {n}×{n} here but {e}×{e} on the sweep grid")),
+                NumError::Dimension(DimensionError::SweepGrid { states: n, grid: e }),
             ));
         }
         let (reduced, zeros) = deflate_zero_lines(&a);

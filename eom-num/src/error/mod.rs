@@ -1,16 +1,34 @@
-//! The error type of eom-num.
+//! The error type of eom-num: [`NumError`], whose variants carry typed payloads (one enum per
+//! kind of trouble, each in its own file here).
+
+mod convergence;
+mod dimension;
+mod non_finite;
+mod option;
+mod pencil;
+mod singular;
+#[cfg(test)]
+mod tests;
+
+pub use convergence::ConvergenceError;
+pub use dimension::DimensionError;
+pub use non_finite::NonFiniteError;
+pub use option::{Bound, OptionError};
+pub use pencil::{A22Rank, AmbiguousRankError, PencilError};
+pub use singular::SingularError;
 
 /// Everything that can go wrong in a numeric analysis. Messages name the matrix, signal or
 /// parameter at fault.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum NumError {
-    /// Matrix dimensions do not fit together.
+    /// Matrix dimensions do not fit together (names the matrices, gives the sizes).
     #[error("dimension mismatch: {0}")]
-    Dimension(String),
-    /// A matrix contains NaN or infinite entries.
+    Dimension(DimensionError),
+    /// A matrix, vector or point contains NaN or infinite entries (names it, and the entry
+    /// where known).
     #[error("non-finite entry in {0}")]
-    NonFinite(String),
+    NonFinite(NonFiniteError),
     /// A matrix entry so large (beyond `max`, [`crate::MAX_ENTRY`]) that the products inside
     /// the factorisations would overflow.
     #[error(
@@ -23,29 +41,34 @@ pub enum NumError {
         /// The largest magnitude accepted.
         max: f64,
     },
-    /// An option or argument is out of its valid range (names the parameter).
+    /// An option or argument is out of its valid range (names the option, gives the value).
     #[error("invalid option: {0}")]
-    InvalidOption(String),
-    /// An iterative factorisation (eigenvalues, SVD, QZ) did not converge.
+    InvalidOption(OptionError),
+    /// An iterative factorisation (eigenvalues, SVD, QZ) did not converge (names the step and
+    /// the size).
     #[error("no convergence: {0}")]
-    NoConvergence(String),
+    NoConvergence(ConvergenceError),
     /// A matrix that must be inverted is singular to working precision (names the matrix and
     /// gives the decision margin).
     #[error("singular matrix: {0}")]
-    Singular(String),
+    Singular(SingularError),
     /// The descriptor pencil `s E − A` is singular (det(sE − A) ≡ 0): the model does not
     /// determine its own motion.
     #[error("singular pencil: {0}")]
-    SingularPencil(String),
+    SingularPencil(PencilError),
     /// The descriptor pencil is regular but has index > 1 (the algebraic block A22 is
     /// singular); only index-1 pencils are reduced.
-    #[error("descriptor index > 1: {0}")]
-    HigherIndex(String),
+    #[error(
+        "descriptor index > 1: {0}; the pencil is regular, so its index is > 1 (e.g. a \
+         constraint on a position without its derivative); reduce the index before calling \
+         descriptor_to_state_space"
+    )]
+    HigherIndex(A22Rank),
     /// A rank decision that the result depends on lies so close to its tolerance that another
     /// admissible tolerance gives a different answer (the message gives both): the result
     /// cannot be trusted either way.
     #[error("ambiguous rank decision: {0}")]
-    AmbiguousRank(String),
+    AmbiguousRank(AmbiguousRankError),
     /// The analysis would need more memory than the limit ([`crate::budget`]); the message
     /// names the step, the predicted size, the limit and how to raise it.
     #[error(
