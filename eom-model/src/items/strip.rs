@@ -87,10 +87,7 @@ impl<S: Scalar> Strip<S> {
 
     /// The nominal velocity of the air (zero without a given airspeed).
     fn air_velocity(&self, velocity: &Vec3<S>) -> Vec3<S> {
-        match self.airspeed {
-            None => zero3(),
-            Some(v) => std::array::from_fn(|k| velocity[k] - v * self.forward[k]),
-        }
+        surface::air_velocity(self.airspeed, &self.forward, velocity)
     }
 
     /// The lift direction `−down` and the pitch axis `down × forward`.

@@ -57,6 +57,33 @@ pub(crate) fn airspeed_with<S: Scalar>(
     airspeed.unwrap_or_else(|| dot(forward, velocity))
 }
 
+/// The nominal velocity of the air for a body moving at `velocity`: zero (still air) without
+/// a given airspeed, else `velocity − V·forward` (a zero product left out, so that symbolic
+/// entries keep no `x − 0` or `V·1`).
+pub(crate) fn air_velocity<S: Scalar>(
+    airspeed: Option<S>,
+    forward: &Vec3<S>,
+    velocity: &Vec3<S>,
+) -> Vec3<S> {
+    match airspeed {
+        None => zero3(),
+        Some(v) => std::array::from_fn(|k| {
+            let flow = if v.is_zero() || forward[k].is_zero() {
+                S::zero()
+            } else if forward[k].is_one() {
+                v
+            } else {
+                v * forward[k]
+            };
+            if flow.is_zero() {
+                velocity[k]
+            } else {
+                velocity[k] - flow
+            }
+        }),
+    }
+}
+
 /// A positive quantity.
 fn check_positive<S: Scalar>(
     kind: &'static str,

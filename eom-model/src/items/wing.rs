@@ -175,13 +175,7 @@ impl<S: Scalar> Wing<S> {
         let row = [S::one(), S::one(), S::one(), b, c, b];
         let k = -(self.density * self.area * self.chord * S::from_f64(0.25));
         let q = self.rotation();
-        let t = |a: usize, i: usize| -> S {
-            if a / 3 == i / 3 {
-                q[a % 3][i % 3]
-            } else {
-                S::zero()
-            }
-        };
+        let t = |a: usize, i: usize| block_rotation(&q, a, i);
         std::array::from_fn(|i| {
             std::array::from_fn(|j| {
                 let terms: Vec<S> = (0..6)
@@ -204,20 +198,7 @@ impl<S: Scalar> Wing<S> {
     /// The nominal velocity of the air for a body moving at `velocity`: zero (still air)
     /// without a given airspeed, else `velocity − V·forward`.
     pub fn air_velocity(&self, velocity: &Vec3<S>) -> Vec3<S> {
-        match self.airspeed {
-            None => zero3(),
-            Some(v) => {
-                let f = self.forward;
-                std::array::from_fn(|k| {
-                    let flow = times(v, f[k]);
-                    if flow.is_zero() {
-                        velocity[k]
-                    } else {
-                        velocity[k] - flow
-                    }
-                })
-            }
-        }
+        surface::air_velocity(self.airspeed, &self.forward, velocity)
     }
 
     /// The rows of the rotation `Q` from model axes to the wing's axes: forward, right
@@ -252,14 +233,7 @@ impl<S: Scalar> Wing<S> {
         let m = self.scaled_derivatives();
         let k = -(self.density * v * self.area * S::from_f64(0.5));
         let q = self.rotation();
-        // t[a][i]: entry (a, i) of diag(Q, Q); wing row a from model column i.
-        let t = |a: usize, i: usize| -> S {
-            if a / 3 == i / 3 {
-                q[a % 3][i % 3]
-            } else {
-                S::zero()
-            }
-        };
+        let t = |a: usize, i: usize| block_rotation(&q, a, i);
         // M·T first (6×6), then Tᵀ·(M·T), skipping structural zeros.
         let mt: [[S; 6]; 6] = std::array::from_fn(|a| {
             std::array::from_fn(|i| {
@@ -301,6 +275,15 @@ impl<S: Scalar> Wing<S> {
         });
         let d = self.down;
         (col, [d[0], d[1], d[2], S::zero(), S::zero(), S::zero()])
+    }
+}
+
+/// Entry (a, i) of diag(Q, Q): wing row `a` from model column `i` (forces, then moments).
+fn block_rotation<S: Scalar>(q: &[Vec3<S>; 3], a: usize, i: usize) -> S {
+    if a / 3 == i / 3 {
+        q[a % 3][i % 3]
+    } else {
+        S::zero()
     }
 }
 
