@@ -161,7 +161,8 @@ fn describe(c: &Compiled, p: &[f64]) -> String {
 pub struct StabilityOut<'a> {
     /// Largest real part of the eigenvalues, structural zeros excluded.
     pub max_real: &'a mut [f64],
-    /// 1 stable, -1 unstable, 0 neither (largest real part exactly 0, or no eigenvalue left).
+    /// 1 stable, -1 unstable, 0 marginal (a real part within its eigenvalue's error estimate,
+    /// the rule of `eom analyze`; or no eigenvalue left).
     pub verdict: &'a mut [i8],
     /// Where the symbolic reduction broke down and the robust path gave A.
     pub fallback: &'a mut [bool],
@@ -294,16 +295,36 @@ fn point_stability(
     let skip = c.zeros.saturating_sub(exact).min(values.len());
     let rest = &values[skip..];
     let re = rest.iter().fold(f64::NEG_INFINITY, |m, z| m.max(z.re));
+    let bound = eom_num::sweep::screen_bound(n, a.norm());
     let verdict = if rest.is_empty() {
         0
+    } else if rest.iter().any(|z| z.re.abs() <= bound) {
+        verdict_by_estimates(&a, c.zeros)?
     } else if re < 0.0 {
         1
-    } else if re > 0.0 {
-        -1
     } else {
-        0
+        -1
     };
     Ok((re, verdict, fallback))
+}
+
+/// The verdict of `eom analyze` and `eom sweep` (`eom_num::modes::stability_of`): each
+/// eigenvalue judged with its error estimate, marginal (0) when a real part is within it,
+/// the `zeros` structural zeros set aside. Only where a real part is near enough to zero for
+/// the estimate to matter (`eom_num::sweep::screen_bound`): the estimates need eigenvectors.
+fn verdict_by_estimates(a: &DMatrix<f64>, zeros: usize) -> Result<i8, String> {
+    use eom_num::modes::{Stability, eigenvalues_with_errors, stability_of};
+    let mut with = eigenvalues_with_errors(a).map_err(|e| e.to_string())?;
+    let exact = with.iter().filter(|(z, _)| z.norm() == 0.0).count();
+    with.retain(|(z, _)| z.norm() != 0.0);
+    with.sort_by(|x, y| x.0.norm().total_cmp(&y.0.norm()));
+    let skip = zeros.saturating_sub(exact).min(with.len());
+    let verdicts = with[skip..].iter().map(|(z, e)| stability_of(z.re, *e));
+    Ok(verdicts.fold(1, |v, s| match s {
+        Stability::Unstable => -1,
+        Stability::Marginal if v == 1 => 0,
+        _ => v,
+    }))
 }
 
 /// A at a point by the robust (SVD) path.

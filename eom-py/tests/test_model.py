@@ -239,3 +239,22 @@ def test_symbolic_smd_and_sympy():
 def test_codegen_returns_a_rust_module():
     src = eom.load("smd").codegen()
     assert "pub mod" in src and "fn eval_ab" in src
+
+
+def test_stability_has_the_verdict_of_eom_analyze():
+    """One verdict: the half car without front damping is marginal at I = m·a·b = 2016
+    (the undamped mode's real part is exactly 0; `eom analyze` says marginal, within the
+    printed tolerance), stable just beside it. Reference: eom-cli/tests/data/half_car_mpmath.json
+    (the hand-derived equations at 40 digits): max Re λ −2.943e-12 at I = 2016.0033, 0 at
+    2016, −2.702e-9 at 2016.1."""
+    path = ROOT / "models" / "half_car.toml"
+    car = eom.load(str(path))
+    i = np.array([2016.0033, 2016.0, 2016.1, 2015.0])
+    st = car.stability({"cf": np.zeros(4), "I": i})
+    np.testing.assert_array_equal(st.verdict, [1, 0, 1, 1])
+    np.testing.assert_allclose(st.max_real[[0, 2]], [-2.9431193285e-12, -2.7024709933e-9], rtol=1e-3)
+    for x, v in zip(i, st.verdict):
+        modes = car.linearize(cf=0.0, I=float(x)).modes()
+        want = {"stable": 1, "marginal": 0, "unstable": -1}
+        verdicts = [want[m.stability] for m in modes if m.kind != "zero"]
+        assert v == min(verdicts), (x, [m.stability for m in modes])

@@ -77,7 +77,9 @@ class Stability(NamedTuple):
     max_real: np.ndarray
     """Largest real part of the eigenvalues per point, the structural zeros excluded."""
     verdict: np.ndarray
-    """int8 per point: 1 stable, −1 unstable, 0 neither (largest real part exactly 0)."""
+    """int8 per point: 1 stable, −1 unstable, 0 marginal: a real part within its
+    eigenvalue's error estimate, where its sign is not known (the verdict of ``eom analyze``
+    and ``eom sweep``)."""
     fallback: np.ndarray
     """bool per point: A came from the robust path (the symbolic reduction broke down)."""
 
