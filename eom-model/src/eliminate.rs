@@ -479,9 +479,9 @@ impl<S: Scalar> Elim<'_, S> {
     /// their row's largest, the smallest Markowitz count, then the largest ratio, then the
     /// column of least inertia (when weights are given), then the first in row-major order.
     fn choose(&mut self) -> Option<(usize, usize)> {
-        let mut best: Option<(usize, f64, usize, usize)> = None; // (markowitz, -ratio, r, c)
-        let weight = |c: usize| self.weights.get(c).copied().unwrap_or(0.0);
-        let kept = |c: usize| self.keep.get(c).copied().unwrap_or(false);
+        // The best candidate so far, by the key (kept, Markowitz count, −ratio, inertia)
+        // compared lexicographically, and its position.
+        let mut best: Option<((bool, usize, f64, f64), usize, usize)> = None;
         for r in 0..self.row_state.len() {
             let st = &mut self.row_state[r];
             if st.pivoted {
@@ -507,29 +507,21 @@ impl<S: Scalar> Elim<'_, S> {
                 }
                 let mk = (rc - 1) * (self.col_state[c].count - 1);
                 let ratio = v / rmax;
-                let better = match best {
-                    None => true,
-                    Some((bm, br, _, bc)) => {
-                        (!kept(c) && kept(bc))
-                            || (kept(c) == kept(bc) && mk < bm)
-                            || (kept(c) == kept(bc) && mk == bm && -ratio < br)
-                            || (kept(c) == kept(bc)
-                                && mk == bm
-                                && -ratio == br
-                                && weight(c) < weight(bc))
-                    }
-                };
-                if better {
-                    best = Some((mk, -ratio, r, c));
-                    // No fill-in at the row's largest entry cannot be beaten, and ties go
-                    // to the first found: stop searching (unless a lighter column may tie).
-                    if mk == 0 && ratio == 1.0 && self.weights.is_empty() && self.keep.is_empty() {
+                let kept = self.keep.get(c).copied().unwrap_or(false);
+                let weight = self.weights.get(c).copied().unwrap_or(0.0);
+                let key = (kept, mk, -ratio, weight);
+                if best.is_none_or(|b| key < b.0) {
+                    best = Some((key, r, c));
+                    // No fill-in at the row's largest entry in a column not to keep cannot
+                    // be beaten, and ties go to the first found: stop searching (unless a
+                    // lighter column may tie).
+                    if mk == 0 && ratio == 1.0 && self.weights.is_empty() && !kept {
                         return Some((r, c));
                     }
                 }
             }
         }
-        best.map(|b| (b.2, b.3))
+        best.map(|b| (b.1, b.2))
     }
 }
 
