@@ -3,16 +3,14 @@ bicycle benchmark, python-control, eom's own CLI output (same engine, another fr
 
 import csv
 import json
-import os
 import pickle
-import shutil
 import subprocess
 
 import numpy as np
 import pytest
 
 import eom
-from conftest import ROOT
+from conftest import ROOT, eom_binary
 
 
 def test_models_lists_the_catalogue():
@@ -57,18 +55,6 @@ def test_bicycle_eigenvalues_at_5_match_the_benchmark(method):
     err = max(abs(a - b) for a, b in zip(nonzero, expected))
     assert err <= 1e-12, f"{method}: {err:e}"
     assert len(lin.structural_zeros) == 2
-
-
-def eom_binary():
-    exe = ROOT / "target" / "release" / "eom"
-    if exe.exists():
-        return str(exe)
-    found = shutil.which("eom")
-    if found is None:
-        if os.environ.get("EOM_REQUIRE_CLI"):
-            pytest.fail("EOM_REQUIRE_CLI is set but no eom binary (cargo build --release)")
-        pytest.skip("no eom binary (cargo build --release -p eom-cli)")
-    return found
 
 
 def test_to_control_has_eoms_poles_and_dc_gain():
