@@ -276,8 +276,8 @@ pub fn sweep_with(
             v[k] = x;
             match c.evaluate(&v) {
                 Ok(ss) => Ok(ss.a),
-                Err(ModelError::PivotBreakdown(why)) => {
-                    record(x, why);
+                Err(e @ ModelError::PivotBreakdown { .. }) => {
+                    record(x, e.to_string());
                     robust_state_matrix(&model, &spec.name, x)
                 }
                 Err(e @ ModelError::Sym(SymError::EvalNonFinite { .. })) => {
