@@ -135,6 +135,7 @@ pub mod spacing;
 pub mod stability;
 pub mod validity;
 pub mod vortex_core;
+pub mod warning;
 pub mod wing_file;
 
 pub use avl_input::{parse_avl, read_avl};
@@ -153,4 +154,5 @@ pub use spacing::Spacing;
 pub use stability::BodyDerivatives;
 pub use validity::{REDUCED_FREQUENCY_LIMIT, RateCheck, check_rates, reduced_frequency};
 pub use vortex_core::VortexCore;
+pub use warning::AeroWarning;
 pub use wing_file::{WingFileDerivatives, WingFileKind, read_wing_file};

@@ -8,6 +8,7 @@
 //! axis rotation times the trim coefficients.
 
 use crate::derivatives::{Derivatives, StabilityDerivatives};
+use crate::warning::AeroWarning;
 
 const U: usize = 0;
 const V: usize = 1;
@@ -77,7 +78,7 @@ pub struct BodyDerivatives {
     /// `known[i][j]` tells whether entry (i, j) was recovered.
     pub known: [[bool; 6]; 6],
     /// What could not be recovered, and why.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<AeroWarning>,
 }
 
 /// Inverts [`from_body`] where possible. `has_drag_rows` tells whether the CD row is real
@@ -115,11 +116,7 @@ pub(crate) fn to_body(
     set_col(R, to_body_rows(rb));
 
     let mut known = [[true; 6]; 6];
-    let mut warnings = vec![
-        "the u column (CXu ... Cnu) is not in stability-axis (ST) files: set to 0; \
-         use an SB file for it"
-            .to_string(),
-    ];
+    let mut warnings = vec![AeroWarning::UColumnMissing];
     (0..6).for_each(|i| known[i][U] = false);
     let alpha_zero = alpha.abs() < 1e-12;
     match (alpha_zero, totals) {
@@ -133,27 +130,22 @@ pub(crate) fn to_body(
         _ => {
             (0..6).for_each(|i| known[i][W] = false);
             warnings.push(if alpha_zero {
-                "the w column needs the trim totals (CXtot ... Cntot), absent: set to 0".into()
+                AeroWarning::WColumnNeedsTotals
             } else {
-                format!(
-                    "the w column at alpha = {} deg mixes the u and w derivatives in ST files: \
-                     set to 0; use an SB file for it",
-                    st.alpha_deg
-                )
+                AeroWarning::WColumnMixed {
+                    alpha_deg: st.alpha_deg,
+                }
             });
         }
     }
     if !has_drag_rows {
         known[0] = [false; 6];
-        warnings.push(
-            "the CX row needs the CD rows (x force CD), absent in this ST file: set to 0".into(),
-        );
+        warnings.push(AeroWarning::CxRowNeedsDrag);
         if !alpha_zero {
             known[2] = [false; 6];
-            warnings.push(format!(
-                "the CZ row at alpha = {} deg needs the CD rows, absent: set to 0",
-                st.alpha_deg
-            ));
+            warnings.push(AeroWarning::CzRowNeedsDrag {
+                alpha_deg: st.alpha_deg,
+            });
         }
     }
     for i in 0..6 {

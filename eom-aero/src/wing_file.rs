@@ -51,7 +51,7 @@ pub struct WingFileDerivatives {
     /// The AVL names of the entries an `.st` file cannot give (reported as 0).
     pub unknown: Vec<&'static str>,
     /// What the reader had to say.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<crate::AeroWarning>,
 }
 
 /// Reads or solves the wing file at `path`. `alpha_deg` (default 0) and `reference` (the

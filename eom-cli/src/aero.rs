@@ -114,7 +114,7 @@ pub fn aero(file: &str, req: &AeroRequest) -> Result<AeroReport, CliError> {
         warnings: w
             .warnings
             .into_iter()
-            .map(|m| ShownWarning::new("aero", m))
+            .map(|w| ShownWarning::new(w.kind(), w.to_string()))
             .collect(),
     })
 }

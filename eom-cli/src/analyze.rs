@@ -506,7 +506,7 @@ fn linearize_at(
                 .method(Method::Symbolic)
                 .run()
                 .map_err(|e| match e {
-                    ModelError::PivotBreakdown(_) => CliError::OutsideSymbolicRegion {
+                    ModelError::PivotBreakdown { .. } => CliError::OutsideSymbolicRegion {
                         source: Box::new(e),
                         alternatives: working_methods(&at_point),
                     },
@@ -528,18 +528,17 @@ fn with_alternatives(
     failed: Method,
     at_point: &eom_model::Model<eom_sym::Expr>,
 ) -> CliError {
-    match e {
-        ModelError::Singular(_) | ModelError::Unsupported(_) | ModelError::PivotBreakdown(_) => {
-            CliError::MethodFailed {
-                source: Box::new(e),
-                method: method_name(failed),
-                alternatives: working_methods(at_point)
-                    .into_iter()
-                    .filter(|m| *m != method_name(failed))
-                    .collect(),
-            }
+    if e.is_method_failure() {
+        CliError::MethodFailed {
+            source: Box::new(e),
+            method: method_name(failed),
+            alternatives: working_methods(at_point)
+                .into_iter()
+                .filter(|m| *m != method_name(failed))
+                .collect(),
         }
-        e => CliError::Model(e),
+    } else {
+        CliError::Model(e)
     }
 }
 

@@ -4,7 +4,7 @@
 use crate::error::CliError;
 use crate::params::ModelChoice;
 use crate::shown_warning::ShownWarning;
-use eom_model::{Linearizer, Method, assemble, reduce_report};
+use eom_model::{Linearizer, Method, ModelError, assemble, reduce_report};
 use serde::Serialize;
 
 /// The summary `eom check` prints.
@@ -62,11 +62,16 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
             reduction.position_states + reduction.velocity_states + reduction.lag_states
         }
         Err(numeric) => {
-            // Its advice names the library's path, not a command: replaced by ours.
-            let numeric = numeric.to_string().replace(
-                "; use the robust numeric path, which reduces index-1 descriptor models",
-                "",
-            );
+            // A massless motion's advice names the library's path, not a command: said here
+            // without it (the warning below names the command).
+            let numeric = match &numeric {
+                ModelError::MasslessMotion { coordinates } => format!(
+                    "the reduced mass matrix is singular at the nominal point (massless motion \
+                     of {})",
+                    coordinates.join(", ")
+                ),
+                e => e.to_string(),
+            };
             match Linearizer::new(&model).method(Method::Robust).run() {
                 Ok(lin) => {
                     warnings.push(ShownWarning::new(

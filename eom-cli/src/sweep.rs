@@ -276,8 +276,18 @@ pub fn sweep_with(
             v[k] = x;
             match c.evaluate(&v) {
                 Ok(ss) => Ok(ss.a),
-                Err(ModelError::PivotBreakdown(why)) => {
-                    record(x, why);
+                Err(ModelError::PivotBreakdown {
+                    check,
+                    value,
+                    row_max,
+                }) => {
+                    // The failed check, as the fallback's reasons list it.
+                    record(
+                        x,
+                        format!(
+                            "{check} (value {value:.3e}, largest entry of its row {row_max:.3e})"
+                        ),
+                    );
                     robust_state_matrix(&model, &spec.name, x)
                 }
                 Err(e @ ModelError::Sym(SymError::EvalNonFinite { .. })) => {

@@ -228,6 +228,18 @@ fn aero_prints_the_derivatives_of_avl_files() {
         text.contains("CYv = -2.4742") && text.contains("CXu = ?"),
         "{text}"
     );
+    // What the ST file cannot give, by kind: the u column always, the CX row without the CD
+    // rows (AVL 3.32); at α = 0 the w column comes from the trim totals.
+    let st = eom_json(&["aero", &data("seed_fin_a0_avl332.st"), "--format", "json"]);
+    let kinds: Vec<&str> = (st["warnings"].as_array().unwrap().iter())
+        .map(|w| w["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["st_u_column", "st_cx_row"], "{}", st["warnings"]);
+    assert!(
+        (st["warnings"][0]["message"].as_str().unwrap()).starts_with("the u column (CXu ... Cnu)"),
+        "{}",
+        st["warnings"]
+    );
     let r = eom(&["aero", &data("seed_fin_a0_avl332.sb"), "--alpha", "3"]);
     assert_eq!(r.code, 2);
     assert!(

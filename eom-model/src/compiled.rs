@@ -296,10 +296,11 @@ impl CompiledStateSpace {
             let v = out[*start];
             let others = &out[start + 1..start + len];
             if !ValidityCheck::<f64>::holds(v, others, *pivot) {
-                return Err(ModelError::PivotBreakdown(format!(
-                    "{label} (value {v:.3e}, largest entry of its row {:.3e})",
-                    others.iter().fold(0.0f64, |a, b| a.max(b.abs()))
-                )));
+                return Err(ModelError::PivotBreakdown {
+                    check: label.to_string(),
+                    value: v,
+                    row_max: others.iter().fold(0.0f64, |a, b| a.max(b.abs())),
+                });
             }
         }
         if let Some(k) = out[..self.n_matrix].iter().position(|v| !v.is_finite()) {

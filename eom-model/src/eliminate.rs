@@ -399,13 +399,9 @@ impl<S: Scalar> Elim<'_, S> {
     fn step(&mut self, r: usize, c: usize) -> Result<(), ModelError> {
         let (nrows, eligible) = (self.rows.nrows(), self.eligible);
         if r >= nrows || c >= eligible || self.row_state[r].pivoted || self.col_state[c].done {
-            return Err(ModelError::Singular(format!(
-                "invalid pivot ({r}, {c}) in an elimination plan"
-            )));
+            return Err(ModelError::InvalidPivot { row: r, col: c });
         }
-        let p = get(&self.rows[r], c).ok_or_else(|| {
-            ModelError::Singular(format!("planned pivot ({r}, {c}) is a structural zero"))
-        })?;
+        let p = get(&self.rows[r], c).ok_or(ModelError::StructuralZeroPivot { row: r, col: c })?;
         if self.record {
             self.records.push(PivotRecord {
                 row: r,

@@ -325,17 +325,130 @@ pub enum ModelError {
         /// The model's length scale (moments are divided by it).
         length: f64,
     },
-    /// A matrix that must be invertible is singular (at the nominal point, or at the point of
-    /// evaluation).
-    #[error("singular: {0}")]
-    Singular(String),
+    /// A decision the reduction recorded (a pivot, a rank) does not hold at the nominal point
+    /// (pivots chosen at the point).
+    #[error("singular: at the nominal point: {check}")]
+    NominalCheckFails {
+        /// The check that fails, as `CheckLabel` displays it (a string: `CheckLabel` lives in a
+        /// layer above this one).
+        check: String,
+    },
+    /// The robust method's velocity complement (a least-squares solve on the constraint
+    /// blocks) has no solution.
+    #[error("singular: velocity complement: {why}")]
+    VelocityComplement {
+        /// Why the solve failed (nalgebra's words).
+        why: &'static str,
+    },
+    /// The position and velocity constraints have different ranks: a redundant constraint is
+    /// inconsistent at the velocity level.
+    #[error(
+        "singular: the position and velocity constraints have different ranks ({position} and \
+         {velocity}): a redundant constraint is inconsistent at the velocity level"
+    )]
+    ConstraintRanksDiffer {
+        /// The rank of the position-level constraints.
+        position: usize,
+        /// The rank of the velocity-level constraints.
+        velocity: usize,
+    },
+    /// A statically indeterminate model whose elastic compatibility equations are singular:
+    /// the preloads of its redundant rigid constraints cannot be determined.
+    #[error(
+        "singular: the model is statically indeterminate (rank {rank} of {unknowns} unknown \
+         preloads) and its elastic compatibility equations are singular: the preloads of \
+         redundant rigid constraints cannot be determined (add compliance, or remove a redundant \
+         joint among: {})",
+        joints.join(", ")
+    )]
+    IndeterminatePreloads {
+        /// The rank of the constraint rows.
+        rank: usize,
+        /// The number of unknown preloads.
+        unknowns: usize,
+        /// The rigid constraint rows among which one is redundant, as `RowLabel` displays
+        /// them.
+        joints: Box<[String]>,
+    },
+    /// The non-unique preloads of redundant constraint rows (a self-stress of rigid parts): the
+    /// symbolic reduction cannot choose among them for every parameter value.
+    #[error(
+        "not supported: the preloads of the redundant constraint rows are not unique (a \
+         self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic reduction \
+         cannot choose among them for every parameter value (the numeric and robust methods \
+         take the minimum-norm preloads)"
+    )]
+    NonUniquePreloads {
+        /// How far the minimum-norm preloads move from the given ones, relative to the largest.
+        moved: f64,
+    },
+    /// An elimination plan names a pivot that is out of range or already taken.
+    #[error("singular: invalid pivot ({row}, {col}) in an elimination plan")]
+    InvalidPivot {
+        /// The pivot's row.
+        row: usize,
+        /// The pivot's column.
+        col: usize,
+    },
+    /// An elimination plan names a pivot whose entry is a structural zero.
+    #[error("singular: planned pivot ({row}, {col}) is a structural zero")]
+    StructuralZeroPivot {
+        /// The pivot's row.
+        row: usize,
+        /// The pivot's column.
+        col: usize,
+    },
     /// A pivot recorded in the symbolic elimination plan broke down at the evaluation point:
     /// the symbolic result is not valid there (the numeric and robust methods reduce at the point).
-    #[error("outside the validity region of the symbolic reduction: {0}")]
-    PivotBreakdown(String),
-    /// A model feature that this path does not support (the message says which path does).
-    #[error("not supported: {0}")]
-    Unsupported(String),
+    #[error(
+        "outside the validity region of the symbolic reduction: {check} (value {value:.3e}, \
+         largest entry of its row {row_max:.3e})"
+    )]
+    PivotBreakdown {
+        /// The check that fails, as `CheckLabel` displays it (a string: `CheckLabel` lives in a
+        /// layer above this one).
+        check: String,
+        /// The pivot's value at the point.
+        value: f64,
+        /// The largest magnitude among the other entries of its row.
+        row_max: f64,
+    },
+    /// A reduced mass matrix singular at the nominal point (massless motion) on a path that
+    /// needs every independent velocity to carry inertia.
+    #[error(
+        "not supported: the reduced mass matrix is singular at the nominal point (massless \
+         motion of {}): this reduction needs every independent velocity to carry inertia (the \
+         robust method, with orthonormal bases and a descriptor reduction, handles index-1 \
+         descriptor models)",
+        coordinates.join(", ")
+    )]
+    MasslessMotion {
+        /// The coordinates whose motion carries no inertia.
+        coordinates: Box<[String]>,
+    },
+    /// An acceleration sensor that feeds an input's rate straight through: its acceleration
+    /// contains the input's second derivative.
+    #[error(
+        "not supported: acceleration sensor `{output}` responds to the rate of input `{input}` \
+         instantly (its velocity jumps with the input): its acceleration contains the input's \
+         second derivative, which a state-space model cannot represent; measure the velocity \
+         instead, or remove the rate gain"
+    )]
+    InputRateInAcceleration {
+        /// The sensor (output).
+        output: String,
+        /// The input.
+        input: String,
+    },
+    /// An unknown name of unsteady aerodynamics.
+    #[error(
+        "not supported: unknown unsteady aerodynamics `{given}`: expected \"quasi-steady\", \
+         \"jones\" or \"auto\""
+    )]
+    UnknownUnsteady {
+        /// The name given.
+        given: String,
+    },
     /// An error of the expression layer (a parameter, an expression, an evaluation).
     #[error(transparent)]
     Sym(#[from] SymError),
@@ -373,6 +486,26 @@ impl ModelError {
             Unattached { body } => Some(body),
             _ => None,
         }
+    }
+
+    /// Whether the error is one of a reduction method rather than of the model (a singular
+    /// matrix, a symbolic pivot that vanishes at the point, a feature the method does not
+    /// support): another method may succeed where this one failed.
+    pub fn is_method_failure(&self) -> bool {
+        use ModelError::*;
+        matches!(
+            self,
+            NominalCheckFails { .. }
+                | VelocityComplement { .. }
+                | ConstraintRanksDiffer { .. }
+                | IndeterminatePreloads { .. }
+                | NonUniquePreloads { .. }
+                | InvalidPivot { .. }
+                | StructuralZeroPivot { .. }
+                | PivotBreakdown { .. }
+                | MasslessMotion { .. }
+                | InputRateInAcceleration { .. }
+        )
     }
 }
 

@@ -748,10 +748,9 @@ impl<'a, S: Scalar> Reducer<'a, S> {
             let names: Vec<String> = (rm.plan.redundant.iter())
                 .map(|&r| self.coord_name(sel.active[velo.indep_w[r]], true))
                 .collect();
-            return Err(ModelError::Unsupported(format!(
-                "the reduced mass matrix is singular at the nominal point (massless motion of {}): this reduction needs every independent velocity to carry inertia (the robust method, with orthonormal bases and a descriptor reduction, handles index-1 descriptor models)",
-                names.join(", ")
-            )));
+            return Err(ModelError::MasslessMotion {
+                coordinates: names.into(),
+            });
         }
         let mi = nm_rows_to_matrix(&rm, nw, nx + b2.ncols() + g2.ncols());
         let m_in = sel.f_u.ncols();
@@ -776,10 +775,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
         if self.plan.is_none()
             && let Some(bad) = self.checks.iter().find(|c| !c.holds_nominal())
         {
-            return Err(ModelError::Singular(format!(
-                "at the nominal point: {}",
-                bad.what()
-            )));
+            return Err(ModelError::NominalCheckFails { check: bad.what() });
         }
         Ok(())
     }
@@ -1056,10 +1052,10 @@ fn rate_check<S: Scalar>(
     inputs: &[(String, String)],
 ) -> Result<(), ModelError> {
     if let Some((_, j, _)) = cg.iter().find(|(_, _, v)| v.nominal() != 0.0) {
-        return Err(ModelError::Unsupported(format!(
-            "acceleration sensor `{output}` responds to the rate of input `{}` instantly (its velocity jumps with the input): its acceleration contains the input's second derivative, which a state-space model cannot represent; measure the velocity instead, or remove the rate gain",
-            inputs[j].0
-        )));
+        return Err(ModelError::InputRateInAcceleration {
+            output: output.to_string(),
+            input: inputs[j].0.clone(),
+        });
     }
     Ok(())
 }

@@ -278,7 +278,7 @@ fn complements(
             .clone()
             .svd(true, true)
             .solve(&rhs, 0.0)
-            .map_err(|e| ModelError::Singular(format!("velocity complement: {e}")))?;
+            .map_err(|why| ModelError::VelocityComplement { why })?;
         let resid = (&jr * &y - &rhs).amax();
         let scale = rhs.amax().max(jr.amax() * y.amax()) + f64::MIN_POSITIVE;
         if resid > 1e-8 * scale {
@@ -339,11 +339,10 @@ fn joint_complements(
     let nr = nullspace_equilibrated(&jr, RankTolerance::Default, Equilibrate::Both)?;
     let nl = nullspace_equilibrated(&jl, RankTolerance::Default, Equilibrate::Both)?;
     if nr.basis.ncols() != nl.basis.ncols() {
-        return Err(ModelError::Singular(format!(
-            "the position and velocity constraints have different ranks ({} and {}): a redundant constraint is inconsistent at the velocity level",
-            sc - nr.basis.ncols(),
-            sc - nl.basis.ncols()
-        )));
+        return Err(ModelError::ConstraintRanksDiffer {
+            position: sc - nr.basis.ncols(),
+            velocity: sc - nl.basis.ncols(),
+        });
     }
     if nr.rank < sc {
         warnings.push(Warning::RobustRedundant {
@@ -434,10 +433,10 @@ fn outputs(
                 let dv = ss.d.rows(vel, 1).into_owned();
                 let scale = cv.abs().max() * ss.b.abs().max() + 1e-300;
                 if let Some(jj) = (0..m).find(|&jj| dv[(0, jj)].abs() > 1e-12 * scale) {
-                    return Err(ModelError::Unsupported(format!(
-                        "acceleration sensor `{}` responds to the rate of input `{}` instantly: its acceleration contains the input's second derivative, which a state-space model cannot represent",
-                        a.outputs[o].0, a.inputs[jj].0
-                    )));
+                    return Err(ModelError::InputRateInAcceleration {
+                        output: a.outputs[o].0.clone(),
+                        input: a.inputs[jj].0.clone(),
+                    });
                 }
                 let mut crow = &cv * &ss.a;
                 let mut drow = &cv * &ss.b;

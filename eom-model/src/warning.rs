@@ -122,7 +122,7 @@ pub enum Warning {
         /// The file.
         path: String,
         /// The reader's warning.
-        message: String,
+        warning: eom_aero::AeroWarning,
     },
     /// A mode whose reduced frequency at a quasi-steady wing is beyond the limit of its
     /// derivatives.
@@ -328,8 +328,8 @@ impl fmt::Display for Warning {
             Warning::AvlFile {
                 item,
                 path,
-                message,
-            } => write!(f, "{item}: {path}: {message}"),
+                warning,
+            } => write!(f, "{item}: {path}: {warning}"),
             Warning::ReducedFrequencyBeyondLimit {
                 item,
                 eigenvalue: z,

@@ -791,7 +791,7 @@ pub struct GeneralizedEigenvalues {
     /// θ; `∞` if one side is empty or exact). Close to 1 means the split was close.
     pub gap: f64,
     /// Warnings (close split, disagreement between the rank of E and QZ).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<NumWarning>,
 }
 
 /// Finite generalized eigenvalues of `(A, E)` (`det(λE − A) = 0`), sorted by (Re, Im), with
@@ -913,13 +913,12 @@ pub fn generalized_eigenvalues_with(
         n_inf += 1;
     }
     if forced > 0 && items[forced - 1].0 > opts.infinite_tol {
-        warnings.push(format!(
-            "rank(E) = {} forces {forced} infinite eigenvalues but QZ sees one with θ = {:.3e} > \
-             {:.3e}: the rank decision on E and the QZ disagree",
-            e_rank.rank,
-            items[forced - 1].0,
-            opts.infinite_tol
-        ));
+        warnings.push(NumWarning::InfiniteCountDisagrees {
+            e_rank: e_rank.rank,
+            forced,
+            theta: items[forced - 1].0,
+            tolerance: opts.infinite_tol,
+        });
     }
     let gap = if n_inf == 0 || n_inf == n || items[n_inf - 1].0 == 0.0 {
         f64::INFINITY
@@ -927,9 +926,7 @@ pub fn generalized_eigenvalues_with(
         items[n_inf].0 / items[n_inf - 1].0
     };
     if gap < 100.0 {
-        warnings.push(format!(
-            "the finite/infinite split is close: θ ratio {gap:.3} across it"
-        ));
+        warnings.push(NumWarning::CloseInfiniteSplit { gap });
     }
     let mut finite: Vec<Complex64> = items[n_inf..].iter().map(|x| x.1).collect();
     finite.sort_by(|a, b| a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im)));

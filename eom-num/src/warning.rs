@@ -114,6 +114,24 @@ pub enum NumWarning {
     },
     /// Model reduction: a kept mode nearly shares its eigenvalue with a removed one.
     ModalTruncationIllConditioned,
+    /// Generalized eigenvalues: the rank of E forces infinite eigenvalues, but QZ sees one of
+    /// them with θ = |β|/‖(α, β)‖ above the tolerance.
+    InfiniteCountDisagrees {
+        /// The rank of E.
+        e_rank: usize,
+        /// The infinite eigenvalues it forces (n − rank E).
+        forced: usize,
+        /// The largest θ among them.
+        theta: f64,
+        /// The tolerance on θ.
+        tolerance: f64,
+    },
+    /// Generalized eigenvalues: the finite/infinite split is close (the ratio of θ across it
+    /// below 100).
+    CloseInfiniteSplit {
+        /// The ratio of θ across the split.
+        gap: f64,
+    },
 }
 
 impl NumWarning {
@@ -134,6 +152,8 @@ impl NumWarning {
             NumWarning::HankelNegligible { .. } => "hankel_negligible",
             NumWarning::StableKeptCoupling { .. } => "stable_kept_coupling",
             NumWarning::ModalTruncationIllConditioned => "modal_truncation_ill_conditioned",
+            NumWarning::InfiniteCountDisagrees { .. } => "infinite_count_disagrees",
+            NumWarning::CloseInfiniteSplit { .. } => "close_infinite_split",
         }
     }
 }
@@ -234,6 +254,20 @@ impl fmt::Display for NumWarning {
             NumWarning::ModalTruncationIllConditioned => f.write_str(
                 "a kept mode nearly shares its eigenvalue with a removed one: modal truncation \
                  is ill-conditioned there",
+            ),
+            NumWarning::InfiniteCountDisagrees {
+                e_rank,
+                forced,
+                theta,
+                tolerance,
+            } => write!(
+                f,
+                "rank(E) = {e_rank} forces {forced} infinite eigenvalues but QZ sees one with θ = \
+                 {theta:.3e} > {tolerance:.3e}: the rank decision on E and the QZ disagree"
+            ),
+            NumWarning::CloseInfiniteSplit { gap } => write!(
+                f,
+                "the finite/infinite split is close: θ ratio {gap:.3} across it"
             ),
         }
     }

@@ -43,7 +43,10 @@ pub fn aero<'py>(
     d.set_item("names", Derivatives::names())?;
     d.set_item("coefficients", w.derivatives.coefficients)?;
     d.set_item("unknown", w.unknown)?;
-    d.set_item("warnings", w.warnings)?;
+    d.set_item(
+        "warnings",
+        w.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+    )?;
     d.set_item("density", density)?;
     d.set_item("speed", speed)?;
     d.set_item("dimensional", dimensional)?;

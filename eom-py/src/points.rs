@@ -269,7 +269,7 @@ fn point_stability(
 ) -> Result<(f64, i8, bool), String> {
     let (a, fallback) = match c.css.evaluate_a(p, ws) {
         Ok(a) => (a, false),
-        Err(ModelError::PivotBreakdown(_))
+        Err(ModelError::PivotBreakdown { .. })
         | Err(ModelError::Sym(SymError::EvalNonFinite { .. })) => {
             (robust_a(source, names, p)?, true)
         }

@@ -108,7 +108,11 @@ fn a_stability_axis_file_gives_the_same_fin_and_says_what_it_cannot() {
     assert!(
         loaded.warnings.iter().any(|w| matches!(
             w,
-            eom_model::Warning::AvlFile { item, .. } if item.name == "fin"
+            eom_model::Warning::AvlFile {
+                item,
+                warning: eom_aero::AeroWarning::UColumnMissing,
+                ..
+            } if item.name == "fin"
         )),
         "{:?}",
         loaded.warnings

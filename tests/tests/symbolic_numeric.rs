@@ -120,14 +120,18 @@ fn outside_the_validity_region_is_reported() {
     let sym = Linearizer::new(&model).symbolic().unwrap();
     let values = model.scope.values_with(&[("w", 0.0)]).unwrap();
     match sym.evaluate(&values) {
-        Err(ModelError::PivotBreakdown(msg)) => assert!(msg.contains("steer hinge"), "{msg}"),
+        Err(ModelError::PivotBreakdown { check, .. }) => {
+            assert!(check.contains("steer hinge"), "{check}")
+        }
         other => panic!("expected a pivot breakdown, got {other:?}"),
     }
     // A massless block: the reduced mass pivot vanishes.
     let model = models::build("smd", &[]).unwrap();
     let sym = Linearizer::new(&model).symbolic().unwrap();
     match sym.evaluate(&[0.0, 10.0, 0.1]) {
-        Err(ModelError::PivotBreakdown(msg)) => assert!(msg.contains("reduced mass"), "{msg}"),
+        Err(ModelError::PivotBreakdown { check, .. }) => {
+            assert!(check.contains("reduced mass"), "{check}")
+        }
         other => panic!("expected a pivot breakdown, got {other:?}"),
     }
     // A pivot that is small but still valid gives accurate numbers (not a breakdown).

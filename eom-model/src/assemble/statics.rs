@@ -204,9 +204,7 @@ fn minimum_norm<S: Scalar>(
     let top = mu.amax();
     let moved = if top > 0.0 { delta.amax() / top } else { 0.0 };
     if S::SYMBOLIC && moved > RANK_TOLERANCE {
-        return Err(ModelError::Unsupported(format!(
-            "the preloads of the redundant constraint rows are not unique (a self-stress of rigid parts, {moved:.1e} of the largest preload): the symbolic reduction cannot choose among them for every parameter value (the numeric and robust methods take the minimum-norm preloads)"
-        )));
+        return Err(ModelError::NonUniquePreloads { moved });
     }
     if !S::SYMBOLIC {
         for (i, l) in lc.iter_mut().enumerate() {
@@ -355,15 +353,11 @@ fn compatibility<S: Scalar>(
     let rows = compatibility_rows(p);
     let tr = rref(RowStore::from_rows(&rows, n + 1), n, &[], None, &[])?;
     if tr.plan.pivots.len() < n {
-        return Err(ModelError::Singular(format!(
-            "the model is statically indeterminate (rank {rank} of {} unknown preloads) and its elastic compatibility equations are singular: the preloads of redundant rigid constraints cannot be determined (add compliance, or remove a redundant joint among: {})",
-            q + p.h_rows.len(),
-            p.j_labels
-                .iter()
-                .map(|l| l.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
+        return Err(ModelError::IndeterminatePreloads {
+            rank,
+            unknowns: q + p.h_rows.len(),
+            joints: p.j_labels.iter().map(|l| l.to_string()).collect(),
+        });
     }
     let z = solution(&tr, n);
     let mu = z[..q].to_vec();

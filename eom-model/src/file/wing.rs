@@ -149,7 +149,7 @@ impl Builder<'_> {
                     .extend(body.warnings.iter().map(|w| Warning::AvlFile {
                         item: ItemRef::new("wing", name),
                         path: full.display().to_string(),
-                        message: w.clone(),
+                        warning: w.clone(),
                     }));
                 Ok(Some(body.derivatives))
             }

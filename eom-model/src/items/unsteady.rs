@@ -46,9 +46,9 @@ impl Unsteady {
             "quasi-steady" => Ok(Unsteady::QuasiSteady),
             "jones" => Ok(Unsteady::Jones),
             "auto" => Ok(Unsteady::Auto),
-            _ => Err(ModelError::Unsupported(format!(
-                "unknown unsteady aerodynamics `{s}`: expected \"quasi-steady\", \"jones\" or \"auto\""
-            ))),
+            _ => Err(ModelError::UnknownUnsteady {
+                given: s.to_string(),
+            }),
         }
     }
 }

@@ -252,7 +252,10 @@ fn outside_the_validity_region_both_refuse_with_the_same_check() {
             .sym
             .evaluate(&values)
             .expect_err("the interpreter refuses");
-        assert!(matches!(e, ModelError::PivotBreakdown(_)), "{model}: {e}");
+        assert!(
+            matches!(e, ModelError::PivotBreakdown { .. }),
+            "{model}: {e}"
+        );
         // The generated code refuses with the same check, and leaves the outputs untouched.
         let got = (g.abcd)(&values).expect_err("the generated code refuses");
         assert_eq!(Some(got.clone()), sym_err(&e, g), "{model}");

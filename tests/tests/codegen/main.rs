@@ -265,11 +265,8 @@ fn rel_diff(got: &[f64], want: &[f64]) -> f64 {
 /// The interpreter's error in the common form (`None` for other errors).
 fn sym_err(e: &ModelError, g: &Gen) -> Option<GenErr> {
     match e {
-        ModelError::PivotBreakdown(msg) => {
-            let k = g
-                .checks
-                .iter()
-                .position(|c| msg.starts_with(&format!("{c} (value")))?;
+        ModelError::PivotBreakdown { check, .. } => {
+            let k = g.checks.iter().position(|c| check == c)?;
             Some(GenErr::Validity(k, g.checks[k]))
         }
         ModelError::Sym(SymError::EvalNonFinite { what, .. }) => {
