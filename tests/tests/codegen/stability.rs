@@ -76,10 +76,10 @@ macro_rules! stab {
                     [[0.0; g::LANES]; g::N_CONDITIONS],
                 );
                 let ok = g::stability_conditions_quick_lanes(&p, &mut c, &mut e);
-                for l in 0..g::LANES {
+                for (l, &applies) in ok.iter().enumerate() {
                     let col =
                         |m: &[[f64; g::LANES]; g::N_CONDITIONS]| m.iter().map(|r| r[l]).collect();
-                    out.push((ok[l], (col(&c), col(&e))));
+                    out.push((applies, (col(&c), col(&e))));
                 }
             }
             out
