@@ -60,8 +60,11 @@
 //!   `Undecided` when one is within its bound of zero. `Verdict` is `#[repr(i8)]` (`1`, `-1`,
 //!   `0`), so the function can be wrapped for a foreign caller as it is;
 //! * `stability_many(points, verdicts)`: the same verdicts for many points, the first stage
-//!   (below) on `LANES` points at a time in packed arithmetic;
-//! * `stability_conditions_quick(p, c, e)`: the conditions with the first stage's bounds.
+//!   (below) on `LANES` points at a time in packed arithmetic, with one magnitude per block
+//!   of points (the largest of the block's: a bound at least each point's own);
+//! * `stability_conditions_quick(p, c, e)`: the conditions with the first stage's bounds;
+//!   `stability_conditions_quick_lanes` the same for a block of `LANES` points, with the
+//!   block's bounds.
 //!
 //! The verdict has two stages. The first computes, next to every value, a magnitude whose
 //! relative error factor is a constant of the generator (an a-priori analysis, Higham,

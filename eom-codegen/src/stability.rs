@@ -440,8 +440,19 @@ fn lane_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStrea
             core::array::from_fn(|l| -a[l])
         }
         #[inline(always)]
-        fn l_ge_half(b: [f64; LANES], m: [f64; LANES]) -> [bool; LANES] {
-            core::array::from_fn(|l| b[l].abs() >= 0.5 * m[l])
+        fn l_ge_half(b: [f64; LANES], m: f64) -> [bool; LANES] {
+            core::array::from_fn(|l| b[l].abs() >= 0.5 * m)
+        }
+        /// The block's magnitude of a value: the largest `|x|` of its lanes (a lane whose
+        /// value is NaN is left out: its verdict is undecided by its own NaN).
+        #[inline(always)]
+        fn l_max_abs(a: [f64; LANES]) -> f64 {
+            a.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
+        }
+        /// The smallest `|x|` of the lanes (NaN lanes left out, as in `l_max_abs`).
+        #[inline(always)]
+        fn l_min_abs(a: [f64; LANES]) -> f64 {
+            a.iter().fold(f64::INFINITY, |m: f64, x| m.min(x.abs()))
         }
         #[inline(always)]
         fn l_and(a: [bool; LANES], b: [bool; LANES]) -> [bool; LANES] {
@@ -449,15 +460,40 @@ fn lane_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStrea
         }
         #sincos
 
+        /// The conditions at `LANES` points and their a-priori bounds, one magnitude per
+        /// block of points; per point `false` when a divisor has cancelled too much.
+        #[inline(always)]
+        fn stability_quick_lanes_raw(
+            p: &[[f64; N_PARAMS]; LANES],
+            c: &mut [[f64; LANES]; N_CONDITIONS],
+            e: &mut [[f64; LANES]; N_CONDITIONS],
+        ) -> [bool; LANES] {
+            #(#params)*
+            #body
+            #(#stores)*
+            #tests
+        }
+
+        /// The Liénard–Chipart conditions at [`LANES`] points as [`stability_many`]'s first
+        /// stage computes them (`c[k][l]`: condition `k` at `p[l]`, not normalised), with
+        /// its a-priori bounds (`|c[k][l] − exact| ≤ e[k][l]`, each from the largest
+        /// magnitudes of the block, so never below the bound of
+        /// [`stability_conditions_quick`] at the same point); per point `false` when they
+        /// do not apply there.
+        pub fn stability_conditions_quick_lanes(
+            p: &[[f64; N_PARAMS]; LANES],
+            c: &mut [[f64; LANES]; N_CONDITIONS],
+            e: &mut [[f64; LANES]; N_CONDITIONS],
+        ) -> [bool; LANES] {
+            stability_quick_lanes_raw(p, c, e)
+        }
+
         /// The first stage at `LANES` points.
         #[inline(never)]
         fn stability_quick_lanes(p: &[[f64; N_PARAMS]; LANES]) -> [Option<Verdict>; LANES] {
             let mut c = [[0.0; LANES]; N_CONDITIONS];
             let mut e = [[0.0; LANES]; N_CONDITIONS];
-            #(#params)*
-            #body
-            #(#stores)*
-            let ok: [bool; LANES] = #tests;
+            let ok = stability_quick_lanes_raw(p, &mut c, &mut e);
             core::array::from_fn(|l| {
                 if !ok[l] {
                     return None;

@@ -29,6 +29,16 @@
 //! running bound costs three to eight operations per operation. Other functions (`√`, `ln`,
 //! `exp`, …) have no such form here: the program then has no filter.
 //!
+//! In lanes (`stability_many`: `LANES` points at once) the values are per point but the
+//! magnitude is one `f64` per block: a parameter's is the largest `|p|` of the block, a
+//! quotient's divides by the smallest `|b̂|` of the block, `sin` and `cos` take the largest
+//! `|r̂|`. Every step above is monotone in the magnitudes (rounding is monotone), so the
+//! block's magnitude is at least each point's, and the same `ρ` bounds each point's error:
+//! the magnitudes cost one scalar operation per operation and block instead of one per
+//! point, for bounds a little looser (the spread of the block's parameters). A point whose
+//! value is NaN is left out of the block's largest and smallest (it is undecided by its own
+//! NaN; every other point's values, and so their magnitudes, do not depend on it).
+//!
 //! The magnitudes are those of the a-priori analysis (Higham, *Accuracy and Stability of
 //! Numerical Algorithms*, 2nd ed., §3.1), so where the formulas cancel the bound is far
 //! above the running one and the filter leaves the point to it.
@@ -44,7 +54,7 @@ use quote::{format_ident, quote};
 /// `u`: twice the unit roundoff.
 const U: f64 = f64::EPSILON;
 
-/// A value, its magnitude (as code) and its relative factor.
+/// A value, its magnitude (as code: an `f64`, in lanes the block's) and its relative factor.
 #[derive(Clone)]
 struct V {
     val: TokenStream,
@@ -109,6 +119,25 @@ impl Renderer<'_> {
         }
     }
 
+    /// `a ∘ b` on magnitudes: one `f64` per block of lanes (block magnitudes), so plain
+    /// scalar arithmetic in both modes.
+    fn mop(&self, op: char, a: &TokenStream, b: &TokenStream) -> TokenStream {
+        match op {
+            '+' => quote!(#a + #b),
+            '*' => quote!(#a * #b),
+            _ => quote!(#a / #b),
+        }
+    }
+
+    /// The magnitude of a computed value: `|x|`, or in lanes the largest `|x|` of the block.
+    fn mag_of(&self, a: &TokenStream) -> TokenStream {
+        if self.lanes {
+            quote!(l_max_abs(#a))
+        } else {
+            quote!(#a.abs())
+        }
+    }
+
     fn abs(&self, a: &TokenStream) -> TokenStream {
         if self.lanes {
             quote!(l_abs(#a))
@@ -138,7 +167,7 @@ impl Renderer<'_> {
         let (v, m) = self.name();
         let ty = self.ty();
         self.out
-            .extend(quote!(let #v: #ty = #val; let #m: #ty = #mag;));
+            .extend(quote!(let #v: #ty = #val; let #m: f64 = #mag;));
         V {
             val: quote!(#v),
             mag: quote!(#m),
@@ -150,7 +179,7 @@ impl Renderer<'_> {
         let (ti, mi) = (format_ident!("t{}", t), format_ident!("m{}_", t));
         let (val, mag, ty) = (v.val, v.mag, self.ty());
         self.out
-            .extend(quote!(let #ti: #ty = #val; let #mi: #ty = #mag;));
+            .extend(quote!(let #ti: #ty = #val; let #mi: f64 = #mag;));
         self.rho[t as usize] = Some(v.rho);
     }
 
@@ -179,13 +208,13 @@ impl Renderer<'_> {
                 self.out.extend(quote!(let (#s, #c): (#ty, #ty) = #code;));
                 for t in [def, def + 1] {
                     let (ti, mi) = (format_ident!("t{}", t), format_ident!("m{}_", t));
-                    let ta = self.abs(&quote!(#ti));
+                    let ta = self.mag_of(&quote!(#ti));
                     let (mag, rho) = if xv.rho == 0.0 {
                         (ta, 2.0 * U)
                     } else {
-                        (self.op('+', &ta, &xv.mag), xv.rho.max(2.0 * U) * (1.0 + U))
+                        (self.mop('+', &ta, &xv.mag), xv.rho.max(2.0 * U) * (1.0 + U))
                     };
-                    self.out.extend(quote!(let #mi: #ty = #mag;));
+                    self.out.extend(quote!(let #mi: f64 = #mag;));
                     self.rho[t as usize] = Some(rho);
                 }
             }
@@ -224,7 +253,7 @@ impl Fold for Renderer<'_> {
                 let p = self.ctx.param_local(k);
                 V {
                     val: quote!(#p),
-                    mag: self.abs(&quote!(#p)),
+                    mag: self.mag_of(&quote!(#p)),
                     rho: 0.0,
                 }
             }
@@ -232,7 +261,7 @@ impl Fold for Renderer<'_> {
                 let exact = super::bounded::exact_literal(x);
                 V {
                     val: self.lit(self.ctx.operand(o)?),
-                    mag: self.lit(self.ctx.num.lit(x.abs(), "literal")?),
+                    mag: self.ctx.num.lit(x.abs(), "literal")?,
                     rho: if exact { 0.0 } else { U },
                 }
             }
@@ -242,13 +271,13 @@ impl Fold for Renderer<'_> {
     fn add(&mut self, a: &V, b: &V, negate: bool) -> Result<V, CodegenError> {
         let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
         let val = self.op(if negate { '-' } else { '+' }, av, bv);
-        let mag = self.op('+', am, bm);
+        let mag = self.mop('+', am, bm);
         Ok(self.bind(val, mag, add_rho(a.rho, b.rho)))
     }
 
     fn mul(&mut self, a: &V, b: &V) -> Result<V, CodegenError> {
         let (av, bv, am, bm) = (&a.val, &b.val, &a.mag, &b.mag);
-        let (val, mag) = (self.op('*', av, bv), self.op('*', am, bm));
+        let (val, mag) = (self.op('*', av, bv), self.mop('*', am, bm));
         Ok(self.bind(val, mag, mul_rho(a.rho, b.rho)))
     }
 
@@ -264,7 +293,8 @@ impl Fold for Renderer<'_> {
                 ..a.clone()
             });
         }
-        let lit = self.lit(self.ctx.num.lit(c.abs(), "coefficient")?);
+        let c_lit = self.ctx.num.lit(c.abs(), "coefficient")?;
+        let lit = self.lit(c_lit.clone());
         let val = self.op('*', &lit, av);
         let val = if c < 0.0 { self.neg(&val) } else { val };
         let am = &a.mag;
@@ -278,7 +308,7 @@ impl Fold for Renderer<'_> {
             };
             mul_rho(a.rho, rc)
         };
-        let mag = self.op('*', &lit, am);
+        let mag = self.mop('*', &c_lit, am);
         Ok(self.bind(val, mag, rho))
     }
 
@@ -293,14 +323,20 @@ impl Fold for Renderer<'_> {
         }
         let (ra, rb) = (a.rho, b.rho);
         let rho = (1.0 + U) * (U + ra + 2.0 * (1.0 + ra) * rb / (1.0 - 2.0 * rb));
-        let (val, mag) = (self.op('/', av, bv), self.op('/', am, &self.abs(bv)));
+        // In lanes: the block's magnitude over the smallest `|b̂|` of the block.
+        let den = if self.lanes {
+            quote!(l_min_abs(#bv))
+        } else {
+            quote!(#bv.abs())
+        };
+        let (val, mag) = (self.op('/', av, bv), self.mop('/', am, &den));
         Ok(self.bind(val, mag, rho))
     }
 
     fn zero(&mut self) -> V {
         V {
             val: self.lit(quote!(0.0)),
-            mag: self.lit(quote!(0.0)),
+            mag: quote!(0.0),
             rho: 0.0,
         }
     }
@@ -333,8 +369,9 @@ pub(crate) fn render_filter(
         let bound = if v.rho == 0.0 {
             r.lit(quote!(0.0))
         } else {
-            let k = r.lit(ctx.num.lit(v.rho * 1.001, "relative bound")?);
-            r.op('*', &k, &v.mag)
+            let k = ctx.num.lit(v.rho * 1.001, "relative bound")?;
+            let m = &v.mag;
+            r.lit(quote!(#k * #m))
         };
         roots.push((val, bound));
     }

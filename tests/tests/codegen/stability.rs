@@ -30,6 +30,9 @@ struct Stab {
     quick: fn(&[f64]) -> (bool, WithBounds),
     /// `stability_many`: the verdicts of many points (`None` on an error).
     many: fn(&[Vec<f64>]) -> Vec<Option<i8>>,
+    /// `stability_conditions_quick_lanes` on consecutive blocks of points (a trailing
+    /// partial block left out): per point whether the bounds apply, values, bounds.
+    quick_lanes: fn(&[Vec<f64>]) -> Vec<(bool, WithBounds)>,
     degrees: &'static [usize],
     zero_roots: usize,
 }
@@ -64,6 +67,23 @@ macro_rules! stab {
             assert_eq!(g::stability_many(&points, &mut out), points.len());
             out.into_iter().map(|v| v.ok().map(|v| v as i8)).collect()
         }
+        fn quick_lanes(points: &[Vec<f64>]) -> Vec<(bool, WithBounds)> {
+            let mut out = Vec::new();
+            for block in points.chunks_exact(g::LANES) {
+                let p: [[f64; g::N_PARAMS]; g::LANES] = core::array::from_fn(|l| arr(&block[l]));
+                let (mut c, mut e) = (
+                    [[0.0; g::LANES]; g::N_CONDITIONS],
+                    [[0.0; g::LANES]; g::N_CONDITIONS],
+                );
+                let ok = g::stability_conditions_quick_lanes(&p, &mut c, &mut e);
+                for (l, &applies) in ok.iter().enumerate() {
+                    let col =
+                        |m: &[[f64; g::LANES]; g::N_CONDITIONS]| m.iter().map(|r| r[l]).collect();
+                    out.push((applies, (col(&c), col(&e))));
+                }
+            }
+            out
+        }
         Stab {
             model: $model,
             verdict,
@@ -71,6 +91,7 @@ macro_rules! stab {
             polynomial,
             quick,
             many,
+            quick_lanes,
             degrees: &g::CONDITION_DEGREES,
             zero_roots: g::ZERO_ROOTS,
         }
@@ -156,11 +177,13 @@ fn bounds_hold_against_double_double() {
         let nominal = r.model.scope.nominal_values();
         let mut rng = StdRng::seed_from_u64(31);
         let mut worst = 0.0f64;
+        let mut drawn = Vec::new();
         for _ in 0..200 {
             let values = random_point(&mut rng, &nominal, 0.3);
             let exact =
                 eval_generic::<Dd>(&exprs, |i| pos.get(&i).map(|&k| Dd::from_f64(values[k])))
                     .expect("double-double");
+            drawn.push((values.clone(), exact.clone()));
             let (coef, coef_err) = (g.polynomial)(&values);
             let (ok, (cond, cond_err)) = (g.conditions)(&values);
             // The first stage's a-priori bounds, where they apply.
@@ -212,6 +235,36 @@ fn bounds_hold_against_double_double() {
                 }
             }
         }
+        // The batch's first stage (one magnitude per block of points) at the same points.
+        let points: Vec<Vec<f64>> = drawn.iter().map(|(v, _)| v.clone()).collect();
+        let lanes = (g.quick_lanes)(&points);
+        assert!(lanes.len() + 4 > points.len(), "{}: every block", g.model);
+        let mut applied = 0;
+        for ((applies, (c, e)), (values, exact)) in lanes.iter().zip(&drawn) {
+            if !applies {
+                continue;
+            }
+            applied += 1;
+            let (_, (_, quick_err)) = (g.quick)(values);
+            for k in 0..exact.len() {
+                let err = (Dd::from_f64(c[k]) - exact[k]).to_f64().abs();
+                assert!(
+                    err <= e[k] && e[k] >= quick_err[k],
+                    "{} condition {k}, batch first stage: {:e} vs exact {:e}: error {err:e}, bound {:e} (one point alone {:e})",
+                    g.model,
+                    c[k],
+                    exact[k].to_f64(),
+                    e[k],
+                    quick_err[k]
+                );
+            }
+        }
+        assert!(
+            applied * 10 >= lanes.len() * 9,
+            "{}: the batch bounds apply at {applied} of {} points",
+            g.model,
+            lanes.len()
+        );
         eprintln!(
             "{}: the largest rounding error is {worst:.2} of its bound",
             g.model
