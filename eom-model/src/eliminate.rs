@@ -348,6 +348,11 @@ fn row_stats<S: Scalar>(row: &[(usize, S)], scale: f64) -> Option<(f64, usize)> 
     Some((rmax, live().filter(|&v| v > NEGLIGIBLE * scale).count()))
 }
 
+/// A candidate pivot's rank, compared lexicographically (smaller is better): whether its
+/// column is to be kept, its Markowitz count, minus its ratio to its row's largest entry, its
+/// column's inertia.
+type PivotKey = (bool, usize, f64, f64);
+
 /// Bookkeeping of one row of an elimination.
 #[derive(Clone, Copy)]
 struct RowState {
@@ -477,7 +482,7 @@ impl<S: Scalar> Elim<'_, S> {
     fn choose(&mut self) -> Option<(usize, usize)> {
         // The best candidate so far, by the key (kept, Markowitz count, −ratio, inertia)
         // compared lexicographically, and its position.
-        let mut best: Option<((bool, usize, f64, f64), usize, usize)> = None;
+        let mut best: Option<(PivotKey, usize, usize)> = None;
         for r in 0..self.row_state.len() {
             let st = &mut self.row_state[r];
             if st.pivoted {

@@ -17,6 +17,9 @@ use rand::{Rng, SeedableRng, rngs::StdRng};
 /// Values and their rounding-error bounds.
 type WithBounds = (Vec<f64>, Vec<f64>);
 
+/// Whether a point's a-priori bounds apply, its values and bounds.
+type Quick = (bool, WithBounds);
+
 /// One generated module's stability functions (`f64` in and out).
 struct Stab {
     model: &'static str,
@@ -32,7 +35,7 @@ struct Stab {
     many: fn(&[Vec<f64>]) -> Vec<Option<i8>>,
     /// `stability_conditions_quick_lanes` on consecutive blocks of points (a trailing
     /// partial block left out): per point whether the bounds apply, values, bounds.
-    quick_lanes: fn(&[Vec<f64>]) -> Vec<(bool, WithBounds)>,
+    quick_lanes: fn(&[Vec<f64>]) -> Vec<Quick>,
     degrees: &'static [usize],
     zero_roots: usize,
 }
@@ -67,7 +70,7 @@ macro_rules! stab {
             assert_eq!(g::stability_many(&points, &mut out), points.len());
             out.into_iter().map(|v| v.ok().map(|v| v as i8)).collect()
         }
-        fn quick_lanes(points: &[Vec<f64>]) -> Vec<(bool, WithBounds)> {
+        fn quick_lanes(points: &[Vec<f64>]) -> Vec<Quick> {
             let mut out = Vec::new();
             for block in points.chunks_exact(g::LANES) {
                 let p: [[f64; g::N_PARAMS]; g::LANES] = core::array::from_fn(|l| arr(&block[l]));
