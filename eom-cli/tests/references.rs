@@ -579,8 +579,8 @@ fn check_model(file: &Path) -> (Checked, Option<String>) {
 fn every_model_meets_its_reference_answers() {
     let files = model_files();
     // Every catalogue entry has its file (a family, `chainN`, at size 10) and so its sidecar.
-    for name in models::names() {
-        let stem = name.replace('N', "10");
+    for info in models::catalogue() {
+        let (name, stem) = (info.name, info.name_at(10));
         assert!(
             files
                 .iter()

@@ -29,26 +29,30 @@ fn spec(stem: usize, name: String, description: String) -> ParamSpec {
     }
 }
 
-/// The catalogue entry: the pattern, with its parameters shown as `mI`, `kI`, `cI` (`find`
-/// numbers them for a size).
-pub(crate) fn entry() -> ModelInfo {
+/// The catalogue entry: for a size, with its parameters numbered; without, the pattern with
+/// its parameters shown as `mI`, `kI`, `cI`.
+pub(crate) fn entry(size: Option<usize>) -> ModelInfo {
     let shown = [
         "mass of body I (m1 … mN)",
         "stiffness of link I (k1 … kN; link 1 to ground)",
         "damping of link I (c1 … cN)",
     ];
+    let params = match size {
+        Some(n) => params(n),
+        None => (0..3)
+            .map(|s| spec(s, format!("{}I", STEMS[s].0), shown[s].into()))
+            .collect(),
+    };
     ModelInfo::family(
         "chainpN",
         "chainN with its own mass, stiffness and damping per element: 3N parameters (chainp50 has 150)",
-        (0..3)
-            .map(|s| spec(s, format!("{}I", STEMS[s].0), shown[s].into()))
-            .collect(),
+        params,
         build,
     )
 }
 
 /// The parameters of the chain of `n` elements: `m1 … mn`, then `k1 … kn`, then `c1 … cn`.
-pub(crate) fn params(n: usize) -> Vec<ParamSpec> {
+fn params(n: usize) -> Vec<ParamSpec> {
     let mut out = Vec::with_capacity(3 * n);
     for (s, (stem, _, _, what)) in STEMS.iter().enumerate() {
         out.extend((1..=n).map(|i| spec(s, format!("{stem}{i}"), format!("{what} {i}"))));
