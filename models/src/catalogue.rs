@@ -8,8 +8,21 @@ use eom_model::*;
 use eom_sym::{Expr, ParamInfo};
 use std::sync::OnceLock;
 
-/// Builds a family's items from its parameters (in declaration order) and its size.
-pub(crate) type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), CatalogueError>;
+/// Builds a family's items for its size into a model that holds its parameters, which the
+/// builder takes by name ([`param`]).
+pub(crate) type Builder = fn(&mut Model<Expr>, usize) -> Result<(), CatalogueError>;
+
+/// The parameter `name` of a model being built (by name, never by position): an error naming
+/// the model and its parameters where it has none of that name.
+pub(crate) fn param(md: &Model<Expr>, name: &str) -> Result<Expr, CatalogueError> {
+    md.scope
+        .get(name)
+        .ok_or_else(|| CatalogueError::UnknownParameter {
+            model: md.name.clone(),
+            name: name.to_string(),
+            known: md.scope.names(),
+        })
+}
 
 /// A family of built-in models with a size N, built in Rust: the catalogue shows its pattern
 /// (`chainN`), a size completes its stem into a model's name (`chain10`).
@@ -253,17 +266,16 @@ impl ModelInfo {
             },
             Recipe::Family(builder) => {
                 let mut m = Model::new(name);
-                let mut ps = Vec::with_capacity(values.len());
                 for (spec, value) in self.params.iter().zip(values) {
-                    ps.push(m.param_info(ParamInfo {
+                    m.param_info(ParamInfo {
                         name: spec.name.clone(),
                         nominal: value,
                         unit: Some(spec.unit.clone()),
                         description: Some(spec.description.clone()),
                         assume: spec.range.assumption(),
-                    })?);
+                    })?;
                 }
-                builder(&mut m, &ps, size)?;
+                builder(&mut m, size)?;
                 Ok(m)
             }
         }
@@ -354,9 +366,9 @@ pub fn build(name: &str, overrides: &[(&str, f64)]) -> Result<Model<Expr>, Catal
     info.build(overrides, size, name)
 }
 
-fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), CatalogueError> {
-    let [m, k, c] = [p[0], p[1], p[2]];
-    chain_items(md, &vec![(m, k, c); n]);
+fn chain(md: &mut Model<Expr>, n: usize) -> Result<(), CatalogueError> {
+    let element = (param(md, "m")?, param(md, "k")?, param(md, "c")?);
+    chain_items(md, &vec![element; n]);
     Ok(())
 }
 /// The items of a chain: mass i on its slider, link i (spring and damper) to mass i − 1 (link 1

@@ -4,7 +4,7 @@
 //! 0.1 N s/m) it is `chainN` at its defaults.
 
 use crate::CatalogueError;
-use crate::catalogue::ModelInfo;
+use crate::catalogue::{ModelInfo, param};
 use eom_model::Model;
 use eom_model::file::{ParamRange, ParamSpec};
 use eom_sym::Expr;
@@ -60,9 +60,11 @@ fn params(n: usize) -> Vec<ParamSpec> {
     out
 }
 
-fn build(md: &mut Model<Expr>, ps: &[Expr], n: usize) -> Result<(), CatalogueError> {
-    let elements: Vec<(Expr, Expr, Expr)> =
-        (0..n).map(|i| (ps[i], ps[n + i], ps[2 * n + i])).collect();
+fn build(md: &mut Model<Expr>, n: usize) -> Result<(), CatalogueError> {
+    let p = |stem: usize, i: usize| param(md, &format!("{}{i}", STEMS[stem].0));
+    let elements = (1..=n)
+        .map(|i| Ok((p(0, i)?, p(1, i)?, p(2, i)?)))
+        .collect::<Result<Vec<_>, CatalogueError>>()?;
     crate::catalogue::chain_items(md, &elements);
     Ok(())
 }
