@@ -141,13 +141,16 @@ fn outside_the_validity_region_is_reported() {
     // A massless block: the reduced mass pivot vanishes.
     let model = models::build("smd", &[]).unwrap();
     let sym = Linearizer::new(&model).symbolic().unwrap();
-    match sym.evaluate(&[0.0, 10.0, 0.1]) {
+    let massless = model.scope.values_with(&[("m", 0.0)]).unwrap();
+    match sym.evaluate(&massless) {
         Err(ModelError::PivotBreakdown(msg)) => assert!(msg.contains("reduced mass"), "{msg}"),
         other => panic!("expected a pivot breakdown, got {other:?}"),
     }
     // A pivot that is small but still valid gives accurate numbers (not a breakdown).
     let model = models::build("smd", &[]).unwrap();
     let sym = Linearizer::new(&model).symbolic().unwrap();
-    let ss = sym.evaluate(&[1e-6, 10.0, 0.1]).unwrap();
-    assert!((ss.a[(1, 0)] + 10.0 / 1e-6).abs() < 1e-3);
+    let light = model.scope.values_with(&[("m", 1e-6)]).unwrap();
+    let ss = sym.evaluate(&light).unwrap();
+    let k = model.scope.get("k").unwrap().nominal();
+    assert!((ss.a[(1, 0)] + k / 1e-6).abs() < 1e-3);
 }
