@@ -14,6 +14,9 @@ pub struct ModelEntry {
     pub description: String,
     /// Parameters.
     pub parameters: Vec<ParamEntry>,
+    /// A pattern's names at two sizes, for the text (`chain10`, `chain50`).
+    #[serde(skip)]
+    pub examples: Vec<String>,
 }
 
 /// One parameter.
@@ -38,8 +41,12 @@ pub fn entries() -> Vec<ModelEntry> {
         .into_iter()
         .map(|m| ModelEntry {
             name: m.name.to_string(),
-            // A catalogue name that cannot be looked up as such is a pattern (`chainN`).
-            pattern: models::find(m.name).is_err(),
+            pattern: m.is_family(),
+            examples: if m.is_family() {
+                vec![m.name_at(10), m.name_at(50)]
+            } else {
+                Vec::new()
+            },
             description: m.description,
             parameters: m
                 .params
@@ -64,8 +71,7 @@ pub fn to_text(entries: &[ModelEntry]) -> String {
     );
     for m in entries {
         let name = if m.pattern {
-            let stem = m.name.trim_end_matches('N');
-            format!("{} (N ≥ 1, e.g. {stem}10, {stem}50)", m.name)
+            format!("{} (N ≥ 1, e.g. {})", m.name, m.examples.join(", "))
         } else {
             m.name.clone()
         };

@@ -1,12 +1,19 @@
 //! `eom analyze` against independent references: the closed-form characteristic cubic of the
 //! shimmy model, the published eigenvalues of the bicycle benchmark, the closed-form frequency
-//! response of the spring–mass–damper.
-
-// Reference values are quoted with all the digits of their source.
-#![allow(clippy::excessive_precision)]
+//! response of the spring–mass–damper. The shimmy's and the bicycle's reference numbers are
+//! those of their sidecars (`models/NAME.ref.toml`, read by `tests::references`).
 
 mod common;
 use common::{assert_close, complex, eigenvalues, eom, eom_json};
+use num_complex::Complex64;
+use tests::references::sidecar;
+
+/// Reference eigenvalues in the order `eom analyze` prints them: by real part, then imaginary.
+fn in_printed_order(z: &[Complex64]) -> Vec<(f64, f64)> {
+    let mut v: Vec<(f64, f64)> = z.iter().map(|z| (z.re, z.im)).collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    v
+}
 
 /// Roots of `a3 s³ + a2 s² + a1 s + a0` with one real root and a complex pair: the real root
 /// by Newton's method, the pair from the deflated quadratic. Sorted by (re, im).
@@ -67,12 +74,8 @@ fn shimmy_json_has_the_required_keys_and_the_closed_form_eigenvalues() {
     ] {
         assert_eq!(p[name].as_f64(), Some(v), "parameter {name}");
     }
-    // Published digits of the reference and the cubic solved here agree …
-    let reference = [
-        (-10.864787391630745, 0.0),
-        (-0.0023889128802797503, -0.77476328323946357),
-        (-0.0023889128802797503, 0.77476328323946357),
-    ];
+    // The sidecar's digits at the defaults and the cubic solved here agree …
+    let reference = in_printed_order(&sidecar("shimmy").eigenvalues_at(&[]).expected());
     assert_close(
         &shimmy_cubic(5.0, 1.05, 1.5, 1.0, 0.5, 10.0),
         &reference,
@@ -87,23 +90,24 @@ fn shimmy_json_has_the_required_keys_and_the_closed_form_eigenvalues() {
     assert!(modes.iter().all(|m| m["stable"] == true));
     // A real pole reports its corner frequency, not 0 Hz.
     let f = modes[0]["natural_frequency_hz"].as_f64().unwrap();
+    let (real, pair) = (reference[0], reference[2]);
+    assert!(real.1 == 0.0 && pair.1 > 0.0, "{reference:?}");
     assert!(
-        (f - 10.864787391630745 / (2.0 * std::f64::consts::PI)).abs() < 1e-9,
+        (f - real.0.abs() / (2.0 * std::f64::consts::PI)).abs() < 1e-9,
         "{f}"
     );
     assert_eq!(modes[0]["period"], serde_json::Value::Null);
     let period = modes[2]["period"].as_f64().unwrap();
-    assert!((period - 2.0 * std::f64::consts::PI / 0.77476328323946357).abs() < 1e-8);
+    assert!((period - 2.0 * std::f64::consts::PI / pair.1).abs() < 1e-8);
     assert_eq!(j["minimal"]["states"], 3);
 }
 
 #[test]
 fn set_changes_the_point_of_analysis() {
-    let reference = [
-        (-1.0548225773209977, 0.0),
-        (-0.016066972209066385, -0.7861425795470481),
-        (-0.016066972209066385, 0.7861425795470481),
-    ];
+    // u = 1 at the default a/l = 0.5: a row of the sidecar's table at u = 1.
+    let refs = sidecar("shimmy");
+    let table = refs.table("tests/data/shimmy_eigs_u1.csv", &[("u", 1.0)]);
+    let reference = in_printed_order(&table.row(0.5));
     assert_close(
         &shimmy_cubic(5.0, 1.05, 1.5, 1.0, 0.5, 1.0),
         &reference,
@@ -119,17 +123,16 @@ fn set_changes_the_point_of_analysis() {
     }
 }
 
-/// Meijaard, Papadopoulos, Ruina & Schwab (2007), Proc. R. Soc. A 463, Table 2: the
-/// eigenvalues of the benchmark bicycle at v = 5 m/s (castering, weave pair, capsize); the
-/// model adds two zero modes (heading and lateral position, which the outputs do not see).
+/// Meijaard, Papadopoulos, Ruina & Schwab (2007), Proc. R. Soc. A 463, Table 2(b) (the
+/// sidecar's published table): the eigenvalues of the benchmark bicycle at v = 5 m/s
+/// (castering, weave pair, capsize); the model adds two zero modes (heading and lateral
+/// position, which the outputs do not see).
 #[test]
 fn bicycle_at_5_m_per_s_has_the_published_eigenvalues() {
-    let published = [
-        (-14.0783896927982, 0.0),
-        (-0.775341882195842, -4.46486771378823),
-        (-0.775341882195842, 4.46486771378823),
-        (-0.322866429004087, 0.0),
-    ];
+    let refs = sidecar("bicycle");
+    let table = refs.table("tests/data/bicycle_table2.csv", &[]);
+    let published = in_printed_order(&table.row(5.0));
+    assert_eq!(published.len(), 4);
     for args in [
         &["analyze", "bicycle", "--format", "json"][..],
         &[

@@ -5,17 +5,13 @@
 
 mod common;
 use common::{complex, eom_json};
+use num_complex::Complex64;
+use tests::references::{Sidecar, sidecar};
 
-/// (v, [weave re, weave im, capsize, castor]) for v = 1…10 (Table 2(b), as printed).
-fn table() -> Vec<(f64, [f64; 4])> {
-    include_str!("../../tests/data/bicycle_table2.csv")
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().expect("a number")).collect();
-            (v[0], [v[1], v[2], v[3], v[4]])
-        })
-        .collect()
+/// (v, the four lean/steer eigenvalues) for v = 1…10: Table 2(b) as printed, the table the
+/// bicycle's sidecar names.
+fn table(refs: &Sidecar) -> Vec<(f64, Vec<Complex64>)> {
+    refs.table("tests/data/bicycle_table2.csv", &[]).rows()
 }
 
 /// `eom analyze bicycle --set v=V --method METHOD --format json`.
@@ -49,35 +45,35 @@ fn printed(v: f64, method: &str) -> (Vec<(f64, f64)>, usize) {
 
 #[test]
 fn printed_eigenvalues_equal_the_published_table_on_every_path() {
+    let refs = sidecar("bicycle");
+    let table = table(&refs);
+    assert_eq!(table.len(), 10);
     for method in ["numeric", "symbolic", "robust"] {
-        for (v, [wr, wi, capsize, castor]) in table() {
-            let (e, zeros) = printed(v, method);
+        for (v, want) in &table {
+            let (e, zeros) = printed(*v, method);
             assert_eq!(zeros, 2, "{method} v = {v}: heading and lateral position");
             let exact_zeros = e.iter().filter(|z| **z == (0.0, 0.0)).count();
             assert_eq!(exact_zeros, 2, "{method} v = {v}: {e:?}");
             let rest: Vec<(f64, f64)> = e.into_iter().filter(|z| *z != (0.0, 0.0)).collect();
-            let want = [(castor, 0.0), (capsize, 0.0), (wr, -wi), (wr, wi)];
-            for w in &want {
+            assert_eq!(want.len(), 4, "v = {v}: weave pair, capsize, castor");
+            for w in want {
                 let d = rest
                     .iter()
-                    .map(|g| ((g.0 - w.0).powi(2) + (g.1 - w.1).powi(2)).sqrt())
+                    .map(|g| (g.0 - w.re).hypot(g.1 - w.im))
                     .fold(f64::INFINITY, f64::min);
                 assert!(
                     d < 1e-12,
-                    "{method} v = {v}: {w:?} missing (nearest {d:e}) in {rest:?}"
+                    "{method} v = {v}: {w} missing (nearest {d:e}) in {rest:?}"
                 );
             }
         }
-        // v = 0: ±3.13164324790656, ±5.53094371765393.
+        // v = 0: four real roots (the sidecar's Table 2(b) entry at rest).
+        let at_rest = refs.eigenvalues_at(&[("v", 0.0)]).expected();
+        assert_eq!(at_rest.len(), 4);
         let (e, _) = printed(0.0, method);
-        for w in [
-            -5.53094371765393,
-            -3.13164324790656,
-            3.13164324790656,
-            5.53094371765393,
-        ] {
+        for w in at_rest {
             assert!(
-                e.iter().any(|g| (g.0 - w).abs() < 1e-12 && g.1 == 0.0),
+                e.iter().any(|g| (g.0 - w.re).abs() < 1e-12 && g.1 == w.im),
                 "{method} v = 0: {w} in {e:?}"
             );
         }

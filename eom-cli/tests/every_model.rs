@@ -21,12 +21,7 @@ fn catalogue() -> Vec<Case> {
     models::catalogue()
         .iter()
         .map(|info| {
-            // A name that cannot be looked up as such is a family pattern.
-            let name = if models::find(info.name).is_ok() {
-                info.name.to_string()
-            } else {
-                info.name.replace('N', "2")
-            };
+            let name = info.name_at(2);
             let model = models::build(&name, &[]).unwrap_or_else(|e| panic!("{name}: {e}"));
             Case {
                 first: first_parameter(&model),

@@ -75,8 +75,19 @@ fn sweep_plot_has_two_curves_per_branch_and_marks_the_boundaries() {
     // Weave (stabilizing) and capsize (destabilizing) speeds are listed in the legend.
     let boundaries = j["boundaries"].as_array().unwrap();
     assert_eq!(boundaries.len(), 2);
-    assert_eq!(svg.matches("\nstabilizing: v = 4.29238").count(), 1);
-    assert_eq!(svg.matches("\ndestabilizing: v = 6.02426").count(), 1);
+    // The speeds as the legend prints them (6 digits), from the bicycle's sidecar.
+    let refs = tests::references::sidecar("bicycle");
+    let speeds = refs.boundary_in("v", &[]).expected();
+    let (weave, capsize) = (format!("{:.5}", speeds[0]), format!("{:.5}", speeds[1]));
+    assert_eq!(
+        svg.matches(&format!("\nstabilizing: v = {weave}")).count(),
+        1
+    );
+    assert_eq!(
+        svg.matches(&format!("\ndestabilizing: v = {capsize}"))
+            .count(),
+        1
+    );
     // The stable interval is shaded (two panels) and drawn as a legend swatch.
     let shade = svg.matches("fill=\"#D6F0D6\"").count();
     assert_eq!(shade, 3, "stable shading in both panels and the legend");

@@ -34,11 +34,8 @@ fn main() {
         .expect("write");
     let mut index = String::new();
     for info in models::catalogue() {
-        // A pattern (`chainN`, `chainpN`) at size 10.
-        let name = match info.name.strip_suffix('N') {
-            Some(stem) => format!("{stem}10"),
-            None => info.name.to_string(),
-        };
+        // A family (`chainN`, `chainpN`) at size 10.
+        let name = info.name_at(10);
         let name = name.as_str();
         for (ty, g) in [("f64", builtin(name)), ("f32", builtin(name).f32())] {
             let file = format!("check_{name}_{ty}.rs");

@@ -6,7 +6,7 @@
 //! `docs/aero-references.md` and `tests/data/aero/`.
 
 use crate::CatalogueError;
-use crate::catalogue::ModelInfo;
+use crate::catalogue::{ModelInfo, param};
 use eom_model::file::{ParamRange, ParamSpec};
 use eom_model::*;
 use eom_sym::Expr;
@@ -71,11 +71,9 @@ pub fn goland_wing(
         "",
         goland_params(),
         match unsteady {
-            Unsteady::Jones => |md, p, n| goland_into(md, p, segments(n), Unsteady::Jones),
-            Unsteady::QuasiSteady => {
-                |md, p, n| goland_into(md, p, segments(n), Unsteady::QuasiSteady)
-            }
-            Unsteady::Auto => |md, p, n| goland_into(md, p, segments(n), Unsteady::Auto),
+            Unsteady::Jones => |md, n| goland_into(md, segments(n), Unsteady::Jones),
+            Unsteady::QuasiSteady => |md, n| goland_into(md, segments(n), Unsteady::QuasiSteady),
+            Unsteady::Auto => |md, n| goland_into(md, segments(n), Unsteady::Auto),
         },
     );
     info.build(overrides, n, "goland_wing")
@@ -86,14 +84,10 @@ pub fn goland_wing(
 /// at the tip), the rotary inertia mℓᵢ³/12 of its segment about the chordwise axis (so that
 /// every bending slope carries inertia) and a strip of width ℓᵢ; Euler–Bernoulli beams (EI)
 /// and torsion springs (GJ/ℓ) join neighbouring nodes. In-plane motion is held.
-fn goland_into(
-    md: &mut Model<Expr>,
-    p: &[Expr],
-    n: usize,
-    unsteady: Unsteady,
-) -> Result<(), CatalogueError> {
-    let [v, rho, span, chord, ea, cg, m, i_theta, ei, gj] =
-        [p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9]];
+fn goland_into(md: &mut Model<Expr>, n: usize, unsteady: Unsteady) -> Result<(), CatalogueError> {
+    let p = |name: &str| param(md, name);
+    let (v, rho, span, chord, ea) = (p("V")?, p("rho")?, p("L")?, p("c")?, p("ea")?);
+    let (cg, m, i_theta, ei, gj) = (p("cg")?, p("m")?, p("I_theta")?, p("EI")?, p("GJ")?);
     let half = Expr::from(0.5);
     let b = half * chord;
     // a: semichords aft of mid-chord; the mass centre x_cg aft of the elastic axis.

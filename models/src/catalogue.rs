@@ -8,8 +8,83 @@ use eom_model::*;
 use eom_sym::{Expr, ParamInfo};
 use std::sync::OnceLock;
 
-/// Builds a family's items from its parameters (in declaration order) and its size.
-pub(crate) type Builder = fn(&mut Model<Expr>, &[Expr], usize) -> Result<(), CatalogueError>;
+/// Builds a family's items for its size into a model that holds its parameters, which the
+/// builder takes by name ([`param`]).
+pub(crate) type Builder = fn(&mut Model<Expr>, usize) -> Result<(), CatalogueError>;
+
+/// The parameter `name` of a model being built (by name, never by position): an error naming
+/// the model and its parameters where it has none of that name.
+pub(crate) fn param(md: &Model<Expr>, name: &str) -> Result<Expr, CatalogueError> {
+    md.scope
+        .get(name)
+        .ok_or_else(|| CatalogueError::UnknownParameter {
+            model: md.name.clone(),
+            name: name.to_string(),
+            known: md.scope.names(),
+        })
+}
+
+/// A family of built-in models with a size N, built in Rust: the catalogue shows its pattern
+/// (`chainN`), a size completes its stem into a model's name (`chain10`).
+#[derive(Clone, Copy, Debug)]
+pub struct Family {
+    /// The name the catalogue shows: the stem followed by `N`.
+    pub pattern: &'static str,
+    /// The catalogue entry for a size (`chainpN` numbers its parameters for it), or as the
+    /// catalogue shows it (`None`).
+    entry: fn(Option<usize>) -> ModelInfo,
+}
+
+impl Family {
+    /// The name that a size completes: the pattern without its `N` (`chain`).
+    pub fn stem(&self) -> &'static str {
+        stem(self.pattern)
+    }
+
+    /// The size that `name` gives this family (`chain50` → 50 for `chainN`; 0 for
+    /// `chain0`), or `None` where `name` is not the stem and digits; `Err` for a size past
+    /// [`MAX_CHAIN`].
+    fn size_in(&self, name: &str) -> Option<Result<usize, CatalogueError>> {
+        let digits = name.strip_prefix(self.stem())?;
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        Some(
+            digits
+                .parse::<usize>()
+                .ok()
+                .filter(|k| *k <= MAX_CHAIN)
+                .ok_or_else(|| CatalogueError::ChainTooLong {
+                    name: if name.len() > 40 {
+                        format!("{}… ({} characters)", &name[..20], name.len())
+                    } else {
+                        name.to_string()
+                    },
+                    max: MAX_CHAIN,
+                }),
+        )
+    }
+}
+
+/// The families, in catalogue order (after the first seven shipped files); the one
+/// declaration of their names. No stem followed by digits is another's (`chainp10` is not
+/// `chain` and `p10`).
+pub const FAMILIES: [Family; 2] = [
+    Family {
+        pattern: "chainN",
+        entry: chain_entry,
+    },
+    Family {
+        pattern: "chainpN",
+        entry: crate::chainp::entry,
+    },
+];
+
+/// A family's stem: its pattern without the final `N` (a name built in Rust outside the
+/// catalogue, such as the Goland wing's, is its own stem).
+fn stem(pattern: &str) -> &str {
+    pattern.strip_suffix('N').unwrap_or(pattern)
+}
 
 /// How an entry is made.
 #[derive(Clone, Copy, Debug)]
@@ -23,7 +98,7 @@ enum Recipe {
 /// A built-in model.
 #[derive(Clone, Debug)]
 pub struct ModelInfo {
-    /// Name (for the families: the patterns `chainN` and `chainpN`).
+    /// Name (for a family: its pattern, `chainN`; [`ModelInfo::name_at`] names a size).
     pub name: &'static str,
     /// One-line description.
     pub description: String,
@@ -97,8 +172,8 @@ fn positive(name: &str, default: f64, unit: &str, description: &str) -> ParamSpe
     }
 }
 
-/// The family `chainN`.
-fn chain_entry() -> ModelInfo {
+/// The family `chainN` (its parameters do not depend on the size).
+fn chain_entry(_size: Option<usize>) -> ModelInfo {
     ModelInfo {
         name: "chainN",
         description: "N equal masses in series on sliders, the first tied to ground, spring and \
@@ -119,7 +194,7 @@ pub fn catalogue() -> Vec<ModelInfo> {
         r.map(|k| file_entry(k).unwrap_or_else(|e| panic!("a shipped model file: {e}")))
     };
     files(0..FAMILIES_AT)
-        .chain([chain_entry(), crate::chainp::entry()])
+        .chain(FAMILIES.iter().map(|f| (f.entry)(None)))
         .chain(files(FAMILIES_AT..FILES.len()))
         .collect()
 }
@@ -131,7 +206,7 @@ pub fn names() -> Vec<&'static str> {
     files
         .clone()
         .take(FAMILIES_AT)
-        .chain(["chainN", "chainpN"])
+        .chain(FAMILIES.iter().map(|f| f.pattern))
         .chain(files.skip(FAMILIES_AT))
         .collect()
 }
@@ -143,6 +218,21 @@ pub fn file_text(name: &str) -> Option<&'static str> {
 }
 
 impl ModelInfo {
+    /// Whether the entry is a family with a size N (`chainN`), built in Rust.
+    pub fn is_family(&self) -> bool {
+        matches!(self.recipe, Recipe::Family(_))
+    }
+
+    /// The name of the model of `size` (`chain10` for `chainN` at 10); a model that is no
+    /// family has its own name whatever the size.
+    pub fn name_at(&self, size: usize) -> String {
+        if self.is_family() {
+            format!("{}{size}", stem(self.name))
+        } else {
+            self.name.to_string()
+        }
+    }
+
     /// An entry of a family, built in Rust.
     pub(crate) fn family(
         name: &'static str,
@@ -176,17 +266,16 @@ impl ModelInfo {
             },
             Recipe::Family(builder) => {
                 let mut m = Model::new(name);
-                let mut ps = Vec::with_capacity(values.len());
                 for (spec, value) in self.params.iter().zip(values) {
-                    ps.push(m.param_info(ParamInfo {
+                    m.param_info(ParamInfo {
                         name: spec.name.clone(),
                         nominal: value,
                         unit: Some(spec.unit.clone()),
                         description: Some(spec.description.clone()),
                         assume: spec.range.assumption(),
-                    })?);
+                    })?;
                 }
-                builder(&mut m, &ps, size)?;
+                builder(&mut m, size)?;
                 Ok(m)
             }
         }
@@ -246,36 +335,12 @@ pub const MAX_CHAIN: usize = 1000;
 /// The catalogue entry and size for a model name (`chain50` → the chain entry, 50;
 /// `chainp50` → the chain with per-element parameters, 50, its parameters numbered).
 pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
-    // `chainp` before `chain`: both patterns are a stem and a size.
-    for (stem, pattern) in [("chainp", "chainpN"), ("chain", "chainN")] {
-        let Some(n) = name.strip_prefix(stem) else {
-            continue;
-        };
-        if n.is_empty() || !n.bytes().all(|b| b.is_ascii_digit()) {
-            continue;
+    for family in &FAMILIES {
+        match family.size_in(name) {
+            None | Some(Ok(0)) => continue,
+            Some(Ok(size)) => return Ok(((family.entry)(Some(size)), size)),
+            Some(Err(e)) => return Err(e),
         }
-        let size = n.parse::<usize>().ok().filter(|k| *k <= MAX_CHAIN);
-        let Some(size) = size else {
-            return Err(CatalogueError::ChainTooLong {
-                name: if name.len() > 40 {
-                    format!("{}… ({} characters)", &name[..20], name.len())
-                } else {
-                    name.to_string()
-                },
-                max: MAX_CHAIN,
-            });
-        };
-        if size == 0 {
-            break;
-        }
-        let info = if pattern == "chainpN" {
-            let mut info = crate::chainp::entry();
-            info.params = crate::chainp::params(size);
-            info
-        } else {
-            chain_entry()
-        };
-        return Ok((info, size));
     }
     match FILES.iter().position(|f| f.0 == name) {
         Some(k) => Ok((file_entry(k)?, 0)),
@@ -284,7 +349,7 @@ pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
             known: names()
                 .into_iter()
                 .map(|m| {
-                    if is_pattern(m) {
+                    if FAMILIES.iter().any(|f| f.pattern == m) {
                         format!("{m} (N = 1..{MAX_CHAIN})")
                     } else {
                         m.to_string()
@@ -295,20 +360,15 @@ pub fn find(name: &str) -> Result<(ModelInfo, usize), CatalogueError> {
     }
 }
 
-/// Whether a catalogue name is a pattern with a size N (`chainN`, `chainpN`).
-fn is_pattern(name: &str) -> bool {
-    matches!(name, "chainN" | "chainpN")
-}
-
 /// Build a model by name with parameter overrides.
 pub fn build(name: &str, overrides: &[(&str, f64)]) -> Result<Model<Expr>, CatalogueError> {
     let (info, size) = find(name)?;
     info.build(overrides, size, name)
 }
 
-fn chain(md: &mut Model<Expr>, p: &[Expr], n: usize) -> Result<(), CatalogueError> {
-    let [m, k, c] = [p[0], p[1], p[2]];
-    chain_items(md, &vec![(m, k, c); n]);
+fn chain(md: &mut Model<Expr>, n: usize) -> Result<(), CatalogueError> {
+    let element = (param(md, "m")?, param(md, "k")?, param(md, "c")?);
+    chain_items(md, &vec![element; n]);
     Ok(())
 }
 /// The items of a chain: mass i on its slider, link i (spring and damper) to mass i − 1 (link 1
@@ -353,4 +413,37 @@ pub(crate) fn chain_items(md: &mut Model<Expr>, elements: &[(Expr, Expr, Expr)])
             .between(&last, "ground")
             .ends(vec3(x, 0, 0), vec3(x - 1, 0, 0)),
     );
+}
+
+#[cfg(test)]
+mod family_tests {
+    use super::*;
+
+    #[test]
+    fn each_family_is_its_pattern_and_builds_by_its_names() {
+        for family in &FAMILIES {
+            let shown = (family.entry)(None);
+            assert_eq!(shown.name, family.pattern);
+            assert!(family.pattern.ends_with('N') && shown.is_family());
+            assert_eq!(shown.name_at(7), format!("{}7", family.stem()));
+            let (info, size) = find(&shown.name_at(7)).expect("a size");
+            assert_eq!((info.name, size), (family.pattern, 7));
+            for bad in ["0", "", "x3"] {
+                let name = format!("{}{bad}", family.stem());
+                assert!(
+                    matches!(find(&name), Err(CatalogueError::UnknownModel { .. })),
+                    "{name}"
+                );
+            }
+            let long = format!("{}{}", family.stem(), MAX_CHAIN + 1);
+            assert!(matches!(
+                find(&long),
+                Err(CatalogueError::ChainTooLong { .. })
+            ));
+        }
+        let files: Vec<ModelInfo> = catalogue().into_iter().filter(|m| !m.is_family()).collect();
+        assert_eq!(files.len(), FILES.len());
+        assert!(files.iter().all(|m| m.name_at(7) == m.name));
+        assert_eq!(find("chainp4").expect("chainp4").0.params.len(), 12);
+    }
 }

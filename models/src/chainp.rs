@@ -4,7 +4,7 @@
 //! 0.1 N s/m) it is `chainN` at its defaults.
 
 use crate::CatalogueError;
-use crate::catalogue::ModelInfo;
+use crate::catalogue::{ModelInfo, param};
 use eom_model::Model;
 use eom_model::file::{ParamRange, ParamSpec};
 use eom_sym::Expr;
@@ -29,26 +29,30 @@ fn spec(stem: usize, name: String, description: String) -> ParamSpec {
     }
 }
 
-/// The catalogue entry: the pattern, with its parameters shown as `mI`, `kI`, `cI` (`find`
-/// numbers them for a size).
-pub(crate) fn entry() -> ModelInfo {
+/// The catalogue entry: for a size, with its parameters numbered; without, the pattern with
+/// its parameters shown as `mI`, `kI`, `cI`.
+pub(crate) fn entry(size: Option<usize>) -> ModelInfo {
     let shown = [
         "mass of body I (m1 … mN)",
         "stiffness of link I (k1 … kN; link 1 to ground)",
         "damping of link I (c1 … cN)",
     ];
+    let params = match size {
+        Some(n) => params(n),
+        None => (0..3)
+            .map(|s| spec(s, format!("{}I", STEMS[s].0), shown[s].into()))
+            .collect(),
+    };
     ModelInfo::family(
         "chainpN",
         "chainN with its own mass, stiffness and damping per element: 3N parameters (chainp50 has 150)",
-        (0..3)
-            .map(|s| spec(s, format!("{}I", STEMS[s].0), shown[s].into()))
-            .collect(),
+        params,
         build,
     )
 }
 
 /// The parameters of the chain of `n` elements: `m1 … mn`, then `k1 … kn`, then `c1 … cn`.
-pub(crate) fn params(n: usize) -> Vec<ParamSpec> {
+fn params(n: usize) -> Vec<ParamSpec> {
     let mut out = Vec::with_capacity(3 * n);
     for (s, (stem, _, _, what)) in STEMS.iter().enumerate() {
         out.extend((1..=n).map(|i| spec(s, format!("{stem}{i}"), format!("{what} {i}"))));
@@ -56,9 +60,11 @@ pub(crate) fn params(n: usize) -> Vec<ParamSpec> {
     out
 }
 
-fn build(md: &mut Model<Expr>, ps: &[Expr], n: usize) -> Result<(), CatalogueError> {
-    let elements: Vec<(Expr, Expr, Expr)> =
-        (0..n).map(|i| (ps[i], ps[n + i], ps[2 * n + i])).collect();
+fn build(md: &mut Model<Expr>, n: usize) -> Result<(), CatalogueError> {
+    let p = |stem: usize, i: usize| param(md, &format!("{}{i}", STEMS[stem].0));
+    let elements = (1..=n)
+        .map(|i| Ok((p(0, i)?, p(1, i)?, p(2, i)?)))
+        .collect::<Result<Vec<_>, CatalogueError>>()?;
     crate::catalogue::chain_items(md, &elements);
     Ok(())
 }

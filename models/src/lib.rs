@@ -45,7 +45,9 @@ mod catalogue;
 mod chainp;
 pub mod generate;
 
-pub use catalogue::{MAX_CHAIN, ModelInfo, build, catalogue, file_text, find, names};
+pub use catalogue::{
+    FAMILIES, Family, MAX_CHAIN, ModelInfo, build, catalogue, file_text, find, names,
+};
 pub use eom_model::file::{ParamRange, ParamSpec};
 
 /// Errors of the model library (the catalogue of built-in models).

@@ -2,9 +2,6 @@
 //! exact stable interval, the bicycle's weave and capsize speeds, frequency responses against
 //! closed-form transfer functions, and a rotor at zero spin through the minimal realization.
 
-// Reference values are transcribed digit for digit from their sources.
-#![allow(clippy::excessive_precision)]
-
 use eom_model::*;
 use eom_num::freq::{FreqOptions, FreqRange, FreqUnit, FrequencyResponse};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
@@ -14,9 +11,14 @@ use nalgebra::DMatrix;
 use num_complex::Complex64;
 
 /// The shimmy is stable exactly for 0.3 < a/l < 0.7 (docs/references.md §B: the range depends only
-/// on Iz/(m l²) = 0.21), at u = 10 and u = 1. The sweep evaluates the compiled symbolic model.
+/// on Iz/(m l²) = 0.21, not on u; the boundaries of the shimmy's sidecar), at u = 10 and u = 1.
+/// The sweep evaluates the compiled symbolic model.
 #[test]
 fn shimmy_stable_interval_is_exact() {
+    let exact = tests::references::sidecar("shimmy")
+        .boundary_in("x", &[])
+        .expected();
+    assert_eq!(exact.len(), 2, "{exact:?}");
     for u in [10.0, 1.0] {
         let model = models::build("shimmy", &[("u", u)]).unwrap();
         let sym = Linearizer::new(&model).symbolic().unwrap();
@@ -39,7 +41,7 @@ fn shimmy_stable_interval_is_exact() {
         );
         let iv = &result.stable_intervals[0];
         assert!(
-            (iv.lo - 0.3).abs() < 1e-9 && (iv.hi - 0.7).abs() < 1e-9,
+            (iv.lo - exact[0]).abs() < 1e-9 && (iv.hi - exact[1]).abs() < 1e-9,
             "u = {u}: {iv:?}"
         );
         assert_eq!(result.boundaries.len(), 2);
@@ -53,9 +55,18 @@ fn shimmy_stable_interval_is_exact() {
     }
 }
 
-/// Weave and capsize speeds of the benchmark bicycle: published 4.29238253634111 and
-/// 6.02426201538837 m/s (Meijaard et al. 2007, Table 2a; exact values 4.2923825363411040 and
-/// 6.0242620153883589, docs/references.md §A). The sweep follows the eigenvalues of the minimal
+/// The exact weave and capsize speeds of the benchmark bicycle, from its sidecar's boundaries
+/// (published 4.29238253634111 and 6.02426201538837 m/s, Meijaard et al. 2007, Table 2a; exact
+/// to 20 digits in docs/references.md §A).
+fn bicycle_speeds() -> (f64, f64) {
+    let speeds = tests::references::sidecar("bicycle")
+        .boundary_in("v", &[])
+        .expected();
+    assert_eq!(speeds.len(), 2, "{speeds:?}");
+    (speeds[0], speeds[1])
+}
+
+/// Weave and capsize speeds of the benchmark bicycle ([`bicycle_speeds`]). The sweep follows the eigenvalues of the minimal
 /// realization (the lean/steer dynamics): the heading/lateral Jordan block at zero, which
 /// makes the capsize root ill-conditioned in the full model near v_c, is split off exactly.
 #[test]
@@ -83,16 +94,14 @@ fn bicycle_weave_and_capsize_speeds() {
         .collect();
     assert_eq!(iv.len(), 1, "{iv:?}");
     let (weave, capsize) = iv[0];
+    let (weave_exact, capsize_exact) = bicycle_speeds();
+    assert!((weave - weave_exact).abs() < 1e-9, "weave speed {weave}");
     assert!(
-        (weave - 4.2923825363411040).abs() < 1e-9,
-        "weave speed {weave}"
-    );
-    assert!(
-        (capsize - 6.0242620153883589).abs() < 1e-9,
+        (capsize - capsize_exact).abs() < 1e-9,
         "capsize speed {capsize}"
     );
     eprintln!(
-        "bicycle: weave speed {weave:.14}, capsize speed {capsize:.14} (exact 4.29238253634110, 6.02426201538836)"
+        "bicycle: weave speed {weave:.14}, capsize speed {capsize:.14} (exact {weave_exact:.14}, {capsize_exact:.14})"
     );
 }
 
@@ -288,6 +297,7 @@ fn bicycle_speeds_from_the_full_model_on_any_grid() {
     let compiled = sym.compiled().clone();
     let vi = model.scope.names().iter().position(|n| n == "v").unwrap();
     let base = model.scope.nominal_values();
+    let (weave_exact, capsize_exact) = bicycle_speeds();
     for count in [11, 21, 41, 101] {
         let result = Sweep::linspace(0.0, 10.0, count)
             .with_param_name("v")
@@ -306,11 +316,11 @@ fn bicycle_speeds_from_the_full_model_on_any_grid() {
         assert_eq!(iv.len(), 1, "{count} points: {iv:?}");
         let (weave, capsize) = iv[0];
         assert!(
-            (weave - 4.2923825363411040).abs() < 1e-9,
+            (weave - weave_exact).abs() < 1e-9,
             "{count} points: weave speed {weave}"
         );
         assert!(
-            (capsize - 6.0242620153883589).abs() < 1e-9,
+            (capsize - capsize_exact).abs() < 1e-9,
             "{count} points: capsize speed {capsize}"
         );
         assert_eq!(result.boundaries.len(), 2, "{:?}", result.boundaries);

@@ -4,9 +4,6 @@
 //! 1e-12 absolute; the 126-speed table of 17-digit values; and the double-double path, which
 //! reproduces the exact values to ~1e-16 and shows the one published entry that is off.
 
-// Reference values are transcribed digit for digit from their sources.
-#![allow(clippy::excessive_precision)]
-
 use eom_model::{Linearizer, Method, assemble, reduce};
 use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_sym::Dd;
@@ -16,9 +13,8 @@ use eom_sym::scalar::Scalar;
 use num_complex::Complex64;
 use tests::{max_abs_error, read_csv};
 
-/// Published Table 2(b) (v = 0: all four roots real, given as ±3.13164324790656,
-/// ±5.53094371765393) (`tests/data/bicycle_table2.csv`): v, Re weave, Im weave, capsize,
-/// castor for v = 1…10 m/s.
+/// Published Table 2(b) (`tests/data/bicycle_table2.csv`): v, Re weave, Im weave, capsize,
+/// castor for v = 1…10 m/s (v = 0, where all four roots are real, is [`at_rest`]).
 fn published() -> Vec<[f64; 5]> {
     table(include_str!("../data/bicycle_table2.csv"))
 }
@@ -50,16 +46,16 @@ fn expected(row: &[f64; 5]) -> Vec<Complex64> {
     ]
 }
 
+/// Published Table 2(b) at v = 0: four real roots, from the bicycle's sidecar
+/// (`models/bicycle.ref.toml`).
 fn at_rest() -> Vec<Complex64> {
-    [
-        -5.53094371765393,
-        -3.13164324790656,
-        3.13164324790656,
-        5.53094371765393,
-    ]
-    .iter()
-    .map(|&x| Complex64::new(x, 0.0))
-    .collect()
+    let refs = tests::references::sidecar("bicycle");
+    let roots = refs.eigenvalues_at(&[("v", 0.0)]).expected();
+    assert!(
+        roots.len() == 4 && roots.iter().all(|z| z.im == 0.0),
+        "{roots:?}"
+    );
+    roots
 }
 
 /// The four lean/steer eigenvalues: the eigenvalues of the minimal realization from the steer
@@ -274,7 +270,7 @@ fn double_double_reproduces_exact_and_published_digits() {
         for (g, e) in tests::match_eigenvalues(&got, &expected(publ)) {
             // Per component, as the table prints real and imaginary parts separately.
             let d = (g.re - e.re).abs().max((g.im - e.im).abs());
-            if row[0] == 7.0 && (e.re + 18.15788466125262).abs() < 1e-12 {
+            if row[0] == 7.0 && e.re == publ[4] {
                 // … except the castor root at 7 m/s, misprinted by 6.0e-13.
                 assert!(
                     (d - 6.0e-13).abs() < 0.1e-13,

@@ -11,10 +11,7 @@ use std::path::PathBuf;
 
 /// Every catalogue entry by a name it builds under: the families at size 4.
 fn builtins() -> Vec<String> {
-    models::names()
-        .into_iter()
-        .map(|n| n.replace('N', "4"))
-        .collect()
+    models::catalogue().iter().map(|m| m.name_at(4)).collect()
 }
 
 fn path(name: &str) -> PathBuf {

@@ -111,10 +111,7 @@ fn within_bound(r: &ReducedModel) -> bool {
 fn the_bound_holds_for_every_order_of_every_catalogue_model() {
     let mut orders = 0;
     for info in models::catalogue() {
-        let name = match info.name.strip_suffix('N') {
-            Some(stem) => format!("{stem}10"),
-            None => info.name.to_string(),
-        };
+        let name = info.name_at(10);
         let ss = linearize(&name, &[]);
         let first = Reducer::new(&ss)
             .run()

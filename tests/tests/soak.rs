@@ -26,6 +26,7 @@ use eom_num::minreal::{MinrealOptions, minimal_realization};
 use eom_num::modes::Modes;
 use eom_num::sweep::Sweep;
 use eom_num::zeros::transmission_zeros;
+use models::ModelInfo;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -94,13 +95,15 @@ fn value(rng: &mut StdRng, d: f64) -> f64 {
 }
 
 /// One random model name and parameter point.
-fn pick(rng: &mut StdRng, names: &[&'static str]) -> (String, Vec<(String, f64)>) {
-    let name = names[rng.random_range(0..names.len())];
-    // A pattern (`chainN`, `chainpN`) at a random size.
-    let name = match name.strip_suffix('N') {
-        Some(stem) => format!("{stem}{}", rng.random_range(1..=40)),
-        None => name.to_string(),
+fn pick(rng: &mut StdRng, catalogue: &[ModelInfo]) -> (String, Vec<(String, f64)>) {
+    let entry = &catalogue[rng.random_range(0..catalogue.len())];
+    // A family (`chainN`, `chainpN`) at a random size (the generator drawn only for one).
+    let size = if entry.is_family() {
+        rng.random_range(1..=40)
+    } else {
+        0
     };
+    let name = entry.name_at(size);
     let (info, _) = models::find(&name).expect("a catalogue name");
     let mut at = Vec::new();
     for p in &info.params {
@@ -176,8 +179,8 @@ enum Job {
     },
 }
 
-fn job(rng: &mut StdRng, names: &[&'static str]) -> Job {
-    let (name, at) = pick(rng, names);
+fn job(rng: &mut StdRng, catalogue: &[ModelInfo]) -> Job {
+    let (name, at) = pick(rng, catalogue);
     if !rng.random_bool(0.3) {
         return Job::Analyze {
             name,
@@ -228,7 +231,7 @@ fn random_analyses_and_sweeps_end_cleanly_with_flat_memory() {
     let seed = env_usize("EOM_SOAK_SEED", 20261121) as u64;
     eom_num::budget::set_limit(MEMORY_CAP);
     let mut rng = StdRng::seed_from_u64(seed);
-    let names: Vec<&'static str> = models::catalogue().iter().map(|m| m.name).collect();
+    let catalogue = models::catalogue();
     let (mut ok, mut refused) = (0usize, 0usize);
     let mut baseline: Option<isize> = None;
     let mut peak_growth = 0isize;
@@ -247,7 +250,7 @@ fn random_analyses_and_sweeps_end_cleanly_with_flat_memory() {
     });
     let t0 = Instant::now();
     for run in 0..count {
-        let job = Arc::new(job(&mut rng, &names));
+        let job = Arc::new(job(&mut rng, &catalogue));
         let start = Instant::now();
         jobs.send(Arc::clone(&job)).expect("the worker is alive");
         let outcome = results

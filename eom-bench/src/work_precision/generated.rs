@@ -60,16 +60,8 @@ macro_rules! verdict {
 /// models of at most 16 states).
 pub fn stability(model: &str) -> Option<GenVerdict> {
     use code::gen64;
-    Some(match model {
-        "smd" => verdict!(gen64::smd),
-        "shimmy" => verdict!(gen64::shimmy),
-        "bicycle" => verdict!(gen64::bicycle),
-        "quarter_car" => verdict!(gen64::quarter_car),
-        "top" => verdict!(gen64::top),
-        "smd_wing" => verdict!(gen64::smd_wing),
-        "shimmy_wing" => verdict!(gen64::shimmy_wing),
-        _ => return None,
-    })
+    // One arm per model of `STABILITY`, written by build.rs.
+    Some(include!(concat!(env!("OUT_DIR"), "/stability_match.rs")))
 }
 
 /// A and B (column-major, converted to `f64`).
@@ -142,39 +134,6 @@ pub fn kernels(model: &str) -> Vec<GenKernel> {
     const F64: &str = "generated f64";
     const F32: &str = "generated f32";
     const EGG: &str = "generated f64 egg";
-    match model {
-        "smd" => vec![kernel!(F64, gen64::smd, f64), kernel!(F32, gen32::smd, f32)],
-        "shimmy" => vec![
-            kernel!(F64, gen64::shimmy, f64),
-            kernel!(F32, gen32::shimmy, f32),
-            kernel!(EGG, gen64::shimmy_simplified, f64),
-        ],
-        "bicycle" => vec![
-            kernel!(F64, gen64::bicycle, f64),
-            kernel!(F32, gen32::bicycle, f32),
-            kernel!(EGG, gen64::bicycle_simplified, f64),
-        ],
-        "quarter_car" => vec![
-            kernel!(F64, gen64::quarter_car, f64),
-            kernel!(F32, gen32::quarter_car, f32),
-        ],
-        "top" => vec![kernel!(F64, gen64::top, f64), kernel!(F32, gen32::top, f32)],
-        "chain50" => vec![
-            kernel!(F64, gen64::chain50, f64),
-            kernel!(F32, gen32::chain50, f32),
-        ],
-        "chainp50" => vec![
-            kernel!(F64, gen64::chainp50, f64),
-            kernel!(F32, gen32::chainp50, f32),
-        ],
-        "smd_wing" => vec![
-            kernel!(F64, gen64::smd_wing, f64),
-            kernel!(F32, gen32::smd_wing, f32),
-        ],
-        "shimmy_wing" => vec![
-            kernel!(F64, gen64::shimmy_wing, f64),
-            kernel!(F32, gen32::shimmy_wing, f32),
-        ],
-        _ => Vec::new(),
-    }
+    // One arm per model of `MODELS`, written by build.rs.
+    include!(concat!(env!("OUT_DIR"), "/kernels_match.rs"))
 }

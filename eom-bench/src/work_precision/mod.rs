@@ -18,6 +18,7 @@
 //! `eom bench accuracy -o DIR` writes the CSV, the Markdown table and the SVG chart
 //! ([`output`], [`chart`]).
 
+mod bench_models;
 pub mod chart;
 pub mod entries;
 pub mod generated;
@@ -35,22 +36,7 @@ use rand::{Rng, SeedableRng, rngs::StdRng};
 use reference::{Reference, ReferenceModel};
 use std::time::Duration;
 
-/// The models of the benchmark: a deliberate subset of the catalogue, one of each kind (a
-/// few states, a rolling vehicle, a spinning body, wings, 100-state chains with shared and
-/// per-element parameters), because each is compiled into generated code at build time
-/// (`eom-bench/build.rs` keeps the same list) and timed at every run; the accuracy of every
-/// model of the catalogue is tested elsewhere (`eom-cli/tests/references.rs`).
-pub const MODELS: [&str; 9] = [
-    "smd",
-    "shimmy",
-    "bicycle",
-    "quarter_car",
-    "top",
-    "chain50",
-    "chainp50",
-    "smd_wing",
-    "shimmy_wing",
-];
+pub use bench_models::{MODELS, SIMPLIFIED, STABILITY};
 
 /// What can go wrong.
 #[derive(Debug, thiserror::Error)]

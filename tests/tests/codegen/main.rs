@@ -184,40 +184,14 @@ macro_rules! generated {
     }};
 }
 
+/// Every model that `build.rs` generates (its `MODELS`), in `f64`.
 fn all_f64() -> Vec<Gen> {
-    vec![
-        generated!("smd", gen64::smd, f64),
-        generated!("pendulum", gen64::pendulum, f64),
-        generated!("shimmy", gen64::shimmy, f64),
-        generated!("bicycle", gen64::bicycle, f64),
-        generated!("quarter_car", gen64::quarter_car, f64),
-        generated!("top", gen64::top, f64),
-        generated!("disk", gen64::disk, f64),
-        generated!("chain1", gen64::chain1, f64),
-        generated!("chain3", gen64::chain3, f64),
-        generated!("chain50", gen64::chain50, f64),
-        generated!("smd_wing", gen64::smd_wing, f64),
-        generated!("shimmy_wing", gen64::shimmy_wing, f64),
-        generated!("typical_section", gen64::typical_section, f64),
-    ]
+    include!(concat!(env!("OUT_DIR"), "/all_f64.rs"))
 }
 
+/// The same in `f32`.
 fn all_f32() -> Vec<Gen> {
-    vec![
-        generated!("smd", gen32::smd, f32),
-        generated!("pendulum", gen32::pendulum, f32),
-        generated!("shimmy", gen32::shimmy, f32),
-        generated!("bicycle", gen32::bicycle, f32),
-        generated!("quarter_car", gen32::quarter_car, f32),
-        generated!("top", gen32::top, f32),
-        generated!("disk", gen32::disk, f32),
-        generated!("chain1", gen32::chain1, f32),
-        generated!("chain3", gen32::chain3, f32),
-        generated!("chain50", gen32::chain50, f32),
-        generated!("smd_wing", gen32::smd_wing, f32),
-        generated!("shimmy_wing", gen32::shimmy_wing, f32),
-        generated!("typical_section", gen32::typical_section, f32),
-    ]
+    include!(concat!(env!("OUT_DIR"), "/all_f32.rs"))
 }
 
 /// Variants of the bicycle and chain with their reference model.

@@ -101,19 +101,9 @@ macro_rules! stab {
     }};
 }
 
+/// Every model that `build.rs` generates with the stability verdict (its `STABILITY`).
 fn all() -> Vec<Stab> {
-    vec![
-        stab!("smd", stab::smd),
-        stab!("pendulum", stab::pendulum),
-        stab!("shimmy", stab::shimmy),
-        stab!("bicycle", stab::bicycle),
-        stab!("quarter_car", stab::quarter_car),
-        stab!("top", stab::top),
-        stab!("disk", stab::disk),
-        stab!("chain3", stab::chain3),
-        stab!("smd_wing", stab::smd_wing),
-        stab!("shimmy_wing", stab::shimmy_wing),
-    ]
+    include!(concat!(env!("OUT_DIR"), "/all_stab.rs"))
 }
 
 /// The conditions' formulas as the generator forms them: the pencil's characteristic
