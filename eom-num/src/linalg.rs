@@ -637,10 +637,21 @@ pub(crate) fn max_abs(m: &DMatrix<f64>) -> f64 {
     m.iter().fold(0.0f64, |a, x| a.max(x.abs()))
 }
 
+/// Below this, a plain sum of squares may have lost entries to underflow (for up to 10¹⁰⁰
+/// entries each below `f64::MIN_POSITIVE`, less than ε of it): [`frobenius_norm`] rescales.
+const PLAIN_SUM_FLOOR: f64 = 1e-190;
+
 /// The 2-norm of `x` (a matrix's Frobenius norm, given its entries) without overflow or
 /// underflow: the squares are summed relative to the largest entry, so entries up to
 /// `f64::MAX` give a finite norm (a plain sum of squares overflows from about 1e154).
 pub fn frobenius_norm(x: &[f64]) -> f64 {
+    // The plain sum of squares first (no division per entry): when it neither overflowed nor
+    // came near the underflow range, every square that did underflow contributes less than
+    // ε relative to it, and the plain result is as accurate as the scaled one.
+    let plain: f64 = x.iter().map(|v| v * v).sum();
+    if plain.is_finite() && plain > PLAIN_SUM_FLOOR {
+        return plain.sqrt();
+    }
     let big = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if big == 0.0 || !big.is_finite() {
         return big;
