@@ -653,7 +653,7 @@ impl Sub for Expr {
     type Output = Expr;
     fn sub(self, o: Expr) -> Expr {
         self.build2(o, |p, a, b| {
-            let n = p.mul_n(&[MINUS_ONE, b]);
+            let n = p.neg(b);
             p.add_n(&[a, n])
         })
     }
@@ -676,7 +676,7 @@ impl Div for Expr {
 impl Neg for Expr {
     type Output = Expr;
     fn neg(self) -> Expr {
-        self.build(|p, a| p.mul_n(&[MINUS_ONE, a]))
+        self.build(|p, a| p.neg(a))
     }
 }
 impl AddAssign for Expr {

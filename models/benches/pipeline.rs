@@ -9,7 +9,7 @@
 //!
 //! `cargo bench -p models --bench pipeline`
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use eom_model::{Linearizer, assemble, reduce, reduce_robust};
 use eom_sym::Expr;
 use std::hint::black_box;
@@ -31,6 +31,16 @@ fn bicycle(c: &mut Criterion) {
     });
     g.bench_function("symbolic assemble+reduce (27 parameters)", |b| {
         b.iter(|| reduce(&assemble(black_box(&model)).unwrap(), None).unwrap())
+    });
+    // The same on a model built anew each time: its expression pool starts empty, as for a
+    // user's first reduction (above, the pool already holds the nodes of the earlier runs, so
+    // most constructions find their node).
+    g.bench_function("symbolic assemble+reduce, fresh pool", |b| {
+        b.iter_batched_ref(
+            || models::build("bicycle", &[]).unwrap(),
+            |m| reduce(&assemble(m).unwrap(), None).unwrap(),
+            BatchSize::SmallInput,
+        )
     });
     g.finish();
     let r = reduce(&assemble(&model).unwrap(), None).unwrap();

@@ -317,6 +317,8 @@ pub(crate) struct PoolData {
     terms_buf: Vec<(Id, Number)>,
     factors_buf: Vec<(Id, Rational)>,
     key_buf: Vec<u32>,
+    /// `−a` of each node `a` negated so far (`NONE`: not yet), see [`PoolData::neg`].
+    negations: Vec<Id>,
     /// The memo of [`zero`](crate::zero)'s probe evaluations (values per node of this pool).
     probe: Option<Box<crate::zero::Probe>>,
 }
@@ -347,6 +349,7 @@ impl PoolData {
             terms_buf: Vec::new(),
             factors_buf: Vec::new(),
             key_buf: Vec::new(),
+            negations: Vec::new(),
             probe: None,
         };
         let z = p.rational(Rational::ZERO);
@@ -371,7 +374,8 @@ impl PoolData {
             + self.table.capacity() * (size_of::<u32>() + 1)
             + self.param_node.capacity() * size_of::<Id>()
             + self.params.capacity() * size_of::<ParamInfo>()
-            + self.errors.capacity() * size_of::<SymError>();
+            + self.errors.capacity() * size_of::<SymError>()
+            + self.negations.capacity() * size_of::<Id>();
         PoolStats {
             nodes: self.nodes.len(),
             arena: self.args.len(),
@@ -379,6 +383,25 @@ impl PoolData {
             interns: self.interns,
             bytes,
         }
+    }
+
+    /// `−a`, memoized per node. A negation is a product with −1 through the whole product
+    /// constructor, and the elimination negates the same entries again and again (a
+    /// subtraction negates its right operand). Nodes never change once built, so the memo
+    /// is never stale.
+    pub(crate) fn neg(&mut self, a: Id) -> Id {
+        let i = a as usize;
+        if let Some(&n) = self.negations.get(i)
+            && n != NONE
+        {
+            return n;
+        }
+        let n = self.mul_n(&[MINUS_ONE, a]);
+        if self.negations.len() <= i {
+            self.negations.resize(self.nodes.len().max(i + 1), NONE);
+        }
+        self.negations[i] = n;
+        n
     }
 
     /// The probe memo, taken out while it is used with `&self`.
