@@ -136,6 +136,8 @@
 //!    checks beyond the shapes' (a shared shape checks itself); what a model file gives in a
 //!    way no shape says (a wing's AVL file, a sensor's feedthrough table) is read by hand in
 //!    `file/items.rs` (`Builder::read`), before or after the declared fields.
+//!    Fields that several kinds share are declared once as a field group and listed as
+//!    `..group!(args),` (the lifting surfaces' `surface_fields!` in `items/surface.rs`).
 //! 2. List it: `mod <kind>; pub use <kind>::<Kind>;` and its place in the `kinds!` table of
 //!    `items/mod.rs` (where it stands there decides where its rows go); add its row to the key
 //!    table of docs/model-files.md (the test `key_table` prints it) and describe its keys there.

@@ -47,6 +47,13 @@
 //! | `named(NAMES)`, `named_rows(NAMES, "k"…)` | `[S; N]`, `[[S; N]; M]` | written by hand | keys `k`…, read by hand; fields named by `NAMES` |
 //! | `hidden()` | any `Clone` | none | none |
 //!
+//! Fields that several kinds share, with the same documentation, default, shape and keys,
+//! are declared once as a *group*: a macro that takes `(args) [header] [fields so far]
+//! [fields to come] rest` and hands them back to `item!(@fields …)` with its own fields put
+//! in after those so far. A kind lists the group among its fields as `..group!(args),`
+//! (the lifting surfaces' `..surface_fields!(mount),` and `..surface_fields!(air),`, in
+//! `surface.rs`); the group's fields take that place in the struct, the listing and the keys.
+//!
 //! The builder may be left out (`vector("forward", Polar)`) where a hand-written builder sets
 //! the field (a wing's `axes` sets `forward` and `down`). What a kind does — the bodies it
 //! connects, whether it supports them, its checks and its terms — is its [`Physics`], written
@@ -209,7 +216,44 @@ pub(crate) fn map_matrix<S, T>(
 
 /// Declares an item kind with its fields (see the module documentation).
 macro_rules! item {
+    // ---------------------------------------------------------------- field groups
+    // The declaration as written: its fields, with groups, go through `@fields` one by one;
+    // a group `..group!(args),` hands the rest to the group's macro, which puts its fields in
+    // and hands back (see `surface_fields!` in `surface.rs`).
     (
+        $(#[doc = $doc:literal])*
+        pub struct $kind:ident<S>: $label:literal, $key:literal
+            (bodies: $bodies:ident, supports: $($supports:tt)+)
+        { $($fields:tt)* }
+        $($new:tt)*
+    ) => {
+        $crate::items::item!(@fields
+            [$(#[doc = $doc])* pub struct $kind<S>: $label, $key
+                (bodies: $bodies, supports: $($supports)+)]
+            [] [$($fields)*] $($new)*);
+    };
+    (@fields [$($head:tt)*] [$($done:tt)*] [] $($new:tt)*) => {
+        $crate::items::item!(@declare $($head)* { $($done)* } $($new)*);
+    };
+    (@fields [$($head:tt)*] [$($done:tt)*]
+        [.. $group:ident ! ($($args:tt)*), $($rest:tt)*] $($new:tt)*) => {
+        $crate::items::$group!(($($args)*) [$($head)*] [$($done)*] [$($rest)*] $($new)*);
+    };
+    (@fields [$($head:tt)*] [$($done:tt)*]
+        [
+            $(#[doc = $fdoc:literal])*
+            $vis:vis $field:ident: $ty:ty = $default:expr => $shape:ident($($arg:tt)*),
+            $($rest:tt)*
+        ]
+        $($new:tt)*) => {
+        $crate::items::item!(@fields [$($head)*]
+            [$($done)* $(#[doc = $fdoc])* $vis $field: $ty = $default => $shape($($arg)*),]
+            [$($rest)*] $($new)*);
+    };
+
+    // ---------------------------------------------------------------- the declaration
+    (
+        @declare
         $(#[doc = $doc:literal])*
         pub struct $kind:ident<S>: $label:literal, $key:literal
             (bodies: $bodies:ident, supports: $($supports:tt)+)

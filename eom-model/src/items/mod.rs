@@ -47,6 +47,7 @@ pub use rigid_point::RigidPoint;
 pub use sensor::{Sensor, SensorFrame, SensorOrder};
 pub use spring::Spring;
 pub use strip::Strip;
+pub(crate) use surface::surface_fields;
 pub use unsteady::{AUTO_REDUCED_FREQUENCY, JONES, JONES_DIRECT, Unsteady, jones_c};
 pub use validation::Validation;
 pub use wing::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};

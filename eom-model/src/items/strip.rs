@@ -30,8 +30,8 @@
 
 use super::Validation;
 use super::surface::{self, Surface};
-use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name, zero3};
+use super::unsteady::{JONES_DIRECT, Unsteady};
+use super::{GROUND, ModelScalar, Physics, Vec3, item, name, zero3};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -43,14 +43,7 @@ item! {
     pub struct Strip<S>: "strip", "strip"
         (bodies: body, supports: false)
     {
-        /// The body the strip is fixed to.
-        pub body: Name = name(GROUND) => body(on, "body"),
-        /// The elastic-axis point of the section (the reference of h, θ and the moment).
-        pub location: Vec3<S> = zero3() => vector(at, "at", Polar),
-        /// The chordwise axis towards the leading edge, a unit vector.
-        pub forward: Vec3<S> = [S::one(), S::zero(), S::zero()] => vector("forward", Polar),
-        /// The section's down axis (perpendicular to `forward`), a unit vector.
-        pub down: Vec3<S> = [S::zero(), S::zero(), -S::one()] => vector("down", Polar),
+        ..surface_fields!(mount),
         /// Semichord b.
         pub semichord: S = S::one() => scalar(semichord, "semichord"),
         /// Elastic-axis position a, in semichords aft of mid-chord (−1 the leading edge).
@@ -60,10 +53,7 @@ item! {
         /// Lift slope c_l per radian (2π: thin-airfoil theory).
         pub lift_slope: S = S::from_f64(2.0 * std::f64::consts::PI)
             => scalar(lift_slope, "lift_slope"),
-        /// Air density ρ.
-        pub density: S = S::from_f64(1.225) => scalar(density, "density"),
-        /// Airspeed U; `None`: the body's nominal velocity along `forward`.
-        pub airspeed: Option<S> = None => optional(airspeed, "airspeed"),
+        ..surface_fields!(air),
         /// Quasi-steady, Jones' lag states, or decided by the linearization (`Auto`).
         pub unsteady: Unsteady = Unsteady::QuasiSteady => choice(unsteady, "unsteady"),
     }
@@ -219,22 +209,11 @@ impl<S: ModelScalar> Strip<S> {
         body: Option<usize>,
     ) {
         let rate = u / self.semichord;
-        for (n, (a, beta)) in JONES.iter().enumerate() {
-            let s = cx.lag_state(format!("{}.lag{}", self.name, n + 1));
-            let beta = S::from_f64(*beta) * rate;
-            cx.add_lag(LagTerm::Rate, s, s, -beta);
-            let gain = S::from_f64(*a) * beta;
+        for (s, gain) in surface::jones_states(cx, &self.name, rate, body, turn) {
             for (i, row) in rows.iter().enumerate() {
                 for &(j, x) in row {
                     cx.add_lag(LagTerm::Velocity, s, j, gradient[i] * x);
                     cx.add_lag(LagTerm::Force, j, s, x * force[i] * gain);
-                }
-            }
-            if let Some(k) = body {
-                for (c, t) in turn.iter().enumerate() {
-                    if !t.is_zero() {
-                        cx.add_lag(LagTerm::Position, s, 6 * k + 3 + c, *t);
-                    }
                 }
             }
         }

@@ -1,7 +1,10 @@
-//! The checks a lifting surface (a [`Wing`](super::Wing) or [`Strip`](super::Strip)) shares:
-//! its axes, its positive quantities and its airspeed.
+//! What a lifting surface (a [`Wing`](super::Wing) or [`Strip`](super::Strip)) shares: its
+//! fields (`surface_fields!`), the checks of its axes, positive quantities and airspeed, its
+//! air velocity and Jones' lag states.
 
+use super::unsteady::JONES;
 use super::{GROUND, ModelScalar, Name, Validation, Vec3, zero3};
+use crate::assemble::{Assembly, LagTerm};
 use crate::error::{Degeneracy, ItemRef, ModelError};
 use crate::geometry::dot;
 use eom_sym::scalar::Scalar;
@@ -160,3 +163,68 @@ fn check_airspeed<S: Scalar>(
         }
     }
 }
+
+/// R. T. Jones' two lag states of the surface `name` ([`JONES`]), `<name>.lag1` and
+/// `<name>.lag2`: `ẋᵢ = −βᵢ xᵢ + …` with `βᵢ = β̄ᵢ·rate` (rate = airspeed/semichord), plus
+/// the part `turn·θ` that the body's rotation θ adds by turning a given air stream (on the
+/// rotation coordinates of body `k`, `6k + 3 …`; none without a given airspeed, `body`
+/// `None`). Gives each state with its gain `Aᵢβᵢ`; the kind adds its own inputs and forces.
+pub(crate) fn jones_states<S: ModelScalar>(
+    cx: &mut Assembly<'_, S>,
+    name: &str,
+    rate: S,
+    body: Option<usize>,
+    turn: &Vec3<S>,
+) -> [(usize, S); 2] {
+    std::array::from_fn(|n| {
+        let (a, beta) = JONES[n];
+        let s = cx.lag_state(format!("{name}.lag{}", n + 1));
+        let beta = S::from_f64(beta) * rate;
+        cx.add_lag(LagTerm::Rate, s, s, -beta);
+        if let Some(k) = body {
+            for (c, t) in turn.iter().enumerate() {
+                if !t.is_zero() {
+                    cx.add_lag(LagTerm::Position, s, 6 * k + 3 + c, *t);
+                }
+            }
+        }
+        (s, S::from_f64(a) * beta)
+    })
+}
+
+/// The fields a lifting surface (a [`Wing`](super::Wing) or [`Strip`](super::Strip)) shares,
+/// declared once: a field group of `item!` (see `declare.rs`), listed in a kind's
+/// declaration as `..surface_fields!(mount),` (the body, the reference point and the axes)
+/// and `..surface_fields!(air),` (the air's density and speed).
+macro_rules! surface_fields {
+    ((mount) [$($head:tt)*] [$($done:tt)*] [$($rest:tt)*] $($new:tt)*) => {
+        $crate::items::item!(@fields [$($head)*] [$($done)*
+            /// The body the surface is fixed to (its forces act relative to the ground).
+            pub body: $crate::geometry::Name = $crate::geometry::name($crate::geometry::GROUND)
+                => body(on, "body"),
+            /// The reference point: the moment reference (a wing's derivatives', usually the
+            /// quarter chord; a strip's elastic axis, the reference of its plunge and pitch).
+            pub location: $crate::geometry::Vec3<S> = $crate::geometry::zero3()
+                => vector(at, "at", Polar),
+            /// The forward axis in model axes (a wing's AVL x; a strip's chordwise axis
+            /// towards the leading edge), a unit vector.
+            pub forward: $crate::geometry::Vec3<S> = [S::one(), S::zero(), S::zero()]
+                => vector("forward", Polar),
+            /// The down axis in model axes (a wing's AVL z; the lift acts along `−down`), a
+            /// unit vector perpendicular to `forward`; the right (pitch) axis is
+            /// `down × forward`.
+            pub down: $crate::geometry::Vec3<S> = [S::zero(), S::zero(), -S::one()]
+                => vector("down", Polar),
+        ] [$($rest)*] $($new)*);
+    };
+    ((air) [$($head:tt)*] [$($done:tt)*] [$($rest:tt)*] $($new:tt)*) => {
+        $crate::items::item!(@fields [$($head)*] [$($done)*
+            /// Air density ρ.
+            pub density: S = S::from_f64(1.225) => scalar(density, "density"),
+            /// Airspeed (a wing's V, a strip's U); `None`: the body's nominal velocity along
+            /// `forward`.
+            pub airspeed: Option<S> = None => optional(airspeed, "airspeed"),
+        ] [$($rest)*] $($new)*);
+    };
+}
+pub(crate) use surface_fields;

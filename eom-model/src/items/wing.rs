@@ -41,9 +41,9 @@
 
 use super::Validation;
 use super::surface::{self, Surface};
-use super::unsteady::{JONES, JONES_DIRECT, Unsteady};
+use super::unsteady::{JONES_DIRECT, Unsteady};
 use super::zero3;
-use super::{GROUND, ModelScalar, Name, Physics, Vec3, item, name};
+use super::{GROUND, ModelScalar, Physics, Vec3, item, name};
 use crate::assemble::{Assembly, ItemRow, LagTerm, Term};
 use crate::error::ModelError;
 use crate::geometry::Point;
@@ -81,25 +81,14 @@ item! {
     pub struct Wing<S>: "wing", "wing"
         (bodies: body, supports: in_free_flight())
     {
-        /// The body the wing is fixed to (its forces act relative to the ground).
-        pub body: Name = name(GROUND) => body(on, "body"),
-        /// The reference point (moment reference of the derivatives, usually the quarter chord).
-        pub location: Vec3<S> = zero3() => vector(at, "at", Polar),
-        /// The wing's forward axis (AVL's x) in model axes, a unit vector.
-        pub forward: Vec3<S> = [S::one(), S::zero(), S::zero()] => vector("forward", Polar),
-        /// The wing's down axis (AVL's z) in model axes, a unit vector perpendicular to
-        /// `forward`; the right axis is `down × forward`.
-        pub down: Vec3<S> = [S::zero(), S::zero(), -S::one()] => vector("down", Polar),
+        ..surface_fields!(mount),
         /// Reference area S.
         pub area: S = S::one() => scalar(area, "area"),
         /// Reference chord c (pitch moment, pitch rate).
         pub chord: S = S::one() => scalar(chord, "chord"),
         /// Reference span b (roll and yaw moments, roll and yaw rates).
         pub span: S = S::one() => scalar(span, "span"),
-        /// Air density ρ.
-        pub density: S = S::from_f64(1.225) => scalar(density, "density"),
-        /// Airspeed V; `None`: the body's nominal velocity along `forward`.
-        pub airspeed: Option<S> = None => optional(airspeed, "airspeed"),
+        ..surface_fields!(air),
         /// The derivatives `C_ij` by [`WING_DERIVATIVES`]; those not given are zero (a model
         /// file gives them as a table, `derivatives`, or from an AVL file, `avl`).
         pub derivatives: [[S; 6]; 6] = [[S::zero(); 6]; 6]
@@ -441,11 +430,7 @@ impl<S: ModelScalar> Wing<S> {
     ) {
         let rate = v / (self.chord * S::from_f64(0.5));
         let turn = cross(air, &self.down);
-        for (n, (a, beta)) in JONES.iter().enumerate() {
-            let s = cx.lag_state(format!("{}.lag{}", self.name, n + 1));
-            let beta = S::from_f64(*beta) * rate;
-            cx.add_lag(LagTerm::Rate, s, s, -beta);
-            let gain = S::from_f64(*a) * beta;
+        for (s, gain) in surface::jones_states(cx, &self.name, rate, body, &turn) {
             for (i, r) in rows.iter().enumerate() {
                 for &(j, x) in r {
                     if !row[i].is_zero() {
@@ -453,13 +438,6 @@ impl<S: ModelScalar> Wing<S> {
                     }
                     if !col[i].is_zero() {
                         cx.add_lag(LagTerm::Force, j, s, -(x * col[i] * gain));
-                    }
-                }
-            }
-            if let Some(k) = body {
-                for (c, t) in turn.iter().enumerate() {
-                    if !t.is_zero() {
-                        cx.add_lag(LagTerm::Position, s, 6 * k + 3 + c, *t);
                     }
                 }
             }
