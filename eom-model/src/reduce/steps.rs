@@ -1,354 +1,21 @@
-//! Reduction of the assembled model to state space by structured elimination with pivots
-//! chosen at the nominal point — the symbolic-numeric path.
-//!
-//! 1. **Structure first.** A holonomic constraint row with a single entry pins one coordinate;
-//!    when nothing in the kinematics `ṗ = w − V p` can make that coordinate's velocity nonzero
-//!    either, the coordinate is removed before any algebra (a planar model pays for its planar
-//!    coordinates only).
-//! 2. **Positions.** Gauss–Jordan on the remaining `J` gives the dependent coordinates in terms
-//!    of the independent ones, `p = R_p x_p`.
-//! 3. **Velocities.** `J w = J V p` and `N w = 0`: the same elimination of `J` is replayed
-//!    first (identical operations give identical, hash-consed expressions — `J` is eliminated
-//!    once), then the nonholonomic rows; this gives `w = W_p x_p + R_w x_w`.
-//! 4. **Dynamics.** The equations are projected on the admissible velocities (`R_wᵀ`, which
-//!    annihilates every constraint reaction), the kinematic equations are kept for the
-//!    independent coordinates only (exact, since `J ṗ = 0` by construction), and the reduced
-//!    mass matrix `R_wᵀ M R_w` is eliminated (Gauss–Jordan, nominal pivots).
-//!    Lag states of the items (`Assembled::lags`: `ẋ_a = A_a x_a + P_a p + W_a w`, force
-//!    `F_a x_a`) follow as states `x = [x_p; x_w; x_a]`: their force is projected with the
-//!    dynamics, their equations by `p = P x`, `w = W x`.
-//! 5. **Inputs with rates** (`G_u u̇`) are absorbed by the state change `x̃ = x − Γu`.
-//! 6. **Outputs.** Displacements and velocities directly; accelerations by differentiating the
-//!    velocity output through the reduced model (`C_acc = C_vel A`, `D_acc = C_vel B`), which
-//!    includes every constraint reaction (an acceleration taken from the unconstrained
-//!    equations, as in the EoM software, would miss the reactions).
-//!
-//! Every pivot and rank decision is recorded ([`ReductionPlan`]) and can be replayed with any
-//! scalar type; the pivots and the negligible entries of the rank decisions are returned as
-//! [`ValidityCheck`]s, which define the region where a symbolic result is valid.
+//! The steps of the reduction (see the [module](super) documentation), sharing one
+//! [`Reducer`]: pinned coordinates, positions, velocities, dynamics, input rates, outputs.
 
-use super::assemble::{Assembled, RowLabel};
-use super::assemble::{OutputFrame, OutputOrder};
-use super::eliminate::{
-    EliminationPlan, PivotRecord, RankRecord, RowStore, Rref, rref, rref_keeping,
+use super::checks::{CheckLabel, Coord, ValidityCheck, coord_text, rate_check, record_checks};
+use super::matrices::{
+    find_pins, hstack, independent, lag_columns, nm_rows_to_matrix, pivot_nnz, to_dense, to_rows,
+    vstack,
 };
+use super::result::{ReducedDescriptor, Reduction, ReductionPlan, ReductionReport};
+use crate::assemble::Assembled;
+use crate::assemble::{OutputFrame, OutputOrder};
+use crate::eliminate::{Rref, rref, rref_keeping};
 use crate::error::ModelError;
 use crate::geometry::Name;
 use crate::warning::Warning;
 use eom_num::{SignalNames, StateSpace};
 use eom_sym::matrix::{SparseMatrix, Triplets};
 use eom_sym::scalar::Scalar;
-use nalgebra::DMatrix;
-
-/// Pivot ratio below which a recorded pivot counts as broken down at an evaluation point:
-/// `|pivot| < PIVOT_TOLERANCE · max |entry of its row|`.
-pub const PIVOT_TOLERANCE: f64 = 1e-4;
-
-/// Relative size above which an entry that decided a rank at the nominal point invalidates
-/// the decision elsewhere.
-pub const RANK_TOLERANCE: f64 = 1e-8;
-
-/// The recorded decisions of a reduction.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
-pub struct ReductionPlan {
-    /// Active (kept) coordinates, as indices into the 6-per-body coordinate vector.
-    pub active: Vec<usize>,
-    /// Holonomic rows kept after removing the pinning rows.
-    pub j_rows: Vec<usize>,
-    /// Elimination of the position constraints.
-    pub position: EliminationPlan,
-    /// Elimination of the velocity constraints.
-    pub velocity: EliminationPlan,
-    /// Elimination of the reduced mass matrix.
-    pub mass: EliminationPlan,
-}
-
-/// A coordinate or velocity of a body (formatted only when displayed).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Coord {
-    /// Body name.
-    pub body: Name,
-    /// 0..6: x, y, z, rx, ry, rz.
-    pub dof: usize,
-    /// The perturbation velocity (vx … wz) instead of the displacement.
-    pub velocity: bool,
-}
-
-impl std::fmt::Display for Coord {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&coord_text(&self.body, self.dof, self.velocity))
-    }
-}
-
-/// The text of a [`Coord`] (`body.x`, `body.vx`, …), built in one allocation: state names
-/// are made on every reduction, and formatting machinery would grow the string piecewise.
-fn coord_text(body: &str, dof: usize, velocity: bool) -> String {
-    let n = if velocity { VELO[dof] } else { COORD[dof] };
-    let mut s = String::with_capacity(body.len() + 1 + n.len());
-    s.push_str(body);
-    s.push('.');
-    s.push_str(n);
-    s
-}
-
-/// What a validity check guards (formatted only when displayed).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum CheckLabel {
-    /// A pivot of the position-constraint elimination.
-    PositionPivot {
-        /// The dependent coordinate.
-        coord: Coord,
-        /// The constraint row.
-        row: RowLabel,
-    },
-    /// A position-constraint row declared redundant.
-    PositionRank {
-        /// The row.
-        row: RowLabel,
-    },
-    /// A pivot of the velocity-constraint elimination.
-    VelocityPivot {
-        /// The dependent velocity.
-        coord: Coord,
-        /// The constraint row.
-        row: RowLabel,
-    },
-    /// A velocity-constraint row declared redundant.
-    VelocityRank {
-        /// The row.
-        row: RowLabel,
-    },
-    /// The right-hand side of a redundant velocity row must vanish.
-    VelocityConsistency {
-        /// The row.
-        row: RowLabel,
-    },
-    /// A pivot of the reduced mass matrix.
-    MassPivot {
-        /// The eliminated velocity.
-        state: Coord,
-        /// The equation row.
-        row: Coord,
-    },
-    /// A reduced-mass row declared singular.
-    MassRank {
-        /// The row.
-        row: Coord,
-    },
-}
-
-impl std::fmt::Display for CheckLabel {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            CheckLabel::PositionPivot { coord, row } => {
-                write!(f, "pivot on {coord} in position constraint {row}")
-            }
-            CheckLabel::PositionRank { row } => {
-                write!(f, "redundancy of position constraint {row}")
-            }
-            CheckLabel::VelocityPivot { coord, row } => write!(
-                f,
-                "pivot on the velocity of {coord} in velocity constraint {row}"
-            ),
-            CheckLabel::VelocityRank { row } => {
-                write!(f, "redundancy of velocity constraint {row}")
-            }
-            CheckLabel::VelocityConsistency { row } => {
-                write!(f, "consistency of redundant velocity constraint {row}")
-            }
-            CheckLabel::MassPivot { state, row } => {
-                write!(f, "reduced mass pivot of {state} (row {row})")
-            }
-            CheckLabel::MassRank { row } => write!(f, "redundancy of reduced mass row {row}"),
-        }
-    }
-}
-
-/// One condition for a symbolic result to be valid at an evaluation point.
-#[derive(Clone, Debug)]
-pub enum ValidityCheck<S> {
-    /// `|value| ≥ PIVOT_TOLERANCE · max(|value|, |row entries|)`.
-    Pivot {
-        /// What the pivot eliminates.
-        what: CheckLabel,
-        /// The pivot.
-        value: S,
-        /// The other entries of its row.
-        row: Vec<S>,
-    },
-    /// `|value| ≤ RANK_TOLERANCE · max |scale entries|`.
-    Negligible {
-        /// Which rank decision.
-        what: CheckLabel,
-        /// The entry that must stay negligible.
-        value: S,
-        /// The entries that set its scale.
-        scale: Vec<S>,
-    },
-}
-
-impl<S: Scalar> ValidityCheck<S> {
-    /// Description of the check.
-    pub fn what(&self) -> String {
-        self.label().to_string()
-    }
-
-    /// What the check guards.
-    pub fn label(&self) -> &CheckLabel {
-        match self {
-            ValidityCheck::Pivot { what, .. } | ValidityCheck::Negligible { what, .. } => what,
-        }
-    }
-
-    /// Test the check on numeric values (the check's expressions evaluated at a point).
-    pub fn holds(value: f64, others: &[f64], pivot: bool) -> bool {
-        let m = others.iter().fold(value.abs(), |a, b| a.max(b.abs()));
-        if pivot {
-            value.is_finite() && value.abs() >= PIVOT_TOLERANCE * m && m > 0.0
-        } else {
-            let s = others.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            value.abs() <= RANK_TOLERANCE * s || value == 0.0
-        }
-    }
-
-    fn holds_nominal(&self) -> bool {
-        match self {
-            ValidityCheck::Pivot { value, row, .. } => {
-                let o: Vec<f64> = row.iter().map(|x| x.nominal()).collect();
-                Self::holds(value.nominal(), &o, true)
-            }
-            ValidityCheck::Negligible { value, scale, .. } => {
-                let o: Vec<f64> = scale.iter().map(|x| x.nominal()).collect();
-                Self::holds(value.nominal(), &o, false)
-            }
-        }
-    }
-}
-
-/// Sizes and decisions of a reduction, for reports.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ReductionReport {
-    /// Physical coordinates (6 per body).
-    pub coordinates: usize,
-    /// Coordinates removed before any algebra, with the constraint that pinned each.
-    pub pinned: Vec<String>,
-    /// Independent coordinates (position states).
-    pub position_states: usize,
-    /// Independent velocities.
-    pub velocity_states: usize,
-    /// Lag states of the items (unsteady aerodynamics), after the mechanical states.
-    pub lag_states: usize,
-    /// Constraint rows found redundant at the nominal point.
-    pub redundant: Vec<String>,
-    /// Warnings.
-    pub warnings: Vec<Warning>,
-}
-
-/// The result of a reduction.
-#[derive(Clone, Debug)]
-pub struct Reduction<S: nalgebra::Scalar> {
-    /// The state-space model (states `x̃ = x − Γu` when there are rate inputs).
-    pub state_space: StateSpace<S>,
-    /// Conditions under which the result is valid.
-    pub checks: Vec<ValidityCheck<S>>,
-    /// The decisions, replayable with another scalar type.
-    pub plan: ReductionPlan,
-    /// Sizes and decisions.
-    pub report: ReductionReport,
-    /// The reduced equations before the mass matrix is eliminated: `ẋ_p = K x` (the
-    /// independent positions' kinematics) and `M ẋ_w = F x` (the dynamics), `x = [x_p; x_w]`.
-    /// So `A = [K; M⁻¹F]`, and `det(sI − A) = det(sE − [K; F]) / det(M)` with
-    /// `E = diag(I, M)`: the closed forms of a mechanical model come from this pencil, whose
-    /// entries have no nested divisions by the mass matrix.
-    pub descriptor: ReducedDescriptor<S>,
-}
-
-/// See [`Reduction::descriptor`].
-#[derive(Clone, Debug)]
-pub struct ReducedDescriptor<S> {
-    /// The reduced mass matrix `M` (one row and column per independent velocity).
-    pub mass: SparseMatrix<S>,
-    /// `K`: the kinematic rows of the independent positions.
-    pub kinematics: SparseMatrix<S>,
-    /// `F`: the dynamic rows.
-    pub dynamics: SparseMatrix<S>,
-    /// The rows of the lag states (`ẋ_a = L x`, after the dynamic rows; empty without lag
-    /// states): their rows of `E` are the identity.
-    pub lags: SparseMatrix<S>,
-}
-
-const COORD: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
-const VELO: [&str; 6] = ["vx", "vy", "vz", "wx", "wy", "wz"];
-
-fn to_rows<S: Scalar>(m: &SparseMatrix<S>) -> RowStore<S> {
-    RowStore::from_matrix(m)
-}
-
-fn hstack<S: Scalar>(
-    a: &SparseMatrix<S>,
-    b: &SparseMatrix<S>,
-) -> Result<SparseMatrix<S>, ModelError> {
-    Ok(SparseMatrix::hcat(&[a, b])?)
-}
-
-fn vstack<S: Scalar>(
-    a: &SparseMatrix<S>,
-    b: &SparseMatrix<S>,
-) -> Result<SparseMatrix<S>, ModelError> {
-    if a.nrows() == 0 {
-        return Ok(b.clone());
-    }
-    if b.nrows() == 0 {
-        return Ok(a.clone());
-    }
-    Ok(SparseMatrix::vcat(a, b)?)
-}
-
-fn record_checks<S: Scalar>(
-    r: &Rref<S>,
-    pivot_label: &dyn Fn(usize, usize) -> CheckLabel,
-    rank_label: &dyn Fn(usize) -> CheckLabel,
-    out: &mut Vec<ValidityCheck<S>>,
-) {
-    for PivotRecord {
-        row,
-        col,
-        value,
-        row_entries,
-    } in &r.pivot_records
-    {
-        if value.is_one()
-            || (row_entries.is_empty() && value.nominal() != 0.0 && is_constant(value))
-        {
-            continue;
-        }
-        out.push(ValidityCheck::Pivot {
-            what: pivot_label(*row, *col),
-            value: *value,
-            row: row_entries.clone(),
-        });
-    }
-    for RankRecord {
-        row,
-        value,
-        scale_entries,
-    } in &r.rank_records
-    {
-        out.push(ValidityCheck::Negligible {
-            what: rank_label(*row),
-            value: *value,
-            scale: scale_entries.clone(),
-        });
-    }
-}
-
-/// A scalar that cannot change with the parameters (for f64 every value; for expressions the
-/// numeric constants). Constant pivots need no runtime check.
-fn is_constant<S: Scalar>(v: &S) -> bool {
-    // A value equal to its own nominal for every type: numbers. For expressions the only way to
-    // tell is through the f64 round trip of `from_f64(nominal) == v`.
-    S::from_f64(v.nominal()) == *v
-}
 
 /// Reduce an assembled model to state space (see the module documentation for the steps).
 /// With `plan = None` the pivots are chosen at the nominal point and recorded; with a plan
@@ -389,7 +56,7 @@ pub fn reduce_report(a: &Assembled<f64>) -> Result<ReductionReport, ModelError> 
 }
 
 /// What the steps share: the assembled model, the plan to replay, the checks and the report.
-struct Reducer<'a, S> {
+pub(super) struct Reducer<'a, S> {
     a: &'a Assembled<S>,
     plan: Option<&'a ReductionPlan>,
     /// Shared names for check labels, made only when a check needs one (a numeric reduction
@@ -401,7 +68,7 @@ struct Reducer<'a, S> {
 
 /// Step 1: the active coordinates, the kept holonomic rows, and the matrices restricted to
 /// them.
-struct Selection<S> {
+pub(super) struct Selection<S> {
     active: Vec<usize>,
     j_keep: Vec<usize>,
     /// `J` (kept rows, active columns) and `N` (active columns).
@@ -432,14 +99,14 @@ impl<S: Scalar> Selection<S> {
 }
 
 /// Step 2: the position elimination and `p = R_p x_p`.
-struct Positions<S> {
+pub(super) struct Positions<S> {
     rj: Rref<S>,
     indep_p: Vec<usize>,
     rp: SparseMatrix<S>,
 }
 
 /// Step 3: the velocity elimination and `w = W_p x_p + R_w x_w`.
-struct Velocities<S> {
+pub(super) struct Velocities<S> {
     rg: Rref<S>,
     indep_w: Vec<usize>,
     rw: SparseMatrix<S>,
@@ -447,7 +114,7 @@ struct Velocities<S> {
 }
 
 /// Step 4: the reduced model's parts.
-struct Dynamics<S> {
+pub(super) struct Dynamics<S> {
     rm: Rref<S>,
     /// `w = W x`, `p = P x`, `ṗ = (W − V P) x`.
     wfull: SparseMatrix<S>,
@@ -582,7 +249,7 @@ impl<'a, S: Scalar> Reducer<'a, S> {
                 .collect();
             self.report.warnings.push(Warning::ReductionRedundant {
                 rows,
-                negligible: super::eliminate::NEGLIGIBLE,
+                negligible: crate::eliminate::NEGLIGIBLE,
             });
         }
         let (indep_p, indep_pos) = independent(&rj, n);
@@ -847,18 +514,9 @@ impl<'a, S: Scalar> Reducer<'a, S> {
     }
 }
 
-/// `m` (rows × k) placed at columns `at … at + k` of a matrix of `ncols` columns.
-fn lag_columns<S: Scalar>(m: &SparseMatrix<S>, at: usize, ncols: usize) -> SparseMatrix<S> {
-    let mut t = Triplets::with_capacity(m.nrows(), ncols, m.nnz());
-    for (i, j, v) in m.iter() {
-        t.push(i, at + j, v);
-    }
-    t.build()
-}
-
 /// ` − c₁·u₁ + c₂·u₂ …`: the shift `Γu` of a state `x̃ = x − Γu` (step 5), from its row of `Γ`
 /// and the inputs' names; empty when the row is zero.
-fn shifted_by<S: Scalar>(row: &[(usize, S)], inputs: &[(String, String)]) -> String {
+pub(super) fn shifted_by<S: Scalar>(row: &[(usize, S)], inputs: &[(String, String)]) -> String {
     let mut t = String::new();
     for (j, c) in row.iter().filter(|e| !e.1.is_zero()) {
         let label = c.label();
@@ -879,64 +537,9 @@ fn shifted_by<S: Scalar>(row: &[(usize, S)], inputs: &[(String, String)]) -> Str
     t
 }
 
-/// Step 1 without a plan: a holonomic row with a single entry pins its coordinate, kept
-/// pinned only if `V p` cannot make its velocity nonzero. Returns the active coordinates and
-/// the holonomic rows that do not pin.
-fn find_pins<S: Scalar>(a: &Assembled<S>) -> (Vec<usize>, Vec<usize>) {
-    let d = a.dim();
-    let mut pin_row: Vec<Option<usize>> = vec![None; d];
-    for i in 0..a.holonomic.nrows() {
-        let row = a.holonomic.row(i);
-        if row.len() == 1 && row[0].1.nominal() != 0.0 && pin_row[row[0].0].is_none() {
-            pin_row[row[0].0] = Some(i);
-        }
-    }
-    loop {
-        let mut changed = false;
-        for g in 0..d {
-            if pin_row[g].is_some() && a.velocity.row(g).iter().any(|&(j, _)| pin_row[j].is_none())
-            {
-                pin_row[g] = None;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    let mut pinning = vec![false; a.holonomic.nrows()];
-    for &r in pin_row.iter().flatten() {
-        pinning[r] = true;
-    }
-    let active: Vec<usize> = (0..d).filter(|&g| pin_row[g].is_none()).collect();
-    let j_keep: Vec<usize> = (0..a.holonomic.nrows()).filter(|&r| !pinning[r]).collect();
-    (active, j_keep)
-}
-
-/// The columns of an elimination over `n` unknowns that are not pivots, and the position of
-/// each among them (`usize::MAX` for a pivot column).
-fn independent<S: Scalar>(r: &Rref<S>, n: usize) -> (Vec<usize>, Vec<usize>) {
-    let dep = r.is_pivot_col();
-    let indep: Vec<usize> = (0..n).filter(|&c| !dep[c]).collect();
-    let mut at = vec![usize::MAX; n];
-    for (t, &k) in indep.iter().enumerate() {
-        at[k] = t;
-    }
-    (indep, at)
-}
-
-/// Entries of the pivot rows of an elimination.
-fn pivot_nnz<S: Scalar>(r: &Rref<S>) -> usize {
-    r.plan
-        .pivots
-        .iter()
-        .map(|&(p, _)| r.rows[p].len())
-        .sum::<usize>()
-}
-
 /// Step 5: inputs with rates absorbed by the state change `x̃ = x − Γu`:
 /// `A`, `B = B_raw + A Γ` and `Γ`.
-fn absorb_input_rates<S: Scalar>(
+pub(super) fn absorb_input_rates<S: Scalar>(
     pos: &Positions<S>,
     dyn_: &Dynamics<S>,
 ) -> Result<[SparseMatrix<S>; 3], ModelError> {
@@ -958,7 +561,7 @@ fn absorb_input_rates<S: Scalar>(
 
 /// Step 6: the output rows `C`, `D`: displacements and velocities directly, accelerations
 /// through the reduced model.
-fn outputs<S: Scalar>(
+pub(super) fn outputs<S: Scalar>(
     a: &Assembled<S>,
     sel: &Selection<S>,
     dyn_: &Dynamics<S>,
@@ -1018,44 +621,4 @@ fn outputs<S: Scalar>(
         }
     }
     Ok((c_out.build(), d_out.build()))
-}
-
-fn to_dense<S: Scalar>(m: &SparseMatrix<S>) -> DMatrix<S> {
-    let mut d = DMatrix::from_fn(m.nrows(), m.ncols(), |_, _| S::zero());
-    for (i, j, v) in m.iter() {
-        d[(i, j)] = v;
-    }
-    d
-}
-
-/// The reduced rows of a square elimination with its right-hand sides, pivot rows reordered
-/// so that row `c` holds the solution for unknown `c`.
-fn nm_rows_to_matrix<S: Scalar>(r: &Rref<S>, nunk: usize, nrhs: usize) -> SparseMatrix<S> {
-    let nnz = r
-        .plan
-        .pivots
-        .iter()
-        .map(|&(row, _)| r.rows[row].len())
-        .sum();
-    let mut m = Triplets::with_capacity(nunk, nunk + nrhs, nnz);
-    for &(row, c) in &r.plan.pivots {
-        for &(k, v) in r.rows.row(row) {
-            m.push(c, k, v);
-        }
-    }
-    m.build()
-}
-
-fn rate_check<S: Scalar>(
-    cg: &SparseMatrix<S>,
-    output: &str,
-    inputs: &[(String, String)],
-) -> Result<(), ModelError> {
-    if let Some((_, j, _)) = cg.iter().find(|(_, _, v)| v.nominal() != 0.0) {
-        return Err(ModelError::InputRateInAcceleration {
-            output: output.to_string(),
-            input: inputs[j].0.clone(),
-        });
-    }
-    Ok(())
 }
