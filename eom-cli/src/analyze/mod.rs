@@ -18,9 +18,6 @@ mod response;
 #[cfg(test)]
 mod tests;
 
-pub use report::*;
-use minimal::minimal_view;
-use response::{frequency_response, gain_entries};
 use crate::error::CliError;
 use crate::format::{ReIm, eigenvalue, g, re_im};
 use crate::params::ModelChoice;
@@ -33,7 +30,10 @@ use eom_num::gain::{GainOptions, steady_state_gain_with};
 use eom_num::minreal::{MinrealOptions, minimal_realization_with_eigenvalues};
 use eom_num::modes::{ModeOptions, Modes};
 use eom_num::zeros::transmission_zeros;
+use minimal::minimal_view;
 use num_complex::Complex64;
+pub use report::*;
+use response::{frequency_response, gain_entries};
 use serde::Serialize;
 
 /// Significant digits of the text tables.
