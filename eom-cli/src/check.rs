@@ -99,7 +99,7 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
         }
     };
     let mut items: Vec<(String, usize)> = Vec::new();
-    for kind in eom_model::KINDS {
+    for kind in eom_model::items::KINDS {
         let n = model.items_of(kind.name).count();
         if n > 0 {
             items.push((kind.name.to_string(), n));
@@ -126,7 +126,8 @@ pub fn check(choice: &ModelChoice) -> Result<CheckReport, CliError> {
 /// relative to body 2); a sensor measures end 1 relative to end 2 along the line from end 2 to
 /// end 1 (or body 1's rotation relative to body 2 about it).
 pub fn signal_descriptions(model: &eom_model::Model<f64>) -> Vec<String> {
-    use eom_model::{AnyItem, Line, SensorFrame, SensorOrder};
+    use eom_model::items::AnyItem;
+    use eom_model::{Line, SensorFrame, SensorOrder};
     let fmt = |v: &[f64; 3]| {
         format!(
             "({}, {}, {})",

@@ -173,7 +173,7 @@ pub mod prelude {
     pub use crate::error::ModelError;
     pub use crate::items::{
         Actuator, Beam, Body, FlexPoint, Link, Load, NhPoint, RigidPoint, Sensor, SensorFrame,
-        SensorOrder, Spring, Wing, vec3, x_axis, y_axis, z_axis,
+        SensorOrder, Spring, Strip, Unsteady, Wing, vec3, x_axis, y_axis, z_axis,
     };
     pub use crate::linearize::{Linearization, Linearizer, Method};
     pub use crate::warning::Warning;
@@ -190,7 +190,13 @@ pub use assemble::{
 };
 pub use compiled::{CompiledStateSpace, EvalWorkspace, MatrixSize, SymbolicStateSpace};
 pub use error::ModelError;
-pub use items::*;
+// The item kinds and geometry a model is built from; what only an item author needs (the
+// `Item` trait, `Physics`, `Part`, the kind table, …) stays under [`items`].
+pub use items::{
+    Actuator, Beam, Body, FlexPoint, GROUND, Line, Link, Load, ModelScalar, Name, NhPoint, Point,
+    RigidPoint, Sensor, SensorFrame, SensorOrder, Spring, Strip, Unsteady, Vec3, Wing, vec3,
+    x_axis, y_axis, z_axis, zero3,
+};
 pub use linearize::{Linearization, Linearizer, Method};
 pub use model::{Model, assemble};
 pub use reduce::{

@@ -68,7 +68,7 @@ fn wing_of(model: &Model) -> eom_model::Wing<f64> {
 }
 
 fn get(w: &eom_model::Wing<f64>, n: &str) -> f64 {
-    let (i, j) = eom_model::wing_derivative_index(n).unwrap();
+    let (i, j) = eom_model::items::wing_derivative_index(n).unwrap();
     w.derivatives[i][j]
 }
 

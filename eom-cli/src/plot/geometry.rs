@@ -6,8 +6,8 @@
 //! A mode moves every point rigidly with its body: `d = t + θ × (p − c)` from the body's six
 //! rows of the mode shape (translations `t`, small rotations `θ`, centre `c`).
 
-use eom_model::items::{Field, GROUND, Index};
-use eom_model::{Item, Model};
+use eom_model::Model;
+use eom_model::items::{Field, GROUND, Index, Item};
 use nalgebra::{DVector, Vector3};
 use num_complex::Complex64;
 
@@ -105,7 +105,7 @@ impl Sketch {
             .items()
             .iter()
             .filter_map(|i| match i {
-                eom_model::AnyItem::Load(l) => Some(l),
+                eom_model::items::AnyItem::Load(l) => Some(l),
                 _ => None,
             })
             .filter(|l| &*l.frame == eom_model::GROUND)

@@ -9,7 +9,8 @@ use crate::params::{ModelChoice, SweepSpec};
 use crate::pictures;
 use crate::plot;
 use crate::sweep::SweepReport;
-use eom_model::{Item, Linearization, Model};
+use eom_model::items::Item;
+use eom_model::{Linearization, Model};
 use num_complex::Complex64;
 
 /// Significant digits in the tables.

@@ -154,8 +154,7 @@ impl<'a> Table<'a> {
     pub fn only(&self, known: &[&str]) -> Result<(), FileError> {
         for (k, _) in self.table.iter() {
             if !known.contains(&k.get_ref().as_ref()) {
-                let close = closest(k.get_ref(), known);
-                let hint = close.map_or(String::new(), |c| format!(" (did you mean `{c}`?)"));
+                let hint = eom_text::did_you_mean(k.get_ref(), known);
                 return Err(self.ctx.error(
                     &k.span(),
                     &self.context,
@@ -290,9 +289,4 @@ pub(crate) fn parse_integer(text: &str, radix: u32) -> Option<i64> {
         .trim_start_matches("0o")
         .trim_start_matches("0b");
     i64::from_str_radix(t, radix).ok()
-}
-
-/// The known name closest to `s`, for "did you mean" (the one rule: [`eom_text::closest`]).
-pub(crate) fn closest<'k>(s: &str, known: &[&'k str]) -> Option<&'k str> {
-    eom_text::closest(s, known.iter().copied())
 }

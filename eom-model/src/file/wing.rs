@@ -6,7 +6,7 @@ use super::error::FileError;
 use super::items::Builder;
 use super::mirror::Mirror;
 use super::params::value_expr;
-use super::source::{Table, closest};
+use super::source::Table;
 use crate::items::{WING_ACCELERATION_DERIVATIVES, WING_DERIVATIVES, Wing, wing_derivative_index};
 use crate::warning::{ItemRef, Warning};
 use eom_aero::{AvlOutput, Derivatives, SolverOptions};
@@ -106,9 +106,8 @@ impl Builder<'_> {
             }
             let Some((i, j)) = wing_derivative_index(key) else {
                 let names: Vec<&str> = WING_DERIVATIVES.iter().flatten().copied().collect();
-                let hint = stability_axis_hint(key)
-                    .or_else(|| closest(key, &names).map(|c| format!(" (did you mean `{c}`?)")))
-                    .unwrap_or_default();
+                let hint =
+                    stability_axis_hint(key).unwrap_or_else(|| eom_text::did_you_mean(key, &names));
                 return Err(t.field_error(
                     "derivatives",
                     &span,

@@ -568,10 +568,7 @@ impl<'a> Parser<'a> {
             Err(SymError::UnknownParameter { known, .. }) => known,
             _ => self.scope.names(),
         };
-        let expected = match closest(name, known.iter().map(String::as_str)) {
-            Some(s) => format!("a known parameter (did you mean `{s}`?)"),
-            None => "a known parameter".to_string(),
-        };
+        let expected = format!("a known parameter{}", eom_text::did_you_mean(name, &known));
         let shown = eom_text::shown(name);
         let found = if known.is_empty() {
             format!("unknown parameter `{shown}`; no parameters are declared")
@@ -607,10 +604,7 @@ impl<'a> Parser<'a> {
         if self.scope.get(name).is_some() || matches!(name, "pi" | "π" | "e") {
             return self.implicit_multiplication();
         }
-        let hint = match closest(name, FUNCTIONS.iter().copied()) {
-            Some(s) => format!(" (did you mean `{s}`?)"),
-            None => String::new(),
-        };
+        let hint = eom_text::did_you_mean(name, &FUNCTIONS[..]);
         self.error(
             col,
             &format!("a known function ({})", FUNCTIONS.join(", ")),
@@ -698,11 +692,6 @@ impl<'a> Parser<'a> {
             p.expr(id)
         }))
     }
-}
-
-/// The candidate closest to `name`, for "did you mean" (the one rule: [`eom_text::closest`]).
-fn closest<'n>(name: &str, candidates: impl Iterator<Item = &'n str>) -> Option<&'n str> {
-    eom_text::closest(name, candidates)
 }
 
 #[cfg(test)]

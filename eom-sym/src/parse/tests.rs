@@ -57,9 +57,15 @@ fn parse_err(input: &str, scope: &Scope) -> (usize, String, String, String) {
 
 #[test]
 fn edit_distance_and_suggestions() {
-    assert_eq!(closest("sinn", FUNCTIONS.iter().copied()), Some("sin"));
-    assert_eq!(closest("sqr", FUNCTIONS.iter().copied()), Some("sqrt"));
-    assert_eq!(closest("zzzzzz", FUNCTIONS.iter().copied()), None);
+    assert_eq!(
+        eom_text::closest("sinn", FUNCTIONS.iter().copied()),
+        Some("sin")
+    );
+    assert_eq!(
+        eom_text::closest("sqr", FUNCTIONS.iter().copied()),
+        Some("sqrt")
+    );
+    assert_eq!(eom_text::closest("zzzzzz", FUNCTIONS.iter().copied()), None);
 }
 
 #[test]
