@@ -104,6 +104,20 @@
 //! the model-file reader's loop over the kinds and their allowed keys, the exporter's keys and
 //! defaults, and the key table of docs/model-files.md (checked by a test).
 //!
+//! [`Item`]: items::Item
+//! [`Field`]: items::Field
+//! [`Kind`]: items::Kind
+//! [`AnyItem`]: items::AnyItem
+//! [`KINDS`]: items::KINDS
+//! [`Item::kind`]: items::Item::kind
+//! [`Item::name`]: items::Item::name
+//! [`Item::fields`]: items::Item::fields
+//! [`Item::bodies`]: items::Item::bodies
+//! [`Item::supports`]: items::Item::supports
+//! [`Item::validate`]: items::Item::validate
+//! [`Item::assemble`]: items::Item::assemble
+//! [`Item::settings`]: items::Item::settings
+//!
 //! ## Adding an item kind
 //!
 //! 1. Write `items/<kind>.rs`: the declaration and the physics, e.g.
