@@ -129,13 +129,7 @@ fn check_table(model: &str, r: &EigenvalueTable, out: &mut Checked) {
 }
 
 fn check_gain(model: &str, r: &Gain, out: &mut Checked) {
-    let what = format!(
-        "{model} gain {}/{} at {} ({})",
-        r.output,
-        r.input,
-        shown(&r.set),
-        r.source
-    );
+    let what = format!("{model} {}", r.describe());
     let want = r.expected();
     let a = analyze(model, &set_args(&r.set));
     let g = a["steady_state_gain"]

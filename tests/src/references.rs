@@ -331,15 +331,20 @@ impl EigenvalueTable {
 }
 
 impl Gain {
-    /// The reference gain.
-    pub fn expected(&self) -> f64 {
-        let what = format!(
+    /// What the gain is, for messages: output, input, point and source.
+    pub fn describe(&self) -> String {
+        format!(
             "gain {}/{} at {} ({})",
             self.output,
             self.input,
             shown(&self.set),
             self.source
-        );
+        )
+    }
+
+    /// The reference gain.
+    pub fn expected(&self) -> f64 {
+        let what = self.describe();
         let data = data_file(&self.data);
         values(std::slice::from_ref(&self.value), &data, Kind::Real, &what)[0].re
     }
