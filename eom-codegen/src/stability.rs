@@ -111,7 +111,7 @@ pub(crate) fn render(
     let d = form.degree;
     let k = form.zero_roots;
     let scalar = raw_body(ctx, &lowered)?;
-    let quick = quick_items(ctx, &lowered)?;
+    let quick = quick_items(ctx, &lowered, d)?;
     let labels = form.labels.iter().map(|(l, _)| l.as_str());
     let degrees = form.labels.iter().map(|(_, g)| *g);
     let lead = d;
@@ -301,8 +301,12 @@ pub(crate) fn render(
 /// see `render/filter.rs`), the public `stability_conditions_quick`, and `stability_quick`,
 /// which decides a point only where every condition is clear of its bound (or one is
 /// certainly negative). Without a filter (a function with no magnitude form),
-/// `stability_quick` decides nothing.
-fn quick_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
+/// `stability_quick` decides nothing. `lead` is the position of the leading coefficient.
+fn quick_items(
+    ctx: &Ctx,
+    lowered: &eom_sym::lower::Lowered,
+    lead: usize,
+) -> Result<TokenStream, CodegenError> {
     let Some(FilterCode { body, tests, roots }) = render_filter(ctx, lowered, false)? else {
         return Ok(quote! {
             #[inline(always)]
@@ -354,27 +358,47 @@ fn quick_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStre
         #[inline(always)]
         fn stability_quick(p: &[f64; N_PARAMS]) -> Option<Verdict> {
             let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
-            if !stability_quick_raw(p, &mut c, &mut e) {
-                return None;
-            }
-            // Infinite or NaN bounds decide nothing.
-            if !c.iter().zip(&e).all(|(x, b)| (x.abs() + b) < f64::INFINITY) {
-                return None;
-            }
-            quick_verdict(&mut c, &e)
+            let ok = stability_quick_raw(p, &mut c, &mut e);
+            let [v] = clear_verdicts([ok], &c.map(|x| [x]), &e.map(|x| [x]));
+            v
         }
 
-        /// The first stage's verdict from its conditions and bounds.
+        /// The first stage's verdicts of `L` points from their conditions and bounds
+        /// (`c[k][l]`: condition `k` at point `l`): `None` where the bounds do not apply
+        /// (`ok` false), a bound or value is not finite, the sign of the leading
+        /// coefficient is not clear, or no condition is certainly negative and one is
+        /// within its bound of zero; else the verdict [`verdict_of`] gives. Without a
+        /// branch on the values: the verdicts of a sweep's points are as random as the
+        /// points, and a mispredicted branch costs more than the comparisons.
         #[inline(always)]
-        fn quick_verdict(c: &mut [f64; N_CONDITIONS], e: &[f64; N_CONDITIONS]) -> Option<Verdict> {
-            // Infinite or NaN bounds decide nothing.
-            if !c.iter().zip(e).all(|(x, b)| (x.abs() + b) < f64::INFINITY) {
-                return None;
+        fn clear_verdicts<const L: usize>(
+            ok: [bool; L],
+            c: &[[f64; L]; N_CONDITIONS],
+            e: &[[f64; L]; N_CONDITIONS],
+        ) -> [Option<Verdict>; L] {
+            let lead = c[#lead];
+            let mut unclear: [u32; L] = core::array::from_fn(|l| {
+                u32::from(!ok[l]) | u32::from(!(lead[l].abs() > e[#lead][l]))
+            });
+            // Normalised by the sign of `a_d` (exact: a product with ±1).
+            let sign: [f64; L] = core::array::from_fn(|l| 1.0f64.copysign(lead[l]));
+            let (mut negative, mut positive) = ([0u32; L], [0u32; L]);
+            for k in 0..N_CONDITIONS {
+                let odd = CONDITION_DEGREES[k] % 2 == 1;
+                for l in 0..L {
+                    let x = if odd { c[k][l] * sign[l] } else { c[k][l] };
+                    let b = e[k][l];
+                    unclear[l] |= u32::from(!((x.abs() + b) < f64::INFINITY));
+                    negative[l] |= u32::from(x <= -b);
+                    positive[l] += u32::from(x > b);
+                }
             }
-            match verdict_of(c, e) {
-                Verdict::Undecided => None,
-                v => Some(v),
-            }
+            const OUT: [Option<Verdict>; 3] = [None, Some(Verdict::Stable), Some(Verdict::Unstable)];
+            core::array::from_fn(|l| {
+                let stable = (negative[l] == 0) & (positive[l] == N_CONDITIONS as u32);
+                let code = (1 - unclear[l]) * (2 * negative[l] + u32::from(stable));
+                OUT[code as usize]
+            })
         }
 
         #lanes
@@ -494,14 +518,18 @@ fn lane_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStrea
             let mut c = [[0.0; LANES]; N_CONDITIONS];
             let mut e = [[0.0; LANES]; N_CONDITIONS];
             let ok = stability_quick_lanes_raw(p, &mut c, &mut e);
-            core::array::from_fn(|l| {
-                if !ok[l] {
-                    return None;
-                }
-                let mut cl: [f64; N_CONDITIONS] = core::array::from_fn(|k| c[k][l]);
-                let el: [f64; N_CONDITIONS] = core::array::from_fn(|k| e[k][l]);
-                quick_verdict(&mut cl, &el)
-            })
+            lane_verdicts(ok, &c, &e)
+        }
+
+        /// [`clear_verdicts`] of a block, apart from the values' code: inlined into it,
+        /// the comparisons change how the compiler packs the whole block (slower).
+        #[inline(never)]
+        fn lane_verdicts(
+            ok: [bool; LANES],
+            c: &[[f64; LANES]; N_CONDITIONS],
+            e: &[[f64; LANES]; N_CONDITIONS],
+        ) -> [Option<Verdict>; LANES] {
+            clear_verdicts(ok, c, e)
         }
     })
 }
