@@ -320,7 +320,7 @@ fn quick_items(
             }
         });
     };
-    let lanes = lane_items(ctx, lowered)?;
+    let lanes = lane_items(ctx, lowered, lead)?;
     let params = param_locals(ctx);
     let stores = roots
         .iter()
@@ -358,47 +358,25 @@ fn quick_items(
         #[inline(always)]
         fn stability_quick(p: &[f64; N_PARAMS]) -> Option<Verdict> {
             let (mut c, mut e) = ([0.0; N_CONDITIONS], [0.0; N_CONDITIONS]);
-            let ok = stability_quick_raw(p, &mut c, &mut e);
-            let [v] = clear_verdicts([ok], &c.map(|x| [x]), &e.map(|x| [x]));
-            v
+            if !stability_quick_raw(p, &mut c, &mut e) {
+                return None;
+            }
+            quick_verdict(&mut c, &e)
         }
 
-        /// The first stage's verdicts of `L` points from their conditions and bounds
-        /// (`c[k][l]`: condition `k` at point `l`): `None` where the bounds do not apply
-        /// (`ok` false), a bound or value is not finite, the sign of the leading
-        /// coefficient is not clear, or no condition is certainly negative and one is
-        /// within its bound of zero; else the verdict [`verdict_of`] gives. Without a
-        /// branch on the values: the verdicts of a sweep's points are as random as the
-        /// points, and a mispredicted branch costs more than the comparisons.
+        /// The first stage's verdict from its conditions and bounds: `None` where a bound or
+        /// value is not finite, or where [`verdict_of`] is undecided. (The lanes of
+        /// [`stability_many`] decide by the same rule without branches: `lane_verdicts`.)
         #[inline(always)]
-        fn clear_verdicts<const L: usize>(
-            ok: [bool; L],
-            c: &[[f64; L]; N_CONDITIONS],
-            e: &[[f64; L]; N_CONDITIONS],
-        ) -> [Option<Verdict>; L] {
-            let lead = c[#lead];
-            let mut unclear: [u32; L] = core::array::from_fn(|l| {
-                u32::from(!ok[l]) | u32::from(!(lead[l].abs() > e[#lead][l]))
-            });
-            // Normalised by the sign of `a_d` (exact: a product with ±1).
-            let sign: [f64; L] = core::array::from_fn(|l| 1.0f64.copysign(lead[l]));
-            let (mut negative, mut positive) = ([0u32; L], [0u32; L]);
-            for k in 0..N_CONDITIONS {
-                let odd = CONDITION_DEGREES[k] % 2 == 1;
-                for l in 0..L {
-                    let x = if odd { c[k][l] * sign[l] } else { c[k][l] };
-                    let b = e[k][l];
-                    unclear[l] |= u32::from(!((x.abs() + b) < f64::INFINITY));
-                    negative[l] |= u32::from(x <= -b);
-                    positive[l] += u32::from(x > b);
-                }
+        fn quick_verdict(c: &mut [f64; N_CONDITIONS], e: &[f64; N_CONDITIONS]) -> Option<Verdict> {
+            // Infinite or NaN bounds decide nothing.
+            if !c.iter().zip(e).all(|(x, b)| (x.abs() + b) < f64::INFINITY) {
+                return None;
             }
-            const OUT: [Option<Verdict>; 3] = [None, Some(Verdict::Stable), Some(Verdict::Unstable)];
-            core::array::from_fn(|l| {
-                let stable = (negative[l] == 0) & (positive[l] == N_CONDITIONS as u32);
-                let code = (1 - unclear[l]) * (2 * negative[l] + u32::from(stable));
-                OUT[code as usize]
-            })
+            match verdict_of(c, e) {
+                Verdict::Undecided => None,
+                v => Some(v),
+            }
         }
 
         #lanes
@@ -407,7 +385,11 @@ fn quick_items(
 
 /// The first stage over `LANES` points at once: every value a `[f64; LANES]`, every
 /// operation a loop over the lanes that the compiler turns into packed instructions.
-fn lane_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStream, CodegenError> {
+fn lane_items(
+    ctx: &Ctx,
+    lowered: &eom_sym::lower::Lowered,
+    lead: usize,
+) -> Result<TokenStream, CodegenError> {
     let FilterCode { body, tests, roots } =
         render_filter(ctx, lowered, true)?.expect("the scalar filter exists");
     let params = ctx.problem.params.iter().enumerate().map(|(i, p)| {
@@ -521,15 +503,45 @@ fn lane_items(ctx: &Ctx, lowered: &eom_sym::lower::Lowered) -> Result<TokenStrea
             lane_verdicts(ok, &c, &e)
         }
 
-        /// [`clear_verdicts`] of a block, apart from the values' code: inlined into it,
-        /// the comparisons change how the compiler packs the whole block (slower).
+        /// The first stage's verdicts of a block (`c[k][l]`: condition `k` at point `l`), by
+        /// the rule of `quick_verdict`: `None` where the bounds do not apply (`ok` false), a
+        /// bound or value is not finite, the sign of the leading coefficient is not clear,
+        /// or no condition is certainly negative and one is within its bound of zero.
+        /// Without a branch on the values: the verdicts of a sweep's points are as random
+        /// as the points, and a mispredicted branch per point costs more than the
+        /// comparisons (one point at a time, where the chain of one point is the time, the
+        /// branches are cheaper: `quick_verdict`). A function of its own: inlined into the
+        /// block's arithmetic, the comparisons change how the compiler packs the whole
+        /// block (slower).
         #[inline(never)]
         fn lane_verdicts(
             ok: [bool; LANES],
             c: &[[f64; LANES]; N_CONDITIONS],
             e: &[[f64; LANES]; N_CONDITIONS],
         ) -> [Option<Verdict>; LANES] {
-            clear_verdicts(ok, c, e)
+            let lead = c[#lead];
+            let mut unclear: [u32; LANES] = core::array::from_fn(|l| {
+                u32::from(!ok[l]) | u32::from(!(lead[l].abs() > e[#lead][l]))
+            });
+            // Normalised by the sign of `a_d` (exact: a product with ±1).
+            let sign: [f64; LANES] = core::array::from_fn(|l| 1.0f64.copysign(lead[l]));
+            let (mut negative, mut positive) = ([0u32; LANES], [0u32; LANES]);
+            for k in 0..N_CONDITIONS {
+                let odd = CONDITION_DEGREES[k] % 2 == 1;
+                for l in 0..LANES {
+                    let x = if odd { c[k][l] * sign[l] } else { c[k][l] };
+                    let b = e[k][l];
+                    unclear[l] |= u32::from(!((x.abs() + b) < f64::INFINITY));
+                    negative[l] |= u32::from(x <= -b);
+                    positive[l] += u32::from(x > b);
+                }
+            }
+            const OUT: [Option<Verdict>; 3] = [None, Some(Verdict::Stable), Some(Verdict::Unstable)];
+            core::array::from_fn(|l| {
+                let stable = (negative[l] == 0) & (positive[l] == N_CONDITIONS as u32);
+                let code = (1 - unclear[l]) * (2 * negative[l] + u32::from(stable));
+                OUT[code as usize]
+            })
         }
     })
 }

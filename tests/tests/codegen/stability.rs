@@ -457,3 +457,50 @@ fn spring_mass_damper_polynomial() {
     }
     assert_eq!(g::stability(&undamped), Ok(g::Verdict::Unstable));
 }
+
+/// The batch verdict decides each point as the one-point verdict does, also at points that
+/// take the first stage's other ways out: a parameter NaN, infinite, zero, huge or tiny, or
+/// negated (which can flip the sign of the leading coefficient, so that the lanes'
+/// normalisation is used), mixed in blocks with ordinary points.
+#[test]
+fn batch_verdict_is_the_one_point_verdict_at_hostile_points() {
+    let mut report = String::new();
+    let (mut flipped, mut not_finite) = (0, 0);
+    for g in all() {
+        let r = reference(g.model);
+        let nominal = r.model.scope.nominal_values();
+        let lead = g.degrees.iter().take_while(|&&d| d == 1).count() - 1;
+        let mut points = vec![nominal.clone()];
+        for k in 0..nominal.len() {
+            for x in [f64::NAN, f64::INFINITY, 0.0, 1e300, 1e-300, -nominal[k]] {
+                let mut p = nominal.clone();
+                p[k] = x;
+                points.push(p);
+            }
+        }
+        points.push(nominal.iter().map(|x| -x).collect());
+        let mut rng = StdRng::seed_from_u64(20261129);
+        for _ in 0..points.len() {
+            points.push(random_point(&mut rng, &nominal, 0.3));
+        }
+        // Hostile and ordinary points interleaved, so that every block mixes them.
+        let half = points.len() / 2;
+        let mixed: Vec<Vec<f64>> = (0..half)
+            .flat_map(|i| [points[i].clone(), points[half + i].clone()])
+            .collect();
+        let want: Vec<Option<i8>> = mixed.iter().map(|p| (g.verdict)(p)).collect();
+        assert_eq!((g.many)(&mixed), want, "{}: stability_many", g.model);
+        for p in &mixed {
+            let (applies, (c, e)) = (g.quick)(p);
+            flipped += usize::from(applies && c[lead] < -e[lead]);
+            not_finite += usize::from(c.iter().chain(&e).any(|x| !x.is_finite()));
+        }
+        report.push_str(&format!("{}: {} points\n", g.model, mixed.len()));
+    }
+    eprint!("{report}{flipped} with a negative leading coefficient, {not_finite} not finite\n");
+    assert!(
+        flipped > 0,
+        "no point used the normalisation by the leading coefficient's sign"
+    );
+    assert!(not_finite > 0, "no point with a value or bound not finite");
+}
