@@ -497,7 +497,7 @@ fn batch_verdict_is_the_one_point_verdict_at_hostile_points() {
         }
         report.push_str(&format!("{}: {} points\n", g.model, mixed.len()));
     }
-    eprint!("{report}{flipped} with a negative leading coefficient, {not_finite} not finite\n");
+    eprintln!("{report}{flipped} with a negative leading coefficient, {not_finite} not finite");
     assert!(
         flipped > 0,
         "no point used the normalisation by the leading coefficient's sign"
