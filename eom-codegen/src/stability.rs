@@ -110,11 +110,11 @@ pub(crate) fn render(
     let nc = form.conditions.len();
     let d = form.degree;
     let k = form.zero_roots;
+    let lead = d;
     let scalar = raw_body(ctx, &lowered)?;
-    let quick = quick_items(ctx, &lowered, d)?;
+    let quick = quick_items(ctx, &lowered, lead)?;
     let labels = form.labels.iter().map(|(l, _)| l.as_str());
     let degrees = form.labels.iter().map(|(_, g)| *g);
-    let lead = d;
     let check = validate.unwrap_or_default();
     let doc_raw = " The coefficients `a₀ … a_d` of `p(s)` (as computed: not normalised by \
                    the sign of `a_d`) and the Hurwitz determinants, with bounds on their \

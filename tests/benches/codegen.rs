@@ -2,7 +2,8 @@
 //! the same expressions, in the same run:
 //! bicycle A..D with all parameters symbolic (libm and std math, f64 and f32), shimmy, chain50,
 //! and the generation time. Each iteration evaluates 64 distinct points near nominal (per-call
-//! time = iteration time / 64; criterion's throughput line gives calls per second).
+//! time = iteration time / 64; criterion's throughput line gives calls per second). Also the
+//! bicycle's stability verdict, one point at a time and in blocks (4 096 points per iteration).
 //!
 //! `cargo bench -p tests --bench codegen`
 //!
@@ -177,6 +178,34 @@ fn evaluation(c: &mut Criterion) {
     bench_tape(c, "chain50/abcd/tape", "chain50");
 }
 
+/// The bicycle's stability verdict without eigenvalues (`--stability`), per point: one point
+/// at a time (`stability`) and in blocks (`stability_many`), over 4 096 distinct points within
+/// ±20 % of nominal, the speed too, so that about half are stable. Distinct random points
+/// matter: the verdicts are then as random as the points, as in a sweep, and a branch on
+/// them mispredicts (docs/performance.md).
+fn verdicts(c: &mut Criterion) {
+    use stab::bicycle as g;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let pts: Vec<[f64; g::N_PARAMS]> = (0..4096)
+        .map(|_| g::NOMINAL.map(|x| x * rng.random_range(0.8..1.2)))
+        .collect();
+    let mut out = vec![Ok(g::Verdict::Undecided); pts.len()];
+    let mut group = c.benchmark_group("per verdict");
+    group.throughput(Throughput::Elements(pts.len() as u64));
+    group.bench_function("bicycle/stability, one point at a time", |b| {
+        b.iter(|| {
+            for (p, v) in black_box(&pts).iter().zip(out.iter_mut()) {
+                *v = g::stability(p);
+            }
+            black_box(&out);
+        })
+    });
+    group.bench_function("bicycle/stability_many", |b| {
+        b.iter(|| g::stability_many(black_box(&pts), &mut out))
+    });
+    group.finish();
+}
+
 fn generation(c: &mut Criterion) {
     for name in ["bicycle", "chain50"] {
         let m = models::build(name, &[]).expect("model");
@@ -191,5 +220,5 @@ fn generation(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, evaluation, generation);
+criterion_group!(benches, evaluation, verdicts, generation);
 criterion_main!(benches);
