@@ -100,35 +100,18 @@ pub(super) fn removed_note(
         ModeKind::Real => "real mode",
         ModeKind::Oscillatory => "oscillatory mode",
     };
-    let cause = match why {
-        RemovedKind::Uncontrollable => "the inputs cannot excite it",
-        RemovedKind::Unobservable => "the outputs cannot see it",
+    let (removed, cause) = match why {
+        RemovedKind::Uncontrollable => ("uncontrollable", "the inputs cannot excite it"),
+        RemovedKind::Unobservable => ("unobservable", "the outputs cannot see it"),
     };
     let lam = eigenvalue(z, SIG, false);
     match st {
         Stability::Unstable => format!(
-            "UNSTABLE {what} {lam} is {}: {cause}, yet it grows in the physical system",
-            if why == RemovedKind::Uncontrollable {
-                "uncontrollable"
-            } else {
-                "unobservable"
-            }
+            "UNSTABLE {what} {lam} is {removed}: {cause}, yet it grows in the physical system"
         ),
-        Stability::Marginal => format!(
-            "marginal {what} {lam} is {}: {cause}; it does not decay",
-            if why == RemovedKind::Uncontrollable {
-                "uncontrollable"
-            } else {
-                "unobservable"
-            }
-        ),
-        Stability::Stable => format!(
-            "stable {what} {lam} is {}: {cause}",
-            if why == RemovedKind::Uncontrollable {
-                "uncontrollable"
-            } else {
-                "unobservable"
-            }
-        ),
+        Stability::Marginal => {
+            format!("marginal {what} {lam} is {removed}: {cause}; it does not decay")
+        }
+        Stability::Stable => format!("stable {what} {lam} is {removed}: {cause}"),
     }
 }
